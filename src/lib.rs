@@ -1,4 +1,6 @@
 //! glint: a cel-animation renderer for NURBS patch models with designed, keyframed stylized
 //! highlights (Anjyo & Hiramitsu 2003).
 
+pub mod cli;
+pub mod formats;
 pub mod geom;

@@ -1,6 +1,17 @@
 //! Geometry in f64: knot vectors and B-spline bases, rational surfaces with derivatives, frames,
 //! grid evaluation and exact shapes.
 
+mod error;
 mod frame;
+mod grid;
+pub mod knots;
+mod library;
+pub mod shapes;
+mod surface;
 
+pub use error::GeomError;
 pub use frame::Frame;
+pub use grid::GridEvaluator;
+pub use knots::KnotVector;
+pub use library::{NamedPatch, PatchLibrary, PatchNotFound};
+pub use surface::{Domain, NurbsSurface, SurfaceDerivs};

@@ -1,0 +1,107 @@
+//! `glint probe`: the frame the highlight sees at chosen (u, v) of one patch, as JSON.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::anyhow;
+use clap::Args;
+use serde::Serialize;
+
+use super::CliError;
+use crate::formats::load_patches;
+use crate::geom::Frame;
+
+/// Print the surface frame at parameters of a patch, as a JSON array.
+///
+/// For each --uv the output holds the point, the partial derivatives Su and Sv, the unit normal
+/// N and the tangents du, dv that the highlight operations move, stretch and split along, and
+/// whether the point is degenerate (a collapsed patch edge such as a sphere's pole, where the
+/// frame is the limit from inside the patch).
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:
+  glint probe patches/sphere.ron --patch sphere --uv 0.25,0.5
+  glint probe patches/teapot.bpt --patch 20 --uv 0,0 --uv 0.5,0.5 --uv 1,1")]
+pub struct ProbeArgs {
+    /// Patch file: a RON patch library (.ron) or Bezier patches (.bpt)
+    file: PathBuf,
+    /// Patch name, or its 0-based index in the file
+    #[arg(long, value_name = "NAME_OR_INDEX")]
+    patch: String,
+    /// Parameters to probe, inside the patch's domain (repeat for more points)
+    #[arg(long = "uv", value_name = "U,V", required = true, value_parser = parse_uv)]
+    uvs: Vec<(f64, f64)>,
+}
+
+/// One probed point, as printed.
+#[derive(Serialize)]
+struct Probe<'a> {
+    patch: &'a str,
+    u: f64,
+    v: f64,
+    point: [f64; 3],
+    su: [f64; 3],
+    sv: [f64; 3],
+    normal: [f64; 3],
+    du: [f64; 3],
+    dv: [f64; 3],
+    degenerate: bool,
+}
+
+fn parse_uv(text: &str) -> Result<(f64, f64), String> {
+    let parsed = text
+        .split_once(',')
+        .and_then(|(u, v)| Some((u.trim().parse().ok()?, v.trim().parse().ok()?)));
+    match parsed {
+        Some((u, v)) if f64::is_finite(u) && f64::is_finite(v) => Ok((u, v)),
+        _ => Err(format!(
+            "expected two numbers U,V such as 0.25,0.5, got '{text}'"
+        )),
+    }
+}
+
+pub fn run(args: &ProbeArgs) -> Result<(), CliError> {
+    let library = load_patches(&args.file).map_err(|e| CliError::BadInput(e.into()))?;
+    let patch = library
+        .find(&args.patch)
+        .map_err(|e| CliError::BadInput(anyhow!("{}: {e}", args.file.display())))?;
+    let surface = &patch.surface;
+    let domain = surface.domain();
+    let mut probes = Vec::with_capacity(args.uvs.len());
+    for &(u, v) in &args.uvs {
+        if !domain.contains(u, v) {
+            return Err(CliError::BadInput(anyhow!(
+                "(u, v) = ({u}, {v}) is outside the domain of patch '{}': u in [{}, {}], v in [{}, {}]",
+                patch.name,
+                domain.u.0,
+                domain.u.1,
+                domain.v.0,
+                domain.v.1
+            )));
+        }
+        let d = surface.derivs(u, v, 1);
+        let Frame {
+            point,
+            normal,
+            du,
+            dv,
+            degenerate,
+        } = surface.frame(u, v);
+        probes.push(Probe {
+            patch: &patch.name,
+            u,
+            v,
+            point: point.to_array(),
+            su: d.su.to_array(),
+            sv: d.sv.to_array(),
+            normal: normal.to_array(),
+            du: du.to_array(),
+            dv: dv.to_array(),
+            degenerate,
+        });
+    }
+    let mut out = std::io::stdout().lock();
+    serde_json::to_writer_pretty(&mut out, &probes)
+        .map_err(anyhow::Error::from)
+        .and_then(|()| writeln!(out).map_err(anyhow::Error::from))
+        .map_err(|e| CliError::Failed(e.context("writing the probe output")))
+}

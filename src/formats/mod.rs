@@ -1,0 +1,59 @@
+//! Readers of the files glint takes in: RON patch libraries and `.bpt` Bezier patches.
+
+mod bpt;
+mod patch_ron;
+
+use std::path::Path;
+
+use thiserror::Error;
+
+use crate::geom::PatchLibrary;
+
+pub use bpt::parse_bpt;
+pub use patch_ron::parse_patch_ron;
+
+/// A file that could not be read, with where in it the problem is.
+#[derive(Debug, Error)]
+pub enum FormatError {
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
+    #[error("{path}:{line}:{col}: {message}")]
+    Ron {
+        path: String,
+        line: usize,
+        col: usize,
+        message: String,
+    },
+    #[error("{path}:{line}: {message}")]
+    Bpt {
+        path: String,
+        line: usize,
+        message: String,
+    },
+    #[error(
+        "{path}: unknown patch file type; use .ron (a patch library) or .bpt (Bezier patches)"
+    )]
+    UnknownKind { path: String },
+}
+
+/// Loads a model: a RON patch library (`.ron`) or Bezier patches (`.bpt`), by extension.
+pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
+    let shown = path.display().to_string();
+    let kind = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let parse = match kind.as_deref() {
+        Some("ron") => parse_patch_ron,
+        Some("bpt") => parse_bpt,
+        _ => return Err(FormatError::UnknownKind { path: shown }),
+    };
+    let text = std::fs::read_to_string(path).map_err(|source| FormatError::Io {
+        path: shown.clone(),
+        source,
+    })?;
+    parse(&text, &shown)
+}

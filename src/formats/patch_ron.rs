@@ -1,0 +1,319 @@
+//! RON patch libraries: a list of named patches, each an exact shape or an explicit NURBS.
+//!
+//! ```ron
+//! (
+//!     patches: [
+//!         // Exact shapes on the domain [0,1]² (see `geom::shapes`).
+//!         (name: "ball", surface: Sphere(radius: 1.0, center: (0.0, 0.0, 2.0))), // center optional
+//!         (name: "can", surface: Cylinder(radius: 0.5, height: 2.0)),
+//!         (name: "ring", surface: Torus(major_radius: 2.0, minor_radius: 0.5)),
+//!         (name: "floor", surface: Plane(width: 4.0, height: 4.0)),
+//!         // A Bezier patch: its degrees follow from the net, rows along u of points along v.
+//!         (name: "tile", surface: Bezier(points: [
+//!             [(0.0, 0.0, 0.0), (0.0, 1.0, 0.0)],
+//!             [(1.0, 0.0, 0.0), (1.0, 1.0, 0.5)],
+//!         ])),
+//!         // An explicit NURBS: degrees (u, v), knot vectors of length count + degree + 1,
+//!         // the control net (rows along u, each row running along v) and optional weights of
+//!         // the same shape (all 1 when left out; every weight > 0).
+//!         (name: "panel", surface: Nurbs(
+//!             degree: (2, 1),
+//!             knots_u: [0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+//!             knots_v: [0.0, 0.0, 1.0, 1.0],
+//!             points: [
+//!                 [(0.0, 0.0, 0.0), (0.0, 1.0, 0.0)],
+//!                 [(1.0, 0.0, 1.0), (1.0, 1.0, 1.0)],
+//!                 [(2.0, 0.0, 0.0), (2.0, 1.0, 0.0)],
+//!             ],
+//!             weights: Some([[1.0, 1.0], [0.7, 0.7], [1.0, 1.0]]),
+//!         )),
+//!     ],
+//! )
+//! ```
+
+use glam::DVec3;
+use serde::Deserialize;
+
+use super::FormatError;
+use crate::geom::{shapes, GeomError, NamedPatch, NurbsSurface, PatchLibrary};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LibraryFile {
+    patches: Vec<PatchSpec>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PatchSpec {
+    name: String,
+    surface: BuiltSurface,
+}
+
+type Point = (f64, f64, f64);
+
+/// A surface as written in the file. Validation runs while the file is parsed, so an error is
+/// reported at the surface it concerns.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+enum SurfaceSpec {
+    Sphere {
+        radius: f64,
+        #[serde(default)]
+        center: Point,
+    },
+    Cylinder {
+        radius: f64,
+        height: f64,
+    },
+    Torus {
+        major_radius: f64,
+        minor_radius: f64,
+    },
+    Plane {
+        width: f64,
+        height: f64,
+    },
+    Bezier {
+        points: Vec<Vec<Point>>,
+    },
+    Nurbs {
+        degree: (usize, usize),
+        knots_u: Vec<f64>,
+        knots_v: Vec<f64>,
+        points: Vec<Vec<Point>>,
+        #[serde(default)]
+        weights: Option<Vec<Vec<Weight>>>,
+    },
+}
+
+/// A control point weight, checked where it is written: finite and greater than 0.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(try_from = "f64")]
+struct Weight(f64);
+
+impl TryFrom<f64> for Weight {
+    type Error = String;
+
+    fn try_from(w: f64) -> Result<Self, String> {
+        if w.is_finite() && w > 0.0 {
+            Ok(Weight(w))
+        } else {
+            Err(format!(
+                "weight {w} is not allowed: weights must be finite and greater than 0"
+            ))
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(try_from = "SurfaceSpec")]
+struct BuiltSurface(NurbsSurface);
+
+impl TryFrom<SurfaceSpec> for BuiltSurface {
+    type Error = GeomError;
+
+    fn try_from(spec: SurfaceSpec) -> Result<Self, GeomError> {
+        let net = |points: Vec<Vec<Point>>| -> Vec<Vec<DVec3>> {
+            points
+                .into_iter()
+                .map(|row| row.into_iter().map(DVec3::from).collect())
+                .collect()
+        };
+        let surface = match spec {
+            SurfaceSpec::Sphere { radius, center } => shapes::sphere(center.into(), radius)?,
+            SurfaceSpec::Cylinder { radius, height } => shapes::cylinder(radius, height)?,
+            SurfaceSpec::Torus {
+                major_radius,
+                minor_radius,
+            } => shapes::torus(major_radius, minor_radius)?,
+            SurfaceSpec::Plane { width, height } => shapes::plane(width, height)?,
+            SurfaceSpec::Bezier { points } => {
+                let rows = points.len();
+                let columns = points.first().map_or(0, Vec::len);
+                shapes::bezier(
+                    rows.saturating_sub(1),
+                    columns.saturating_sub(1),
+                    &net(points),
+                )?
+            }
+            SurfaceSpec::Nurbs {
+                degree: (degree_u, degree_v),
+                knots_u,
+                knots_v,
+                points,
+                weights,
+            } => {
+                let weights: Option<Vec<Vec<f64>>> = weights.map(|w| {
+                    w.into_iter()
+                        .map(|row| row.into_iter().map(|w| w.0).collect())
+                        .collect()
+                });
+                NurbsSurface::new(
+                    degree_u,
+                    degree_v,
+                    knots_u,
+                    knots_v,
+                    &net(points),
+                    weights.as_deref(),
+                )?
+            }
+        };
+        Ok(BuiltSurface(surface))
+    }
+}
+
+/// Reads a RON patch library; `path` is used in error messages only.
+pub fn parse_patch_ron(text: &str, path: &str) -> Result<PatchLibrary, FormatError> {
+    let file: LibraryFile = ron::Options::default().from_str(text).map_err(|e| {
+        let mut at = (e.span.start.line, e.span.start.col);
+        if matches!(e.code, ron::Error::Message(_)) {
+            // A surface that failed validation: serde reports it at its closing
+            // parenthesis; point at its start instead.
+            at = start_of_value_closed_at(text, at).unwrap_or(at);
+        }
+        FormatError::Ron {
+            path: path.into(),
+            line: at.0,
+            col: at.1,
+            message: e.code.to_string(),
+        }
+    })?;
+    let mut patches: Vec<NamedPatch> = Vec::with_capacity(file.patches.len());
+    for spec in file.patches {
+        if patches.iter().any(|p| p.name == spec.name) {
+            let (line, col) = second_occurrence(text, &format!("\"{}\"", spec.name));
+            return Err(FormatError::Ron {
+                path: path.into(),
+                line,
+                col,
+                message: format!(
+                    "the patch name \"{}\" is used twice; patch names must be unique",
+                    spec.name
+                ),
+            });
+        }
+        patches.push(NamedPatch {
+            name: spec.name,
+            surface: spec.surface.0,
+        });
+    }
+    Ok(PatchLibrary { patches })
+}
+
+/// Where the value that ends with the `)` at 1-based `(line, col)` starts: the identifier before
+/// its matching `(` (as in `Nurbs(...)`), or the parenthesis itself. `None` when no `)` is there.
+fn start_of_value_closed_at(text: &str, (line, col): (usize, usize)) -> Option<(usize, usize)> {
+    let line_start = text
+        .split_inclusive('\n')
+        .take(line - 1)
+        .map(str::len)
+        .sum::<usize>();
+    let close = line_start + text[line_start..].char_indices().nth(col - 1)?.0;
+    if text.as_bytes().get(close) != Some(&b')') {
+        return None;
+    }
+    let mut depth = 0usize;
+    let open = text[..=close].rfind(|c| {
+        match c {
+            ')' => depth += 1,
+            '(' => depth -= 1,
+            _ => {}
+        }
+        depth == 0
+    })?;
+    let head = text[..open].trim_end_matches(|c: char| c.is_alphanumeric() || c == '_');
+    Some(position_of(text, head.len()))
+}
+
+/// The 1-based line and column of byte `offset` in `text`.
+fn position_of(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let col = before[before.rfind('\n').map_or(0, |i| i + 1)..]
+        .chars()
+        .count()
+        + 1;
+    (line, col)
+}
+
+/// The 1-based line and column of the second occurrence of `needle` (or of the first, or 1:1).
+fn second_occurrence(text: &str, needle: &str) -> (usize, usize) {
+    let offset = text
+        .match_indices(needle)
+        .nth(1)
+        .or_else(|| text.match_indices(needle).next())
+        .map_or(0, |(i, _)| i);
+    position_of(text, offset)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The example in this module's documentation.
+    fn doc_example() -> &'static str {
+        let doc = include_str!("patch_ron.rs");
+        let start = doc.find("//! ```ron\n").unwrap() + "//! ```ron\n".len();
+        let end = doc[start..].find("//! ```").unwrap() + start;
+        Box::leak(
+            doc[start..end]
+                .lines()
+                .map(|l| l.trim_start_matches("//!").strip_prefix(' ').unwrap_or(""))
+                .collect::<Vec<_>>()
+                .join("\n")
+                .into_boxed_str(),
+        )
+    }
+
+    #[test]
+    fn documented_example_parses_into_every_kind_of_surface() {
+        let lib = parse_patch_ron(doc_example(), "doc.ron").unwrap();
+        let names: Vec<&str> = lib.patches.iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(names, ["ball", "can", "ring", "floor", "tile", "panel"]);
+        let ball = &lib.find("ball").unwrap().surface;
+        assert!((ball.point(0.3, 0.6) - DVec3::new(0.0, 0.0, 2.0)).length() - 1.0 < 1e-12);
+        let panel = &lib.find("panel").unwrap().surface;
+        assert_eq!(panel.control_point(1, 0).1, 0.7);
+    }
+
+    fn error_of(text: &str) -> String {
+        parse_patch_ron(text, "m.ron").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn syntax_errors_and_unknown_fields_have_a_location() {
+        let e = error_of("(patches: [(name: \"a\", surface: Sphere(radius: 1.0)]");
+        assert!(e.starts_with("m.ron:1:"), "{e}");
+        let e = error_of("(patches: [\n  (name: \"a\", surface: Sphere(radius: 1.0, colour: 1))])");
+        assert!(e.starts_with("m.ron:2:") && e.contains("colour"), "{e}");
+    }
+
+    #[test]
+    fn bad_weight_is_reported_where_it_is_written() {
+        let text = "(patches: [(name: \"p\", surface: Nurbs(degree: (1, 1),\n knots_u: [0, 0, 1, 1], knots_v: [0, 0, 1, 1],\n points: [[(0, 0, 0), (0, 1, 0)], [(1, 0, 0), (1, 1, 0)]],\n weights: Some([[1, 1], [1, -2]]))\n)])";
+        let e = error_of(text);
+        assert!(e.starts_with("m.ron:4:"), "{e}");
+        assert!(e.contains("weight -2"), "{e}");
+    }
+
+    #[test]
+    fn wrong_knot_count_names_the_counts_and_the_line() {
+        let text = "(patches: [\n(name: \"p\", surface: Nurbs(degree: (1, 1),\n knots_u: [0, 0, 1], knots_v: [0, 0, 1, 1],\n points: [[(0, 0, 0), (0, 1, 0)], [(1, 0, 0), (1, 1, 0)]]))\n])";
+        let e = error_of(text);
+        assert!(
+            e.starts_with("m.ron:2:22: u direction: 3 knots given"),
+            "{e}"
+        );
+        assert!(e.contains("needs 4"), "{e}");
+    }
+
+    #[test]
+    fn duplicate_names_point_at_the_second() {
+        let text = "(patches: [\n(name: \"a\", surface: Plane(width: 1, height: 1)),\n(name: \"a\", surface: Plane(width: 1, height: 1)),\n])";
+        assert_eq!(
+            error_of(text),
+            "m.ron:3:8: the patch name \"a\" is used twice; patch names must be unique"
+        );
+    }
+}

@@ -1,0 +1,331 @@
+//! Knot vectors and B-spline basis functions with derivatives ("The NURBS Book", A2.1–A2.3).
+
+use super::GeomError;
+
+/// The highest derivative order glint evaluates (points, first and second derivatives).
+pub const MAX_ORDER: usize = 2;
+
+/// A validated, non-decreasing knot vector for a B-spline of degree `degree` with
+/// `count` control points: `count + degree + 1` knots. Clamped and unclamped vectors are both
+/// allowed; the parameter domain is `[U[p], U[n]]` (p = degree, n = count), where the basis
+/// functions sum to one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct KnotVector {
+    knots: Vec<f64>,
+    degree: usize,
+}
+
+/// Values and derivatives of the `degree + 1` basis functions that are non-zero at one
+/// parameter: `ders[k][j]` is the k-th derivative of `N_{span−p+j, p}`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BasisDerivs {
+    /// The knot span `i` with `U[i] ≤ t < U[i+1]` (the last non-empty span at the domain's end).
+    pub span: usize,
+    /// `ders[k][j]` for derivative order `k ≤ MAX_ORDER`, basis index `j ≤ degree`.
+    pub ders: [[f64; MAX_BASIS]; MAX_ORDER + 1],
+}
+
+/// The largest number of non-zero basis functions at a parameter, i.e. the highest supported
+/// degree plus one.
+pub const MAX_BASIS: usize = MAX_DEGREE + 1;
+
+/// The highest supported degree. Degree 1 to 9 covers every surface in practice and keeps the
+/// per-point work on the stack.
+pub const MAX_DEGREE: usize = 9;
+
+impl KnotVector {
+    /// Validates `knots` for a B-spline of `degree` with `count` control points.
+    ///
+    /// Requirements: `1 ≤ degree ≤ MAX_DEGREE`, `count ≥ degree + 1`,
+    /// `knots.len() = count + degree + 1`, all knots finite and non-decreasing, no interior knot
+    /// of multiplicity above `degree` (the surface would tear there), and a non-empty domain.
+    pub fn new(knots: Vec<f64>, degree: usize, count: usize) -> Result<Self, GeomError> {
+        if degree == 0 || degree > MAX_DEGREE {
+            return Err(GeomError::Degree { degree });
+        }
+        if count < degree + 1 {
+            return Err(GeomError::TooFewControlPoints { degree, count });
+        }
+        let expected = count + degree + 1;
+        if knots.len() != expected {
+            return Err(GeomError::KnotCount {
+                found: knots.len(),
+                expected,
+                degree,
+                count,
+            });
+        }
+        if let Some(i) = knots.iter().position(|k| !k.is_finite()) {
+            return Err(GeomError::KnotNotFinite { index: i });
+        }
+        if let Some(i) = knots.windows(2).position(|w| w[1] < w[0]) {
+            return Err(GeomError::KnotsDecreasing {
+                index: i + 1,
+                value: knots[i + 1],
+                previous: knots[i],
+            });
+        }
+        // Multiplicity inside the domain (ends may be clamped with multiplicity p + 1).
+        for i in (degree + 1)..count {
+            let multiplicity = knots.iter().filter(|&&k| k == knots[i]).count();
+            if multiplicity > degree {
+                return Err(GeomError::KnotMultiplicity {
+                    value: knots[i],
+                    multiplicity,
+                    degree,
+                });
+            }
+        }
+        if knots[degree] >= knots[count] {
+            return Err(GeomError::EmptyDomain {
+                start: knots[degree],
+                end: knots[count],
+            });
+        }
+        Ok(Self { knots, degree })
+    }
+
+    /// The clamped uniform knot vector on [0, 1] for `count` control points: `degree + 1`
+    /// zeros, evenly spaced interior knots, `degree + 1` ones (a Bezier curve when
+    /// `count = degree + 1`).
+    pub fn clamped_uniform(degree: usize, count: usize) -> Result<Self, GeomError> {
+        let spans = count.saturating_sub(degree).max(1);
+        let knots = (0..count + degree + 1)
+            .map(|i| (i.saturating_sub(degree) as f64 / spans as f64).min(1.0))
+            .collect();
+        Self::new(knots, degree, count)
+    }
+
+    /// The degree p.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The knots.
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// The number of control points n this vector serves: `len − p − 1`.
+    pub fn count(&self) -> usize {
+        self.knots.len() - self.degree - 1
+    }
+
+    /// The parameter domain `[U[p], U[n]]`.
+    pub fn domain(&self) -> (f64, f64) {
+        (self.knots[self.degree], self.knots[self.count()])
+    }
+
+    /// The knot span index i with `U[i] ≤ t < U[i+1]`, `p ≤ i < n` (A2.1); `t` at or past the
+    /// domain's end maps to the last non-empty span, `t` before its start to the first.
+    pub fn find_span(&self, t: f64) -> usize {
+        let n = self.count();
+        let p = self.degree;
+        if t >= self.knots[n] {
+            // The last span with U[i] < U[i+1].
+            let mut i = n - 1;
+            while self.knots[i] >= self.knots[i + 1] {
+                i -= 1;
+            }
+            return i;
+        }
+        if t <= self.knots[p] {
+            let mut i = p;
+            while self.knots[i] >= self.knots[i + 1] {
+                i += 1;
+            }
+            return i;
+        }
+        // Binary search for U[i] ≤ t < U[i+1] in [p, n).
+        let (mut low, mut high) = (p, n);
+        while high - low > 1 {
+            let mid = (low + high) / 2;
+            if t < self.knots[mid] {
+                high = mid;
+            } else {
+                low = mid;
+            }
+        }
+        low
+    }
+
+    /// The non-zero basis functions at `t` and their derivatives up to `order ≤ MAX_ORDER`
+    /// (A2.3: the triangular table of knot differences `ndu`, then the derivative recurrence
+    /// `N^(k)_{i,p} = p/(k..) [N^(k−1)_{i,p−1}/(U[i+p]−U[i]) − N^(k−1)_{i+1,p−1}/(U[i+p+1]−U[i+1])]`).
+    /// Orders above `order` are left zero.
+    pub fn basis_derivs(&self, t: f64, order: usize) -> BasisDerivs {
+        let p = self.degree;
+        let u = &self.knots;
+        let span = self.find_span(t);
+        let order = order.min(MAX_ORDER).min(p);
+        let mut ders = [[0.0; MAX_BASIS]; MAX_ORDER + 1];
+
+        // ndu[j][r]: basis functions (upper triangle incl. diagonal) and knot differences
+        // (lower triangle).
+        let mut ndu = [[0.0; MAX_BASIS]; MAX_BASIS];
+        let mut left = [0.0; MAX_BASIS];
+        let mut right = [0.0; MAX_BASIS];
+        ndu[0][0] = 1.0;
+        for j in 1..=p {
+            left[j] = t - u[span + 1 - j];
+            right[j] = u[span + j] - t;
+            let mut saved = 0.0;
+            for r in 0..j {
+                ndu[j][r] = right[r + 1] + left[j - r];
+                let temp = ndu[r][j - 1] / ndu[j][r];
+                ndu[r][j] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            ndu[j][j] = saved;
+        }
+        for j in 0..=p {
+            ders[0][j] = ndu[j][p];
+        }
+
+        let mut a = [[0.0; MAX_BASIS]; 2];
+        for r in 0..=p {
+            let (mut s1, mut s2) = (0usize, 1usize);
+            a[0][0] = 1.0;
+            for k in 1..=order {
+                let mut d = 0.0;
+                let rk = r as isize - k as isize;
+                let pk = p - k;
+                if r >= k {
+                    a[s2][0] = a[s1][0] / ndu[pk + 1][r - k];
+                    d = a[s2][0] * ndu[r - k][pk];
+                }
+                let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
+                let j2 = if r as isize - 1 <= pk as isize {
+                    k - 1
+                } else {
+                    p - r
+                };
+                for j in j1..=j2 {
+                    let idx = (rk + j as isize) as usize;
+                    a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][idx];
+                    d += a[s2][j] * ndu[idx][pk];
+                }
+                if r <= pk {
+                    a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+                    d += a[s2][k] * ndu[r][pk];
+                }
+                ders[k][r] = d;
+                std::mem::swap(&mut s1, &mut s2);
+            }
+        }
+        // Multiply by p! / (p − k)!.
+        let mut factor = p as f64;
+        for (k, row) in ders.iter_mut().enumerate().take(order + 1).skip(1) {
+            for value in row.iter_mut().take(p + 1) {
+                *value *= factor;
+            }
+            factor *= (p - k) as f64;
+        }
+        BasisDerivs { span, ders }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cubic() -> KnotVector {
+        KnotVector::new(
+            vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 0.7, 1.0, 1.0, 1.0, 1.0],
+            3,
+            7,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn basis_is_a_partition_of_unity_and_derivatives_sum_to_zero() {
+        let kv = cubic();
+        for i in 0..=100 {
+            let t = i as f64 / 100.0;
+            let b = kv.basis_derivs(t, 2);
+            let sums: Vec<f64> = (0..3).map(|k| b.ders[k][..4].iter().sum()).collect();
+            assert!((sums[0] - 1.0).abs() < 1e-14, "t={t}: {sums:?}");
+            assert!(
+                sums[1].abs() < 1e-10 && sums[2].abs() < 1e-8,
+                "t={t}: {sums:?}"
+            );
+            assert!(b.ders[0][..4].iter().all(|&n| n >= -1e-15));
+        }
+    }
+
+    #[test]
+    fn basis_derivatives_match_finite_differences() {
+        let kv = cubic();
+        let h = 1e-6;
+        for &t in &[0.05, 0.2, 0.45, 0.55, 0.85, 0.95] {
+            let b = kv.basis_derivs(t, 2);
+            let (bm, bp) = (kv.basis_derivs(t - h, 2), kv.basis_derivs(t + h, 2));
+            assert_eq!(bm.span, b.span);
+            assert_eq!(bp.span, b.span);
+            for j in 0..4 {
+                let d1 = (bp.ders[0][j] - bm.ders[0][j]) / (2.0 * h);
+                let d2 = (bp.ders[1][j] - bm.ders[1][j]) / (2.0 * h);
+                assert!((d1 - b.ders[1][j]).abs() < 1e-6, "t={t} j={j}");
+                assert!((d2 - b.ders[2][j]).abs() < 1e-4, "t={t} j={j}");
+            }
+        }
+    }
+
+    #[test]
+    fn spans_cover_the_domain_including_its_end() {
+        let kv = cubic();
+        assert_eq!(kv.find_span(0.0), 3);
+        assert_eq!(kv.find_span(0.3), 5);
+        assert_eq!(kv.find_span(0.2999), 3);
+        assert_eq!(kv.find_span(1.0), 6);
+        assert_eq!(kv.domain(), (0.0, 1.0));
+    }
+
+    #[test]
+    fn unclamped_vector_has_the_inner_domain() {
+        let kv = KnotVector::new((0..8).map(f64::from).collect(), 2, 5).unwrap();
+        assert_eq!(kv.domain(), (2.0, 5.0));
+        let b = kv.basis_derivs(2.0, 0);
+        assert!((b.ders[0][..3].iter().sum::<f64>() - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn invalid_vectors_are_rejected_with_the_reason() {
+        assert!(matches!(
+            KnotVector::new(vec![0.0, 0.0, 1.0, 1.0, 1.0], 2, 3),
+            Err(GeomError::KnotCount {
+                found: 5,
+                expected: 6,
+                ..
+            })
+        ));
+        assert!(matches!(
+            KnotVector::new(vec![0.0, 0.0, 0.5, 0.4, 1.0, 1.0], 1, 4),
+            Err(GeomError::KnotsDecreasing { index: 3, .. })
+        ));
+        assert!(matches!(
+            KnotVector::new(vec![0.0, 0.0, 0.5, 0.5, 1.0, 1.0], 1, 4),
+            Err(GeomError::KnotMultiplicity { .. })
+        ));
+        assert!(matches!(
+            KnotVector::new(vec![0.0; 4], 1, 2),
+            Err(GeomError::EmptyDomain { .. })
+        ));
+        assert!(matches!(
+            KnotVector::new(vec![0.0; 4], 0, 3),
+            Err(GeomError::Degree { degree: 0 })
+        ));
+    }
+
+    #[test]
+    fn clamped_uniform_is_bezier_for_minimal_count() {
+        let kv = KnotVector::clamped_uniform(3, 4).unwrap();
+        assert_eq!(kv.knots(), &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]);
+        let kv = KnotVector::clamped_uniform(2, 5).unwrap();
+        assert_eq!(
+            kv.knots(),
+            &[0.0, 0.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0, 1.0, 1.0]
+        );
+    }
+}

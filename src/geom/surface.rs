@@ -1,0 +1,308 @@
+//! Rational tensor-product B-spline (NURBS) surfaces: points and partial derivatives up to second
+//! order ("The NURBS Book", A3.6 on homogeneous points, then A4.4's rational quotient rule).
+
+use glam::{DVec3, DVec4};
+
+use super::knots::{BasisDerivs, KnotVector, MAX_BASIS, MAX_ORDER};
+use super::GeomError;
+
+/// A NURBS surface `S(u,v) = Σ N_i,p(u) N_j,q(v) w_ij P_ij / Σ N_i,p(u) N_j,q(v) w_ij`.
+///
+/// The control net has `count_u` rows (index i, along u) of `count_v` points (index j, along v).
+/// Points are stored homogeneous, `(w x, w y, w z, w)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsSurface {
+    knots_u: KnotVector,
+    knots_v: KnotVector,
+    /// Row-major homogeneous net: entry `i * count_v + j`.
+    net: Vec<DVec4>,
+}
+
+/// The point and partial derivatives of a surface at one parameter. Second derivatives are zero
+/// when only first order was asked for.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SurfaceDerivs {
+    pub point: DVec3,
+    pub su: DVec3,
+    pub sv: DVec3,
+    pub suu: DVec3,
+    pub suv: DVec3,
+    pub svv: DVec3,
+}
+
+/// The parameter rectangle `[u0, u1] × [v0, v1]` a surface is defined on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Domain {
+    pub u: (f64, f64),
+    pub v: (f64, f64),
+}
+
+impl Domain {
+    /// Whether (u, v) lies in the closed rectangle.
+    pub fn contains(&self, u: f64, v: f64) -> bool {
+        (self.u.0..=self.u.1).contains(&u) && (self.v.0..=self.v.1).contains(&v)
+    }
+
+    /// The centre of the rectangle.
+    pub fn center(&self) -> (f64, f64) {
+        (0.5 * (self.u.0 + self.u.1), 0.5 * (self.v.0 + self.v.1))
+    }
+
+    /// The parameter at fractions `(s, t) ∈ [0,1]²` of the rectangle.
+    pub fn lerp(&self, s: f64, t: f64) -> (f64, f64) {
+        (
+            self.u.0 + s * (self.u.1 - self.u.0),
+            self.v.0 + t * (self.v.1 - self.v.0),
+        )
+    }
+}
+
+impl NurbsSurface {
+    /// Builds a surface from degrees, knot vectors, the control net `points[i][j]` (i along u,
+    /// j along v) and optional weights of the same shape (all 1 when `None`: a non-rational
+    /// B-spline).
+    pub fn new(
+        degree_u: usize,
+        degree_v: usize,
+        knots_u: Vec<f64>,
+        knots_v: Vec<f64>,
+        points: &[Vec<DVec3>],
+        weights: Option<&[Vec<f64>]>,
+    ) -> Result<Self, GeomError> {
+        let count_u = points.len();
+        let count_v = points.first().map_or(0, Vec::len);
+        let knots_u = KnotVector::new(knots_u, degree_u, count_u).map_err(|e| e.along("u"))?;
+        let knots_v = KnotVector::new(knots_v, degree_v, count_v).map_err(|e| e.along("v"))?;
+        let net_size_error = |rows: usize, columns: usize| GeomError::NetSize {
+            rows,
+            columns,
+            expected_rows: count_u,
+            expected_columns: count_v,
+        };
+        if let Some(row) = points.iter().find(|row| row.len() != count_v) {
+            return Err(net_size_error(count_u, row.len()));
+        }
+        if let Some(w) = weights {
+            if w.len() != count_u {
+                return Err(net_size_error(w.len(), w.first().map_or(0, Vec::len)));
+            }
+            if let Some(row) = w.iter().find(|row| row.len() != count_v) {
+                return Err(net_size_error(count_u, row.len()));
+            }
+        }
+        let mut net = Vec::with_capacity(count_u * count_v);
+        for (i, row) in points.iter().enumerate() {
+            for (j, p) in row.iter().enumerate() {
+                if !p.is_finite() {
+                    return Err(GeomError::PointNotFinite { i, j });
+                }
+                let weight = weights.map_or(1.0, |w| w[i][j]);
+                if !(weight.is_finite() && weight > 0.0) {
+                    return Err(GeomError::Weight { i, j, weight });
+                }
+                net.push((*p * weight).extend(weight));
+            }
+        }
+        Ok(Self {
+            knots_u,
+            knots_v,
+            net,
+        })
+    }
+
+    /// The knot vector along u.
+    pub fn knots_u(&self) -> &KnotVector {
+        &self.knots_u
+    }
+
+    /// The knot vector along v.
+    pub fn knots_v(&self) -> &KnotVector {
+        &self.knots_v
+    }
+
+    /// Number of control points along u (rows of the net).
+    pub fn count_u(&self) -> usize {
+        self.knots_u.count()
+    }
+
+    /// Number of control points along v (points per row).
+    pub fn count_v(&self) -> usize {
+        self.knots_v.count()
+    }
+
+    /// Control point `P_ij` (Euclidean) and its weight `w_ij`.
+    pub fn control_point(&self, i: usize, j: usize) -> (DVec3, f64) {
+        let h = self.net[i * self.count_v() + j];
+        (h.truncate() / h.w, h.w)
+    }
+
+    /// The parameter domain.
+    pub fn domain(&self) -> Domain {
+        Domain {
+            u: self.knots_u.domain(),
+            v: self.knots_v.domain(),
+        }
+    }
+
+    /// The surface point S(u, v).
+    pub fn point(&self, u: f64, v: f64) -> DVec3 {
+        self.derivs(u, v, 0).point
+    }
+
+    /// The point and partial derivatives up to `order` (0, 1 or 2) at (u, v).
+    pub fn derivs(&self, u: f64, v: f64, order: usize) -> SurfaceDerivs {
+        let bu = self.knots_u.basis_derivs(u, order);
+        let bv = self.knots_v.basis_derivs(v, order);
+        self.derivs_from_basis(&bu, &bv, order)
+    }
+
+    /// The point and derivatives up to `order` from precomputed basis values (as a grid
+    /// evaluator holds them): the homogeneous derivatives
+    /// `A^(k,l) = Σ_i Σ_j N^(k)_i(u) N^(l)_j(v) (w_ij (P_ij − O), w_ij)` (A3.6), then the quotient
+    /// rule (A4.4) with `S − O = A/w`:
+    /// `Su = (Au − wu S)/w`, `Sv = (Av − wv S)/w`, `Suu = (Auu − 2 wu Su − wuu S)/w`,
+    /// `Suv = (Auv − wu Sv − wv Su − wuv S)/w`, `Svv = (Avv − 2 wv Sv − wvv S)/w`.
+    ///
+    /// The origin O is the corner of the span's control net nearest the parameter. The quotient
+    /// rule is translation invariant, and measuring from a nearby control point keeps the sums
+    /// free of cancellation: derivatives do not lose digits when a model sits far from the world
+    /// origin, and beside a collapsed edge (a pole) the collapsed row contributes exact zeros.
+    pub fn derivs_from_basis(
+        &self,
+        bu: &BasisDerivs,
+        bv: &BasisDerivs,
+        order: usize,
+    ) -> SurfaceDerivs {
+        let order = order.min(MAX_ORDER);
+        let (p, q) = (self.knots_u.degree(), self.knots_v.degree());
+        let count_v = self.count_v();
+        let (i0, j0) = (bu.span - p, bv.span - q);
+        let nearest_end = |b: &BasisDerivs, degree: usize| {
+            if b.ders[0][0] >= b.ders[0][degree] {
+                0
+            } else {
+                degree
+            }
+        };
+        let corner = self.net[(i0 + nearest_end(bu, p)) * count_v + j0 + nearest_end(bv, q)];
+        let origin = corner.truncate() / corner.w;
+        let origin4 = origin.extend(0.0);
+
+        // rows[k][l] = Σ_i N^(k)_i(u) Pw'[i0 + i][j0 + l]: the net, relative to the origin,
+        // contracted along u.
+        let mut rows = [[DVec4::ZERO; MAX_BASIS]; MAX_ORDER + 1];
+        for i in 0..=p {
+            let net_row = &self.net[(i0 + i) * count_v + j0..][..=q];
+            for (l, &pw) in net_row.iter().enumerate() {
+                let local = pw - origin4 * pw.w;
+                for (k, row) in rows.iter_mut().enumerate().take(order + 1) {
+                    row[l] += local * bu.ders[k][i];
+                }
+            }
+        }
+        let contract = |k: usize, l: usize| -> DVec4 {
+            rows[k][..=q]
+                .iter()
+                .zip(&bv.ders[l][..=q])
+                .fold(DVec4::ZERO, |acc, (&r, &n)| acc + r * n)
+        };
+
+        let a = contract(0, 0);
+        let w = a.w;
+        let local = a.truncate() / w;
+        let mut d = SurfaceDerivs {
+            point: origin + local,
+            ..SurfaceDerivs::default()
+        };
+        if order == 0 {
+            return d;
+        }
+        let (au, av) = (contract(1, 0), contract(0, 1));
+        d.su = (au.truncate() - au.w * local) / w;
+        d.sv = (av.truncate() - av.w * local) / w;
+        if order == 1 {
+            return d;
+        }
+        let (auu, auv, avv) = (contract(2, 0), contract(1, 1), contract(0, 2));
+        d.suu = (auu.truncate() - 2.0 * au.w * d.su - auu.w * local) / w;
+        d.suv = (auv.truncate() - au.w * d.sv - av.w * d.su - auv.w * local) / w;
+        d.svv = (avv.truncate() - 2.0 * av.w * d.sv - avv.w * local) / w;
+        d
+    }
+
+    /// The surface with every control point mapped by `f` (weights unchanged). Exact for affine
+    /// maps, since rational surfaces are affinely invariant.
+    pub fn map_points(&self, f: impl Fn(DVec3) -> DVec3) -> Self {
+        let net = self
+            .net
+            .iter()
+            .map(|h| (f(h.truncate() / h.w) * h.w).extend(h.w))
+            .collect();
+        Self {
+            knots_u: self.knots_u.clone(),
+            knots_v: self.knots_v.clone(),
+            net,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bilinear() -> NurbsSurface {
+        let points = vec![
+            vec![DVec3::new(0.0, 0.0, 0.0), DVec3::new(0.0, 1.0, 0.0)],
+            vec![DVec3::new(2.0, 0.0, 0.0), DVec3::new(2.0, 1.0, 1.0)],
+        ];
+        NurbsSurface::new(
+            1,
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            vec![0.0, 0.0, 1.0, 1.0],
+            &points,
+            None,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn bilinear_patch_matches_its_closed_form() {
+        // S = (2u, v, uv): Su = (2, 0, v), Sv = (0, 1, u), Suv = (0, 0, 1), Suu = Svv = 0.
+        let s = bilinear();
+        let d = s.derivs(0.25, 0.75, 2);
+        assert!((d.point - DVec3::new(0.5, 0.75, 0.1875)).length() < 1e-15);
+        assert!((d.su - DVec3::new(2.0, 0.0, 0.75)).length() < 1e-15);
+        assert!((d.sv - DVec3::new(0.0, 1.0, 0.25)).length() < 1e-15);
+        assert!((d.suv - DVec3::Z).length() < 1e-15);
+        assert!(d.suu.length() < 1e-15 && d.svv.length() < 1e-15);
+    }
+
+    #[test]
+    fn net_shape_and_weights_are_checked() {
+        let points = vec![vec![DVec3::ZERO; 2], vec![DVec3::ZERO; 3]];
+        let knots = vec![0.0, 0.0, 1.0, 1.0];
+        assert!(matches!(
+            NurbsSurface::new(1, 1, knots.clone(), knots.clone(), &points, None),
+            Err(GeomError::NetSize { columns: 3, .. })
+        ));
+        let points = vec![vec![DVec3::ZERO; 2]; 2];
+        let weights = vec![vec![1.0, 1.0], vec![1.0, 0.0]];
+        assert!(matches!(
+            NurbsSurface::new(1, 1, knots.clone(), knots, &points, Some(&weights)),
+            Err(GeomError::Weight { i: 1, j: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn control_points_round_trip_through_homogeneous_storage() {
+        let points = vec![vec![DVec3::new(1.0, 2.0, 3.0), DVec3::X], vec![DVec3::Y; 2]];
+        let weights = vec![vec![0.5, 1.0], vec![2.0, 1.0]];
+        let knots = vec![0.0, 0.0, 1.0, 1.0];
+        let s = NurbsSurface::new(1, 1, knots.clone(), knots, &points, Some(&weights)).unwrap();
+        let (p, w) = s.control_point(0, 0);
+        assert!((p - DVec3::new(1.0, 2.0, 3.0)).length() < 1e-15);
+        assert_eq!(w, 0.5);
+        assert_eq!(s.control_point(1, 0).1, 2.0);
+    }
+}
