@@ -3,7 +3,6 @@
 
 use glam::DVec3;
 
-use super::knots::BasisDerivs;
 use super::surface::{Domain, NurbsSurface, SurfaceDerivs};
 
 /// The frame `(du, dv, N)` at a surface point (DESIGN §3).
@@ -48,30 +47,23 @@ impl Frame {
     /// - `Sv` vanishes (a collapsed edge `u = u0`): `N = s normalize(Su × Suv)` with `s = +1` near
     ///   `u_min` and `−1` near `u_max`; `du = normalize(Su)`.
     fn from_derivs(d: &SurfaceDerivs, u: f64, v: f64, domain: &Domain) -> Option<Frame> {
-        let (len_u, len_v) = (d.su.length(), d.sv.length());
-        if !(len_u.is_finite() && len_v.is_finite()) || len_u.max(len_v) == 0.0 {
+        const RATIO_SQUARED: f64 = VANISHING_RATIO * VANISHING_RATIO;
+        let (sq_u, sq_v) = (d.su.length_squared(), d.sv.length_squared());
+        if !(sq_u.is_finite() && sq_v.is_finite()) || sq_u.max(sq_v) == 0.0 {
             return None;
         }
-        let (normal, du, degenerate) = if len_u < VANISHING_RATIO * len_v {
+        let (normal, du, degenerate) = if sq_u < RATIO_SQUARED * sq_v {
             let s = edge_sign(v, domain.v);
-            let n = d.suv.cross(d.sv);
-            if !is_non_degenerate_cross(n, d.suv, d.sv) {
-                return None;
-            }
-            (s * n.normalize(), s * d.suv.normalize(), true)
-        } else if len_v < VANISHING_RATIO * len_u {
+            let sq_uv = d.suv.length_squared();
+            let n = unit_cross(d.suv, d.sv, sq_uv * sq_v)?;
+            (s * n, d.suv * (s / sq_uv.sqrt()), true)
+        } else if sq_v < RATIO_SQUARED * sq_u {
             let s = edge_sign(u, domain.u);
-            let n = d.su.cross(d.suv);
-            if !is_non_degenerate_cross(n, d.su, d.suv) {
-                return None;
-            }
-            (s * n.normalize(), d.su / len_u, true)
+            let n = unit_cross(d.su, d.suv, sq_u * d.suv.length_squared())?;
+            (s * n, d.su * sq_u.sqrt().recip(), true)
         } else {
-            let n = d.su.cross(d.sv);
-            if !is_non_degenerate_cross(n, d.su, d.sv) {
-                return None;
-            }
-            (n.normalize(), d.su / len_u, false)
+            let n = unit_cross(d.su, d.sv, sq_u * sq_v)?;
+            (n, d.su * sq_u.sqrt().recip(), false)
         };
         Some(Frame {
             point: d.point,
@@ -93,41 +85,48 @@ fn edge_sign(t: f64, range: (f64, f64)) -> f64 {
     }
 }
 
-/// Whether `n = a × b` is long enough, relative to `|a| |b|`, to give a direction.
-fn is_non_degenerate_cross(n: DVec3, a: DVec3, b: DVec3) -> bool {
-    let len = n.length();
-    len.is_finite() && len > VANISHING_RATIO * a.length() * b.length()
+/// `normalize(a × b)`, or `None` when `|a × b|²` is too small next to `|a|² |b|²` (given as
+/// `squared_lengths`) to give a direction.
+fn unit_cross(a: DVec3, b: DVec3, squared_lengths: f64) -> Option<DVec3> {
+    let n = a.cross(b);
+    let sq = n.length_squared();
+    (sq.is_finite() && sq > VANISHING_RATIO * VANISHING_RATIO * squared_lengths)
+        .then(|| n * sq.sqrt().recip())
 }
 
 impl NurbsSurface {
     /// The frame at (u, v) (see [`Frame`]); never NaN.
     pub fn frame(&self, u: f64, v: f64) -> Frame {
-        let bu = self.knots_u().basis_derivs(u, 2);
-        let bv = self.knots_v().basis_derivs(v, 2);
-        self.frame_from_basis(u, v, &bu, &bv)
+        let bu = self.knots_u().basis_derivs(u, 1);
+        let bv = self.knots_v().basis_derivs(v, 1);
+        self.frame_with(u, v, |order| {
+            if order <= 1 {
+                self.derivs_from_basis(&bu, &bv, order)
+            } else {
+                self.derivs(u, v, order)
+            }
+        })
     }
 
-    /// The frame at (u, v) from basis values precomputed to second order.
+    /// The frame at (u, v) given a way to get the derivatives there up to an order.
     ///
-    /// Regular points need only first derivatives; second derivatives are contracted only where
+    /// Regular points need only first derivatives; second derivatives are asked for only where
     /// a first derivative vanishes. Where no limit formula applies, the frame is taken a little
     /// way inside the patch (toward the domain centre), and as a last resort — a patch collapsed
     /// to a point — the world axes.
-    pub(crate) fn frame_from_basis(
+    pub(crate) fn frame_with(
         &self,
         u: f64,
         v: f64,
-        bu: &BasisDerivs,
-        bv: &BasisDerivs,
+        derivs: impl Fn(usize) -> SurfaceDerivs,
     ) -> Frame {
         let domain = self.domain();
-        let first = self.derivs_from_basis(bu, bv, 1);
+        let first = derivs(1);
         let regular = Frame::from_derivs(&first, u, v, &domain).filter(|f| !f.degenerate);
         if let Some(frame) = regular {
             return frame;
         }
-        let second = self.derivs_from_basis(bu, bv, 2);
-        if let Some(frame) = Frame::from_derivs(&second, u, v, &domain) {
+        if let Some(frame) = Frame::from_derivs(&derivs(2), u, v, &domain) {
             return frame;
         }
         let point = first.point;

@@ -1,7 +1,9 @@
-//! Grid evaluation: basis values computed once per u sample and once per v sample, so each grid
-//! point costs one small tensor contraction (DESIGN §3). Tessellation evaluates this way.
+//! Grid evaluation: basis values computed once per u sample and once per v sample, and the net
+//! contracted along u once per u sample and v-span, so each grid point costs one short
+//! contraction along v (DESIGN §3). Tessellation evaluates this way.
 
 use super::knots::BasisDerivs;
+use super::surface::{ContractedRows, LocalOrigin};
 use super::{Frame, NurbsSurface};
 
 /// Evaluates a surface on the grid `us × vs` with the basis functions (to second order) of each
@@ -65,16 +67,58 @@ impl<'a> GridEvaluator<'a> {
         &self.vs
     }
 
-    /// The point at grid node (i, j), i indexing u samples and j v samples.
-    pub fn point(&self, i: usize, j: usize) -> glam::DVec3 {
-        self.surface
-            .derivs_from_basis(&self.basis_u[i], &self.basis_v[j], 0)
-            .point
+    /// The frames of row `i` (u sample i) at every v sample, in order; each equal to
+    /// `surface.frame(us[i], vs[j])`.
+    pub fn row_frames(&self, i: usize) -> impl Iterator<Item = Frame> + '_ {
+        let mut row = RowContraction::new(self, i);
+        (0..self.vs.len()).map(move |j| self.frame_in_row(&mut row, j))
     }
 
-    /// The frame at grid node (i, j); equal to `surface.frame(us[i], vs[j])`.
+    /// The frame at grid node (i, j) alone.
     pub fn frame(&self, i: usize, j: usize) -> Frame {
-        self.surface
-            .frame_from_basis(self.us[i], self.vs[j], &self.basis_u[i], &self.basis_v[j])
+        self.frame_in_row(&mut RowContraction::new(self, i), j)
+    }
+
+    fn frame_in_row(&self, row: &mut RowContraction<'_, 'a>, j: usize) -> Frame {
+        let i = row.i;
+        let (rows, origin) = row.at(j);
+        let bv = &self.basis_v[j];
+        self.surface.frame_with(self.us[i], self.vs[j], |order| {
+            self.surface.from_rows(rows, bv, origin, order)
+        })
+    }
+}
+
+/// The u-contraction of one grid row, kept while consecutive v samples share its v-span and
+/// local origin.
+struct RowContraction<'g, 'a> {
+    grid: &'g GridEvaluator<'a>,
+    i: usize,
+    /// The v-span and origin index `rows` was contracted for.
+    key: Option<(usize, (usize, usize))>,
+    rows: ContractedRows,
+}
+
+impl<'g, 'a> RowContraction<'g, 'a> {
+    fn new(grid: &'g GridEvaluator<'a>, i: usize) -> Self {
+        Self {
+            grid,
+            i,
+            key: None,
+            rows: ContractedRows::default(),
+        }
+    }
+
+    /// The contracted rows and origin for v sample j.
+    fn at(&mut self, j: usize) -> (&ContractedRows, LocalOrigin) {
+        let surface = self.grid.surface;
+        let (bu, bv) = (&self.grid.basis_u[self.i], &self.grid.basis_v[j]);
+        let origin = surface.local_origin(bu, bv);
+        let key = Some((bv.span, origin.index));
+        if self.key != key {
+            self.rows = surface.contract_u(bu, bv.span, origin, 2);
+            self.key = key;
+        }
+        (&self.rows, origin)
     }
 }

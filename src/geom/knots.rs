@@ -149,79 +149,83 @@ impl KnotVector {
         low
     }
 
-    /// The non-zero basis functions at `t` and their derivatives up to `order ≤ MAX_ORDER`
-    /// (A2.3: the triangular table of knot differences `ndu`, then the derivative recurrence
-    /// `N^(k)_{i,p} = p/(k..) [N^(k−1)_{i,p−1}/(U[i+p]−U[i]) − N^(k−1)_{i+1,p−1}/(U[i+p+1]−U[i+1])]`).
-    /// Orders above `order` are left zero.
+    /// The non-zero basis functions at `t` and their derivatives up to `order ≤ MAX_ORDER`.
+    ///
+    /// The values come from the triangular recurrence (A2.2) in the span `i` of `t`, keeping the
+    /// functions of degrees p − 1 and p − 2 on the way; derivatives from the lower degrees
+    /// (The NURBS Book, eq. 2.9):
+    /// `N'_{i,p} = p [N_{i,p−1}/(U[i+p] − U[i]) − N_{i+1,p−1}/(U[i+p+1] − U[i+1])]`,
+    /// and `N''_{i,p}` by the same rule applied to the derivatives of degree p − 1, with a term
+    /// over a zero knot difference taken as 0. Orders above `order` are left zero.
     pub fn basis_derivs(&self, t: f64, order: usize) -> BasisDerivs {
         let p = self.degree;
-        let u = &self.knots;
         let span = self.find_span(t);
-        let order = order.min(MAX_ORDER).min(p);
+        let order = order.min(MAX_ORDER);
         let mut ders = [[0.0; MAX_BASIS]; MAX_ORDER + 1];
 
-        // ndu[j][r]: basis functions (upper triangle incl. diagonal) and knot differences
-        // (lower triangle).
-        let mut ndu = [[0.0; MAX_BASIS]; MAX_BASIS];
+        // A2.2, in place: after step j, basis[..=j] holds the degree-j functions.
+        let mut basis = [0.0; MAX_BASIS];
+        let mut below = [[0.0; MAX_BASIS]; MAX_ORDER]; // degrees p − 1 and p − 2
         let mut left = [0.0; MAX_BASIS];
         let mut right = [0.0; MAX_BASIS];
-        ndu[0][0] = 1.0;
+        basis[0] = 1.0;
         for j in 1..=p {
-            left[j] = t - u[span + 1 - j];
-            right[j] = u[span + j] - t;
+            if j + MAX_ORDER > p {
+                below[p - j] = basis; // degree j − 1 = p − (p − j + 1)
+            }
+            left[j] = t - self.knots[span + 1 - j];
+            right[j] = self.knots[span + j] - t;
             let mut saved = 0.0;
             for r in 0..j {
-                ndu[j][r] = right[r + 1] + left[j - r];
-                let temp = ndu[r][j - 1] / ndu[j][r];
-                ndu[r][j] = saved + right[r + 1] * temp;
+                let temp = basis[r] / (right[r + 1] + left[j - r]);
+                basis[r] = saved + right[r + 1] * temp;
                 saved = left[j - r] * temp;
             }
-            ndu[j][j] = saved;
+            basis[j] = saved;
         }
-        for j in 0..=p {
-            ders[0][j] = ndu[j][p];
+        ders[0] = basis;
+        if order == 0 {
+            return BasisDerivs { span, ders };
         }
-
-        let mut a = [[0.0; MAX_BASIS]; 2];
-        for r in 0..=p {
-            let (mut s1, mut s2) = (0usize, 1usize);
-            a[0][0] = 1.0;
-            for k in 1..=order {
-                let mut d = 0.0;
-                let rk = r as isize - k as isize;
-                let pk = p - k;
-                if r >= k {
-                    a[s2][0] = a[s1][0] / ndu[pk + 1][r - k];
-                    d = a[s2][0] * ndu[r - k][pk];
-                }
-                let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
-                let j2 = if r as isize - 1 <= pk as isize {
-                    k - 1
-                } else {
-                    p - r
-                };
-                for j in j1..=j2 {
-                    let idx = (rk + j as isize) as usize;
-                    a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][idx];
-                    d += a[s2][j] * ndu[idx][pk];
-                }
-                if r <= pk {
-                    a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
-                    d += a[s2][k] * ndu[r][pk];
-                }
-                ders[k][r] = d;
-                std::mem::swap(&mut s1, &mut s2);
-            }
-        }
-        // Multiply by p! / (p − k)!.
-        let mut factor = p as f64;
-        for (k, row) in ders.iter_mut().enumerate().take(order + 1).skip(1) {
-            for value in row.iter_mut().take(p + 1) {
-                *value *= factor;
-            }
-            factor *= (p - k) as f64;
+        // below[0] has degree p − 1, below[1] degree p − 2 (when p ≥ 2).
+        ders[1] = self.differentiate(span, p, &below[0]);
+        if order >= 2 && p >= 2 {
+            let lower_derivs = self.differentiate(span, p - 1, &below[1]);
+            ders[2] = self.differentiate(span, p, &lower_derivs);
         }
         BasisDerivs { span, ders }
+    }
+
+    /// Applies `f_{i,d} = d [g_{i,d−1}/(U[i+d] − U[i]) − g_{i+1,d−1}/(U[i+d+1] − U[i+1])]` to the
+    /// `d` values `g` of degree d − 1 that are non-zero in `span` (indices `span − d + 1 ..=
+    /// span`), giving the `d + 1` values of degree d (indices `span − d ..= span`).
+    fn differentiate(&self, span: usize, d: usize, g: &[f64; MAX_BASIS]) -> [f64; MAX_BASIS] {
+        let u = &self.knots;
+        let scaled = |value: f64, a: usize, b: usize| {
+            let gap = u[b] - u[a];
+            if gap > 0.0 {
+                value / gap
+            } else {
+                0.0
+            }
+        };
+        let mut out = [0.0; MAX_BASIS];
+        let first = span - d;
+        for (k, slot) in out.iter_mut().enumerate().take(d + 1) {
+            let i = first + k;
+            let left_term = if k > 0 {
+                scaled(g[k - 1], i, i + d)
+            } else {
+                0.0
+            };
+            let right_term = if k < d {
+                scaled(g[k], i + 1, i + d + 1)
+            } else {
+                0.0
+            };
+            *slot = d as f64 * (left_term - right_term);
+        }
+        out
     }
 }
 

@@ -30,6 +30,80 @@ pub struct SurfaceDerivs {
     pub svv: DVec3,
 }
 
+/// The net contracted along u for one v-span: `rows[l][k]` for the l-th control point of the
+/// span along v and derivative order k in u (see [`NurbsSurface::contract_u`]).
+pub(crate) type ContractedRows = [[DVec4; MAX_ORDER + 1]; MAX_BASIS];
+
+/// Homogeneous derivatives `A^(k,l)` with `k + l ≤ 2`, as sums over the columns of a span.
+#[derive(Clone, Copy, Debug, Default)]
+struct Homogeneous {
+    a: DVec4,
+    au: DVec4,
+    av: DVec4,
+    auu: DVec4,
+    auv: DVec4,
+    avv: DVec4,
+}
+
+impl Homogeneous {
+    /// Adds one column's u-contraction `column[k]` weighted by its v basis derivatives
+    /// `nv(l)`: `A^(k,l) += N^(l)(v) column[k]`, for `k + l ≤ order`.
+    #[inline]
+    fn add_column(
+        &mut self,
+        column: &[DVec4; MAX_ORDER + 1],
+        nv: impl Fn(usize) -> f64,
+        order: usize,
+    ) {
+        let n0 = nv(0);
+        self.a += column[0] * n0;
+        if order >= 1 {
+            let n1 = nv(1);
+            self.au += column[1] * n0;
+            self.av += column[0] * n1;
+            if order >= 2 {
+                self.auu += column[2] * n0;
+                self.auv += column[1] * n1;
+                self.avv += column[0] * nv(2);
+            }
+        }
+    }
+
+    /// The rational quotient rule (A4.4) with `S − O = A/w`:
+    /// `Su = (Au − wu S)/w`, `Sv = (Av − wv S)/w`, `Suu = (Auu − 2 wu Su − wuu S)/w`,
+    /// `Suv = (Auv − wu Sv − wv Su − wuv S)/w`, `Svv = (Avv − 2 wv Sv − wvv S)/w`.
+    /// Orders above `order` are left zero.
+    fn rational(&self, origin: DVec3, order: usize) -> SurfaceDerivs {
+        let inv_w = 1.0 / self.a.w;
+        let local = self.a.truncate() * inv_w;
+        let mut d = SurfaceDerivs {
+            point: origin + local,
+            ..SurfaceDerivs::default()
+        };
+        if order == 0 {
+            return d;
+        }
+        let (au, av) = (self.au, self.av);
+        d.su = (au.truncate() - au.w * local) * inv_w;
+        d.sv = (av.truncate() - av.w * local) * inv_w;
+        if order == 1 {
+            return d;
+        }
+        let (auu, auv, avv) = (self.auu, self.auv, self.avv);
+        d.suu = (auu.truncate() - 2.0 * au.w * d.su - auu.w * local) * inv_w;
+        d.suv = (auv.truncate() - au.w * d.sv - av.w * d.su - auv.w * local) * inv_w;
+        d.svv = (avv.truncate() - 2.0 * av.w * d.sv - avv.w * local) * inv_w;
+        d
+    }
+}
+
+/// The control point derivatives are measured from, with its net index (i, j).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LocalOrigin {
+    pub index: (usize, usize),
+    pub point: DVec3,
+}
+
 /// The parameter rectangle `[u0, u1] × [v0, v1]` a surface is defined on.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Domain {
@@ -156,17 +230,15 @@ impl NurbsSurface {
         self.derivs_from_basis(&bu, &bv, order)
     }
 
-    /// The point and derivatives up to `order` from precomputed basis values (as a grid
-    /// evaluator holds them): the homogeneous derivatives
-    /// `A^(k,l) = Σ_i Σ_j N^(k)_i(u) N^(l)_j(v) (w_ij (P_ij − O), w_ij)` (A3.6), then the quotient
-    /// rule (A4.4) with `S − O = A/w`:
-    /// `Su = (Au − wu S)/w`, `Sv = (Av − wv S)/w`, `Suu = (Auu − 2 wu Su − wuu S)/w`,
-    /// `Suv = (Auv − wu Sv − wv Su − wuv S)/w`, `Svv = (Avv − 2 wv Sv − wvv S)/w`.
+    /// The point and derivatives up to `order` from precomputed basis values: the homogeneous
+    /// derivatives `A^(k,l) = Σ_j N^(l)_j(v) Σ_i N^(k)_i(u) (w_ij (P_ij − O), w_ij)` (A3.6),
+    /// then the quotient rule (A4.4, [`Homogeneous::rational`]).
     ///
-    /// The origin O is the corner of the span's control net nearest the parameter. The quotient
-    /// rule is translation invariant, and measuring from a nearby control point keeps the sums
-    /// free of cancellation: derivatives do not lose digits when a model sits far from the world
-    /// origin, and beside a collapsed edge (a pole) the collapsed row contributes exact zeros.
+    /// The origin O is the corner of the span's control net nearest the parameter
+    /// ([`NurbsSurface::local_origin`]). The quotient rule is translation invariant, and
+    /// measuring from a nearby control point keeps the sums free of cancellation: derivatives do
+    /// not lose digits when a model sits far from the world origin, and beside a collapsed edge
+    /// (a pole) the collapsed row contributes exact zeros.
     pub fn derivs_from_basis(
         &self,
         bu: &BasisDerivs,
@@ -177,6 +249,29 @@ impl NurbsSurface {
         let (p, q) = (self.knots_u.degree(), self.knots_v.degree());
         let count_v = self.count_v();
         let (i0, j0) = (bu.span - p, bv.span - q);
+        let origin = self.local_origin(bu, bv);
+        let origin4 = origin.point.extend(0.0);
+        let mut h = Homogeneous::default();
+        // Column by column: the u-contraction of column l (as `contract_u` forms it), then its
+        // share of the v-contraction (as `from_rows` adds it), so that grid and direct
+        // evaluation add the same terms in the same order.
+        for l in 0..=q {
+            let mut column = [DVec4::ZERO; MAX_ORDER + 1];
+            for i in 0..=p {
+                let pw = self.net[(i0 + i) * count_v + j0 + l];
+                let local = pw - origin4 * pw.w;
+                for (k, c) in column.iter_mut().enumerate().take(order + 1) {
+                    *c += local * bu.ders[k][i];
+                }
+            }
+            h.add_column(&column, |k| bv.ders[k][l], order);
+        }
+        h.rational(origin.point, order)
+    }
+
+    /// The control point at the corner of the span's net nearest the parameter: the end of each
+    /// span whose basis function is larger there.
+    pub(crate) fn local_origin(&self, bu: &BasisDerivs, bv: &BasisDerivs) -> LocalOrigin {
         let nearest_end = |b: &BasisDerivs, degree: usize| {
             if b.ders[0][0] >= b.ders[0][degree] {
                 0
@@ -184,50 +279,58 @@ impl NurbsSurface {
                 degree
             }
         };
-        let corner = self.net[(i0 + nearest_end(bu, p)) * count_v + j0 + nearest_end(bv, q)];
-        let origin = corner.truncate() / corner.w;
-        let origin4 = origin.extend(0.0);
+        let (p, q) = (self.knots_u.degree(), self.knots_v.degree());
+        let i = bu.span - p + nearest_end(bu, p);
+        let j = bv.span - q + nearest_end(bv, q);
+        let corner = self.net[i * self.count_v() + j];
+        LocalOrigin {
+            index: (i, j),
+            point: corner.truncate() / corner.w,
+        }
+    }
 
-        // rows[k][l] = Σ_i N^(k)_i(u) Pw'[i0 + i][j0 + l]: the net, relative to the origin,
-        // contracted along u.
-        let mut rows = [[DVec4::ZERO; MAX_BASIS]; MAX_ORDER + 1];
+    /// The net relative to `origin`, contracted along u for the v-span `span_v`:
+    /// `rows[k][l] = Σ_i N^(k)_i(u) (w (P − O), w)[i0 + i][j0 + l]` for `k ≤ order`.
+    pub(crate) fn contract_u(
+        &self,
+        bu: &BasisDerivs,
+        span_v: usize,
+        origin: LocalOrigin,
+        order: usize,
+    ) -> ContractedRows {
+        let order = order.min(MAX_ORDER);
+        let (p, q) = (self.knots_u.degree(), self.knots_v.degree());
+        let count_v = self.count_v();
+        let (i0, j0) = (bu.span - p, span_v - q);
+        let origin4 = origin.point.extend(0.0);
+        let mut rows = [[DVec4::ZERO; MAX_ORDER + 1]; MAX_BASIS];
         for i in 0..=p {
             let net_row = &self.net[(i0 + i) * count_v + j0..][..=q];
-            for (l, &pw) in net_row.iter().enumerate() {
+            for (column, &pw) in rows.iter_mut().zip(net_row) {
                 let local = pw - origin4 * pw.w;
-                for (k, row) in rows.iter_mut().enumerate().take(order + 1) {
-                    row[l] += local * bu.ders[k][i];
+                for (k, c) in column.iter_mut().enumerate().take(order + 1) {
+                    *c += local * bu.ders[k][i];
                 }
             }
         }
-        let contract = |k: usize, l: usize| -> DVec4 {
-            rows[k][..=q]
-                .iter()
-                .zip(&bv.ders[l][..=q])
-                .fold(DVec4::ZERO, |acc, (&r, &n)| acc + r * n)
-        };
+        rows
+    }
 
-        let a = contract(0, 0);
-        let w = a.w;
-        let local = a.truncate() / w;
-        let mut d = SurfaceDerivs {
-            point: origin + local,
-            ..SurfaceDerivs::default()
-        };
-        if order == 0 {
-            return d;
+    /// The point and derivatives up to `order` from u-contracted rows ([`Self::contract_u`]):
+    /// the v-contraction `A^(k,l) = Σ_j N^(l)_j(v) rows[j][k]`, then the quotient rule.
+    pub(crate) fn from_rows(
+        &self,
+        rows: &ContractedRows,
+        bv: &BasisDerivs,
+        origin: LocalOrigin,
+        order: usize,
+    ) -> SurfaceDerivs {
+        let order = order.min(MAX_ORDER);
+        let mut h = Homogeneous::default();
+        for (l, column) in rows.iter().enumerate().take(self.knots_v.degree() + 1) {
+            h.add_column(column, |k| bv.ders[k][l], order);
         }
-        let (au, av) = (contract(1, 0), contract(0, 1));
-        d.su = (au.truncate() - au.w * local) / w;
-        d.sv = (av.truncate() - av.w * local) / w;
-        if order == 1 {
-            return d;
-        }
-        let (auu, auv, avv) = (contract(2, 0), contract(1, 1), contract(0, 2));
-        d.suu = (auu.truncate() - 2.0 * au.w * d.su - auu.w * local) / w;
-        d.suv = (auv.truncate() - au.w * d.sv - av.w * d.su - auv.w * local) / w;
-        d.svv = (avv.truncate() - 2.0 * av.w * d.sv - avv.w * local) / w;
-        d
+        h.rational(origin.point, order)
     }
 
     /// The surface with every control point mapped by `f` (weights unchanged). Exact for affine
