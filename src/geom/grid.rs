@@ -84,7 +84,7 @@ impl<'a> GridEvaluator<'a> {
         let (rows, origin) = row.at(j);
         let bv = &self.basis_v[j];
         self.surface.frame_with(self.us[i], self.vs[j], |order| {
-            self.surface.from_rows(rows, bv, origin, order)
+            self.surface.derivs_from_rows(rows, bv, origin, order)
         })
     }
 }

@@ -253,7 +253,7 @@ impl NurbsSurface {
         let origin4 = origin.point.extend(0.0);
         let mut h = Homogeneous::default();
         // Column by column: the u-contraction of column l (as `contract_u` forms it), then its
-        // share of the v-contraction (as `from_rows` adds it), so that grid and direct
+        // share of the v-contraction (as `derivs_from_rows` adds it), so that grid and direct
         // evaluation add the same terms in the same order.
         for l in 0..=q {
             let mut column = [DVec4::ZERO; MAX_ORDER + 1];
@@ -318,7 +318,7 @@ impl NurbsSurface {
 
     /// The point and derivatives up to `order` from u-contracted rows ([`Self::contract_u`]):
     /// the v-contraction `A^(k,l) = Σ_j N^(l)_j(v) rows[j][k]`, then the quotient rule.
-    pub(crate) fn from_rows(
+    pub(crate) fn derivs_from_rows(
         &self,
         rows: &ContractedRows,
         bv: &BasisDerivs,
