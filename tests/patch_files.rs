@@ -84,3 +84,26 @@ fn car_panels_are_rational_with_non_uniform_knots_and_c1_joints() {
         }
     }
 }
+
+/// The ```ron block of docs/patch-format.md.
+fn documented_example() -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/patch-format.md");
+    let doc = std::fs::read_to_string(path).unwrap();
+    let start = doc.find("```ron\n").unwrap() + "```ron\n".len();
+    let end = start + doc[start..].find("```").unwrap();
+    doc[start..end].to_owned()
+}
+
+#[test]
+fn documented_example_parses_into_every_kind_of_surface() {
+    let lib = glint::formats::parse_patch_ron(&documented_example(), "patch-format.md").unwrap();
+    let names: Vec<&str> = lib.patches.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["ball", "can", "ring", "floor", "tile", "panel"]);
+    let ball = &lib.find("ball").unwrap().surface;
+    let centre = glam::DVec3::new(0.0, 0.0, 2.0);
+    assert!(((ball.point(0.3, 0.6) - centre).length() - 1.0).abs() < 1e-12);
+    let tile = &lib.find("tile").unwrap().surface;
+    assert_eq!((tile.knots_u().degree(), tile.knots_v().degree()), (1, 1));
+    let panel = &lib.find("panel").unwrap().surface;
+    assert_eq!(panel.control_point(1, 0).1, 0.7);
+}

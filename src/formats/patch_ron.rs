@@ -1,35 +1,5 @@
 //! RON patch libraries: a list of named patches, each an exact shape or an explicit NURBS.
-//!
-//! ```ron
-//! (
-//!     patches: [
-//!         // Exact shapes on the domain [0,1]² (see `geom::shapes`).
-//!         (name: "ball", surface: Sphere(radius: 1.0, center: (0.0, 0.0, 2.0))), // center optional
-//!         (name: "can", surface: Cylinder(radius: 0.5, height: 2.0)),
-//!         (name: "ring", surface: Torus(major_radius: 2.0, minor_radius: 0.5)),
-//!         (name: "floor", surface: Plane(width: 4.0, height: 4.0)),
-//!         // A Bezier patch: its degrees follow from the net, rows along u of points along v.
-//!         (name: "tile", surface: Bezier(points: [
-//!             [(0.0, 0.0, 0.0), (0.0, 1.0, 0.0)],
-//!             [(1.0, 0.0, 0.0), (1.0, 1.0, 0.5)],
-//!         ])),
-//!         // An explicit NURBS: degrees (u, v), knot vectors of length count + degree + 1,
-//!         // the control net (rows along u, each row running along v) and optional weights of
-//!         // the same shape (all 1 when left out; every weight > 0).
-//!         (name: "panel", surface: Nurbs(
-//!             degree: (2, 1),
-//!             knots_u: [0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-//!             knots_v: [0.0, 0.0, 1.0, 1.0],
-//!             points: [
-//!                 [(0.0, 0.0, 0.0), (0.0, 1.0, 0.0)],
-//!                 [(1.0, 0.0, 1.0), (1.0, 1.0, 1.0)],
-//!                 [(2.0, 0.0, 0.0), (2.0, 1.0, 0.0)],
-//!             ],
-//!             weights: Some([[1.0, 1.0], [0.7, 0.7], [1.0, 1.0]]),
-//!         )),
-//!     ],
-//! )
-//! ```
+//! The format, with an annotated example, is described in `docs/patch-format.md`.
 
 use glam::DVec3;
 use serde::Deserialize;
@@ -250,32 +220,6 @@ fn second_occurrence(text: &str, needle: &str) -> (usize, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The example in this module's documentation.
-    fn doc_example() -> &'static str {
-        let doc = include_str!("patch_ron.rs");
-        let start = doc.find("//! ```ron\n").unwrap() + "//! ```ron\n".len();
-        let end = doc[start..].find("//! ```").unwrap() + start;
-        Box::leak(
-            doc[start..end]
-                .lines()
-                .map(|l| l.trim_start_matches("//!").strip_prefix(' ').unwrap_or(""))
-                .collect::<Vec<_>>()
-                .join("\n")
-                .into_boxed_str(),
-        )
-    }
-
-    #[test]
-    fn documented_example_parses_into_every_kind_of_surface() {
-        let lib = parse_patch_ron(doc_example(), "doc.ron").unwrap();
-        let names: Vec<&str> = lib.patches.iter().map(|p| p.name.as_str()).collect();
-        assert_eq!(names, ["ball", "can", "ring", "floor", "tile", "panel"]);
-        let ball = &lib.find("ball").unwrap().surface;
-        assert!((ball.point(0.3, 0.6) - DVec3::new(0.0, 0.0, 2.0)).length() - 1.0 < 1e-12);
-        let panel = &lib.find("panel").unwrap().surface;
-        assert_eq!(panel.control_point(1, 0).1, 0.7);
-    }
 
     fn error_of(text: &str) -> String {
         parse_patch_ron(text, "m.ron").unwrap_err().to_string()
