@@ -52,19 +52,21 @@ impl Frame {
         if !(sq_u.is_finite() && sq_v.is_finite()) || sq_u.max(sq_v) == 0.0 {
             return None;
         }
-        let (normal, du, degenerate) = if sq_u < RATIO_SQUARED * sq_v {
+        // The normal, the vector du points along, and whether this is a limit frame.
+        let (normal, along_u, degenerate) = if sq_u < RATIO_SQUARED * sq_v {
             let s = edge_sign(v, domain.v);
-            let sq_uv = d.suv.length_squared();
-            let n = unit_cross(d.suv, d.sv, sq_uv * sq_v)?;
-            (s * n, d.suv * (s / sq_uv.sqrt()), true)
+            let n = unit_cross(d.suv, d.sv, d.suv.length_squared() * sq_v)?;
+            (s * n, s * d.suv, true)
         } else if sq_v < RATIO_SQUARED * sq_u {
             let s = edge_sign(u, domain.u);
             let n = unit_cross(d.su, d.suv, sq_u * d.suv.length_squared())?;
-            (s * n, d.su * sq_u.sqrt().recip(), true)
+            (s * n, d.su, true)
         } else {
-            let n = unit_cross(d.su, d.sv, sq_u * sq_v)?;
-            (n, d.su * sq_u.sqrt().recip(), false)
+            (unit_cross(d.su, d.sv, sq_u * sq_v)?, d.su, false)
         };
+        // du ⊥ N holds in exact arithmetic; projecting keeps it exact to rounding even where the
+        // cross product was short and so less accurate.
+        let du = (along_u - along_u.dot(normal) * normal).try_normalize()?;
         Some(Frame {
             point: d.point,
             normal,
