@@ -1,0 +1,345 @@
+//! Tessellation: each patch becomes a grid mesh whose vertices carry the patch, (u, v) and the
+//! exact frame there. Neighbouring patches are sampled alike along the edges they share and their
+//! edge vertices welded to the same coordinates, so the mesh is watertight.
+
+use std::collections::HashMap;
+
+use glam::{DVec3, Mat4, Vec2, Vec3};
+use serde::Deserialize;
+
+use crate::geom::{GridEvaluator, KnotVector, NurbsSurface, PatchLibrary};
+
+/// How finely patches are cut into triangles.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Density {
+    /// A fixed number of segments per knot span in each direction.
+    PerSpan { u: u32, v: u32 },
+    /// Enough segments that the flat triangles stay within `pixels` of the surface on screen
+    /// (estimated from the projected control net), at most [`MAX_SEGMENTS_PER_SPAN`] per span.
+    ScreenTolerance { pixels: f32 },
+}
+
+/// The most segments per knot span an adaptive density chooses.
+pub const MAX_SEGMENTS_PER_SPAN: u32 = 64;
+
+/// Triangles with per-vertex surface data, in f32 world space.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    pub positions: Vec<Vec3>,
+    pub normals: Vec<Vec3>,
+    /// The unit tangent du of each vertex's frame (dv = N × du).
+    pub tangents_u: Vec<Vec3>,
+    /// Each vertex's (u, v) on its patch.
+    pub uvs: Vec<Vec2>,
+    pub triangles: Vec<[u32; 3]>,
+    /// The patch (index in the library) of each triangle.
+    pub triangle_patch: Vec<u32>,
+}
+
+/// Segments per knot span of one patch, along u and along v.
+pub type Segments = (u32, u32);
+
+/// Tessellates a library, keeping the last mesh while the segment counts stay the same.
+#[derive(Debug)]
+pub struct Tessellator<'a> {
+    library: &'a PatchLibrary,
+    /// Classes of (patch, direction) that must be cut alike: `class[2 p + d]`, d = 0 for u.
+    class: Vec<usize>,
+    cached: Option<(Vec<Segments>, Mesh)>,
+}
+
+impl<'a> Tessellator<'a> {
+    /// Finds the edges the library's patches share (once) and starts with an empty cache.
+    pub fn new(library: &'a PatchLibrary) -> Self {
+        Self {
+            library,
+            class: direction_classes(library),
+            cached: None,
+        }
+    }
+
+    /// The mesh for `density`, seen through `view_projection` on a `width × height` image (used
+    /// by the adaptive density only). Returns whether it had to be rebuilt.
+    pub fn mesh(
+        &mut self,
+        density: Density,
+        view_projection: Mat4,
+        width: u32,
+        height: u32,
+    ) -> (&Mesh, bool) {
+        let segments = self.segments(density, view_projection, width, height);
+        let rebuilt = !matches!(&self.cached, Some((s, _)) if *s == segments);
+        if rebuilt {
+            let mesh = build_mesh(self.library, &segments);
+            self.cached = Some((segments, mesh));
+        }
+        let (_, mesh) = self.cached.as_ref().expect("the cache was just filled");
+        (mesh, rebuilt)
+    }
+
+    /// Segments per span for every patch: the density's own choice, then the largest within
+    /// each class of directions that share edges, so shared edges are sampled alike.
+    pub fn segments(
+        &self,
+        density: Density,
+        view_projection: Mat4,
+        width: u32,
+        height: u32,
+    ) -> Vec<Segments> {
+        let wanted: Vec<Segments> = self
+            .library
+            .patches
+            .iter()
+            .map(|p| match density {
+                Density::PerSpan { u, v } => (u.max(1), v.max(1)),
+                Density::ScreenTolerance { pixels } => {
+                    screen_segments(&p.surface, view_projection, width, height, pixels)
+                }
+            })
+            .collect();
+        let mut largest: HashMap<usize, u32> = HashMap::new();
+        for (node, &class) in self.class.iter().enumerate() {
+            let (u, v) = wanted[node / 2];
+            let n = if node % 2 == 0 { u } else { v };
+            let entry = largest.entry(class).or_insert(n);
+            *entry = (*entry).max(n);
+        }
+        (0..wanted.len())
+            .map(|p| (largest[&self.class[2 * p]], largest[&self.class[2 * p + 1]]))
+            .collect()
+    }
+}
+
+/// Parameters cutting each knot span of `knots` into `segments` equal parts, every knot inside
+/// the domain and both ends included exactly, once.
+fn span_samples(knots: &KnotVector, segments: u32) -> Vec<f64> {
+    let (start, end) = knots.domain();
+    let mut breaks: Vec<f64> = knots
+        .knots()
+        .iter()
+        .copied()
+        .filter(|&k| k > start && k < end)
+        .collect();
+    breaks.dedup();
+    breaks.insert(0, start);
+    breaks.push(end);
+    let n = segments as usize;
+    let mut samples = vec![start];
+    for span in breaks.windows(2) {
+        let (a, b) = (span[0], span[1]);
+        samples.extend((1..n).map(|k| a + (b - a) * (k as f64 / n as f64)));
+        samples.push(b);
+    }
+    samples
+}
+
+/// Segments per span so that, on screen, a linear piece deviates from the surface by at most
+/// `tolerance` pixels. For a Bezier curve of degree p cut into n pieces the deviation is at most
+/// `p (p − 1) max‖Δ²P‖ / (8 n²)` (second differences of the control points), so
+/// `n = ⌈sqrt(p (p − 1) max‖Δ²P‖ / (8 tol))⌉`, taken per direction over the projected net.
+fn screen_segments(
+    surface: &NurbsSurface,
+    view_projection: Mat4,
+    width: u32,
+    height: u32,
+    tolerance: f32,
+) -> Segments {
+    let (count_u, count_v) = (surface.count_u(), surface.count_v());
+    let half = Vec2::new(width as f32, height as f32) * 0.5;
+    let mut on_screen = Vec::with_capacity(count_u * count_v);
+    for i in 0..count_u {
+        for j in 0..count_v {
+            let p = view_projection * surface.control_point(i, j).0.as_vec3().extend(1.0);
+            if p.w <= 1e-6 {
+                // Behind the eye: no estimate, cut as finely as allowed.
+                return (MAX_SEGMENTS_PER_SPAN, MAX_SEGMENTS_PER_SPAN);
+            }
+            on_screen.push(Vec2::new(p.x, p.y) / p.w * half);
+        }
+    }
+    let at = |i: usize, j: usize| on_screen[i * count_v + j];
+    let second_difference = |along_u: bool| -> f32 {
+        let (n, m) = if along_u {
+            (count_u, count_v)
+        } else {
+            (count_v, count_u)
+        };
+        let mut largest = 0.0f32;
+        for line in 0..m {
+            for k in 1..n.saturating_sub(1) {
+                let p = |k: usize| if along_u { at(k, line) } else { at(line, k) };
+                largest = largest.max((p(k + 1) - 2.0 * p(k) + p(k - 1)).length());
+            }
+        }
+        largest
+    };
+    let count = |degree: usize, d2: f32| -> u32 {
+        let p = degree as f32;
+        let n = (p * (p - 1.0) * d2 / (8.0 * tolerance.max(1e-3)))
+            .sqrt()
+            .ceil();
+        (n as u32).clamp(if degree > 1 { 2 } else { 1 }, MAX_SEGMENTS_PER_SPAN)
+    };
+    (
+        count(surface.knots_u().degree(), second_difference(true)),
+        count(surface.knots_v().degree(), second_difference(false)),
+    )
+}
+
+/// The points along edge `edge` of a patch's domain (0: v = v0, 1: u = u1, 2: v = v1,
+/// 3: u = u0), at `n + 1` evenly spaced parameters.
+fn edge_points(surface: &NurbsSurface, edge: usize, n: usize) -> Vec<DVec3> {
+    let d = surface.domain();
+    (0..=n)
+        .map(|k| {
+            let t = k as f64 / n as f64;
+            let (s, r) = match edge {
+                0 => (t, 0.0),
+                1 => (1.0, t),
+                2 => (t, 1.0),
+                _ => (0.0, t),
+            };
+            let (u, v) = d.lerp(s, r);
+            surface.point(u, v)
+        })
+        .collect()
+}
+
+/// The model's extent from the world origin (at least 1): the scale for "equal" positions.
+fn model_scale(library: &PatchLibrary) -> f64 {
+    library
+        .patches
+        .iter()
+        .flat_map(|p| edge_points(&p.surface, 0, 2))
+        .fold(1.0f64, |m, p| m.max(p.abs().max_element()))
+}
+
+/// Union-find classes over the nodes (patch, direction): two patches that share an edge put the
+/// directions that edge runs along into one class.
+fn direction_classes(library: &PatchLibrary) -> Vec<usize> {
+    const SAMPLES: usize = 8;
+    let mut parent: Vec<usize> = (0..2 * library.patches.len()).collect();
+    fn root(parent: &mut [usize], mut x: usize) -> usize {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    }
+    let tolerance = 1e-9 * model_scale(library);
+    let edges: Vec<Vec<Vec<DVec3>>> = library
+        .patches
+        .iter()
+        .map(|p| {
+            (0..4)
+                .map(|e| edge_points(&p.surface, e, SAMPLES))
+                .collect()
+        })
+        .collect();
+    let same = |a: &[DVec3], b: &[DVec3]| {
+        let forward = a
+            .iter()
+            .zip(b)
+            .all(|(p, q)| (*p - *q).length() <= tolerance);
+        forward
+            || a.iter()
+                .zip(b.iter().rev())
+                .all(|(p, q)| (*p - *q).length() <= tolerance)
+    };
+    for a in 0..edges.len() {
+        for b in a + 1..edges.len() {
+            for (ea, pa) in edges[a].iter().enumerate() {
+                if pa.iter().all(|p| (*p - pa[0]).length() <= tolerance) {
+                    continue; // a collapsed edge is a point, shared with nothing
+                }
+                for (eb, pb) in edges[b].iter().enumerate() {
+                    if same(pa, pb) {
+                        // Edges 0 and 2 run along u (direction 0), 1 and 3 along v.
+                        let (x, y) = (
+                            root(&mut parent, 2 * a + ea % 2),
+                            root(&mut parent, 2 * b + eb % 2),
+                        );
+                        parent[x] = y;
+                    }
+                }
+            }
+        }
+    }
+    (0..parent.len()).map(|x| root(&mut parent, x)).collect()
+}
+
+/// The grid meshes of all patches, with boundary vertices at equal positions welded to one f32
+/// value.
+fn build_mesh(library: &PatchLibrary, segments: &[Segments]) -> Mesh {
+    let mut mesh = Mesh::default();
+    let mut welded: HashMap<[i64; 3], Vec3> = HashMap::new();
+    let quantum = 1e-9 * model_scale(library);
+    for (patch_index, (patch, &(seg_u, seg_v))) in library.patches.iter().zip(segments).enumerate()
+    {
+        let s = &patch.surface;
+        let us = span_samples(s.knots_u(), seg_u);
+        let vs = span_samples(s.knots_v(), seg_v);
+        let grid = GridEvaluator::new(s, &us, &vs);
+        let first = mesh.positions.len() as u32;
+        let (nu, nv) = (us.len(), vs.len());
+        for (i, &u) in us.iter().enumerate() {
+            for (j, f) in grid.row_frames(i).enumerate() {
+                let mut position = f.point.as_vec3();
+                if i == 0 || j == 0 || i + 1 == nu || j + 1 == nv {
+                    let key = (f.point / quantum).round().as_i64vec3().to_array();
+                    position = *welded.entry(key).or_insert(position);
+                }
+                mesh.positions.push(position);
+                mesh.normals.push(f.normal.as_vec3());
+                mesh.tangents_u.push(f.du.as_vec3());
+                mesh.uvs.push(Vec2::new(u as f32, vs[j] as f32));
+            }
+        }
+        let index = |i: usize, j: usize| first + (i * nv + j) as u32;
+        for i in 0..nu - 1 {
+            for j in 0..nv - 1 {
+                let (a, b, c, d) = (
+                    index(i, j),
+                    index(i + 1, j),
+                    index(i + 1, j + 1),
+                    index(i, j + 1),
+                );
+                mesh.triangles.push([a, b, c]);
+                mesh.triangles.push([a, c, d]);
+                mesh.triangle_patch.extend([patch_index as u32; 2]);
+            }
+        }
+    }
+    mesh
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::shapes;
+
+    #[test]
+    fn span_samples_hit_every_knot_and_cut_spans_evenly() {
+        let knots = KnotVector::new(vec![0.0, 0.0, 0.0, 0.3, 1.0, 1.0, 1.0], 2, 4).unwrap();
+        let s = span_samples(&knots, 3);
+        assert_eq!(s.len(), 7);
+        assert_eq!((s[0], s[3], s[6]), (0.0, 0.3, 1.0));
+        assert!((s[1] - 0.1).abs() < 1e-15 && (s[5] - (0.3 + 0.7 * 2.0 / 3.0)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn adaptive_density_grows_with_size_on_screen_and_shrinks_with_tolerance() {
+        let sphere = shapes::sphere(DVec3::ZERO, 1.0).unwrap();
+        let view = |distance: f32| {
+            Mat4::perspective_rh(0.7, 1.0, 0.1, 100.0)
+                * Mat4::look_at_rh(Vec3::new(0.0, -distance, 0.0), Vec3::ZERO, Vec3::Z)
+        };
+        let near = screen_segments(&sphere, view(3.0), 512, 512, 0.5);
+        let far = screen_segments(&sphere, view(30.0), 512, 512, 0.5);
+        let coarse = screen_segments(&sphere, view(3.0), 512, 512, 4.0);
+        assert!(near.0 > far.0 && near.1 > far.1, "{near:?} {far:?}");
+        assert!(near.0 > coarse.0, "{near:?} {coarse:?}");
+        assert!(far.0 >= 2 && near.0 <= MAX_SEGMENTS_PER_SPAN);
+    }
+}
