@@ -25,3 +25,4 @@ pub mod cli;
 pub mod formats;
 pub mod geom;
 pub mod render;
+pub mod toon;

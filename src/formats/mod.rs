@@ -1,7 +1,8 @@
-//! Readers of the files glint takes in: RON patch libraries and `.bpt` Bezier patches.
+//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, PNG images.
 
 mod bpt;
 mod patch_ron;
+pub mod png;
 
 use std::path::Path;
 

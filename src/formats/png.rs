@@ -1,0 +1,106 @@
+//! PNG output, written atomically: the image goes to a temporary file beside the target, which is
+//! renamed over the target only when complete. A reader never sees half an image, and a failed
+//! write leaves nothing behind.
+
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+
+use image::codecs::png::PngEncoder;
+use image::{ExtendedColorType, ImageEncoder};
+use thiserror::Error;
+
+/// An image that could not be written.
+#[derive(Debug, Error)]
+#[error("cannot write {path}: {reason}")]
+pub struct WriteError {
+    pub path: String,
+    pub reason: String,
+}
+
+/// The pixel layouts glint writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PngLayout {
+    /// 8-bit RGBA, 4 bytes a pixel.
+    Rgba8,
+    /// 8-bit grey, 1 byte a pixel.
+    Gray8,
+    /// 16-bit grey, 2 bytes a pixel, big-endian.
+    Gray16,
+}
+
+/// The temporary file a write to `path` goes through: hidden, in the same directory (so the
+/// rename is atomic), and named after the target and this process.
+pub fn temporary_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map_or_else(Default::default, |n| n.to_string_lossy().into_owned());
+    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// Writes `pixels` (rows top to bottom, in `layout`) as a PNG at `path`, atomically.
+pub fn write_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    layout: PngLayout,
+    pixels: &[u8],
+) -> Result<(), WriteError> {
+    let error = |reason: String| WriteError {
+        path: path.display().to_string(),
+        reason,
+    };
+    let color = match layout {
+        PngLayout::Rgba8 => ExtendedColorType::Rgba8,
+        PngLayout::Gray8 => ExtendedColorType::L8,
+        PngLayout::Gray16 => ExtendedColorType::L16,
+    };
+    let temporary = temporary_path(path);
+    let written = (|| -> Result<(), String> {
+        let file = File::create(&temporary).map_err(|e| e.to_string())?;
+        let mut out = BufWriter::new(file);
+        PngEncoder::new(&mut out)
+            .write_image(pixels, width, height, color)
+            .map_err(|e| e.to_string())?;
+        let file = out.into_inner().map_err(|e| e.to_string())?;
+        file.sync_all().map_err(|e| e.to_string())?;
+        std::fs::rename(&temporary, path).map_err(|e| e.to_string())
+    })();
+    if written.is_err() {
+        // Best effort: the temporary file may not even exist.
+        let _ = std::fs::remove_file(&temporary);
+    }
+    written.map_err(error)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn writes_a_png_that_decodes_to_the_same_pixels_and_leaves_no_temporary() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.png");
+        let pixels: Vec<u8> = (0..4 * 3 * 2).map(|i| i as u8 * 10).collect();
+        write_png(&path, 3, 2, PngLayout::Rgba8, &pixels).unwrap();
+        let decoded = image::open(&path).unwrap().to_rgba8();
+        assert_eq!(decoded.as_raw(), &pixels);
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, ["a.png"]);
+    }
+
+    #[test]
+    fn an_unwritable_path_is_an_error_naming_it_and_leaves_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("missing-dir").join("a.png");
+        let e = write_png(&path, 1, 1, PngLayout::Gray8, &[0]).unwrap_err();
+        assert!(e.to_string().contains("missing-dir"), "{e}");
+        // Wrong buffer size: the encoder refuses, and no file or temporary remains.
+        let path = dir.path().join("b.png");
+        assert!(write_png(&path, 2, 2, PngLayout::Gray8, &[0]).is_err());
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+}

@@ -1,0 +1,111 @@
+//! Cel ramps: a few flat bands of colour over `n·l` (DESIGN §5).
+
+use glam::Vec3;
+use serde::Deserialize;
+use thiserror::Error;
+
+/// Flat colour bands over `n·l ∈ [−1, 1]`: the colour of the band with the highest threshold not
+/// above `n·l`, or `base` below every threshold. For the classic two-tone look, a shadow colour
+/// as `base` and one band `(0.0, lit colour)`.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CelRamp {
+    /// Linear RGB below every threshold (the deepest shadow).
+    pub base: Vec3,
+    /// `(threshold, linear RGB)` in increasing threshold order.
+    #[serde(default)]
+    pub bands: Vec<(f32, Vec3)>,
+}
+
+/// A cel ramp that cannot be used.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ToneError {
+    #[error("band thresholds must increase: {threshold} follows {previous}")]
+    ThresholdOrder { threshold: f32, previous: f32 },
+    #[error("band threshold {threshold} is outside [-1, 1], the range of n·l")]
+    ThresholdRange { threshold: f32 },
+    #[error("colour {colour:?} must have finite components of at least 0")]
+    Colour { colour: [f32; 3] },
+}
+
+impl CelRamp {
+    /// Two tones: `shadow` where `n·l < threshold`, `lit` from there on.
+    pub fn two_tone(shadow: Vec3, lit: Vec3, threshold: f32) -> Self {
+        Self {
+            base: shadow,
+            bands: vec![(threshold, lit)],
+        }
+    }
+
+    /// Checks thresholds (in [−1, 1], increasing) and colours (finite, ≥ 0).
+    pub fn validate(&self) -> Result<(), ToneError> {
+        let colours = std::iter::once(self.base).chain(self.bands.iter().map(|b| b.1));
+        for colour in colours {
+            if !(colour.is_finite() && colour.min_element() >= 0.0) {
+                return Err(ToneError::Colour {
+                    colour: colour.to_array(),
+                });
+            }
+        }
+        let mut previous = f32::NEG_INFINITY;
+        for &(threshold, _) in &self.bands {
+            if !(-1.0..=1.0).contains(&threshold) {
+                return Err(ToneError::ThresholdRange { threshold });
+            }
+            if threshold <= previous {
+                return Err(ToneError::ThresholdOrder {
+                    threshold,
+                    previous,
+                });
+            }
+            previous = threshold;
+        }
+        Ok(())
+    }
+
+    /// The colour at `n_dot_l`.
+    #[must_use]
+    pub fn shade(&self, n_dot_l: f32) -> Vec3 {
+        self.bands
+            .iter()
+            .take_while(|(threshold, _)| n_dot_l >= *threshold)
+            .last()
+            .map_or(self.base, |(_, colour)| *colour)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bands_switch_at_their_thresholds() {
+        let ramp = CelRamp {
+            base: Vec3::splat(0.1),
+            bands: vec![(-0.2, Vec3::splat(0.4)), (0.5, Vec3::splat(0.9))],
+        };
+        assert!(ramp.validate().is_ok());
+        assert_eq!(ramp.shade(-1.0), Vec3::splat(0.1));
+        assert_eq!(ramp.shade(-0.2), Vec3::splat(0.4));
+        assert_eq!(ramp.shade(0.49), Vec3::splat(0.4));
+        assert_eq!(ramp.shade(0.5), Vec3::splat(0.9));
+        assert_eq!(ramp.shade(f32::NAN), Vec3::splat(0.1));
+    }
+
+    #[test]
+    fn invalid_ramps_say_what_is_wrong() {
+        let mut ramp = CelRamp::two_tone(Vec3::ZERO, Vec3::ONE, 0.0);
+        ramp.bands.push((-0.5, Vec3::ONE));
+        assert!(matches!(
+            ramp.validate(),
+            Err(ToneError::ThresholdOrder { .. })
+        ));
+        let ramp = CelRamp::two_tone(Vec3::ZERO, Vec3::ONE, 1.5);
+        assert!(matches!(
+            ramp.validate(),
+            Err(ToneError::ThresholdRange { .. })
+        ));
+        let ramp = CelRamp::two_tone(Vec3::new(0.0, -1.0, 0.0), Vec3::ONE, 0.0);
+        assert!(ramp.validate().unwrap_err().to_string().contains("colour"));
+    }
+}
