@@ -50,11 +50,18 @@ pub fn write_png(
         path: path.display().to_string(),
         reason,
     };
-    let color = match layout {
-        PngLayout::Rgba8 => ExtendedColorType::Rgba8,
-        PngLayout::Gray8 => ExtendedColorType::L8,
-        PngLayout::Gray16 => ExtendedColorType::L16,
+    let (color, bytes_per_pixel) = match layout {
+        PngLayout::Rgba8 => (ExtendedColorType::Rgba8, 4),
+        PngLayout::Gray8 => (ExtendedColorType::L8, 1),
+        PngLayout::Gray16 => (ExtendedColorType::L16, 2),
     };
+    let expected = width as usize * height as usize * bytes_per_pixel;
+    if pixels.len() != expected {
+        return Err(error(format!(
+            "{} bytes of pixels for a {width}×{height} {layout:?} image, which needs {expected}",
+            pixels.len()
+        )));
+    }
     let temporary = temporary_path(path);
     let written = (|| -> Result<(), String> {
         let file = File::create(&temporary).map_err(|e| e.to_string())?;
