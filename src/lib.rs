@@ -2,3 +2,4 @@
 //! highlights (Anjyo & Hiramitsu 2003).
 
 pub mod geom;
+pub mod highlight;
