@@ -6,9 +6,7 @@
 //! `(x, y, z)`, so du points right and dv up.
 
 use glam::{DVec3, Vec2, Vec3};
-use glint::highlight::{
-    Axis, Expr, Layer, Op, PreparedLayer, SquareStyle, TangentFrame,
-};
+use glint::highlight::{Axis, Expr, Layer, Op, PreparedLayer, SquareStyle, TangentFrame};
 use rand::{Rng, SeedableRng};
 
 /// The sphere's frame and (u, v) = (λ, φ) at unit normal `n` (not a pole).
@@ -45,7 +43,11 @@ struct Grid {
 
 impl Grid {
     /// Pixel centres `x = (2i + 1 − res) / res · half` are exactly antisymmetric in i.
-    fn render(res: usize, half: f64, mut inside: impl FnMut(&TangentFrame, Vec2, DVec3) -> bool) -> Self {
+    fn render(
+        res: usize,
+        half: f64,
+        mut inside: impl FnMut(&TangentFrame, Vec2, DVec3) -> bool,
+    ) -> Self {
         let mut px = vec![false; res * res];
         for j in 0..res {
             for i in 0..res {
@@ -81,7 +83,11 @@ impl Grid {
         let mut px = vec![false; n * n];
         for j in 0..n {
             for i in 0..n {
-                let (si, sj) = if left_right { (n - 1 - i, j) } else { (i, n - 1 - j) };
+                let (si, sj) = if left_right {
+                    (n - 1 - i, j)
+                } else {
+                    (i, n - 1 - j)
+                };
                 px[j * n + i] = self.at(si, sj);
             }
         }
@@ -221,14 +227,20 @@ fn translation_moves_centre_by_predicted_angle() {
         let l = prepared(vec![Op::Translate { alpha, beta: 0.0 }], eps);
         let (lambda, s) = argmax_along(&l, Vec3::Z, true, step);
         let want = f64::from(alpha).asin();
-        assert!((lambda - want).abs() <= step, "α = {alpha}: centre at {lambda}, want {want}");
+        assert!(
+            (lambda - want).abs() <= step,
+            "α = {alpha}: centre at {lambda}, want {want}"
+        );
         // There the translated H equals N, so s reaches ε.
         assert!((s - eps).abs() < 1e-6, "α = {alpha}: s = {s}");
     }
     for beta in [-0.2_f32, 0.5] {
         let l = prepared(vec![Op::Translate { alpha: 0.0, beta }], eps);
         let (phi, _) = argmax_along(&l, Vec3::Z, false, step);
-        assert!((phi - f64::from(beta).asin()).abs() <= step, "β = {beta}: centre at {phi}");
+        assert!(
+            (phi - f64::from(beta).asin()).abs() <= step,
+            "β = {beta}: centre at {phi}"
+        );
     }
 }
 
@@ -247,13 +259,22 @@ fn rotation_turns_stretched_highlight() {
     let g = |stack: Vec<Op>| Grid::of(301, 0.6, &prepared(stack, 0.005), Vec3::Z);
     let along_u = g(vec![stretch.clone()]);
     let (xx, yy, _) = along_u.moments();
-    assert!(xx > 3.0 * yy, "δ-stretched highlight not long along du: {xx} vs {yy}");
+    assert!(
+        xx > 3.0 * yy,
+        "δ-stretched highlight not long along du: {xx} vs {yy}"
+    );
     let turned = g(vec![Op::Rotate { degrees: 90.0 }, stretch.clone()]);
     let (xx, yy, _) = turned.moments();
-    assert!(yy > 3.0 * xx, "rotated highlight not long along dv: {xx} vs {yy}");
+    assert!(
+        yy > 3.0 * xx,
+        "rotated highlight not long along dv: {xx} vs {yy}"
+    );
     for degrees in [30.0_f32, -60.0] {
         let a = long_axis_degrees(&g(vec![Op::Rotate { degrees }, stretch.clone()]));
-        assert!((a - f64::from(degrees)).abs() < 2.0, "rotate {degrees}°: axis at {a}°");
+        assert!(
+            (a - f64::from(degrees)).abs() < 2.0,
+            "rotate {degrees}°: axis at {a}°"
+        );
     }
     // Rotation alone preserves (N, H): the round highlight is unchanged.
     let round = g(vec![]);
@@ -284,7 +305,10 @@ fn split_in_two_and_in_four() {
     for c in &comps {
         assert!(c.iter().all(|&(i, _)| i < centre) || c.iter().all(|&(i, _)| i > centre));
     }
-    assert!(two.px == two.mirrored(true).px, "two pieces not mirror-symmetric about dv");
+    assert!(
+        two.px == two.mirrored(true).px,
+        "two pieces not mirror-symmetric about dv"
+    );
 
     let four = g(0.3, 0.3);
     assert!(!four.at(centre, centre));
@@ -310,7 +334,10 @@ fn squaring_fills_bounding_square_monotonically() {
     };
     let fills: Vec<f64> = [0.0, 0.05, 0.1, 0.15, 0.2].into_iter().map(fill).collect();
     // A disc fills π/4 of its bounding square.
-    assert!((fills[0] - std::f64::consts::FRAC_PI_4).abs() < 0.01, "{fills:?}");
+    assert!(
+        (fills[0] - std::f64::consts::FRAC_PI_4).abs() < 0.01,
+        "{fills:?}"
+    );
     assert!(fills.windows(2).all(|w| w[1] > w[0] + 0.01), "{fills:?}");
     assert!(fills[4] > 0.9, "σ = 0.2 not square: {fills:?}");
 }
@@ -327,8 +354,14 @@ fn squaring_is_symmetric_under_quadrant_reflections() {
         let l = prepared(vec![square(sigma, n, style)], 0.01);
         let g = Grid::of(201, 0.4, &l, Vec3::Z);
         assert!(g.count() > 100);
-        assert!(g.px == g.mirrored(true).px, "{style:?} σ={sigma} n={n}: not left-right symmetric");
-        assert!(g.px == g.mirrored(false).px, "{style:?} σ={sigma} n={n}: not top-bottom symmetric");
+        assert!(
+            g.px == g.mirrored(true).px,
+            "{style:?} σ={sigma} n={n}: not left-right symmetric"
+        );
+        assert!(
+            g.px == g.mirrored(false).px,
+            "{style:?} σ={sigma} n={n}: not top-bottom symmetric"
+        );
     }
 }
 

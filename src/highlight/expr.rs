@@ -157,10 +157,9 @@ impl PreparedExpr {
     fn shape(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, width: f32) -> (f32, Paint) {
         match self {
             PreparedExpr::Layer(l) => (l.shape(frame, uv, h, width), l.paint()),
-            PreparedExpr::Combine(op, a, b) => op.combine(
-                a.shape(frame, uv, h, width),
-                b.shape(frame, uv, h, width),
-            ),
+            PreparedExpr::Combine(op, a, b) => {
+                op.combine(a.shape(frame, uv, h, width), b.shape(frame, uv, h, width))
+            }
         }
     }
 }

@@ -91,7 +91,11 @@ mod tests {
     fn half_vector_bisects() {
         let l = Vec3::new(1.0, 0.0, 1.0).normalize();
         let h = half_vector(l, Vec3::Z, Vec3::Y);
-        let want = Vec3::new((22.5_f32).to_radians().sin(), 0.0, (22.5_f32).to_radians().cos());
+        let want = Vec3::new(
+            (22.5_f32).to_radians().sin(),
+            0.0,
+            (22.5_f32).to_radians().cos(),
+        );
         assert!((h - want).length() < 1e-6);
     }
 

@@ -425,7 +425,11 @@ mod tests {
         });
         let l = local(-0.3, 0.4);
         let k = |c: f32| (2.0 * c.acos()).sin().abs().powf(1.5);
-        let want = Vec3::new(-0.3 * (1.0 - 0.5 * k(-0.3)), 0.4 * (1.0 - 0.5 * k(0.4)), l.z);
+        let want = Vec3::new(
+            -0.3 * (1.0 - 0.5 * k(-0.3)),
+            0.4 * (1.0 - 0.5 * k(0.4)),
+            l.z,
+        );
         assert!((op.apply_local(l) - want.normalize()).length() < 1e-6);
     }
 
