@@ -63,7 +63,7 @@ const MIN_LENGTH_SQUARED: f32 = 1e-12;
 pub(crate) fn normalize_or(v: Vec3, fallback: Vec3) -> Vec3 {
     let len2 = v.length_squared();
     if len2 > MIN_LENGTH_SQUARED && len2.is_finite() {
-        v / len2.sqrt()
+        v * len2.sqrt().recip()
     } else if len2.is_infinite() && v.is_finite() {
         let w = v / v.abs().max_element();
         w / w.length()

@@ -172,6 +172,11 @@ pub struct PreparedLayer {
     mask: Option<Mask>,
 }
 
+/// Points a batch method processes together. The op stack is applied op by op to a whole chunk,
+/// so the points' independent dependency chains (each op ends in a square root and a division)
+/// overlap in the processor instead of running one after another.
+pub const CHUNK: usize = 64;
+
 impl PreparedLayer {
     /// The stack's output `H'` for the initial unit vector `h`, in world coordinates.
     #[must_use]
@@ -184,12 +189,59 @@ impl PreparedLayer {
         self.stack.iter().fold(l, |l, op| op.apply_local(l))
     }
 
+    /// `s` of the stack's output given in frame coordinates, where N is +z.
+    #[inline]
+    fn signed_local(&self, l: Vec3) -> f32 {
+        signed_inside(Vec3::Z, l, self.epsilon)
+    }
+
     /// The signed inside value `s = ε − ‖N − H'‖² / 2` of the stack's output (positive inside).
     #[inline]
     #[must_use]
     pub fn signed(&self, frame: &TangentFrame, h: Vec3) -> f32 {
-        // In frame coordinates N is +z.
-        signed_inside(Vec3::Z, self.local_vector(frame.to_local(h)), self.epsilon)
+        self.signed_local(self.local_vector(frame.to_local(h)))
+    }
+
+    /// [`signed`](Self::signed) at many points: `out[i]` for `frames[i]` and `hs[i]`. Faster per
+    /// point than single calls (see [`CHUNK`]).
+    ///
+    /// # Panics
+    /// If the slices differ in length.
+    pub fn signed_many(&self, frames: &[TangentFrame], hs: &[Vec3], out: &mut [f32]) {
+        assert!(
+            frames.len() == hs.len() && hs.len() == out.len(),
+            "slice lengths differ"
+        );
+        let mut local = [Vec3::ZERO; CHUNK];
+        for ((f, h), o) in frames
+            .chunks(CHUNK)
+            .zip(hs.chunks(CHUNK))
+            .zip(out.chunks_mut(CHUNK))
+        {
+            let l = &mut local[..f.len()];
+            for ((l, f), h) in l.iter_mut().zip(f).zip(h) {
+                *l = f.to_local(*h);
+            }
+            for op in &self.stack {
+                for l in l.iter_mut() {
+                    *l = op.apply_local(*l);
+                }
+            }
+            for (o, l) in o.iter_mut().zip(l.iter()) {
+                *o = self.signed_local(*l);
+            }
+        }
+    }
+
+    /// Shape coverage in [0, 1] before opacity from the signed value `s` at `uv`: the edge (hard,
+    /// or smoothstep over the feather plus `width`) times the mask.
+    #[inline]
+    fn shape_from_signed(&self, s: f32, uv: Vec2, width: f32) -> f32 {
+        let c = coverage_from_signed(s, self.feather + width);
+        match &self.mask {
+            Some(m) if c > 0.0 => c * m.factor(uv),
+            _ => c,
+        }
     }
 
     /// Shape coverage in [0, 1] before opacity: the edge (hard, or smoothstep over the feather
@@ -197,10 +249,25 @@ impl PreparedLayer {
     #[inline]
     #[must_use]
     pub fn shape(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, width: f32) -> f32 {
-        let c = coverage_from_signed(self.signed(frame, h), self.feather + width);
-        match &self.mask {
-            Some(m) if c > 0.0 => c * m.factor(uv),
-            _ => c,
+        self.shape_from_signed(self.signed(frame, h), uv, width)
+    }
+
+    /// [`shape`](Self::shape) at many points, into `out`.
+    ///
+    /// # Panics
+    /// If the slices differ in length.
+    pub fn shape_many(
+        &self,
+        frames: &[TangentFrame],
+        uvs: &[Vec2],
+        hs: &[Vec3],
+        width: f32,
+        out: &mut [f32],
+    ) {
+        assert_eq!(uvs.len(), out.len(), "slice lengths differ");
+        self.signed_many(frames, hs, out);
+        for (o, uv) in out.iter_mut().zip(uvs) {
+            *o = self.shape_from_signed(*o, *uv, width);
         }
     }
 
@@ -236,6 +303,41 @@ mod tests {
         assert!((l.signed(&FRAME, h) - (0.1 - 0.2)).abs() < 1e-6);
         assert_eq!(l.shape(&FRAME, Vec2::ZERO, h, 0.0), 0.0);
         assert_eq!(l.shape(&FRAME, Vec2::ZERO, Vec3::Z, 0.0), 1.0);
+    }
+
+    #[test]
+    fn batch_equals_single_calls() {
+        let mut l = layer(vec![
+            Op::Translate {
+                alpha: 0.1,
+                beta: 0.2,
+            },
+            Op::Square {
+                sigma: 0.3,
+                n: 1.5,
+                style: crate::highlight::SquareStyle::Tangent,
+            },
+        ]);
+        l.mask = Some(Mask {
+            u: (0.0, 0.5),
+            v: (0.0, 1.0),
+            feather: 0.1,
+        });
+        let p = l.prepare().unwrap();
+        let count = 2 * CHUNK + 7;
+        let frames = vec![FRAME; count];
+        let hs: Vec<Vec3> = (0..count)
+            .map(|i| Vec3::new(0.3 * (i as f32 * 0.1).sin(), 0.2, 1.0).normalize())
+            .collect();
+        let uvs: Vec<Vec2> = (0..count)
+            .map(|i| Vec2::new(i as f32 / 100.0, 0.5))
+            .collect();
+        let mut out = vec![0.0; count];
+        p.shape_many(&frames, &uvs, &hs, 0.01, &mut out);
+        for i in 0..count {
+            assert_eq!(out[i], p.shape(&FRAME, uvs[i], hs[i], 0.01));
+        }
+        assert!(out.iter().any(|&c| c == 0.0) && out.iter().any(|&c| c > 0.5));
     }
 
     #[test]

@@ -22,5 +22,5 @@ pub use expr::{Boolean, Expr, PreparedExpr, Shade};
 pub use frame::TangentFrame;
 pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View};
 pub use inside::{coverage_from_signed, inside, signed_inside};
-pub use layer::{Layer, Mask, Paint, PreparedLayer};
+pub use layer::{Layer, Mask, Paint, PreparedLayer, CHUNK};
 pub use ops::{Axis, Op, PreparedOp, SquareStyle};
