@@ -64,6 +64,11 @@ impl HighlightError {
     }
 }
 
+/// The largest |α|, |β| of a translation and γ of a split. Far below it H is already tangent to
+/// the surface to f32 precision; the bound keeps every intermediate vector's squared length
+/// finite.
+pub const MAX_STEP: f32 = 1e6;
+
 /// The shape of an allowed range; `check` turns a violation into a [`HighlightError`].
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Range {
@@ -71,6 +76,10 @@ pub(crate) enum Range {
     Finite,
     /// `[0, ∞)`.
     NonNegative,
+    /// `[−MAX_STEP, MAX_STEP]`.
+    Step,
+    /// `[0, MAX_STEP]`.
+    NonNegativeStep,
     /// `(0, ∞)`.
     Positive,
     /// `[0, 1]`.
@@ -84,6 +93,8 @@ impl Range {
         match self {
             Range::Finite => true,
             Range::NonNegative => x >= 0.0,
+            Range::Step => x.abs() <= MAX_STEP,
+            Range::NonNegativeStep => (0.0..=MAX_STEP).contains(&x),
             Range::Positive => x > 0.0,
             Range::Unit => (0.0..=1.0).contains(&x),
             Range::Epsilon => x > 0.0 && x <= 2.0,
@@ -94,6 +105,8 @@ impl Range {
         match self {
             Range::Finite => "(-inf, inf)",
             Range::NonNegative => "[0, inf)",
+            Range::Step => "[-1e6, 1e6]",
+            Range::NonNegativeStep => "[0, 1e6]",
             Range::Positive => "(0, inf)",
             Range::Unit => "[0, 1]",
             Range::Epsilon => "(0, 2]",
@@ -147,5 +160,10 @@ mod tests {
         assert!(check("n", 0.0, Range::Positive, "").is_err());
         assert!(check("gamma", 0.0, Range::NonNegative, "").is_ok());
         assert!(check("gamma", -0.1, Range::NonNegative, "").is_err());
+        assert_eq!(format!("{MAX_STEP:e}"), "1e6");
+        assert!(check("alpha", -1e6, Range::Step, "").is_ok());
+        assert!(check("alpha", 1.1e6, Range::Step, "").is_err());
+        assert!(check("gamma", 1e6, Range::NonNegativeStep, "").is_ok());
+        assert!(check("gamma", -1.0, Range::NonNegativeStep, "").is_err());
     }
 }

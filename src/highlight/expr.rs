@@ -5,7 +5,8 @@ use serde::{Deserialize, Serialize};
 
 use super::error::HighlightError;
 use super::frame::TangentFrame;
-use super::layer::{Layer, Paint, PreparedLayer, CHUNK};
+use super::layer::{Layer, Paint, PreparedLayer};
+use super::stack::CHUNK;
 
 /// A Boolean expression over highlight layers, on soft coverage `a, b ∈ [0, 1]` (DESIGN §4):
 /// union `max(a, b)`, subtraction `A \ B = min(a, 1 − b)`, intersection `min(a, b)`.

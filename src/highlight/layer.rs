@@ -7,7 +7,8 @@ use serde::{Deserialize, Serialize};
 use super::error::{check, HighlightError, Range};
 use super::frame::TangentFrame;
 use super::inside::{coverage_from_signed, signed_inside};
-use super::ops::{Op, PreparedOp};
+use super::ops::Op;
+use super::stack::{PreparedStack, CHUNK};
 
 /// One highlight: the region `{ ‖N − H'‖² / 2 < ε }` of the vector `H'` that the op stack makes
 /// from the initial H, painted with a colour.
@@ -137,11 +138,12 @@ impl Layer<f32> {
     pub fn prepare(&self) -> Result<PreparedLayer, HighlightError> {
         self.validate()?;
         Ok(PreparedLayer {
-            stack: self
-                .stack
-                .iter()
-                .map(Op::prepare)
-                .collect::<Result<_, _>>()?,
+            stack: PreparedStack::new(
+                self.stack
+                    .iter()
+                    .map(Op::prepare)
+                    .collect::<Result<Vec<_>, _>>()?,
+            ),
             epsilon: self.epsilon,
             paint: Paint {
                 colour: Vec3::from_array(self.colour),
@@ -165,17 +167,12 @@ pub struct Paint {
 /// A validated layer, ready to evaluate at many points. Made by [`Layer::prepare`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct PreparedLayer {
-    stack: Vec<PreparedOp>,
+    stack: PreparedStack,
     epsilon: f32,
     paint: Paint,
     feather: f32,
     mask: Option<Mask>,
 }
-
-/// Points a batch method processes together. The op stack is applied op by op to a whole chunk,
-/// so the points' independent dependency chains (each op ends in a square root and a division)
-/// overlap in the processor instead of running one after another.
-pub const CHUNK: usize = 64;
 
 impl PreparedLayer {
     /// The stack's output `H'` for the initial unit vector `h`, in world coordinates.
@@ -186,7 +183,7 @@ impl PreparedLayer {
 
     #[inline]
     fn local_vector(&self, l: Vec3) -> Vec3 {
-        self.stack.iter().fold(l, |l, op| op.apply_local(l))
+        self.stack.apply_local(l)
     }
 
     /// `s` of the stack's output given in frame coordinates, where N is +z.
@@ -222,11 +219,7 @@ impl PreparedLayer {
             for ((l, f), h) in l.iter_mut().zip(f).zip(h) {
                 *l = f.to_local(*h);
             }
-            for op in &self.stack {
-                for l in l.iter_mut() {
-                    *l = op.apply_local(*l);
-                }
-            }
+            self.stack.apply_local_chunk(l);
             for (o, l) in o.iter_mut().zip(l.iter()) {
                 *o = self.signed_local(*l);
             }

@@ -16,11 +16,13 @@ mod half_vector;
 mod inside;
 mod layer;
 mod ops;
+mod stack;
 
 pub use error::HighlightError;
 pub use expr::{Boolean, Expr, PreparedExpr, Shade};
 pub use frame::TangentFrame;
 pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View};
 pub use inside::{coverage_from_signed, inside, signed_inside};
-pub use layer::{Layer, Mask, Paint, PreparedLayer, CHUNK};
-pub use ops::{Axis, Op, PreparedOp, SquareStyle};
+pub use layer::{Layer, Mask, Paint, PreparedLayer};
+pub use ops::{Axis, Exponent, Op, PreparedOp, SquareStyle};
+pub use stack::{PreparedStack, CHUNK};

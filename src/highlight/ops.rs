@@ -26,7 +26,8 @@ pub enum Op<P = f32> {
     /// Translation. Paper: `H' = H + α du + β dv`, `t(H) = H' / ‖H'‖`.
     ///
     /// On a convex surface the highlight moves toward `+du` for `α > 0` (its centre is where
-    /// `t(H) = N`). Any finite α, β; the paper warns that large values make H nearly tangent.
+    /// `t(H) = N`). |α|, |β| ≤ 10⁶: the paper warns that large values make H nearly tangent, and
+    /// the bound keeps squared lengths finite in f32.
     Translate {
         /// α, the step along du.
         alpha: P,
@@ -60,7 +61,7 @@ pub enum Op<P = f32> {
     /// Split. Paper: `H∨ = H − γ1 sgn(H, du) du − γ2 sgn(H, dv) dv`, with `sgn(0) = +1`.
     ///
     /// γ1 > 0 cuts the highlight in two along the dv axis, γ2 > 0 along the du axis, both: four
-    /// pieces. `sgn(−0) = +1` too (unlike `f32::signum`).
+    /// pieces. `sgn(−0) = +1` too (unlike `f32::signum`). γ ≤ 10⁶, as for translation.
     Split {
         /// γ1 ≥ 0, the push along du.
         gamma_u: P,
@@ -170,8 +171,9 @@ impl Op<f32> {
     pub fn validate(&self) -> Result<(), HighlightError> {
         match *self {
             Op::Translate { alpha, beta } => {
-                check("translate alpha (α)", alpha, Range::Finite, "")?;
-                check("translate beta (β)", beta, Range::Finite, "")
+                let hint = "; beyond that H is tangent to the surface and the highlight gone";
+                check("translate alpha (α)", alpha, Range::Step, hint)?;
+                check("translate beta (β)", beta, Range::Step, hint)
             }
             Op::Rotate { degrees } => check("rotate degrees", degrees, Range::Finite, ""),
             Op::Scale { delta, ref axis } => {
@@ -188,8 +190,8 @@ impl Op<f32> {
             }
             Op::Split { gamma_u, gamma_v } => {
                 let hint = "; 0 does not split, larger values push the pieces further apart";
-                check("split gamma_u (γ1)", gamma_u, Range::NonNegative, hint)?;
-                check("split gamma_v (γ2)", gamma_v, Range::NonNegative, hint)
+                check("split gamma_u (γ1)", gamma_u, Range::NonNegativeStep, hint)?;
+                check("split gamma_v (γ2)", gamma_v, Range::NonNegativeStep, hint)
             }
             Op::Square { sigma, n, .. } => {
                 check(
@@ -229,7 +231,11 @@ impl Op<f32> {
                 PreparedOp::Scale { axis, delta }
             }
             Op::Split { gamma_u, gamma_v } => PreparedOp::Split(Vec2::new(gamma_u, gamma_v)),
-            Op::Square { sigma, n, style } => PreparedOp::Square { sigma, n, style },
+            Op::Square { sigma, n, style } => PreparedOp::Square {
+                sigma,
+                n: Exponent::new(n),
+                style,
+            },
         })
     }
 }
@@ -260,7 +266,7 @@ pub enum PreparedOp {
         /// σ.
         sigma: f32,
         /// n.
-        n: f32,
+        n: Exponent,
         /// The style.
         style: SquareStyle,
     },
@@ -282,12 +288,32 @@ fn abs_sin_twice_acos(c: f32) -> f32 {
     2.0 * c.abs() * (1.0 - c * c).max(0.0).sqrt()
 }
 
+/// Below this ratio of squared lengths an operation's output counts as zero.
+const MIN_LENGTH_RATIO_SQUARED: f32 = 1e-12;
+
 impl PreparedOp {
-    /// Applies the operation to unit H given in frame coordinates `l = (t_u, t_v, h_n)` (so N is
-    /// `+z`), returning unit frame coordinates. See [`Op`] for each formula.
+    /// Whether the formula needs a unit H: translation and split add fixed amounts, the per-axis
+    /// square reads the unit H's components. The others are homogeneous (`op(cH) = c op(H)`
+    /// for c > 0), so normalizing before or after them gives the same direction.
     #[inline]
     #[must_use]
-    pub fn apply_local(&self, l: Vec3) -> Vec3 {
+    pub fn needs_unit_input(&self) -> bool {
+        matches!(
+            self,
+            PreparedOp::Translate(_)
+                | PreparedOp::Split(_)
+                | PreparedOp::Square {
+                    style: SquareStyle::PerAxis,
+                    ..
+                }
+        )
+    }
+
+    /// The operation's formula without the final normalization, on H in frame coordinates
+    /// `l = (t_u, t_v, h_n)`; when the result is (nearly) zero relative to `l`, `l` itself.
+    #[inline]
+    #[must_use]
+    pub fn step(&self, l: Vec3) -> Vec3 {
         let t = l.truncate();
         let v = match *self {
             PreparedOp::Translate(ab) => (t + ab).extend(l.z),
@@ -303,16 +329,29 @@ impl PreparedOp {
                         return l;
                     }
                     let sin2theta = (2.0 * t.x.abs() * t.y.abs() / t2).min(1.0);
-                    (t * (1.0 - sigma * sin2theta.powf(n))).extend(l.z)
+                    (t * (1.0 - sigma * n.pow(sin2theta))).extend(l.z)
                 }
                 SquareStyle::PerAxis => {
-                    let ku = abs_sin_twice_acos(t.x).powf(n);
-                    let kv = abs_sin_twice_acos(t.y).powf(n);
+                    let ku = n.pow(abs_sin_twice_acos(t.x));
+                    let kv = n.pow(abs_sin_twice_acos(t.y));
                     (t - sigma * Vec2::new(ku, kv) * t).extend(l.z)
                 }
             },
         };
-        normalize_or(v, l)
+        if v.length_squared() > MIN_LENGTH_RATIO_SQUARED * l.length_squared() {
+            v
+        } else {
+            l
+        }
+    }
+
+    /// Applies the operation to unit H given in frame coordinates `l = (t_u, t_v, h_n)` (so N is
+    /// `+z`), returning unit frame coordinates: [`step`](Self::step), then normalize. See [`Op`]
+    /// for each formula.
+    #[inline]
+    #[must_use]
+    pub fn apply_local(&self, l: Vec3) -> Vec3 {
+        normalize_or(self.step(l), l)
     }
 
     /// Applies the operation to the unit world vector `h` at a point with frame `frame`.
@@ -320,6 +359,48 @@ impl PreparedOp {
     #[must_use]
     pub fn apply(&self, frame: &TangentFrame, h: Vec3) -> Vec3 {
         frame.to_world(self.apply_local(frame.to_local(h)))
+    }
+}
+
+/// The squaring exponent n, with integers (the paper's case) raised by multiplication.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Exponent {
+    /// An integer n from 1 to [`Exponent::MAX_INTEGER`].
+    Integer(i32),
+    /// Any other n > 0.
+    Real(f32),
+}
+
+impl Exponent {
+    /// The largest n raised by multiplication.
+    pub const MAX_INTEGER: i32 = 64;
+
+    fn new(n: f32) -> Self {
+        if n.fract() == 0.0 && (1.0..=Self::MAX_INTEGER as f32).contains(&n) {
+            Exponent::Integer(n as i32)
+        } else {
+            Exponent::Real(n)
+        }
+    }
+
+    /// `x^n` for `x ≥ 0`; an integer n by binary exponentiation, inlined.
+    #[inline]
+    #[must_use]
+    pub fn pow(self, x: f32) -> f32 {
+        match self {
+            Exponent::Integer(n) => {
+                let (mut result, mut base, mut e) = (1.0, x, n);
+                while e > 0 {
+                    if e & 1 == 1 {
+                        result *= base;
+                    }
+                    base *= base;
+                    e >>= 1;
+                }
+                result
+            }
+            Exponent::Real(n) => x.powf(n),
+        }
     }
 }
 
@@ -431,6 +512,20 @@ mod tests {
             l.z,
         );
         assert!((op.apply_local(l) - want.normalize()).length() < 1e-6);
+    }
+
+    #[test]
+    fn integer_exponent_matches_powf() {
+        for n in [1.0_f32, 2.0, 3.0, 7.0, 64.0] {
+            let e = Exponent::new(n);
+            assert!(matches!(e, Exponent::Integer(_)));
+            for x in [0.0_f32, 0.3, 0.9, 1.0] {
+                let (got, want) = (e.pow(x), x.powf(n));
+                assert!((got - want).abs() <= 1e-6 * want.max(1e-30), "{x}^{n}: {got} vs {want}");
+            }
+        }
+        assert_eq!(Exponent::new(2.5), Exponent::Real(2.5));
+        assert_eq!(Exponent::new(65.0), Exponent::Real(65.0));
     }
 
     #[test]

@@ -1,0 +1,178 @@
+//! An op stack: the operations of a layer in order, applied to the initial highlight vector.
+
+use glam::Vec3;
+
+use super::ops::PreparedOp;
+
+/// Points a batch method processes together. The stack is applied op by op to a whole chunk, so
+/// the points' independent dependency chains (square roots and divisions) overlap in the
+/// processor instead of running one after another.
+pub const CHUNK: usize = 64;
+
+/// Validated operations in order, with a normalization plan.
+///
+/// Each operation of the paper ends by normalizing. Rotation, scaling and tangent squaring are
+/// homogeneous (`op(cH) = c op(H)` for c > 0), so the stack normalizes only where the next
+/// operation needs a unit H ([`PreparedOp::needs_unit_input`]) and at the end: the same direction
+/// as normalizing after every op, with fewer square roots and divisions. An op whose output is
+/// (nearly) zero relative to its input keeps its input, as when normalizing after every op.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PreparedStack {
+    /// Each op, and whether to normalize the running vector before it.
+    steps: Vec<(PreparedOp, bool)>,
+    /// Whether to normalize after the last op.
+    normalize_output: bool,
+}
+
+impl PreparedStack {
+    /// The stack of `ops`, applied in order.
+    #[must_use]
+    pub fn new(ops: impl IntoIterator<Item = PreparedOp>) -> Self {
+        // `stale`: an op has run since the running vector was last unit.
+        let mut stale = false;
+        let steps = ops
+            .into_iter()
+            .map(|op| {
+                let normalize = stale && op.needs_unit_input();
+                stale = true;
+                (op, normalize)
+            })
+            .collect();
+        Self {
+            steps,
+            normalize_output: stale,
+        }
+    }
+
+    /// The stack applied to unit H in frame coordinates `l`, a unit vector in frame coordinates.
+    #[inline]
+    #[must_use]
+    pub fn apply_local(&self, l: Vec3) -> Vec3 {
+        let mut h = l;
+        for &(op, normalize) in &self.steps {
+            if normalize {
+                h = unit_or(h, l);
+            }
+            h = op.step(h);
+        }
+        if self.normalize_output {
+            unit_or(h, l)
+        } else {
+            h
+        }
+    }
+
+    /// [`apply_local`](Self::apply_local) in place on at most [`CHUNK`] vectors, op by op.
+    ///
+    /// # Panics
+    /// If `ls` is longer than [`CHUNK`].
+    pub fn apply_local_chunk(&self, ls: &mut [Vec3]) {
+        let mut initial = [Vec3::ZERO; CHUNK];
+        let initial = &mut initial[..ls.len()];
+        initial.copy_from_slice(ls);
+        for &(op, normalize) in &self.steps {
+            if normalize {
+                for (h, l) in ls.iter_mut().zip(initial.iter()) {
+                    *h = unit_or(*h, *l);
+                }
+            }
+            for h in ls.iter_mut() {
+                *h = op.step(*h);
+            }
+        }
+        if self.normalize_output {
+            for (h, l) in ls.iter_mut().zip(initial.iter()) {
+                *h = unit_or(*h, *l);
+            }
+        }
+    }
+}
+
+/// `h / ‖h‖`, or `fallback` if `‖h‖²` underflows. Each step keeps the running vector above 10⁻⁶
+/// of its input's length, so this needs several near-total scalings in a row.
+#[inline]
+fn unit_or(h: Vec3, fallback: Vec3) -> Vec3 {
+    let len2 = h.length_squared();
+    if len2 >= f32::MIN_POSITIVE {
+        h * len2.sqrt().recip()
+    } else {
+        fallback
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::highlight::{Axis, Op, SquareStyle};
+
+    fn ops() -> Vec<PreparedOp> {
+        [
+            Op::Translate {
+                alpha: 0.3,
+                beta: -0.1,
+            },
+            Op::Rotate { degrees: 25.0 },
+            Op::Scale {
+                delta: 0.7,
+                axis: Axis::Angle(10.0),
+            },
+            Op::Split {
+                gamma_u: 0.1,
+                gamma_v: 0.05,
+            },
+            Op::Square {
+                sigma: 0.4,
+                n: 2.5,
+                style: SquareStyle::Tangent,
+            },
+            Op::Square {
+                sigma: 0.4,
+                n: 3.0,
+                style: SquareStyle::PerAxis,
+            },
+        ]
+        .iter()
+        .map(|op| op.prepare().unwrap())
+        .collect()
+    }
+
+    #[test]
+    fn plan_normalizes_only_before_ops_needing_unit_input() {
+        let s = PreparedStack::new(ops());
+        let plan: Vec<bool> = s.steps.iter().map(|&(_, n)| n).collect();
+        assert_eq!(plan, [false, false, false, true, false, true]);
+        assert!(s.normalize_output);
+        assert!(!PreparedStack::new([]).normalize_output);
+    }
+
+    #[test]
+    fn same_as_normalizing_after_every_op() {
+        let s = PreparedStack::new(ops());
+        for k in 0..50 {
+            let a = k as f32 * 0.37;
+            let (x, y) = (0.4 * a.cos(), 0.4 * a.sin());
+            let l = Vec3::new(x, y, (1.0 - x * x - y * y).sqrt());
+            let eager = ops().iter().fold(l, |h, op| op.apply_local(h));
+            let lazy = s.apply_local(l);
+            assert!((eager - lazy).length() < 1e-6, "{eager} vs {lazy}");
+            let mut chunk = [l; 3];
+            s.apply_local_chunk(&mut chunk);
+            assert_eq!(chunk, [lazy; 3]);
+        }
+    }
+
+    #[test]
+    fn zero_output_keeps_input_direction() {
+        let s = PreparedStack::new([
+            Op::Scale {
+                delta: 1.0,
+                axis: Axis::U,
+            }
+            .prepare()
+            .unwrap(),
+            Op::Rotate { degrees: 90.0 }.prepare().unwrap(),
+        ]);
+        // H = du: the scaling gives zero and keeps du; the rotation then turns it to −dv.
+        assert!((s.apply_local(Vec3::X) + Vec3::Y).length() < 1e-6);
+    }
+}
