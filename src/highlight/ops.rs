@@ -291,6 +291,53 @@ fn abs_sin_twice_acos(c: f32) -> f32 {
 /// Below this ratio of squared lengths an operation's output counts as zero.
 const MIN_LENGTH_RATIO_SQUARED: f32 = 1e-12;
 
+/// Replaces each `l = (t, h_n)` by `(f(t), h_n)`, or keeps `l` where that is (nearly) zero
+/// relative to `l`. Every operation changes only the tangential part.
+#[inline(always)]
+fn each(ls: &mut [Vec3], f: impl Fn(Vec2) -> Vec2) {
+    for l in ls {
+        let v = f(l.truncate()).extend(l.z);
+        if v.length_squared() > MIN_LENGTH_RATIO_SQUARED * l.length_squared() {
+            *l = v;
+        }
+    }
+}
+
+/// Tangent squaring of the tangential part t: `t (1 − σ (2ab)^n)` with `2ab = 2|t_u||t_v|/|t|²`
+/// (0 at t = 0).
+#[inline(always)]
+fn square_tangent(t: Vec2, sigma: f32, pow: impl Fn(f32) -> f32) -> Vec2 {
+    let t2 = t.length_squared();
+    let sin2theta = if t2 > 0.0 {
+        (2.0 * t.x.abs() * t.y.abs() / t2).min(1.0)
+    } else {
+        0.0
+    };
+    t * (1.0 - sigma * pow(sin2theta))
+}
+
+/// Per-axis squaring of the tangential part t of a unit H:
+/// `t − σ (|sin 2θ_u|^n t_u, |sin 2θ_v|^n t_v)`.
+#[inline(always)]
+fn square_per_axis(t: Vec2, sigma: f32, pow: impl Fn(f32) -> f32) -> Vec2 {
+    let k = Vec2::new(pow(abs_sin_twice_acos(t.x)), pow(abs_sin_twice_acos(t.y)));
+    t - sigma * k * t
+}
+
+/// `x^n` for an integer `n ≥ 1`, by binary exponentiation.
+#[inline(always)]
+fn int_pow(x: f32, n: i32) -> f32 {
+    let (mut result, mut base, mut e) = (1.0, x, n);
+    while e > 0 {
+        if e & 1 == 1 {
+            result *= base;
+        }
+        base *= base;
+        e >>= 1;
+    }
+    result
+}
+
 impl PreparedOp {
     /// Whether the formula needs a unit H: translation and split add fixed amounts, the per-axis
     /// square reads the unit H's components. The others are homogeneous (`op(cH) = c op(H)`
@@ -314,34 +361,36 @@ impl PreparedOp {
     #[inline]
     #[must_use]
     pub fn step(&self, l: Vec3) -> Vec3 {
-        let t = l.truncate();
-        let v = match *self {
-            PreparedOp::Translate(ab) => (t + ab).extend(l.z),
-            PreparedOp::Rotate { cos, sin } => {
-                Vec3::new(cos * t.x + sin * t.y, cos * t.y - sin * t.x, l.z)
-            }
-            PreparedOp::Scale { axis, delta } => (t - delta * t.dot(axis) * axis).extend(l.z),
-            PreparedOp::Split(g) => (t - g * Vec2::new(sgn(t.x), sgn(t.y))).extend(l.z),
-            PreparedOp::Square { sigma, n, style } => match style {
-                SquareStyle::Tangent => {
-                    let t2 = t.length_squared();
-                    if t2 <= 0.0 {
-                        return l;
-                    }
-                    let sin2theta = (2.0 * t.x.abs() * t.y.abs() / t2).min(1.0);
-                    (t * (1.0 - sigma * n.pow(sin2theta))).extend(l.z)
+        let mut one = [l];
+        self.step_all(&mut one);
+        one[0]
+    }
+
+    /// [`step`](Self::step) in place on many vectors; the match on the operation is outside the
+    /// loop over them, so the loop is straight-line arithmetic the compiler can vectorize.
+    #[inline]
+    pub fn step_all(&self, ls: &mut [Vec3]) {
+        match *self {
+            PreparedOp::Translate(ab) => each(ls, |t| t + ab),
+            PreparedOp::Rotate { cos, sin } => each(ls, |t| {
+                Vec2::new(cos * t.x + sin * t.y, cos * t.y - sin * t.x)
+            }),
+            PreparedOp::Scale { axis, delta } => each(ls, |t| t - delta * t.dot(axis) * axis),
+            PreparedOp::Split(g) => each(ls, |t| t - g * Vec2::new(sgn(t.x), sgn(t.y))),
+            PreparedOp::Square { sigma, n, style } => match (style, n) {
+                (SquareStyle::Tangent, Exponent::Integer(k)) => {
+                    each(ls, |t| square_tangent(t, sigma, |x| int_pow(x, k)));
                 }
-                SquareStyle::PerAxis => {
-                    let ku = n.pow(abs_sin_twice_acos(t.x));
-                    let kv = n.pow(abs_sin_twice_acos(t.y));
-                    (t - sigma * Vec2::new(ku, kv) * t).extend(l.z)
+                (SquareStyle::Tangent, Exponent::Real(r)) => {
+                    each(ls, |t| square_tangent(t, sigma, |x| x.powf(r)));
+                }
+                (SquareStyle::PerAxis, Exponent::Integer(k)) => {
+                    each(ls, |t| square_per_axis(t, sigma, |x| int_pow(x, k)));
+                }
+                (SquareStyle::PerAxis, Exponent::Real(r)) => {
+                    each(ls, |t| square_per_axis(t, sigma, |x| x.powf(r)));
                 }
             },
-        };
-        if v.length_squared() > MIN_LENGTH_RATIO_SQUARED * l.length_squared() {
-            v
-        } else {
-            l
         }
     }
 
@@ -380,26 +429,6 @@ impl Exponent {
             Exponent::Integer(n as i32)
         } else {
             Exponent::Real(n)
-        }
-    }
-
-    /// `x^n` for `x ≥ 0`; an integer n by binary exponentiation, inlined.
-    #[inline]
-    #[must_use]
-    pub fn pow(self, x: f32) -> f32 {
-        match self {
-            Exponent::Integer(n) => {
-                let (mut result, mut base, mut e) = (1.0, x, n);
-                while e > 0 {
-                    if e & 1 == 1 {
-                        result *= base;
-                    }
-                    base *= base;
-                    e >>= 1;
-                }
-                result
-            }
-            Exponent::Real(n) => x.powf(n),
         }
     }
 }
@@ -517,11 +546,15 @@ mod tests {
     #[test]
     fn integer_exponent_matches_powf() {
         for n in [1.0_f32, 2.0, 3.0, 7.0, 64.0] {
-            let e = Exponent::new(n);
-            assert!(matches!(e, Exponent::Integer(_)));
+            let Exponent::Integer(k) = Exponent::new(n) else {
+                panic!("{n} not an integer exponent")
+            };
             for x in [0.0_f32, 0.3, 0.9, 1.0] {
-                let (got, want) = (e.pow(x), x.powf(n));
-                assert!((got - want).abs() <= 1e-6 * want.max(1e-30), "{x}^{n}: {got} vs {want}");
+                let (got, want) = (int_pow(x, k), x.powf(n));
+                assert!(
+                    (got - want).abs() <= 1e-6 * want.max(1e-30),
+                    "{x}^{n}: {got} vs {want}"
+                );
             }
         }
         assert_eq!(Exponent::new(2.5), Exponent::Real(2.5));

@@ -76,9 +76,7 @@ impl PreparedStack {
                     *h = unit_or(*h, *l);
                 }
             }
-            for h in ls.iter_mut() {
-                *h = op.step(*h);
-            }
+            op.step_all(ls);
         }
         if self.normalize_output {
             for (h, l) in ls.iter_mut().zip(initial.iter()) {
