@@ -187,7 +187,12 @@ proptest! {
             .prepare()
             .unwrap();
         assert_unit(layer.highlight_vector(&f, h))?;
-        prop_assert!(layer.signed(&f, h).is_finite());
+        let s = layer.signed(&f, h);
+        prop_assert!(s.is_finite());
+        // The batch path computes the same value.
+        let mut batch = [f32::NAN];
+        layer.signed_many(&[f], &[h], &mut batch);
+        prop_assert_eq!(batch[0].to_bits(), s.to_bits());
     }
 
     /// The f32 inside test `‖N − H‖²/2 < ε` against the same formula in f64 on the same

@@ -101,6 +101,8 @@ pub enum Axis<P = f32> {
     Angle(P),
 }
 
+// A derive would require `P: Default`, which an animation track need not implement.
+#[allow(clippy::derivable_impls)]
 impl<P> Default for Axis<P> {
     fn default() -> Self {
         Axis::U
@@ -291,14 +293,47 @@ fn abs_sin_twice_acos(c: f32) -> f32 {
 /// Below this ratio of squared lengths an operation's output counts as zero.
 const MIN_LENGTH_RATIO_SQUARED: f32 = 1e-12;
 
-/// Replaces each `l = (t, h_n)` by `(f(t), h_n)`, or keeps `l` where that is (nearly) zero
-/// relative to `l`. Every operation changes only the tangential part.
+/// Runs an operation's formula on the tangential part `t` of H; every operation leaves the normal
+/// coordinate `h_n` alone.
+trait Formula {
+    fn run(self, f: impl Fn(Vec2) -> Vec2);
+}
+
+/// `f(t)`, and whether `(f(t), h_n)` is not (nearly) zero relative to `(t, h_n)`.
 #[inline(always)]
-fn each(ls: &mut [Vec3], f: impl Fn(Vec2) -> Vec2) {
-    for l in ls {
-        let v = f(l.truncate()).extend(l.z);
-        if v.length_squared() > MIN_LENGTH_RATIO_SQUARED * l.length_squared() {
-            *l = v;
+fn guarded(t: Vec2, h_n: f32, f: impl Fn(Vec2) -> Vec2) -> (Vec2, bool) {
+    let v = f(t);
+    let z2 = h_n * h_n;
+    let keep = v.length_squared() + z2 > MIN_LENGTH_RATIO_SQUARED * (t.length_squared() + z2);
+    (v, keep)
+}
+
+/// One vector.
+struct One<'a>(&'a mut Vec3);
+
+impl Formula for One<'_> {
+    #[inline(always)]
+    fn run(self, f: impl Fn(Vec2) -> Vec2) {
+        let l = *self.0;
+        // A branch: one vector's chain of operations is latency-bound, and a well-predicted
+        // branch keeps the comparison off it.
+        if let (v, true) = guarded(l.truncate(), l.z, f) {
+            *self.0 = v.extend(l.z);
+        }
+    }
+}
+
+/// Many vectors, one array per coordinate.
+struct Lanes<'a>(&'a mut [f32], &'a mut [f32], &'a [f32]);
+
+impl Formula for Lanes<'_> {
+    #[inline(always)]
+    fn run(self, f: impl Fn(Vec2) -> Vec2) {
+        for ((x, y), z) in self.0.iter_mut().zip(self.1.iter_mut()).zip(self.2) {
+            // Selects, so the loop vectorizes.
+            let (v, keep) = guarded(Vec2::new(*x, *y), *z, &f);
+            *x = if keep { v.x } else { *x };
+            *y = if keep { v.y } else { *y };
         }
     }
 }
@@ -324,16 +359,16 @@ fn square_per_axis(t: Vec2, sigma: f32, pow: impl Fn(f32) -> f32) -> Vec2 {
     t - sigma * k * t
 }
 
-/// `x^n` for an integer `n ≥ 1`, by binary exponentiation.
+/// `x^n` for an integer `1 ≤ n ≤ Exponent::MAX_INTEGER`, by binary exponentiation over a fixed
+/// number of bits (straight-line code, so loops calling it vectorize).
 #[inline(always)]
 fn int_pow(x: f32, n: i32) -> f32 {
-    let (mut result, mut base, mut e) = (1.0, x, n);
-    while e > 0 {
-        if e & 1 == 1 {
+    let (mut result, mut base) = (1.0, x);
+    for bit in 0..7 {
+        if (n >> bit) & 1 == 1 {
             result *= base;
         }
         base *= base;
-        e >>= 1;
     }
     result
 }
@@ -361,34 +396,41 @@ impl PreparedOp {
     #[inline]
     #[must_use]
     pub fn step(&self, l: Vec3) -> Vec3 {
-        let mut one = [l];
-        self.step_all(&mut one);
-        one[0]
+        let mut l = l;
+        self.run(One(&mut l));
+        l
     }
 
-    /// [`step`](Self::step) in place on many vectors; the match on the operation is outside the
-    /// loop over them, so the loop is straight-line arithmetic the compiler can vectorize.
+    /// [`step`](Self::step) in place on many vectors given one array per coordinate (the normal
+    /// coordinate `z` never changes). The match on the operation is outside the loop over them,
+    /// so the loop is straight-line arithmetic the compiler can vectorize.
     #[inline]
-    pub fn step_all(&self, ls: &mut [Vec3]) {
+    pub fn step_all(&self, x: &mut [f32], y: &mut [f32], z: &[f32]) {
+        self.run(Lanes(x, y, z));
+    }
+
+    /// Hands the operation's tangential formula (see [`Op`]) to `target`.
+    #[inline(always)]
+    fn run(&self, target: impl Formula) {
         match *self {
-            PreparedOp::Translate(ab) => each(ls, |t| t + ab),
-            PreparedOp::Rotate { cos, sin } => each(ls, |t| {
-                Vec2::new(cos * t.x + sin * t.y, cos * t.y - sin * t.x)
-            }),
-            PreparedOp::Scale { axis, delta } => each(ls, |t| t - delta * t.dot(axis) * axis),
-            PreparedOp::Split(g) => each(ls, |t| t - g * Vec2::new(sgn(t.x), sgn(t.y))),
+            PreparedOp::Translate(ab) => target.run(|t| t + ab),
+            PreparedOp::Rotate { cos, sin } => {
+                target.run(|t| Vec2::new(cos * t.x + sin * t.y, cos * t.y - sin * t.x))
+            }
+            PreparedOp::Scale { axis, delta } => target.run(|t| t - delta * t.dot(axis) * axis),
+            PreparedOp::Split(g) => target.run(|t| t - g * Vec2::new(sgn(t.x), sgn(t.y))),
             PreparedOp::Square { sigma, n, style } => match (style, n) {
                 (SquareStyle::Tangent, Exponent::Integer(k)) => {
-                    each(ls, |t| square_tangent(t, sigma, |x| int_pow(x, k)));
+                    target.run(|t| square_tangent(t, sigma, |x| int_pow(x, k)));
                 }
                 (SquareStyle::Tangent, Exponent::Real(r)) => {
-                    each(ls, |t| square_tangent(t, sigma, |x| x.powf(r)));
+                    target.run(|t| square_tangent(t, sigma, |x| x.powf(r)));
                 }
                 (SquareStyle::PerAxis, Exponent::Integer(k)) => {
-                    each(ls, |t| square_per_axis(t, sigma, |x| int_pow(x, k)));
+                    target.run(|t| square_per_axis(t, sigma, |x| int_pow(x, k)));
                 }
                 (SquareStyle::PerAxis, Exponent::Real(r)) => {
-                    each(ls, |t| square_per_axis(t, sigma, |x| x.powf(r)));
+                    target.run(|t| square_per_axis(t, sigma, |x| x.powf(r)));
                 }
             },
         }
@@ -421,8 +463,8 @@ pub enum Exponent {
 }
 
 impl Exponent {
-    /// The largest n raised by multiplication.
-    pub const MAX_INTEGER: i32 = 64;
+    /// The largest n raised by multiplication (seven bits).
+    pub const MAX_INTEGER: i32 = 127;
 
     fn new(n: f32) -> Self {
         if n.fract() == 0.0 && (1.0..=Self::MAX_INTEGER as f32).contains(&n) {
@@ -545,7 +587,7 @@ mod tests {
 
     #[test]
     fn integer_exponent_matches_powf() {
-        for n in [1.0_f32, 2.0, 3.0, 7.0, 64.0] {
+        for n in [1.0_f32, 2.0, 3.0, 7.0, 64.0, 127.0] {
             let Exponent::Integer(k) = Exponent::new(n) else {
                 panic!("{n} not an integer exponent")
             };
@@ -558,7 +600,7 @@ mod tests {
             }
         }
         assert_eq!(Exponent::new(2.5), Exponent::Real(2.5));
-        assert_eq!(Exponent::new(65.0), Exponent::Real(65.0));
+        assert_eq!(Exponent::new(128.0), Exponent::Real(128.0));
     }
 
     #[test]

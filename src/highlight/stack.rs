@@ -62,37 +62,45 @@ impl PreparedStack {
         }
     }
 
-    /// [`apply_local`](Self::apply_local) in place on at most [`CHUNK`] vectors, op by op.
+    /// [`apply_local`](Self::apply_local) in place on at most [`CHUNK`] vectors given one array
+    /// per coordinate, op by op.
     ///
     /// # Panics
-    /// If `ls` is longer than [`CHUNK`].
-    pub fn apply_local_chunk(&self, ls: &mut [Vec3]) {
-        let mut initial = [Vec3::ZERO; CHUNK];
-        let initial = &mut initial[..ls.len()];
-        initial.copy_from_slice(ls);
-        for &(op, normalize) in &self.steps {
-            if normalize {
-                for (h, l) in ls.iter_mut().zip(initial.iter()) {
-                    *h = unit_or(*h, *l);
-                }
+    /// If the arrays differ in length or are longer than [`CHUNK`].
+    pub fn apply_local_chunk(&self, x: &mut [f32], y: &mut [f32], z: &mut [f32]) {
+        let n = x.len();
+        assert!(y.len() == n && z.len() == n && n <= CHUNK, "bad chunk");
+        let mut initial = [[0.0; CHUNK]; 3];
+        initial[0][..n].copy_from_slice(x);
+        initial[1][..n].copy_from_slice(y);
+        initial[2][..n].copy_from_slice(z);
+        let normalize = |x: &mut [f32], y: &mut [f32], z: &mut [f32]| {
+            for i in 0..n {
+                let l = Vec3::new(initial[0][i], initial[1][i], initial[2][i]);
+                let h = unit_or(Vec3::new(x[i], y[i], z[i]), l);
+                (x[i], y[i], z[i]) = (h.x, h.y, h.z);
             }
-            op.step_all(ls);
+        };
+        for &(op, normalize_first) in &self.steps {
+            if normalize_first {
+                normalize(x, y, z);
+            }
+            op.step_all(x, y, z);
         }
         if self.normalize_output {
-            for (h, l) in ls.iter_mut().zip(initial.iter()) {
-                *h = unit_or(*h, *l);
-            }
+            normalize(x, y, z);
         }
     }
 }
 
 /// `h / ‖h‖`, or `fallback` if `‖h‖²` underflows. Each step keeps the running vector above 10⁻⁶
 /// of its input's length, so this needs several near-total scalings in a row.
-#[inline]
+#[inline(always)]
 fn unit_or(h: Vec3, fallback: Vec3) -> Vec3 {
     let len2 = h.length_squared();
+    let unit = h * len2.sqrt().recip();
     if len2 >= f32::MIN_POSITIVE {
-        h * len2.sqrt().recip()
+        unit
     } else {
         fallback
     }
@@ -153,9 +161,9 @@ mod tests {
             let eager = ops().iter().fold(l, |h, op| op.apply_local(h));
             let lazy = s.apply_local(l);
             assert!((eager - lazy).length() < 1e-6, "{eager} vs {lazy}");
-            let mut chunk = [l; 3];
-            s.apply_local_chunk(&mut chunk);
-            assert_eq!(chunk, [lazy; 3]);
+            let (mut x, mut y, mut z) = ([l.x; 3], [l.y; 3], [l.z; 3]);
+            s.apply_local_chunk(&mut x, &mut y, &mut z);
+            assert_eq!((x, y, z), ([lazy.x; 3], [lazy.y; 3], [lazy.z; 3]));
         }
     }
 
