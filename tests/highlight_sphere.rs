@@ -340,6 +340,9 @@ fn squaring_fills_bounding_square_monotonically() {
     );
     assert!(fills.windows(2).all(|w| w[1] > w[0] + 0.01), "{fills:?}");
     assert!(fills[4] > 0.9, "σ = 0.2 not square: {fills:?}");
+    // Beyond σ ≈ 0.2 the corners overshoot the square (a four-pointed star) and the ratio falls,
+    // as the documentation of `Op::Square` states.
+    assert!(fill(0.4) < fills[4] - 0.05, "no overshoot at σ = 0.4");
 }
 
 #[test]

@@ -4,7 +4,9 @@
 //! Pure math over a frame and a few vectors, in f32. A description ([`Op`], [`Layer`], [`Expr`])
 //! is generic over its parameter type so that later every number can be an animation track;
 //! resolved to `f32` it is validated once by `prepare` into a form evaluated per point
-//! ([`PreparedOp`], [`PreparedLayer`], [`PreparedExpr`]).
+//! ([`PreparedOp`], [`PreparedLayer`], [`PreparedExpr`]). Those evaluate one point per call or,
+//! faster, many points per call (`signed_many`, `shape_many`, `eval_many`), applying each op to
+//! a chunk of [`CHUNK`] points held as one array per coordinate.
 //!
 //! A point is inside a highlight iff `‖N − H'‖² / 2 < ε`, where H' is the op stack applied to the
 //! initial H, Blinn's half vector ([`half_vector`]).
