@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use super::error::HighlightError;
 use super::frame::TangentFrame;
 use super::layer::{Layer, Paint, PreparedLayer};
-use super::stack::CHUNK;
+use super::stack::{LocalChunk, CHUNK};
 
 /// A Boolean expression over highlight layers, on soft coverage `a, b ∈ [0, 1]` (DESIGN §4):
 /// union `max(a, b)`, subtraction `A \ B = min(a, 1 − b)`, intersection `min(a, b)`.
@@ -176,7 +176,8 @@ impl PreparedExpr {
         for (k, o) in out.chunks_mut(CHUNK).enumerate() {
             let r = k * CHUNK..k * CHUNK + o.len();
             let (s, p) = (&mut shapes[..o.len()], &mut paints[..o.len()]);
-            self.shape_chunk(&frames[r.clone()], &uvs[r.clone()], &hs[r], width, s, p);
+            let c = LocalChunk::new(&frames[r.clone()], &hs[r.clone()]);
+            self.shape_chunk(&c, &uvs[r], width, s, p);
             for ((o, s), p) in o.iter_mut().zip(s.iter()).zip(p.iter()) {
                 *o = Shade {
                     coverage: s * p.opacity,
@@ -194,28 +195,27 @@ impl PreparedExpr {
         }
     }
 
-    /// Shape coverage and paint of a chunk of at most [`CHUNK`] points.
+    /// Shape coverage and paint at a chunk of initial highlight vectors with (u, v) `uvs`.
     fn shape_chunk(
         &self,
-        frames: &[TangentFrame],
+        initial: &LocalChunk,
         uvs: &[Vec2],
-        hs: &[Vec3],
         width: f32,
         shapes: &mut [f32],
         paints: &mut [Paint],
     ) {
         match self {
             PreparedExpr::Layer(l) => {
-                l.shape_many(frames, uvs, hs, width, shapes);
+                l.shape_chunk(initial, uvs, width, shapes);
                 paints.fill(l.paint());
             }
             PreparedExpr::Combine(op, a, b) => {
-                a.shape_chunk(frames, uvs, hs, width, shapes, paints);
+                a.shape_chunk(initial, uvs, width, shapes, paints);
                 let mut b_shapes = [0.0; CHUNK];
                 let mut b_paints = [b.first_paint(); CHUNK];
                 let n = shapes.len();
                 let (bs, bp) = (&mut b_shapes[..n], &mut b_paints[..n]);
-                b.shape_chunk(frames, uvs, hs, width, bs, bp);
+                b.shape_chunk(initial, uvs, width, bs, bp);
                 for i in 0..n {
                     (shapes[i], paints[i]) = op.combine((shapes[i], paints[i]), (bs[i], bp[i]));
                 }

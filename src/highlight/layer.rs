@@ -8,7 +8,7 @@ use super::error::{check, HighlightError, Range};
 use super::frame::TangentFrame;
 use super::inside::{coverage_from_signed, signed_inside};
 use super::ops::Op;
-use super::stack::{PreparedStack, CHUNK};
+use super::stack::{LocalChunk, PreparedStack, CHUNK};
 
 /// One highlight: the region `{ ‖N − H'‖² / 2 < ε }` of the vector `H'` that the op stack makes
 /// from the initial H, painted with a colour.
@@ -209,21 +209,37 @@ impl PreparedLayer {
             frames.len() == hs.len() && hs.len() == out.len(),
             "slice lengths differ"
         );
-        let mut local = [[0.0; CHUNK]; 3];
         for ((f, h), o) in frames
             .chunks(CHUNK)
             .zip(hs.chunks(CHUNK))
             .zip(out.chunks_mut(CHUNK))
         {
-            let [x, y, z] = &mut local;
-            let (x, y, z) = (&mut x[..f.len()], &mut y[..f.len()], &mut z[..f.len()]);
-            for (i, (f, h)) in f.iter().zip(h).enumerate() {
-                (x[i], y[i], z[i]) = f.to_local(*h).into();
-            }
-            self.stack.apply_local_chunk(x, y, z);
-            for (i, o) in o.iter_mut().enumerate() {
-                *o = self.signed_local(Vec3::new(x[i], y[i], z[i]));
-            }
+            self.signed_chunk(&LocalChunk::new(f, h), o);
+        }
+    }
+
+    /// `s` at each vector of a chunk of initial highlight vectors, into `out`.
+    fn signed_chunk(&self, initial: &LocalChunk, out: &mut [f32]) {
+        let mut c = *initial;
+        self.stack.apply_chunk(&mut c);
+        let (x, y, z) = c.lanes();
+        for (o, ((x, y), z)) in out.iter_mut().zip(x.iter().zip(y).zip(z)) {
+            *o = self.signed_local(Vec3::new(*x, *y, *z));
+        }
+    }
+
+    /// Shape coverage before opacity at each vector of a chunk of initial highlight vectors,
+    /// with (u, v) `uvs`, into `out`.
+    pub(crate) fn shape_chunk(
+        &self,
+        initial: &LocalChunk,
+        uvs: &[Vec2],
+        width: f32,
+        out: &mut [f32],
+    ) {
+        self.signed_chunk(initial, out);
+        for (o, uv) in out.iter_mut().zip(uvs) {
+            *o = self.shape_from_signed(*o, *uv, width);
         }
     }
 
@@ -258,10 +274,14 @@ impl PreparedLayer {
         width: f32,
         out: &mut [f32],
     ) {
-        assert_eq!(uvs.len(), out.len(), "slice lengths differ");
-        self.signed_many(frames, hs, out);
-        for (o, uv) in out.iter_mut().zip(uvs) {
-            *o = self.shape_from_signed(*o, *uv, width);
+        assert!(
+            frames.len() == uvs.len() && uvs.len() == hs.len() && hs.len() == out.len(),
+            "slice lengths differ"
+        );
+        for (k, o) in out.chunks_mut(CHUNK).enumerate() {
+            let r = k * CHUNK..k * CHUNK + o.len();
+            let c = LocalChunk::new(&frames[r.clone()], &hs[r.clone()]);
+            self.shape_chunk(&c, &uvs[r], width, o);
         }
     }
 

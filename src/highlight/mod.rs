@@ -27,4 +27,4 @@ pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View
 pub use inside::{coverage_from_signed, inside, signed_inside};
 pub use layer::{Layer, Mask, Paint, PreparedLayer};
 pub use ops::{Axis, Exponent, Op, PreparedOp, SquareStyle};
-pub use stack::{PreparedStack, CHUNK};
+pub use stack::{LocalChunk, PreparedStack, CHUNK};

@@ -2,6 +2,7 @@
 
 use glam::Vec3;
 
+use super::frame::TangentFrame;
 use super::ops::PreparedOp;
 
 /// Points a batch method processes together. The stack is applied op by op to a whole chunk, so
@@ -62,23 +63,20 @@ impl PreparedStack {
         }
     }
 
-    /// [`apply_local`](Self::apply_local) in place on at most [`CHUNK`] vectors given one array
-    /// per coordinate, op by op.
-    ///
-    /// # Panics
-    /// If the arrays differ in length or are longer than [`CHUNK`].
-    pub fn apply_local_chunk(&self, x: &mut [f32], y: &mut [f32], z: &mut [f32]) {
-        let n = x.len();
-        assert!(y.len() == n && z.len() == n && n <= CHUNK, "bad chunk");
-        let mut initial = [[0.0; CHUNK]; 3];
-        initial[0][..n].copy_from_slice(x);
-        initial[1][..n].copy_from_slice(y);
-        initial[2][..n].copy_from_slice(z);
+    /// [`apply_local`](Self::apply_local) in place on a chunk of vectors, op by op.
+    pub fn apply_chunk(&self, c: &mut LocalChunk) {
+        let initial = *c;
+        let (x, y, z) = c.lanes_mut();
         let normalize = |x: &mut [f32], y: &mut [f32], z: &mut [f32]| {
-            for i in 0..n {
-                let l = Vec3::new(initial[0][i], initial[1][i], initial[2][i]);
-                let h = unit_or(Vec3::new(x[i], y[i], z[i]), l);
-                (x[i], y[i], z[i]) = (h.x, h.y, h.z);
+            let (x0, y0, z0) = initial.lanes();
+            for (((x, y), z), ((x0, y0), z0)) in x
+                .iter_mut()
+                .zip(y.iter_mut())
+                .zip(z.iter_mut())
+                .zip(x0.iter().zip(y0).zip(z0))
+            {
+                let h = unit_or(Vec3::new(*x, *y, *z), Vec3::new(*x0, *y0, *z0));
+                (*x, *y, *z) = h.into();
             }
         };
         for &(op, normalize_first) in &self.steps {
@@ -90,6 +88,71 @@ impl PreparedStack {
         if self.normalize_output {
             normalize(x, y, z);
         }
+    }
+}
+
+/// Frame coordinates of up to [`CHUNK`] vectors, one array per coordinate, so that loops over
+/// them vectorize.
+#[derive(Clone, Copy, Debug)]
+pub struct LocalChunk {
+    x: [f32; CHUNK],
+    y: [f32; CHUNK],
+    z: [f32; CHUNK],
+    len: usize,
+}
+
+impl LocalChunk {
+    /// The coordinates of `hs[i]` in `frames[i]`.
+    ///
+    /// # Panics
+    /// If the slices differ in length or are longer than [`CHUNK`].
+    #[must_use]
+    pub fn new(frames: &[TangentFrame], hs: &[Vec3]) -> Self {
+        let len = frames.len();
+        assert!(hs.len() == len && len <= CHUNK, "bad chunk");
+        let mut c = Self {
+            x: [0.0; CHUNK],
+            y: [0.0; CHUNK],
+            z: [0.0; CHUNK],
+            len,
+        };
+        for (i, (f, h)) in frames.iter().zip(hs).enumerate() {
+            (c.x[i], c.y[i], c.z[i]) = f.to_local(*h).into();
+        }
+        c
+    }
+
+    /// How many vectors.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether there are none.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Vector `i`.
+    #[inline]
+    #[must_use]
+    pub fn get(&self, i: usize) -> Vec3 {
+        Vec3::new(self.x[i], self.y[i], self.z[i])
+    }
+
+    /// The coordinate arrays `(t_u, t_v, h_n)`, each of length [`len`](Self::len).
+    #[inline]
+    #[must_use]
+    pub fn lanes(&self) -> (&[f32], &[f32], &[f32]) {
+        let n = self.len;
+        (&self.x[..n], &self.y[..n], &self.z[..n])
+    }
+
+    #[inline]
+    fn lanes_mut(&mut self) -> (&mut [f32], &mut [f32], &mut [f32]) {
+        let n = self.len;
+        (&mut self.x[..n], &mut self.y[..n], &mut self.z[..n])
     }
 }
 
@@ -161,9 +224,11 @@ mod tests {
             let eager = ops().iter().fold(l, |h, op| op.apply_local(h));
             let lazy = s.apply_local(l);
             assert!((eager - lazy).length() < 1e-6, "{eager} vs {lazy}");
-            let (mut x, mut y, mut z) = ([l.x; 3], [l.y; 3], [l.z; 3]);
-            s.apply_local_chunk(&mut x, &mut y, &mut z);
-            assert_eq!((x, y, z), ([lazy.x; 3], [lazy.y; 3], [lazy.z; 3]));
+            let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
+            let mut c = LocalChunk::new(&[frame; 3], &[l; 3]);
+            s.apply_chunk(&mut c);
+            assert_eq!(c.len(), 3);
+            assert_eq!([c.get(0), c.get(1), c.get(2)], [lazy; 3]);
         }
     }
 
