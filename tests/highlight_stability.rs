@@ -180,7 +180,7 @@ proptest! {
         f in frame(),
         d in dir(),
         ops in prop::collection::vec(op(), 5),
-        eps in 1e-7f32..2.0,
+        eps in prop_oneof![Just(1e-7f32), Just(2.0f32), (1e-7f32.log2()..1.0).prop_map(f32::exp2)],
     ) {
         let h = unit_h(&f, &d);
         let layer = Layer { stack: ops, epsilon: eps, colour: [1.0; 3], opacity: 1.0, feather: None, mask: None }

@@ -45,7 +45,7 @@ impl PreparedStack {
         }
     }
 
-    /// The stack applied to unit H in frame coordinates `l`, a unit vector in frame coordinates.
+    /// The stack applied to unit H in frame coordinates `l`; a unit vector in frame coordinates.
     #[inline]
     #[must_use]
     pub fn apply_local(&self, l: Vec3) -> Vec3 {
