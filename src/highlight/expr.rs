@@ -173,11 +173,12 @@ impl PreparedExpr {
         );
         let mut shapes = [0.0; CHUNK];
         let mut paints = [self.first_paint(); CHUNK];
+        let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
         for (k, o) in out.chunks_mut(CHUNK).enumerate() {
             let r = k * CHUNK..k * CHUNK + o.len();
             let (s, p) = (&mut shapes[..o.len()], &mut paints[..o.len()]);
-            let c = LocalChunk::new(&frames[r.clone()], &hs[r.clone()]);
-            self.shape_chunk(&c, &uvs[r], width, s, p);
+            initial.load(&frames[r.clone()], &hs[r.clone()]);
+            self.shape_chunk(&initial, &mut scratch, &uvs[r], width, s, p);
             for ((o, s), p) in o.iter_mut().zip(s.iter()).zip(p.iter()) {
                 *o = Shade {
                     coverage: s * p.opacity,
@@ -199,6 +200,7 @@ impl PreparedExpr {
     fn shape_chunk(
         &self,
         initial: &LocalChunk,
+        scratch: &mut LocalChunk,
         uvs: &[Vec2],
         width: f32,
         shapes: &mut [f32],
@@ -206,16 +208,16 @@ impl PreparedExpr {
     ) {
         match self {
             PreparedExpr::Layer(l) => {
-                l.shape_chunk(initial, uvs, width, shapes);
+                l.shape_chunk(initial, scratch, uvs, width, shapes);
                 paints.fill(l.paint());
             }
             PreparedExpr::Combine(op, a, b) => {
-                a.shape_chunk(initial, uvs, width, shapes, paints);
+                a.shape_chunk(initial, scratch, uvs, width, shapes, paints);
                 let mut b_shapes = [0.0; CHUNK];
                 let mut b_paints = [b.first_paint(); CHUNK];
                 let n = shapes.len();
                 let (bs, bp) = (&mut b_shapes[..n], &mut b_paints[..n]);
-                b.shape_chunk(initial, uvs, width, bs, bp);
+                b.shape_chunk(initial, scratch, uvs, width, bs, bp);
                 for i in 0..n {
                     (shapes[i], paints[i]) = op.combine((shapes[i], paints[i]), (bs[i], bp[i]));
                 }

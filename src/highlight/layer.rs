@@ -209,20 +209,23 @@ impl PreparedLayer {
             frames.len() == hs.len() && hs.len() == out.len(),
             "slice lengths differ"
         );
+        let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
         for ((f, h), o) in frames
             .chunks(CHUNK)
             .zip(hs.chunks(CHUNK))
             .zip(out.chunks_mut(CHUNK))
         {
-            self.signed_chunk(&LocalChunk::new(f, h), o);
+            initial.load(f, h);
+            self.signed_chunk(&initial, &mut scratch, o);
         }
     }
 
-    /// `s` at each vector of a chunk of initial highlight vectors, into `out`.
-    fn signed_chunk(&self, initial: &LocalChunk, out: &mut [f32]) {
-        let mut c = *initial;
-        self.stack.apply_chunk(&mut c);
-        let (x, y, z) = c.lanes();
+    /// `s` at each vector of a chunk of initial highlight vectors, into `out`; `scratch` is
+    /// overwritten.
+    fn signed_chunk(&self, initial: &LocalChunk, scratch: &mut LocalChunk, out: &mut [f32]) {
+        *scratch = *initial;
+        self.stack.apply_chunk(initial, scratch);
+        let (x, y, z) = scratch.lanes();
         for (o, ((x, y), z)) in out.iter_mut().zip(x.iter().zip(y).zip(z)) {
             *o = self.signed_local(Vec3::new(*x, *y, *z));
         }
@@ -233,11 +236,12 @@ impl PreparedLayer {
     pub(crate) fn shape_chunk(
         &self,
         initial: &LocalChunk,
+        scratch: &mut LocalChunk,
         uvs: &[Vec2],
         width: f32,
         out: &mut [f32],
     ) {
-        self.signed_chunk(initial, out);
+        self.signed_chunk(initial, scratch, out);
         for (o, uv) in out.iter_mut().zip(uvs) {
             *o = self.shape_from_signed(*o, *uv, width);
         }
@@ -278,10 +282,11 @@ impl PreparedLayer {
             frames.len() == uvs.len() && uvs.len() == hs.len() && hs.len() == out.len(),
             "slice lengths differ"
         );
+        let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
         for (k, o) in out.chunks_mut(CHUNK).enumerate() {
             let r = k * CHUNK..k * CHUNK + o.len();
-            let c = LocalChunk::new(&frames[r.clone()], &hs[r.clone()]);
-            self.shape_chunk(&c, &uvs[r], width, o);
+            initial.load(&frames[r.clone()], &hs[r.clone()]);
+            self.shape_chunk(&initial, &mut scratch, &uvs[r], width, o);
         }
     }
 

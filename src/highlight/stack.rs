@@ -63,20 +63,18 @@ impl PreparedStack {
         }
     }
 
-    /// [`apply_local`](Self::apply_local) in place on a chunk of vectors, op by op.
-    pub fn apply_chunk(&self, c: &mut LocalChunk) {
-        let initial = *c;
+    /// [`apply_local`](Self::apply_local) on a chunk of vectors, op by op: `c` holds a copy of
+    /// `initial` on entry and the results on return.
+    pub fn apply_chunk(&self, initial: &LocalChunk, c: &mut LocalChunk) {
+        debug_assert_eq!(initial.len, c.len);
         let (x, y, z) = c.lanes_mut();
         let normalize = |x: &mut [f32], y: &mut [f32], z: &mut [f32]| {
             let (x0, y0, z0) = initial.lanes();
-            for (((x, y), z), ((x0, y0), z0)) in x
-                .iter_mut()
-                .zip(y.iter_mut())
-                .zip(z.iter_mut())
-                .zip(x0.iter().zip(y0).zip(z0))
-            {
-                let h = unit_or(Vec3::new(*x, *y, *z), Vec3::new(*x0, *y0, *z0));
-                (*x, *y, *z) = h.into();
+            let n = x.len();
+            let (y, z, x0, y0, z0) = (&mut y[..n], &mut z[..n], &x0[..n], &y0[..n], &z0[..n]);
+            for i in 0..n {
+                let h = unit_or(Vec3::new(x[i], y[i], z[i]), Vec3::new(x0[i], y0[i], z0[i]));
+                (x[i], y[i], z[i]) = h.into();
             }
         };
         for &(op, normalize_first) in &self.steps {
@@ -101,25 +99,31 @@ pub struct LocalChunk {
     len: usize,
 }
 
-impl LocalChunk {
-    /// The coordinates of `hs[i]` in `frames[i]`.
-    ///
-    /// # Panics
-    /// If the slices differ in length or are longer than [`CHUNK`].
-    #[must_use]
-    pub fn new(frames: &[TangentFrame], hs: &[Vec3]) -> Self {
-        let len = frames.len();
-        assert!(hs.len() == len && len <= CHUNK, "bad chunk");
-        let mut c = Self {
+impl Default for LocalChunk {
+    /// An empty chunk.
+    fn default() -> Self {
+        Self {
             x: [0.0; CHUNK],
             y: [0.0; CHUNK],
             z: [0.0; CHUNK],
-            len,
-        };
-        for (i, (f, h)) in frames.iter().zip(hs).enumerate() {
-            (c.x[i], c.y[i], c.z[i]) = f.to_local(*h).into();
+            len: 0,
         }
-        c
+    }
+}
+
+impl LocalChunk {
+    /// Replaces the contents by the coordinates of `hs[i]` in `frames[i]`.
+    ///
+    /// # Panics
+    /// If the slices differ in length or are longer than [`CHUNK`].
+    pub fn load(&mut self, frames: &[TangentFrame], hs: &[Vec3]) {
+        let len = frames.len();
+        assert!(hs.len() == len && len <= CHUNK, "bad chunk");
+        self.len = len;
+        let (x, y, z) = self.lanes_mut();
+        for (i, (f, h)) in frames.iter().zip(hs).enumerate() {
+            (x[i], y[i], z[i]) = f.to_local(*h).into();
+        }
     }
 
     /// How many vectors.
@@ -225,8 +229,10 @@ mod tests {
             let lazy = s.apply_local(l);
             assert!((eager - lazy).length() < 1e-6, "{eager} vs {lazy}");
             let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
-            let mut c = LocalChunk::new(&[frame; 3], &[l; 3]);
-            s.apply_chunk(&mut c);
+            let mut initial = LocalChunk::default();
+            initial.load(&[frame; 3], &[l; 3]);
+            let mut c = initial;
+            s.apply_chunk(&initial, &mut c);
             assert_eq!(c.len(), 3);
             assert_eq!([c.get(0), c.get(1), c.get(2)], [lazy; 3]);
         }
