@@ -24,5 +24,6 @@
 pub mod cli;
 pub mod formats;
 pub mod geom;
+pub mod highlight;
 pub mod render;
 pub mod toon;

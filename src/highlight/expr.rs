@@ -1,0 +1,343 @@
+//! The paper's Boolean post-operations: a patch's highlight as an expression over layers.
+
+use glam::{Vec2, Vec3};
+use serde::{Deserialize, Serialize};
+
+use super::error::HighlightError;
+use super::frame::TangentFrame;
+use super::layer::{Layer, Paint, PreparedLayer};
+use super::stack::{LocalChunk, CHUNK};
+
+/// A Boolean expression over highlight layers, on soft coverage `a, b ∈ [0, 1]` (DESIGN §4):
+/// union `max(a, b)`, subtraction `A \ B = min(a, 1 − b)`, intersection `min(a, b)`.
+///
+/// Colour rule: the Booleans combine *shape* coverage; each result carries one operand's paint
+/// (colour and opacity). Union takes the paint of the operand with the larger coverage (the left
+/// one on a tie); subtraction and intersection take the left operand's. The final coverage is the
+/// shape coverage times the carried opacity, so a subtracted operand cuts fully whatever its own
+/// opacity.
+///
+/// RON: `Subtract(Layer((stack: [], epsilon: 0.05, …)), Layer((stack: [Translate(…)], …)))`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Expr<P = f32> {
+    /// A single layer.
+    Layer(Layer<P>),
+    /// `A ∪ B`, coverage `max(a, b)`.
+    Union(Box<Expr<P>>, Box<Expr<P>>),
+    /// `A \ B`, coverage `min(a, 1 − b)`.
+    Subtract(Box<Expr<P>>, Box<Expr<P>>),
+    /// `A ∩ B`, coverage `min(a, b)`.
+    Intersect(Box<Expr<P>>, Box<Expr<P>>),
+}
+
+/// The result of evaluating a highlight at a point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shade {
+    /// Coverage in [0, 1], opacity included: composite `colour` over the base with this weight.
+    pub coverage: f32,
+    /// Linear RGB.
+    pub colour: Vec3,
+}
+
+impl<P> Expr<P> {
+    /// The same expression with every numeric parameter mapped through `f`, left to right.
+    #[must_use]
+    pub fn map<Q>(&self, mut f: impl FnMut(&P) -> Q) -> Expr<Q> {
+        self.map_dyn(&mut f)
+    }
+
+    fn map_dyn<Q>(&self, f: &mut dyn FnMut(&P) -> Q) -> Expr<Q> {
+        let pair = |a: &Self, b: &Self, f: &mut dyn FnMut(&P) -> Q| {
+            let a = Box::new(a.map_dyn(f));
+            (a, Box::new(b.map_dyn(f)))
+        };
+        match self {
+            Expr::Layer(l) => Expr::Layer(l.map(f)),
+            Expr::Union(a, b) => {
+                let (a, b) = pair(a, b, f);
+                Expr::Union(a, b)
+            }
+            Expr::Subtract(a, b) => {
+                let (a, b) = pair(a, b, f);
+                Expr::Subtract(a, b)
+            }
+            Expr::Intersect(a, b) => {
+                let (a, b) = pair(a, b, f);
+                Expr::Intersect(a, b)
+            }
+        }
+    }
+}
+
+impl Expr<f32> {
+    /// Validates every layer; errors say which layer (numbered left to right from 1).
+    pub fn validate(&self) -> Result<(), HighlightError> {
+        self.prepare().map(|_| ())
+    }
+
+    /// Validates and precomputes the per-point form.
+    pub fn prepare(&self) -> Result<PreparedExpr, HighlightError> {
+        let mut count = 0;
+        self.prepare_numbered(&mut count)
+    }
+
+    fn prepare_numbered(&self, count: &mut usize) -> Result<PreparedExpr, HighlightError> {
+        let mut pair = |a: &Self, b: &Self| -> Result<_, HighlightError> {
+            let a = Box::new(a.prepare_numbered(count)?);
+            Ok((a, Box::new(b.prepare_numbered(count)?)))
+        };
+        Ok(match self {
+            Expr::Layer(l) => {
+                *count += 1;
+                PreparedExpr::Layer(l.prepare().map_err(|e| e.at(format!("layer {count}")))?)
+            }
+            Expr::Union(a, b) => {
+                let (a, b) = pair(a, b)?;
+                PreparedExpr::Combine(Boolean::Union, a, b)
+            }
+            Expr::Subtract(a, b) => {
+                let (a, b) = pair(a, b)?;
+                PreparedExpr::Combine(Boolean::Subtract, a, b)
+            }
+            Expr::Intersect(a, b) => {
+                let (a, b) = pair(a, b)?;
+                PreparedExpr::Combine(Boolean::Intersect, a, b)
+            }
+        })
+    }
+}
+
+/// A Boolean post-operation on shape coverage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Boolean {
+    /// `max(a, b)`, paint of the larger (left on a tie).
+    Union,
+    /// `min(a, 1 − b)`, paint of the left.
+    Subtract,
+    /// `min(a, b)`, paint of the left.
+    Intersect,
+}
+
+impl Boolean {
+    /// Combines two (shape coverage, paint) pairs by the rule documented on [`Expr`].
+    #[inline]
+    #[must_use]
+    pub fn combine(self, a: (f32, Paint), b: (f32, Paint)) -> (f32, Paint) {
+        match self {
+            Boolean::Union if b.0 > a.0 => b,
+            Boolean::Union => a,
+            Boolean::Subtract => (a.0.min(1.0 - b.0), a.1),
+            Boolean::Intersect => (a.0.min(b.0), a.1),
+        }
+    }
+}
+
+/// A validated expression, ready to evaluate at many points. Made by [`Expr::prepare`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum PreparedExpr {
+    /// A single layer.
+    Layer(PreparedLayer),
+    /// A Boolean of two subexpressions.
+    Combine(Boolean, Box<PreparedExpr>, Box<PreparedExpr>),
+}
+
+impl PreparedExpr {
+    /// The highlight at a point with frame `frame`, patch parameters `uv` and initial unit
+    /// highlight vector `h`. `width` is the edge width in units of the signed value (0: the
+    /// paper's hard edge; the renderer's pixel footprint for analytic anti-aliasing), added to
+    /// each layer's feather.
+    #[must_use]
+    pub fn eval(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, width: f32) -> Shade {
+        let (shape, paint) = self.shape(frame, uv, h, width);
+        Shade {
+            coverage: shape * paint.opacity,
+            colour: paint.colour,
+        }
+    }
+
+    /// [`eval`](Self::eval) at many points, into `out`; faster per point than single calls.
+    ///
+    /// # Panics
+    /// If the slices differ in length.
+    pub fn eval_many(
+        &self,
+        frames: &[TangentFrame],
+        uvs: &[Vec2],
+        hs: &[Vec3],
+        width: f32,
+        out: &mut [Shade],
+    ) {
+        assert!(
+            frames.len() == uvs.len() && uvs.len() == hs.len() && hs.len() == out.len(),
+            "slice lengths differ"
+        );
+        let mut shapes = [0.0; CHUNK];
+        let mut paints = [self.first_paint(); CHUNK];
+        let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
+        for (k, o) in out.chunks_mut(CHUNK).enumerate() {
+            let r = k * CHUNK..k * CHUNK + o.len();
+            let (s, p) = (&mut shapes[..o.len()], &mut paints[..o.len()]);
+            initial.load(&frames[r.clone()], &hs[r.clone()]);
+            self.shape_chunk(&initial, &mut scratch, &uvs[r], width, s, p);
+            for ((o, s), p) in o.iter_mut().zip(s.iter()).zip(p.iter()) {
+                *o = Shade {
+                    coverage: s * p.opacity,
+                    colour: p.colour,
+                };
+            }
+        }
+    }
+
+    /// The paint of the leftmost layer, to fill buffers with.
+    fn first_paint(&self) -> Paint {
+        match self {
+            PreparedExpr::Layer(l) => l.paint(),
+            PreparedExpr::Combine(_, a, _) => a.first_paint(),
+        }
+    }
+
+    /// Shape coverage and paint at a chunk of initial highlight vectors with (u, v) `uvs`.
+    fn shape_chunk(
+        &self,
+        initial: &LocalChunk,
+        scratch: &mut LocalChunk,
+        uvs: &[Vec2],
+        width: f32,
+        shapes: &mut [f32],
+        paints: &mut [Paint],
+    ) {
+        match self {
+            PreparedExpr::Layer(l) => {
+                l.shape_chunk(initial, scratch, uvs, width, shapes);
+                paints.fill(l.paint());
+            }
+            PreparedExpr::Combine(op, a, b) => {
+                a.shape_chunk(initial, scratch, uvs, width, shapes, paints);
+                let mut b_shapes = [0.0; CHUNK];
+                let mut b_paints = [b.first_paint(); CHUNK];
+                let n = shapes.len();
+                let (bs, bp) = (&mut b_shapes[..n], &mut b_paints[..n]);
+                b.shape_chunk(initial, scratch, uvs, width, bs, bp);
+                for i in 0..n {
+                    (shapes[i], paints[i]) = op.combine((shapes[i], paints[i]), (bs[i], bp[i]));
+                }
+            }
+        }
+    }
+
+    fn shape(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, width: f32) -> (f32, Paint) {
+        match self {
+            PreparedExpr::Layer(l) => (l.shape(frame, uv, h, width), l.paint()),
+            PreparedExpr::Combine(op, a, b) => {
+                op.combine(a.shape(frame, uv, h, width), b.shape(frame, uv, h, width))
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn paint(r: f32, opacity: f32) -> Paint {
+        Paint {
+            colour: Vec3::new(r, 0.0, 0.0),
+            opacity,
+        }
+    }
+
+    #[test]
+    fn colour_rule() {
+        let a = (0.3, paint(1.0, 1.0));
+        let b = (0.7, paint(2.0, 0.5));
+        assert_eq!(Boolean::Union.combine(a, b), b);
+        assert_eq!(Boolean::Union.combine(b, a), b);
+        assert_eq!(Boolean::Union.combine(a, (0.3, b.1)), a);
+        assert_eq!(Boolean::Subtract.combine(a, b), (0.3, a.1));
+        assert_eq!(Boolean::Subtract.combine(b, a), (0.7, b.1));
+        assert_eq!(Boolean::Intersect.combine(b, a), (0.3, b.1));
+    }
+
+    fn layer(epsilon: f32, opacity: f32) -> Expr {
+        Expr::Layer(Layer {
+            stack: vec![],
+            epsilon,
+            colour: [epsilon, 0.0, 0.0],
+            opacity,
+            feather: None,
+            mask: None,
+        })
+    }
+
+    #[test]
+    fn opacity_scales_final_coverage_and_subtrahend_cuts_fully() {
+        let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
+        let e = Expr::Subtract(Box::new(layer(0.5, 0.5)), Box::new(layer(0.1, 0.2)))
+            .prepare()
+            .unwrap();
+        let centre = e.eval(&frame, Vec2::ZERO, Vec3::Z, 0.0);
+        assert_eq!(centre.coverage, 0.0);
+        let h = Vec3::new(0.6, 0.0, 0.8); // 1 − cos = 0.2: in the ring.
+        let ring = e.eval(&frame, Vec2::ZERO, h, 0.0);
+        assert_eq!(ring.coverage, 0.5);
+        assert_eq!(ring.colour.x, 0.5);
+    }
+
+    #[test]
+    fn batch_equals_single_calls() {
+        let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
+        let e = Expr::Union(
+            Box::new(layer(0.02, 1.0)),
+            Box::new(Expr::Subtract(
+                Box::new(layer(0.3, 0.5)),
+                Box::new(layer(0.1, 1.0)),
+            )),
+        )
+        .prepare()
+        .unwrap();
+        let count = CHUNK + 13;
+        let frames = vec![frame; count];
+        let uvs = vec![Vec2::ZERO; count];
+        let hs: Vec<Vec3> = (0..count)
+            .map(|i| Vec3::new(i as f32 / count as f32, 0.0, 1.0).normalize())
+            .collect();
+        let mut out = vec![
+            Shade {
+                coverage: -1.0,
+                colour: Vec3::ZERO
+            };
+            count
+        ];
+        e.eval_many(&frames, &uvs, &hs, 0.001, &mut out);
+        for i in 0..count {
+            assert_eq!(out[i], e.eval(&frame, uvs[i], hs[i], 0.001));
+        }
+        // The centre (layer 1), the ring (layer 2 minus 3, half opacity) and outside all occur.
+        let colours: Vec<f32> = out.iter().map(|s| s.colour.x).collect();
+        assert!(colours.contains(&0.02) && colours.contains(&0.3));
+        assert!(out.iter().any(|s| s.coverage == 0.0));
+    }
+
+    #[test]
+    fn errors_number_layers_left_to_right() {
+        let e = Expr::Union(Box::new(layer(0.1, 1.0)), Box::new(layer(0.1, 2.0)));
+        let msg = e.validate().unwrap_err().to_string();
+        assert!(msg.starts_with("layer 2: opacity is 2"), "{msg}");
+    }
+
+    #[test]
+    fn map_reaches_nested_layers() {
+        let e = Expr::Intersect(
+            Box::new(layer(0.1, 1.0)),
+            Box::new(Expr::Union(
+                Box::new(layer(0.2, 1.0)),
+                Box::new(layer(0.3, 1.0)),
+            )),
+        );
+        let mut seen = Vec::new();
+        let _ = e.map(|x| seen.push(*x));
+        // Each layer: ε, 3 colour components, opacity.
+        assert_eq!(seen.len(), 15);
+        assert_eq!([seen[0], seen[5], seen[10]], [0.1, 0.2, 0.3]);
+    }
+}

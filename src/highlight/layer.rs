@@ -1,0 +1,444 @@
+//! A highlight layer: an op stack, a threshold ε, a paint (colour and opacity), an optional
+//! feather and an optional parameter-space mask.
+
+use glam::{Vec2, Vec3};
+use serde::{Deserialize, Serialize};
+
+use super::error::{check, HighlightError, Range};
+use super::frame::TangentFrame;
+use super::inside::{coverage_from_signed, signed_inside};
+use super::ops::Op;
+use super::stack::{LocalChunk, PreparedStack, CHUNK};
+
+/// One highlight: the region `{ ‖N − H'‖² / 2 < ε }` of the vector `H'` that the op stack makes
+/// from the initial H, painted with a colour.
+///
+/// RON:
+/// ```text
+/// (stack: [Translate(alpha: 0.2, beta: 0.0), Square(sigma: 0.2, n: 2.0)], epsilon: 0.05,
+///  colour: (1.0, 1.0, 1.0), opacity: 1.0, feather: Some(0.005),
+///  mask: Some((u: (0.0, 0.5), v: (0.0, 1.0), feather: 0.05)))
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Layer<P = f32> {
+    /// The operations, applied in order to the initial H.
+    pub stack: Vec<Op<P>>,
+    /// ε ∈ (0, 2]: the highlight is `(N, H') > 1 − ε`; it covers the fraction ε/2 of a sphere.
+    pub epsilon: P,
+    /// Linear RGB.
+    pub colour: [P; 3],
+    /// Opacity ∈ [0, 1], scaling the final coverage.
+    pub opacity: P,
+    /// Feather width ≥ 0 in units of the signed value `s = ε − ‖N − H'‖²/2` (the units of ε): the
+    /// edge becomes a smoothstep over `[−w/2, w/2]` around the hard edge. None: a hard edge.
+    pub feather: Option<P>,
+    /// Keeps the highlight only inside a rectangle of the patch's (u, v) parameters, the paper's
+    /// clean-up of "an unnecessary part of a highlight". None: no mask.
+    pub mask: Option<Mask<P>>,
+}
+
+/// A rectangle `[u.0, u.1] × [v.0, v.1]` in patch parameters with an inward feather.
+///
+/// The mask factor is `smoothstep(0, f, d)` of the distance `d` from (u, v) to the nearest side,
+/// measured inward: 1 deep inside, 0 on and outside the rectangle's boundary when `f > 0`;
+/// `f = 0` is a hard rectangle.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mask<P = f32> {
+    /// u range, first < second.
+    pub u: (P, P),
+    /// v range, first < second.
+    pub v: (P, P),
+    /// Feather width f ≥ 0 in parameter units.
+    pub feather: P,
+}
+
+impl<P> Layer<P> {
+    /// The same layer with every numeric parameter mapped through `f`.
+    #[must_use]
+    pub fn map<Q>(&self, mut f: impl FnMut(&P) -> Q) -> Layer<Q> {
+        Layer {
+            stack: self.stack.iter().map(|op| op.map(&mut f)).collect(),
+            epsilon: f(&self.epsilon),
+            colour: [f(&self.colour[0]), f(&self.colour[1]), f(&self.colour[2])],
+            opacity: f(&self.opacity),
+            feather: self.feather.as_ref().map(&mut f),
+            mask: self.mask.as_ref().map(|m| Mask {
+                u: (f(&m.u.0), f(&m.u.1)),
+                v: (f(&m.v.0), f(&m.v.1)),
+                feather: f(&m.feather),
+            }),
+        }
+    }
+}
+
+impl Mask<f32> {
+    fn validate(&self) -> Result<(), HighlightError> {
+        for (axis, (min, max)) in [("u", self.u), ("v", self.v)] {
+            check("mask bound", min, Range::Finite, "")?;
+            check("mask bound", max, Range::Finite, "")?;
+            if min >= max {
+                return Err(HighlightError::MaskUnordered { axis, min, max });
+            }
+        }
+        check(
+            "mask feather",
+            self.feather,
+            Range::NonNegative,
+            "; 0 is a hard rectangle",
+        )
+    }
+
+    /// The mask factor at `uv`, in [0, 1].
+    #[inline]
+    fn factor(&self, uv: Vec2) -> f32 {
+        let d = (uv.x - self.u.0)
+            .min(self.u.1 - uv.x)
+            .min(uv.y - self.v.0)
+            .min(self.v.1 - uv.y);
+        // A band [0, f] is the centred band of width f shifted inward by f/2.
+        coverage_from_signed(d - 0.5 * self.feather, self.feather)
+    }
+}
+
+impl Layer<f32> {
+    /// Checks ε ∈ (0, 2], colour finite, opacity ∈ [0, 1], feather ≥ 0, the mask ordered, and
+    /// every op; errors say which op.
+    pub fn validate(&self) -> Result<(), HighlightError> {
+        for (i, op) in self.stack.iter().enumerate() {
+            op.validate()
+                .map_err(|e| e.at(format!("op {} ({})", i + 1, op.name())))?;
+        }
+        check(
+            "epsilon (ε)",
+            self.epsilon,
+            Range::Epsilon,
+            "; the highlight covers the fraction ε/2 of a sphere, so 0.01 is a small spot and 2 the whole sphere",
+        )?;
+        for c in self.colour {
+            check("colour component", c, Range::Finite, "")?;
+        }
+        check(
+            "opacity",
+            self.opacity,
+            Range::Unit,
+            "; 0 is invisible, 1 opaque",
+        )?;
+        if let Some(f) = self.feather {
+            check("feather", f, Range::NonNegative, "; 0 is a hard edge")?;
+        }
+        if let Some(m) = &self.mask {
+            m.validate()?;
+        }
+        Ok(())
+    }
+
+    /// Validates and precomputes the per-point form.
+    pub fn prepare(&self) -> Result<PreparedLayer, HighlightError> {
+        self.validate()?;
+        Ok(PreparedLayer {
+            stack: PreparedStack::new(
+                self.stack
+                    .iter()
+                    .map(Op::prepare)
+                    .collect::<Result<Vec<_>, _>>()?,
+            ),
+            epsilon: self.epsilon,
+            paint: Paint {
+                colour: Vec3::from_array(self.colour),
+                opacity: self.opacity,
+            },
+            feather: self.feather.unwrap_or(0.0),
+            mask: self.mask.clone(),
+        })
+    }
+}
+
+/// What a layer paints with: colour (linear RGB) and opacity.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Paint {
+    /// Linear RGB.
+    pub colour: Vec3,
+    /// Opacity in [0, 1].
+    pub opacity: f32,
+}
+
+/// A validated layer, ready to evaluate at many points. Made by [`Layer::prepare`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedLayer {
+    stack: PreparedStack,
+    epsilon: f32,
+    paint: Paint,
+    feather: f32,
+    mask: Option<Mask>,
+}
+
+impl PreparedLayer {
+    /// The stack's output `H'` for the initial unit vector `h`, in world coordinates.
+    #[must_use]
+    pub fn highlight_vector(&self, frame: &TangentFrame, h: Vec3) -> Vec3 {
+        frame.to_world(self.local_vector(frame.to_local(h)))
+    }
+
+    #[inline]
+    fn local_vector(&self, l: Vec3) -> Vec3 {
+        self.stack.apply_local(l)
+    }
+
+    /// `s` of the stack's output given in frame coordinates, where N is +z.
+    #[inline]
+    fn signed_local(&self, l: Vec3) -> f32 {
+        signed_inside(Vec3::Z, l, self.epsilon)
+    }
+
+    /// The signed inside value `s = ε − ‖N − H'‖² / 2` of the stack's output (positive inside).
+    #[inline]
+    #[must_use]
+    pub fn signed(&self, frame: &TangentFrame, h: Vec3) -> f32 {
+        self.signed_local(self.local_vector(frame.to_local(h)))
+    }
+
+    /// [`signed`](Self::signed) at many points: `out[i]` for `frames[i]` and `hs[i]`. Faster per
+    /// point than single calls (see [`CHUNK`]).
+    ///
+    /// # Panics
+    /// If the slices differ in length.
+    pub fn signed_many(&self, frames: &[TangentFrame], hs: &[Vec3], out: &mut [f32]) {
+        assert!(
+            frames.len() == hs.len() && hs.len() == out.len(),
+            "slice lengths differ"
+        );
+        let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
+        for ((f, h), o) in frames
+            .chunks(CHUNK)
+            .zip(hs.chunks(CHUNK))
+            .zip(out.chunks_mut(CHUNK))
+        {
+            initial.load(f, h);
+            self.signed_chunk(&initial, &mut scratch, o);
+        }
+    }
+
+    /// `s` at each vector of a chunk of initial highlight vectors, into `out`; `scratch` is
+    /// overwritten.
+    fn signed_chunk(&self, initial: &LocalChunk, scratch: &mut LocalChunk, out: &mut [f32]) {
+        *scratch = *initial;
+        self.stack.apply_chunk(initial, scratch);
+        let (x, y, z) = scratch.lanes();
+        for (o, ((x, y), z)) in out.iter_mut().zip(x.iter().zip(y).zip(z)) {
+            *o = self.signed_local(Vec3::new(*x, *y, *z));
+        }
+    }
+
+    /// Shape coverage before opacity at each vector of a chunk of initial highlight vectors,
+    /// with (u, v) `uvs`, into `out`.
+    pub(crate) fn shape_chunk(
+        &self,
+        initial: &LocalChunk,
+        scratch: &mut LocalChunk,
+        uvs: &[Vec2],
+        width: f32,
+        out: &mut [f32],
+    ) {
+        self.signed_chunk(initial, scratch, out);
+        for (o, uv) in out.iter_mut().zip(uvs) {
+            *o = self.shape_from_signed(*o, *uv, width);
+        }
+    }
+
+    /// Shape coverage in [0, 1] before opacity from the signed value `s` at `uv`: the edge (hard,
+    /// or smoothstep over the feather plus `width`) times the mask.
+    #[inline]
+    fn shape_from_signed(&self, s: f32, uv: Vec2, width: f32) -> f32 {
+        let c = coverage_from_signed(s, self.feather + width);
+        match &self.mask {
+            Some(m) if c > 0.0 => c * m.factor(uv),
+            _ => c,
+        }
+    }
+
+    /// Shape coverage in [0, 1] before opacity: the edge (hard, or smoothstep over the feather
+    /// plus `width`, the renderer's pixel footprint of `s`) times the mask at `uv`.
+    #[inline]
+    #[must_use]
+    pub fn shape(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, width: f32) -> f32 {
+        self.shape_from_signed(self.signed(frame, h), uv, width)
+    }
+
+    /// [`shape`](Self::shape) at many points, into `out`.
+    ///
+    /// # Panics
+    /// If the slices differ in length.
+    pub fn shape_many(
+        &self,
+        frames: &[TangentFrame],
+        uvs: &[Vec2],
+        hs: &[Vec3],
+        width: f32,
+        out: &mut [f32],
+    ) {
+        assert!(
+            frames.len() == uvs.len() && uvs.len() == hs.len() && hs.len() == out.len(),
+            "slice lengths differ"
+        );
+        let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
+        for (k, o) in out.chunks_mut(CHUNK).enumerate() {
+            let r = k * CHUNK..k * CHUNK + o.len();
+            initial.load(&frames[r.clone()], &hs[r.clone()]);
+            self.shape_chunk(&initial, &mut scratch, &uvs[r], width, o);
+        }
+    }
+
+    /// The layer's colour and opacity.
+    #[must_use]
+    pub fn paint(&self) -> Paint {
+        self.paint
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn layer(stack: Vec<Op>) -> Layer {
+        Layer {
+            stack,
+            epsilon: 0.1,
+            colour: [1.0, 0.5, 0.25],
+            opacity: 0.8,
+            feather: None,
+            mask: None,
+        }
+    }
+
+    const FRAME: TangentFrame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
+
+    #[test]
+    fn signed_value_of_identity_stack() {
+        let l = layer(vec![]).prepare().unwrap();
+        assert!((l.signed(&FRAME, Vec3::Z) - 0.1).abs() < 1e-7);
+        let h = Vec3::new(0.6, 0.0, 0.8);
+        assert!((l.signed(&FRAME, h) - (0.1 - 0.2)).abs() < 1e-6);
+        assert_eq!(l.shape(&FRAME, Vec2::ZERO, h, 0.0), 0.0);
+        assert_eq!(l.shape(&FRAME, Vec2::ZERO, Vec3::Z, 0.0), 1.0);
+    }
+
+    #[test]
+    fn batch_equals_single_calls() {
+        let mut l = layer(vec![
+            Op::Translate {
+                alpha: 0.1,
+                beta: 0.2,
+            },
+            Op::Square {
+                sigma: 0.3,
+                n: 1.5,
+                style: crate::highlight::SquareStyle::Tangent,
+            },
+        ]);
+        l.mask = Some(Mask {
+            u: (0.0, 0.5),
+            v: (0.0, 1.0),
+            feather: 0.1,
+        });
+        let p = l.prepare().unwrap();
+        let count = 2 * CHUNK + 7;
+        let frames = vec![FRAME; count];
+        let hs: Vec<Vec3> = (0..count)
+            .map(|i| Vec3::new(0.3 * (i as f32 * 0.1).sin(), 0.2, 1.0).normalize())
+            .collect();
+        let uvs: Vec<Vec2> = (0..count)
+            .map(|i| Vec2::new(i as f32 / 100.0, 0.5))
+            .collect();
+        let mut out = vec![0.0; count];
+        p.shape_many(&frames, &uvs, &hs, 0.01, &mut out);
+        for i in 0..count {
+            assert_eq!(out[i], p.shape(&FRAME, uvs[i], hs[i], 0.01));
+        }
+        assert!(out.contains(&0.0) && out.iter().any(|&c| c > 0.5));
+    }
+
+    #[test]
+    fn mask_cuts_and_feathers_inward() {
+        let mut l = layer(vec![]);
+        l.mask = Some(Mask {
+            u: (0.2, 0.6),
+            v: (0.0, 1.0),
+            feather: 0.1,
+        });
+        let p = l.prepare().unwrap();
+        let at = |u: f32| p.shape(&FRAME, Vec2::new(u, 0.5), Vec3::Z, 0.0);
+        assert_eq!(at(0.1), 0.0);
+        assert_eq!(at(0.2), 0.0);
+        assert!((at(0.25) - 0.5).abs() < 1e-5);
+        assert_eq!(at(0.4), 1.0);
+        assert_eq!(at(0.7), 0.0);
+    }
+
+    #[test]
+    fn feather_softens_edge_symmetrically() {
+        let mut l = layer(vec![]);
+        l.feather = Some(0.02);
+        let p = l.prepare().unwrap();
+        // On the hard edge (1 − cos = ε) coverage is one half.
+        let c = 0.9_f32;
+        let h = Vec3::new((1.0 - c * c).sqrt(), 0.0, c);
+        assert!((p.shape(&FRAME, Vec2::ZERO, h, 0.0) - 0.5).abs() < 1e-3);
+    }
+
+    #[test]
+    fn validation_names_the_op() {
+        let l = layer(vec![
+            Op::Rotate { degrees: 10.0 },
+            Op::Split {
+                gamma_u: -1.0,
+                gamma_v: 0.0,
+            },
+        ]);
+        let msg = l.prepare().unwrap_err().to_string();
+        assert!(msg.starts_with("op 2 (Split): split gamma_u"), "{msg}");
+        let mut bad = layer(vec![]);
+        bad.epsilon = 0.0;
+        assert!(bad.validate().unwrap_err().to_string().contains("(0, 2]"));
+        bad.epsilon = 0.1;
+        bad.opacity = 1.5;
+        assert!(bad.validate().is_err());
+        bad.opacity = 1.0;
+        bad.feather = Some(-0.1);
+        assert!(bad.validate().is_err());
+        bad.feather = None;
+        bad.colour[1] = f32::NAN;
+        assert!(bad.validate().is_err());
+        bad.colour[1] = 0.0;
+        bad.mask = Some(Mask {
+            u: (0.5, 0.5),
+            v: (0.0, 1.0),
+            feather: 0.0,
+        });
+        let msg = bad.validate().unwrap_err().to_string();
+        assert!(msg.contains("mask u range is (0.5, 0.5)"), "{msg}");
+    }
+
+    #[test]
+    fn map_covers_all_fields() {
+        let mut l = layer(vec![Op::Translate {
+            alpha: 0.1,
+            beta: 0.2,
+        }]);
+        l.feather = Some(0.3);
+        l.mask = Some(Mask {
+            u: (0.0, 1.0),
+            v: (0.0, 1.0),
+            feather: 0.0,
+        });
+        let mut count = 0;
+        let doubled = l.map(|x| {
+            count += 1;
+            2.0 * x
+        });
+        assert_eq!(count, 2 + 1 + 3 + 1 + 1 + 5);
+        assert_eq!(doubled.epsilon, 0.2);
+        assert_eq!(doubled.feather, Some(0.6));
+    }
+}

@@ -1,0 +1,255 @@
+//! An op stack: the operations of a layer in order, applied to the initial highlight vector.
+
+use glam::Vec3;
+
+use super::frame::TangentFrame;
+use super::ops::PreparedOp;
+
+/// Points a batch method processes together. The stack is applied op by op to a whole chunk, so
+/// the points' independent dependency chains (square roots and divisions) overlap in the
+/// processor instead of running one after another.
+pub const CHUNK: usize = 64;
+
+/// Validated operations in order, with a normalization plan.
+///
+/// Each operation of the paper ends by normalizing. Rotation, scaling and tangent squaring are
+/// homogeneous (`op(cH) = c op(H)` for c > 0), so the stack normalizes only where the next
+/// operation needs a unit H ([`PreparedOp::needs_unit_input`]) and at the end: the same direction
+/// as normalizing after every op, with fewer square roots and divisions. An op whose output is
+/// (nearly) zero relative to its input keeps its input, as when normalizing after every op.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PreparedStack {
+    /// Each op, and whether to normalize the running vector before it.
+    steps: Vec<(PreparedOp, bool)>,
+    /// Whether to normalize after the last op.
+    normalize_output: bool,
+}
+
+impl PreparedStack {
+    /// The stack of `ops`, applied in order.
+    #[must_use]
+    pub fn new(ops: impl IntoIterator<Item = PreparedOp>) -> Self {
+        // `stale`: an op has run since the running vector was last unit.
+        let mut stale = false;
+        let steps = ops
+            .into_iter()
+            .map(|op| {
+                let normalize = stale && op.needs_unit_input();
+                stale = true;
+                (op, normalize)
+            })
+            .collect();
+        Self {
+            steps,
+            normalize_output: stale,
+        }
+    }
+
+    /// The stack applied to unit H in frame coordinates `l`; a unit vector in frame coordinates.
+    #[inline]
+    #[must_use]
+    pub fn apply_local(&self, l: Vec3) -> Vec3 {
+        let mut h = l;
+        for &(op, normalize) in &self.steps {
+            if normalize {
+                h = unit_or(h, l);
+            }
+            h = op.step(h);
+        }
+        if self.normalize_output {
+            unit_or(h, l)
+        } else {
+            h
+        }
+    }
+
+    /// [`apply_local`](Self::apply_local) on a chunk of vectors, op by op: `c` holds a copy of
+    /// `initial` on entry and the results on return.
+    pub fn apply_chunk(&self, initial: &LocalChunk, c: &mut LocalChunk) {
+        debug_assert_eq!(initial.len, c.len);
+        let (x, y, z) = c.lanes_mut();
+        let normalize = |x: &mut [f32], y: &mut [f32], z: &mut [f32]| {
+            let (x0, y0, z0) = initial.lanes();
+            let n = x.len();
+            let (y, z, x0, y0, z0) = (&mut y[..n], &mut z[..n], &x0[..n], &y0[..n], &z0[..n]);
+            for i in 0..n {
+                let h = unit_or(Vec3::new(x[i], y[i], z[i]), Vec3::new(x0[i], y0[i], z0[i]));
+                (x[i], y[i], z[i]) = h.into();
+            }
+        };
+        for &(op, normalize_first) in &self.steps {
+            if normalize_first {
+                normalize(x, y, z);
+            }
+            op.step_all(x, y, z);
+        }
+        if self.normalize_output {
+            normalize(x, y, z);
+        }
+    }
+}
+
+/// Frame coordinates of up to [`CHUNK`] vectors, one array per coordinate, so that loops over
+/// them vectorize.
+#[derive(Clone, Copy, Debug)]
+pub struct LocalChunk {
+    x: [f32; CHUNK],
+    y: [f32; CHUNK],
+    z: [f32; CHUNK],
+    len: usize,
+}
+
+impl Default for LocalChunk {
+    /// An empty chunk.
+    fn default() -> Self {
+        Self {
+            x: [0.0; CHUNK],
+            y: [0.0; CHUNK],
+            z: [0.0; CHUNK],
+            len: 0,
+        }
+    }
+}
+
+impl LocalChunk {
+    /// Replaces the contents by the coordinates of `hs[i]` in `frames[i]`.
+    ///
+    /// # Panics
+    /// If the slices differ in length or are longer than [`CHUNK`].
+    pub fn load(&mut self, frames: &[TangentFrame], hs: &[Vec3]) {
+        let len = frames.len();
+        assert!(hs.len() == len && len <= CHUNK, "bad chunk");
+        self.len = len;
+        let (x, y, z) = self.lanes_mut();
+        for (i, (f, h)) in frames.iter().zip(hs).enumerate() {
+            (x[i], y[i], z[i]) = f.to_local(*h).into();
+        }
+    }
+
+    /// How many vectors.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether there are none.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Vector `i`.
+    #[inline]
+    #[must_use]
+    pub fn get(&self, i: usize) -> Vec3 {
+        Vec3::new(self.x[i], self.y[i], self.z[i])
+    }
+
+    /// The coordinate arrays `(t_u, t_v, h_n)`, each of length [`len`](Self::len).
+    #[inline]
+    #[must_use]
+    pub fn lanes(&self) -> (&[f32], &[f32], &[f32]) {
+        let n = self.len;
+        (&self.x[..n], &self.y[..n], &self.z[..n])
+    }
+
+    #[inline]
+    fn lanes_mut(&mut self) -> (&mut [f32], &mut [f32], &mut [f32]) {
+        let n = self.len;
+        (&mut self.x[..n], &mut self.y[..n], &mut self.z[..n])
+    }
+}
+
+/// `h / ‖h‖`, or `fallback` if `‖h‖²` underflows. Each step keeps the running vector above 10⁻⁶
+/// of its input's length, so this needs several near-total scalings in a row.
+#[inline(always)]
+fn unit_or(h: Vec3, fallback: Vec3) -> Vec3 {
+    let len2 = h.length_squared();
+    let unit = h * len2.sqrt().recip();
+    if len2 >= f32::MIN_POSITIVE {
+        unit
+    } else {
+        fallback
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::highlight::{Axis, Op, SquareStyle};
+
+    fn ops() -> Vec<PreparedOp> {
+        [
+            Op::Translate {
+                alpha: 0.3,
+                beta: -0.1,
+            },
+            Op::Rotate { degrees: 25.0 },
+            Op::Scale {
+                delta: 0.7,
+                axis: Axis::Angle(10.0),
+            },
+            Op::Split {
+                gamma_u: 0.1,
+                gamma_v: 0.05,
+            },
+            Op::Square {
+                sigma: 0.4,
+                n: 2.5,
+                style: SquareStyle::Tangent,
+            },
+            Op::Square {
+                sigma: 0.4,
+                n: 3.0,
+                style: SquareStyle::PerAxis,
+            },
+        ]
+        .iter()
+        .map(|op| op.prepare().unwrap())
+        .collect()
+    }
+
+    #[test]
+    fn plan_normalizes_only_before_ops_needing_unit_input() {
+        let s = PreparedStack::new(ops());
+        let plan: Vec<bool> = s.steps.iter().map(|&(_, n)| n).collect();
+        assert_eq!(plan, [false, false, false, true, false, true]);
+        assert!(s.normalize_output);
+        assert!(!PreparedStack::new([]).normalize_output);
+    }
+
+    #[test]
+    fn same_as_normalizing_after_every_op() {
+        let s = PreparedStack::new(ops());
+        for k in 0..50 {
+            let a = k as f32 * 0.37;
+            let (x, y) = (0.4 * a.cos(), 0.4 * a.sin());
+            let l = Vec3::new(x, y, (1.0 - x * x - y * y).sqrt());
+            let eager = ops().iter().fold(l, |h, op| op.apply_local(h));
+            let lazy = s.apply_local(l);
+            assert!((eager - lazy).length() < 1e-6, "{eager} vs {lazy}");
+            let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
+            let mut initial = LocalChunk::default();
+            initial.load(&[frame; 3], &[l; 3]);
+            let mut c = initial;
+            s.apply_chunk(&initial, &mut c);
+            assert_eq!(c.len(), 3);
+            assert_eq!([c.get(0), c.get(1), c.get(2)], [lazy; 3]);
+        }
+    }
+
+    #[test]
+    fn zero_output_keeps_input_direction() {
+        let s = PreparedStack::new([
+            Op::Scale {
+                delta: 1.0,
+                axis: Axis::U,
+            }
+            .prepare()
+            .unwrap(),
+            Op::Rotate { degrees: 90.0 }.prepare().unwrap(),
+        ]);
+        // H = du: the scaling gives zero and keeps du; the rotation then turns it to −dv.
+        assert!((s.apply_local(Vec3::X) + Vec3::Y).length() < 1e-6);
+    }
+}
