@@ -24,3 +24,4 @@
 pub mod cli;
 pub mod formats;
 pub mod geom;
+pub mod render;

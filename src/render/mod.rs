@@ -1,0 +1,3 @@
+//! Rendering: turning tessellated geometry into pixels.
+
+pub mod raster;
