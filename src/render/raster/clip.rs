@@ -14,7 +14,7 @@
 use glam::{DVec2, DVec4};
 
 /// Smallest `w` kept: guards the projection `x/w` where a projection matrix lets `w` reach 0.
-const W_MIN: f64 = 1e-30;
+pub(super) const W_MIN: f64 = 1e-30;
 
 /// Number of planes clipped against; their outcode bits are the low `CLIP_PLANES` bits.
 const CLIP_PLANES: usize = 7;

@@ -7,6 +7,8 @@
 
 use glam::{DVec2, DVec4};
 
+use super::clip::W_MIN;
+
 /// Fractional bits of the sub-pixel grid: vertices are snapped to 1/256 pixel.
 pub const SUBPIXEL_BITS: u32 = 8;
 
@@ -95,8 +97,11 @@ impl Screen {
     /// Projects a clip-space vertex inside the clip planes (`w > 0`, within the guard band):
     /// `s_x = (x/w + 1)·W/2`, `s_y = (1 − y/w)·H/2` in pixels, snapped to
     /// `X = round(256·s_x)`, `Y = round(256·s_y)`.
+    ///
+    /// Clipping can leave a vertex just outside a plane by rounding; `w` is taken as at least
+    /// `W_MIN` and the position is clamped to the fixed-point range, so the result is finite.
     pub(super) fn project(&self, v: DVec4) -> ScreenVertex {
-        let inv_w = 1.0 / v.w;
+        let inv_w = 1.0 / v.w.max(W_MIN);
         let snap = |s: f64| (s * ONE as f64).round().clamp(-COORD_LIMIT, COORD_LIMIT) as i64;
         ScreenVertex {
             x: snap((v.x * inv_w + 1.0) * self.half_width),

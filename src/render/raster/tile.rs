@@ -148,7 +148,8 @@ fn draw<'s>(
     fragments
 }
 
-/// Writes each pixel's winner into the frame buffers; returns the number of pixels written.
+/// Writes each pixel's winner into the frame buffers, its depth clamped to [0, 1] against
+/// rounding; returns the number of pixels written.
 fn resolve(mut target: TileTarget<'_>, width: usize, scratch: &Scratch<'_>) -> u64 {
     let mut pixels = 0;
     let rows = target
@@ -162,7 +163,7 @@ fn resolve(mut target: TileTarget<'_>, width: usize, scratch: &Scratch<'_>) -> u
         let winners = &scratch.winner[start..start + width];
         for (dx, winner) in winners.iter().enumerate() {
             if let Some(setup) = winner {
-                depth[dx] = scratch.depth[start + dx];
+                depth[dx] = scratch.depth[start + dx].clamp(0.0, 1.0);
                 triangle[dx] = setup.triangle;
                 barycentric[dx] = setup.barycentric(target.rect.x0 + dx as i32, y);
                 pixels += 1;
