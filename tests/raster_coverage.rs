@@ -291,7 +291,7 @@ fn nan_infinite_and_out_of_range_input_is_skipped() {
     let (buffer, stats) = rasterize(VIEWPORT, &positions, &triangles, &RasterOptions::default());
     assert_eq!(stats.triangles_invalid, 7);
     let (alone, _) = rasterize(VIEWPORT, &good, &[[0, 1, 2]], &RasterOptions::default());
-    assert!(alone.triangle.iter().any(|&t| t == 0));
+    assert!(alone.triangle.contains(&0));
     let relabelled: Vec<u32> = alone
         .triangle
         .iter()
