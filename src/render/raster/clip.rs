@@ -76,8 +76,8 @@ impl Planes {
         self.0
             .iter()
             .enumerate()
-            .filter(|(_, plane)| plane.distance(v) < 0.0)
-            .fold(0, |code, (bit, _)| code | 1 << bit)
+            .map(|(bit, plane)| u16::from(plane.distance(v) < 0.0) << bit)
+            .fold(0, |code, bit| code | bit)
     }
 }
 

@@ -90,14 +90,14 @@ pub struct Hit {
 }
 
 impl VisibilityBuffer {
-    /// A buffer with every pixel empty.
-    fn empty(viewport: Viewport) -> Self {
+    /// A zero-filled buffer (cheap to allocate) for the tiles to write every pixel of.
+    fn zeroed(viewport: Viewport) -> Self {
         let pixels = viewport.width as usize * viewport.height as usize;
         Self {
             width: viewport.width,
             height: viewport.height,
-            depth: vec![f32::INFINITY; pixels],
-            triangle: vec![u32::MAX; pixels],
+            depth: vec![0.0; pixels],
+            triangle: vec![0; pixels],
             barycentric: vec![[0.0; 2]; pixels],
         }
     }
@@ -224,7 +224,7 @@ pub fn rasterize(
                 triangles_culled: triangles.len(),
                 ..RasterStats::default()
             };
-            return (VisibilityBuffer::empty(viewport), stats);
+            return (VisibilityBuffer::zeroed(viewport), stats);
         }
         rasterize_in_pool(viewport, positions, triangles, tile_size)
     })
@@ -268,7 +268,7 @@ fn rasterize_in_pool(
         .map(|(i, chunk)| Chunk::new(&scene, &grid, chunk, (i * CHUNK_TRIANGLES) as u32))
         .collect();
 
-    let mut buffer = VisibilityBuffer::empty(viewport);
+    let mut buffer = VisibilityBuffer::zeroed(viewport);
     let counts = tile::tile_targets(&mut buffer, &grid)
         .into_par_iter()
         .map_init(Scratch::new, |scratch, target| {

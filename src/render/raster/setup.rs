@@ -141,23 +141,27 @@ pub(super) struct EdgeFunction {
     pub step_x: i64,
     /// Change of `E` from one row to the next: `256·d_x`.
     pub step_y: i64,
-    /// The fill-rule bias: 0 on a top or left edge, −1 otherwise.
-    pub bias: i64,
 }
 
 impl EdgeFunction {
     /// The edge `a → b` evaluated from the centre of pixel `(x0, y0)`.
     fn new(a: &ScreenVertex, b: &ScreenVertex, x0: i64, y0: i64) -> Self {
         let (dx, dy) = (b.x - a.x, b.y - a.y);
-        let top_left = dy < 0 || (dy == 0 && dx > 0);
-        let bias = if top_left { 0 } else { -1 };
         let (px, py) = (x0 * ONE + ONE / 2, y0 * ONE + ONE / 2);
-        Self {
-            origin: dx * (py - a.y) - dy * (px - a.x) + bias,
+        let mut edge = Self {
+            origin: dx * (py - a.y) - dy * (px - a.x),
             step_x: -dy * ONE,
             step_y: dx * ONE,
-            bias,
-        }
+        };
+        edge.origin += edge.bias();
+        edge
+    }
+
+    /// The fill-rule bias: 0 on a top or left edge (`d_y < 0`, or `d_y = 0` and `d_x > 0`, read
+    /// from the steps), −1 otherwise.
+    fn bias(&self) -> i64 {
+        let top_left = self.step_x > 0 || (self.step_x == 0 && self.step_y > 0);
+        i64::from(top_left) - 1
     }
 
     /// `E + bias` at the pixel `(dx, dy)` pixels from the triangle's first pixel.
@@ -180,10 +184,10 @@ pub(super) struct TriangleSetup {
     pub depth: [f32; 3],
     /// `−Σ_i bias_i·depth[i]`, undoing the fill-rule bias in the depth sum.
     pub depth_bias: f32,
-    /// `1/w_i`.
-    inv_w: [f64; 3],
-    /// Barycentrics `(b1, b2)` of each vertex on the original triangle.
-    bary: [DVec2; 3],
+    /// The numerators and the denominator of the perspective-correct barycentrics
+    /// `[Σ_i E_i·o_i1/w_i, Σ_i E_i·o_i2/w_i, Σ_i E_i/w_i]`, with `o_i` the barycentrics of
+    /// vertex `i` on the original triangle.
+    perspective: [Affine; 3],
     /// Index of the original triangle.
     pub triangle: u32,
 }
@@ -213,20 +217,19 @@ impl TriangleSetup {
             EdgeFunction::new(&v2, &v0, x0, y0),
             EdgeFunction::new(&v0, &v1, x0, y0),
         ];
-        let area2 = area2.unsigned_abs() as f64;
-        let depth = [v0, v1, v2].map(|v| (f64::from(v.depth) / area2) as f32);
+        let inv_area2 = 1.0 / area2.unsigned_abs() as f64;
+        let depth = [v0, v1, v2].map(|v| (f64::from(v.depth) * inv_area2) as f32);
         let depth_bias = -edges
             .iter()
             .zip(depth)
-            .map(|(e, d)| e.bias as f32 * d)
+            .map(|(e, d)| e.bias() as f32 * d)
             .sum::<f32>();
         Some(Self {
             rect,
             edges,
             depth,
             depth_bias,
-            inv_w: [v0.inv_w, v1.inv_w, v2.inv_w],
-            bary: [o0, o1, o2],
+            perspective: perspective_planes(&edges, [v0.inv_w, v1.inv_w, v2.inv_w], [o0, o1, o2]),
             triangle,
         })
     }
@@ -242,21 +245,70 @@ impl TriangleSetup {
     }
 
     /// The perspective-correct barycentrics `(b1, b2)` on the original triangle of the centre of
-    /// pixel `(x, y)`, a pixel the triangle covers: with the exact edge values `E_i`,
+    /// pixel `(x, y)`, a pixel the triangle covers: with the edge values `E_i`,
     /// `λ_i = (E_i / w_i) / Σ_j (E_j / w_j)` are the barycentrics on this (sub-)triangle, and
     /// `(b1, b2) = Σ_i λ_i·o_i` from the original barycentrics `o_i` of its vertices.
     pub(super) fn barycentric(&self, x: i32, y: i32) -> [f32; 2] {
-        let (dx, dy) = (
-            i64::from(x) - i64::from(self.rect.x0),
-            i64::from(y) - i64::from(self.rect.y0),
-        );
-        let q: [f64; 3] = std::array::from_fn(|i| {
-            (self.edges[i].at(dx, dy) - self.edges[i].bias) as f64 * self.inv_w[i]
-        });
-        let b = (self.bary[0] * q[0] + self.bary[1] * q[1] + self.bary[2] * q[2])
-            / (q[0] + q[1] + q[2]);
-        [b.x as f32, b.y as f32]
+        let (dx, dy) = (f64::from(x - self.rect.x0), f64::from(y - self.rect.y0));
+        let [b1, b2, sum] = self.perspective.map(|plane| plane.at(dx, dy));
+        let inv_sum = 1.0 / sum;
+        [(b1 * inv_sum) as f32, (b2 * inv_sum) as f32]
     }
+}
+
+/// An affine function `c + x·dx + y·dy` of the offset `(dx, dy)` in pixels from a triangle's
+/// first pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Affine {
+    c: f64,
+    x: f64,
+    y: f64,
+}
+
+impl Affine {
+    /// The unbiased edge function `E` of `edge`.
+    fn of_edge(edge: &EdgeFunction) -> Self {
+        Self {
+            c: (edge.origin - edge.bias()) as f64,
+            x: edge.step_x as f64,
+            y: edge.step_y as f64,
+        }
+    }
+
+    fn at(&self, dx: f64, dy: f64) -> f64 {
+        self.c + dx * self.x + dy * self.y
+    }
+
+    fn scaled(self, k: f64) -> Self {
+        Self {
+            c: self.c * k,
+            x: self.x * k,
+            y: self.y * k,
+        }
+    }
+
+    fn sum(a: Self, b: Self) -> Self {
+        Self {
+            c: a.c + b.c,
+            x: a.x + b.x,
+            y: a.y + b.y,
+        }
+    }
+}
+
+/// `[Σ_i E_i·o_i1/w_i, Σ_i E_i·o_i2/w_i, Σ_i E_i/w_i]` as affine functions of the pixel, for
+/// edge functions `edges`, `1/w_i` and original barycentrics `o_i` of the vertices.
+fn perspective_planes(edges: &[EdgeFunction; 3], inv_w: [f64; 3], o: [DVec2; 3]) -> [Affine; 3] {
+    let e = edges.map(|edge| Affine::of_edge(&edge));
+    let weighted = |k: [f64; 3]| {
+        let term = |i: usize| e[i].scaled(inv_w[i] * k[i]);
+        Affine::sum(Affine::sum(term(0), term(1)), term(2))
+    };
+    [
+        weighted(o.map(|o| o.x)),
+        weighted(o.map(|o| o.y)),
+        weighted([1.0; 3]),
+    ]
 }
 
 /// The pixels whose centres lie in the bounding box of the snapped vertices `v`.
