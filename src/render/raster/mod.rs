@@ -2,7 +2,7 @@
 //! out — per pixel the nearest triangle, its depth and the perspective-correct barycentrics of the
 //! pixel centre on it.
 //!
-//! One call runs in four steps:
+//! One call runs in three steps:
 //! 1. every vertex is classified against the clip planes and projected once, snapped to a
 //!    1/256-pixel grid (`setup`);
 //! 2. in chunks of triangles, in parallel: triangles outside the view are culled, triangles

@@ -21,7 +21,7 @@ pub const MAX_VIEWPORT_SIDE: u32 = 1 << 15;
 
 /// Half-width of the guard band around the viewport centre, in pixels: triangles reaching past
 /// it are clipped to it.
-pub(super) const GUARD_BAND_PIXELS: f64 = (1u32 << 20) as f64;
+const GUARD_BAND_PIXELS: f64 = (1u32 << 20) as f64;
 
 /// Bound on snapped coordinates (`2^29` units); clipped vertices that round past the guard band
 /// are clamped to it.
@@ -52,7 +52,7 @@ impl PixelRect {
 }
 
 /// A vertex projected to the viewport and snapped to the sub-pixel grid.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct ScreenVertex {
     /// Snapped position, 1/256 pixel units.
     x: i64,
@@ -178,7 +178,8 @@ pub(super) struct TriangleSetup {
     /// Pixels whose centres the snapped triangle's bounding box contains, within the viewport.
     pub rect: PixelRect,
     /// `edges[i]` is the edge opposite vertex `i`, so `E_i / (2·area)` is the screen-space
-    /// barycentric `λ_i` (vertex order made counter-clockwise on screen, i.e. `area > 0`).
+    /// barycentric `λ_i`. The vertices are ordered so that `2·area = (v1 − v0) × (v2 − v0) > 0`
+    /// (clockwise as seen on screen, y down); a triangle of the other winding is flipped.
     pub edges: [EdgeFunction; 3],
     /// `(z_i/w_i) / (2·area)`: NDC depth is `Σ_i E_i · depth[i]` (linear in screen space).
     pub depth: [f32; 3],
@@ -321,5 +322,72 @@ fn bounding_rect(v: &[ScreenVertex; 3]) -> PixelRect {
         y0: first_centre_at_or_after(min(|p| p.y)) as i32,
         x1: last_centre_at_or_before(max(|p| p.x)) as i32,
         y1: last_centre_at_or_before(max(|p| p.y)) as i32,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn vertex(x: i64, y: i64) -> ScreenVertex {
+        ScreenVertex {
+            x,
+            y,
+            depth: 0.5,
+            inv_w: 1.0,
+        }
+    }
+
+    #[test]
+    fn pixel_centres_bounding_a_span() {
+        // Pixel 0's centre is at 128 units, pixel 1's at 384.
+        assert_eq!(first_centre_at_or_after(128), 0);
+        assert_eq!(first_centre_at_or_after(129), 1);
+        assert_eq!(first_centre_at_or_after(-200), -1);
+        assert_eq!(last_centre_at_or_before(383), 0);
+        assert_eq!(last_centre_at_or_before(384), 1);
+        assert_eq!(last_centre_at_or_before(127), -1);
+    }
+
+    #[test]
+    fn a_reversed_edge_negates_and_exactly_one_direction_is_top_left() {
+        let directions = [
+            (5, 0),
+            (-5, 0),
+            (0, 7),
+            (0, -7),
+            (3, 4),
+            (-3, 4),
+            (3, -4),
+            (-3, -4),
+        ];
+        for (dx, dy) in directions {
+            let (a, b) = (vertex(1000, 2000), vertex(1000 + dx * 100, 2000 + dy * 100));
+            let forward = EdgeFunction::new(&a, &b, 3, 9);
+            let backward = EdgeFunction::new(&b, &a, 3, 9);
+            assert_eq!(
+                forward.bias() + backward.bias(),
+                -1,
+                "direction ({dx}, {dy})"
+            );
+            for (px, py) in [(0, 0), (4, -2), (17, 5)] {
+                let e = forward.at(px, py) - forward.bias();
+                assert_eq!(e, -(backward.at(px, py) - backward.bias()));
+            }
+        }
+    }
+
+    #[test]
+    fn both_windings_set_up_the_same_triangle() {
+        let screen = Screen::new(32, 32);
+        let corners = [vertex(300, 400), vertex(5000, 900), vertex(1200, 6000)];
+        let bary = [DVec2::ZERO, DVec2::X, DVec2::Y];
+        let setup = |order: [usize; 3]| {
+            TriangleSetup::new(order.map(|i| (corners[i], bary[i])), 0, &screen).unwrap()
+        };
+        let (a, b) = (setup([0, 1, 2]), setup([0, 2, 1]));
+        assert_eq!(a, b);
+        let degenerate = [vertex(0, 0), vertex(256, 256), vertex(512, 512)];
+        assert!(TriangleSetup::new(degenerate.map(|v| (v, DVec2::ZERO)), 0, &screen).is_none());
     }
 }
