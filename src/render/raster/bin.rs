@@ -5,12 +5,16 @@ use super::setup::{PixelRect, TriangleSetup};
 
 /// The viewport cut into `size × size` tiles (smaller at the right and bottom borders), numbered
 /// row by row.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(super) struct TileGrid {
     size: u32,
     columns: u32,
     rows: u32,
     screen: PixelRect,
+    /// Tile column of each pixel column and tile row of each pixel row, looked up rather than
+    /// divided for every binned triangle.
+    column_of: Vec<u32>,
+    row_of: Vec<u32>,
 }
 
 impl TileGrid {
@@ -21,6 +25,8 @@ impl TileGrid {
             columns: width.div_ceil(size),
             rows: height.div_ceil(size),
             screen,
+            column_of: (0..width).map(|x| x / size).collect(),
+            row_of: (0..height).map(|y| y / size).collect(),
         }
     }
 
@@ -56,11 +62,11 @@ impl TileGrid {
 
     /// The tiles overlapping `rect`, a non-empty rectangle inside the screen.
     fn covering(&self, rect: &PixelRect) -> impl Iterator<Item = usize> {
-        let (size, columns) = (self.size, self.columns as usize);
-        let tile = |p: i32| (p as u32 / size) as usize;
-        let (c0, c1) = (tile(rect.x0), tile(rect.x1));
-        (tile(rect.y0)..=tile(rect.y1))
-            .flat_map(move |row| (c0..=c1).map(move |c| row * columns + c))
+        let columns = self.columns as usize;
+        let column = |x: i32| self.column_of[x as usize] as usize;
+        let row = |y: i32| self.row_of[y as usize] as usize;
+        let (c0, c1) = (column(rect.x0), column(rect.x1));
+        (row(rect.y0)..=row(rect.y1)).flat_map(move |r| (c0..=c1).map(move |c| r * columns + c))
     }
 }
 
