@@ -345,3 +345,73 @@ fn two_overlapping_triangles_the_nearer_wins() {
         assert!(overlap > 500, "{overlap} overlapping pixels");
     }
 }
+
+#[test]
+fn a_mesh_clipped_by_the_near_plane_stays_watertight() {
+    // A floor under the camera reaching behind it, as a jittered grid of quads in both
+    // windings: where its interior is in front of the near plane every pixel is covered exactly
+    // once, and no pixel twice anywhere, however the clipped edges fall.
+    let camera = Camera::looking_at(Vec3::ZERO, Vec3::new(0.0, -0.8, -1.0));
+    let (columns, rows) = (24, 20);
+    let (x_range, z_range, floor) = ((-1.5, 1.5), (-4.0, 1.0), -0.25);
+    let mut rng = StdRng::seed_from_u64(17);
+    let mut points = Vec::new();
+    for j in 0..=rows {
+        for i in 0..=columns {
+            let (u, v) = (i as f32 / columns as f32, j as f32 / rows as f32);
+            let interior = i > 0 && i < columns && j > 0 && j < rows;
+            let jitter = if interior { 0.2 } else { 0.0 };
+            let u = u + rng.random_range(-jitter..=jitter) / columns as f32;
+            let v = v + rng.random_range(-jitter..=jitter) / rows as f32;
+            let x = x_range.0 + (x_range.1 - x_range.0) * u;
+            let z = z_range.0 + (z_range.1 - z_range.0) * v;
+            points.push(Vec3::new(x, floor, z));
+        }
+    }
+    let index = |i: usize, j: usize| j * (columns + 1) + i;
+    let mut triangles = Vec::new();
+    for j in 0..rows {
+        for i in 0..columns {
+            let (a, b) = (points[index(i, j)], points[index(i + 1, j)]);
+            let (c, d) = (points[index(i + 1, j + 1)], points[index(i, j + 1)]);
+            let flip = rng.random_bool(0.5);
+            triangles.push(if flip { [a, b, c] } else { [a, c, b] });
+            triangles.push(if rng.random_bool(0.5) { [a, c, d] } else { [d, c, a] });
+        }
+    }
+    let mut count = vec![0u32; VIEWPORT.width as usize * VIEWPORT.height as usize];
+    let mut clipped = 0;
+    for triangle in &triangles {
+        let positions = triangle.map(|p| camera.clip(p));
+        let (buffer, stats) = rasterize(
+            VIEWPORT,
+            &positions,
+            &[[0, 1, 2]],
+            &RasterOptions::default(),
+        );
+        clipped += stats.triangles_clipped;
+        for (c, &t) in count.iter_mut().zip(&buffer.triangle) {
+            *c += u32::from(t != u32::MAX);
+        }
+    }
+    assert!(clipped >= 12, "{clipped} triangles clipped");
+    let mut inside = 0;
+    for (x, y) in pixels() {
+        let c = count[(y * VIEWPORT.width + x) as usize];
+        assert!(c <= 1, "pixel ({x}, {y}) covered {c} times");
+        let dir = camera.pixel_ray(x, y);
+        let t = (f64::from(floor) - camera.eye.y) / dir.y;
+        let p = camera.eye + dir * t;
+        let margin = 0.05;
+        let well_inside = t > 0.0
+            && p.x > f64::from(x_range.0) + margin
+            && p.x < f64::from(x_range.1) - margin
+            && p.z > f64::from(z_range.0) + margin
+            && camera.view_depth(p) > f64::from(NEAR) + margin;
+        if well_inside {
+            assert_eq!(c, 1, "pixel ({x}, {y}) on the floor");
+            inside += 1;
+        }
+    }
+    assert!(inside > 5000, "{inside} pixels on the floor");
+}
