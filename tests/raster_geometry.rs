@@ -374,9 +374,13 @@ fn a_mesh_clipped_by_the_near_plane_stays_watertight() {
         for i in 0..columns {
             let (a, b) = (points[index(i, j)], points[index(i + 1, j)]);
             let (c, d) = (points[index(i + 1, j + 1)], points[index(i, j + 1)]);
-            let flip = rng.random_bool(0.5);
-            triangles.push(if flip { [a, b, c] } else { [a, c, b] });
-            triangles.push(if rng.random_bool(0.5) { [a, c, d] } else { [d, c, a] });
+            for [p, q, r] in [[a, b, c], [a, c, d]] {
+                triangles.push(if rng.random_bool(0.5) {
+                    [p, q, r]
+                } else {
+                    [p, r, q]
+                });
+            }
         }
     }
     let mut count = vec![0u32; VIEWPORT.width as usize * VIEWPORT.height as usize];
