@@ -121,6 +121,8 @@ impl VisibilityBuffer {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RasterOptions {
     /// Worker threads; 0 runs in the current rayon pool (by default one thread per core).
+    /// Any other count builds a pool for the call: to render many frames on a fixed number of
+    /// threads, install your own pool once and pass 0.
     pub threads: usize,
     /// Side of the square tiles rendered in parallel, in pixels; 0 means
     /// [`RasterOptions::DEFAULT_TILE_SIZE`].
