@@ -90,15 +90,15 @@ pub struct Hit {
 }
 
 impl VisibilityBuffer {
-    /// A zero-filled buffer (cheap to allocate) for the tiles to write every pixel of.
-    fn zeroed(viewport: Viewport) -> Self {
+    /// A buffer with every pixel empty, filled in parallel.
+    fn empty(viewport: Viewport) -> Self {
         let pixels = viewport.width as usize * viewport.height as usize;
         Self {
             width: viewport.width,
             height: viewport.height,
-            depth: vec![0.0; pixels],
-            triangle: vec![0; pixels],
-            barycentric: vec![[0.0; 2]; pixels],
+            depth: filled(pixels, f32::INFINITY),
+            triangle: filled(pixels, u32::MAX),
+            barycentric: filled(pixels, [0.0; 2]),
         }
     }
 
@@ -115,6 +115,11 @@ impl VisibilityBuffer {
             depth: self.depth[i],
         })
     }
+}
+
+/// `len` copies of `value`, written in parallel.
+fn filled<T: Copy + Send + Sync>(len: usize, value: T) -> Vec<T> {
+    (0..len).into_par_iter().map(|_| value).collect()
 }
 
 /// How to run [`rasterize`]. The output does not depend on either setting.
@@ -226,7 +231,7 @@ pub fn rasterize(
                 triangles_culled: triangles.len(),
                 ..RasterStats::default()
             };
-            return (VisibilityBuffer::zeroed(viewport), stats);
+            return (VisibilityBuffer::empty(viewport), stats);
         }
         rasterize_in_pool(viewport, positions, triangles, tile_size)
     })
@@ -270,7 +275,7 @@ fn rasterize_in_pool(
         .map(|(i, chunk)| Chunk::new(&scene, &grid, chunk, (i * CHUNK_TRIANGLES) as u32))
         .collect();
 
-    let mut buffer = VisibilityBuffer::zeroed(viewport);
+    let mut buffer = VisibilityBuffer::empty(viewport);
     let counts = tile::tile_targets(&mut buffer, &grid)
         .into_par_iter()
         .map_init(Scratch::new, |scratch, target| {

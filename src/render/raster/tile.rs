@@ -15,7 +15,7 @@ pub(super) struct TileTarget<'a> {
     barycentric: Vec<&'a mut [[f32; 2]]>,
 }
 
-/// Splits `buffer` into the tiles of `grid`, which each own (and write) their pixels.
+/// Splits `buffer` into the tiles of `grid`, which each own their pixels.
 pub(super) fn tile_targets<'a>(
     buffer: &'a mut VisibilityBuffer,
     grid: &TileGrid,
@@ -153,8 +153,8 @@ fn draw<'s>(
     fragments
 }
 
-/// Writes every pixel of the tile: the winner's index, depth (clamped to [0, 1] against
-/// rounding) and barycentrics, or the empty values; returns the number of pixels covered.
+/// Writes each pixel's winner into the frame buffers, its depth clamped to [0, 1] against
+/// rounding; returns the number of pixels written.
 fn resolve(mut target: TileTarget<'_>, width: usize, scratch: &Scratch<'_>) -> u64 {
     let mut pixels = 0;
     let rows = target
@@ -166,22 +166,13 @@ fn resolve(mut target: TileTarget<'_>, width: usize, scratch: &Scratch<'_>) -> u
         let y = target.rect.y0 + dy as i32;
         let start = dy * width;
         let winners = &scratch.winner[start..start + width];
-        let depths = &scratch.depth[start..start + width];
-        let outputs = depth
-            .iter_mut()
-            .zip(triangle.iter_mut())
-            .zip(barycentric.iter_mut());
-        for (dx, ((winner, &z), ((depth, triangle), barycentric))) in
-            winners.iter().zip(depths).zip(outputs).enumerate()
-        {
-            (*depth, *triangle, *barycentric) = match winner {
-                Some(setup) => {
-                    pixels += 1;
-                    let x = target.rect.x0 + dx as i32;
-                    (z.clamp(0.0, 1.0), setup.triangle, setup.barycentric(x, y))
-                }
-                None => (f32::INFINITY, u32::MAX, [0.0; 2]),
-            };
+        for (dx, winner) in winners.iter().enumerate() {
+            if let Some(setup) = winner {
+                depth[dx] = scratch.depth[start + dx].clamp(0.0, 1.0);
+                triangle[dx] = setup.triangle;
+                barycentric[dx] = setup.barycentric(target.rect.x0 + dx as i32, y);
+                pixels += 1;
+            }
         }
     }
     pixels
