@@ -378,3 +378,34 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn extreme_w_ratios_give_finite_barycentrics() {
+    // Clipping against the far plane and the guard band leaves vertices with 1/w ranging over
+    // thirty orders of magnitude.
+    let positions = [
+        Vec4::new(0.0, 0.0, 0.0, 3.932_363_7e29),
+        Vec4::new(-2.111_996_4, 0.0, 0.0, 0.495_272_46),
+        Vec4::new(0.0, 0.365_648_2, 0.0, -3.354_688e29),
+    ];
+    let viewport = Viewport {
+        width: 24,
+        height: 16,
+    };
+    let (buffer, stats) = rasterize(
+        viewport,
+        &positions,
+        &[[0, 1, 2]],
+        &RasterOptions::default(),
+    );
+    assert_eq!(stats.triangles_clipped, 1);
+    assert!(stats.pixels_covered > 0);
+    for (&t, b) in buffer.triangle.iter().zip(&buffer.barycentric) {
+        if t == 0 {
+            assert!(
+                b[0] >= -1e-4 && b[1] >= -1e-4 && b[0] + b[1] <= 1.0 + 1e-4,
+                "{b:?}"
+            );
+        }
+    }
+}

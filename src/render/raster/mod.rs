@@ -199,8 +199,11 @@ where
 const CHUNK_TRIANGLES: usize = 4096;
 
 /// Rasterizes the indexed triangles `triangles` (each indexing `positions`) into a visibility
-/// buffer of `viewport`'s size. Both windings are drawn (no back-face culling). Triangles with
-/// an index out of range or a NaN or infinite coordinate are skipped and counted.
+/// buffer of `viewport`'s size. Both windings are drawn (no back-face culling). Triangles are
+/// clipped to the near and far planes (z = 0 and z = w); their parts beside or above the view
+/// are cut by the viewport. A pixel is covered when its centre is inside the triangle, on an
+/// edge under the top-left rule. Triangles with an index out of range or a NaN or infinite
+/// coordinate are skipped and counted.
 ///
 /// # Panics
 /// If a viewport side exceeds [`MAX_VIEWPORT_SIDE`] or there are `u32::MAX` triangles or more.

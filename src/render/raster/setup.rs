@@ -185,10 +185,10 @@ pub(super) struct TriangleSetup {
     pub depth: [f32; 3],
     /// `−Σ_i bias_i·depth[i]`, undoing the fill-rule bias in the depth sum.
     pub depth_bias: f32,
-    /// The numerators and the denominator of the perspective-correct barycentrics
-    /// `[Σ_i E_i·o_i1/w_i, Σ_i E_i·o_i2/w_i, Σ_i E_i/w_i]`, with `o_i` the barycentrics of
-    /// vertex `i` on the original triangle.
-    perspective: [Affine; 3],
+    /// Per vertex `i`, `[o_i1/w_i, o_i2/w_i, 1/w_i]`, with `o_i` its barycentrics on the
+    /// original triangle: the weights of `E_i` in the numerators and the denominator of the
+    /// perspective-correct barycentrics.
+    perspective: [[f64; 3]; 3],
     /// Index of the original triangle.
     pub triangle: u32,
 }
@@ -230,7 +230,8 @@ impl TriangleSetup {
             edges,
             depth,
             depth_bias,
-            perspective: perspective_planes(&edges, [v0.inv_w, v1.inv_w, v2.inv_w], [o0, o1, o2]),
+            perspective: [(v0, o0), (v1, o1), (v2, o2)]
+                .map(|(v, o)| [o.x * v.inv_w, o.y * v.inv_w, v.inv_w]),
             triangle,
         })
     }
@@ -246,70 +247,25 @@ impl TriangleSetup {
     }
 
     /// The perspective-correct barycentrics `(b1, b2)` on the original triangle of the centre of
-    /// pixel `(x, y)`, a pixel the triangle covers: with the edge values `E_i`,
+    /// pixel `(x, y)`, a pixel the triangle covers: with the exact edge values `E_i ≥ 0`,
     /// `λ_i = (E_i / w_i) / Σ_j (E_j / w_j)` are the barycentrics on this (sub-)triangle, and
-    /// `(b1, b2) = Σ_i λ_i·o_i` from the original barycentrics `o_i` of its vertices.
+    /// `(b1, b2) = Σ_i λ_i·o_i` from the original barycentrics `o_i` of its vertices. Every term
+    /// is non-negative and `Σ_i E_i = 2·area > 0`, so the denominator is positive.
     pub(super) fn barycentric(&self, x: i32, y: i32) -> [f32; 2] {
-        let (dx, dy) = (f64::from(x - self.rect.x0), f64::from(y - self.rect.y0));
-        let [b1, b2, sum] = self.perspective.map(|plane| plane.at(dx, dy));
-        let inv_sum = 1.0 / sum;
-        [(b1 * inv_sum) as f32, (b2 * inv_sum) as f32]
-    }
-}
-
-/// An affine function `c + x·dx + y·dy` of the offset `(dx, dy)` in pixels from a triangle's
-/// first pixel.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Affine {
-    c: f64,
-    x: f64,
-    y: f64,
-}
-
-impl Affine {
-    /// The unbiased edge function `E` of `edge`.
-    fn of_edge(edge: &EdgeFunction) -> Self {
-        Self {
-            c: (edge.origin - edge.bias()) as f64,
-            x: edge.step_x as f64,
-            y: edge.step_y as f64,
+        let (dx, dy) = (i64::from(x - self.rect.x0), i64::from(y - self.rect.y0));
+        let mut sums = [0.0; 3];
+        for (edge, weights) in self.edges.iter().zip(&self.perspective) {
+            let e = (edge.at(dx, dy) - edge.bias()) as f64;
+            for (sum, weight) in sums.iter_mut().zip(weights) {
+                *sum += e * weight;
+            }
         }
+        let inv_denominator = 1.0 / sums[2];
+        [
+            (sums[0] * inv_denominator) as f32,
+            (sums[1] * inv_denominator) as f32,
+        ]
     }
-
-    fn at(&self, dx: f64, dy: f64) -> f64 {
-        self.c + dx * self.x + dy * self.y
-    }
-
-    fn scaled(self, k: f64) -> Self {
-        Self {
-            c: self.c * k,
-            x: self.x * k,
-            y: self.y * k,
-        }
-    }
-
-    fn sum(a: Self, b: Self) -> Self {
-        Self {
-            c: a.c + b.c,
-            x: a.x + b.x,
-            y: a.y + b.y,
-        }
-    }
-}
-
-/// `[Σ_i E_i·o_i1/w_i, Σ_i E_i·o_i2/w_i, Σ_i E_i/w_i]` as affine functions of the pixel, for
-/// edge functions `edges`, `1/w_i` and original barycentrics `o_i` of the vertices.
-fn perspective_planes(edges: &[EdgeFunction; 3], inv_w: [f64; 3], o: [DVec2; 3]) -> [Affine; 3] {
-    let e = edges.map(|edge| Affine::of_edge(&edge));
-    let weighted = |k: [f64; 3]| {
-        let term = |i: usize| e[i].scaled(inv_w[i] * k[i]);
-        Affine::sum(Affine::sum(term(0), term(1)), term(2))
-    };
-    [
-        weighted(o.map(|o| o.x)),
-        weighted(o.map(|o| o.y)),
-        weighted([1.0; 3]),
-    ]
 }
 
 /// The pixels whose centres lie in the bounding box of the snapped vertices `v`.
