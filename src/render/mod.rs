@@ -1,6 +1,7 @@
 //! Rendering: camera, tessellation, rasterization, the G-buffer, shading and output.
 
 pub mod camera;
+pub mod raster;
 pub mod tessellate;
 
 use thiserror::Error;

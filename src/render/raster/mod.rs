@@ -1,0 +1,409 @@
+//! The triangle rasterizer: indexed triangles in homogeneous clip space in, a visibility buffer
+//! out — per pixel the nearest triangle, its depth and the perspective-correct barycentrics of the
+//! pixel centre on it.
+//!
+//! One call runs in three steps:
+//! 1. every vertex is classified against the clip planes and projected once, snapped to a
+//!    1/256-pixel grid (`setup`);
+//! 2. in chunks of triangles, in parallel: triangles outside the view are culled, triangles
+//!    crossing the near or far plane (or leaving the guard band) are clipped (`clip`), and each
+//!    remaining triangle is set up as three integer edge functions, then binned to square tiles
+//!    by its pixel bounding box (`bin`);
+//! 3. tiles are rendered in parallel, each owning its pixels: per covered pixel centre a depth
+//!    test, then per pixel one resolve of the winner's barycentrics (`tile`).
+//!
+//! Every value written is a function of the triangle list and the pixel alone — edge functions
+//! are exact integers, depth and barycentrics are evaluated per pixel, and each tile meets its
+//! triangles in input order — so the buffers are byte-identical for any thread count and tile
+//! size.
+//!
+//! ```
+//! use glam::Vec4;
+//! use glint::render::raster::{rasterize, RasterOptions, Viewport};
+//!
+//! // One triangle over the whole 4 × 2 viewport (orthographic: w = 1); on screen its corners are
+//! // (0, 2), (8, 2) and (0, −2) pixels.
+//! let positions = [
+//!     Vec4::new(-1.0, -1.0, 0.5, 1.0),
+//!     Vec4::new(3.0, -1.0, 0.5, 1.0),
+//!     Vec4::new(-1.0, 3.0, 0.5, 1.0),
+//! ];
+//! let viewport = Viewport { width: 4, height: 2 };
+//! let (buffer, stats) = rasterize(viewport, &positions, &[[0, 1, 2]], &RasterOptions::default());
+//! assert_eq!(stats.pixels_covered, 8);
+//! // The centre (0.5, 1.5) of the bottom-left pixel is v0 + b1·(8, 0) + b2·(0, −4).
+//! let hit = buffer.hit(0, 1).unwrap();
+//! assert_eq!((hit.triangle, hit.depth), (0, 0.5));
+//! assert_eq!(hit.barycentric, [0.0625, 0.125]);
+//! ```
+
+mod bin;
+mod clip;
+mod setup;
+mod tile;
+
+use std::ops::{Add, Mul};
+
+use glam::{DVec2, Vec4};
+use rayon::prelude::*;
+
+use bin::{Bins, TileGrid};
+use clip::{Planes, Verdict};
+use setup::{Screen, ScreenVertex, TriangleSetup};
+use tile::Scratch;
+
+pub use setup::{MAX_VIEWPORT_SIDE, SUBPIXEL_BITS};
+
+/// A vertex in homogeneous clip space (after the projection matrix): x, y in [−w, w] are on
+/// screen, depth z in [0, w] (near plane z = 0, far plane z = w; glam's `Mat4::perspective_rh` /
+/// `orthographic_rh` conventions), w > 0 in front of the camera.
+pub type ClipVertex = Vec4;
+
+/// The pixel grid rendered to. Pixel (0, 0) is the top-left; NDC y = +1 is the top row.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Viewport {
+    pub width: u32,
+    pub height: u32,
+}
+
+/// Per pixel (row-major, top row first): the nearest triangle and where on it the pixel centre
+/// lies.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VisibilityBuffer {
+    pub width: u32,
+    pub height: u32,
+    /// NDC depth z/w in [0, 1] of the nearest surface, `f32::INFINITY` where empty.
+    pub depth: Vec<f32>,
+    /// Index into the input triangle list, `u32::MAX` where empty.
+    pub triangle: Vec<u32>,
+    /// Perspective-correct `(b1, b2)` of the pixel centre relative to the original triangle's
+    /// vertices 1 and 2 (`b0 = 1 − b1 − b2`), also after clipping; `[0, 0]` where empty.
+    pub barycentric: Vec<[f32; 2]>,
+}
+
+/// What one pixel of a [`VisibilityBuffer`] holds when a triangle covers it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    pub triangle: u32,
+    pub barycentric: [f32; 2],
+    pub depth: f32,
+}
+
+impl VisibilityBuffer {
+    /// A buffer with every pixel empty, filled in parallel.
+    fn empty(viewport: Viewport) -> Self {
+        let pixels = viewport.width as usize * viewport.height as usize;
+        Self {
+            width: viewport.width,
+            height: viewport.height,
+            depth: filled(pixels, f32::INFINITY),
+            triangle: filled(pixels, u32::MAX),
+            barycentric: filled(pixels, [0.0; 2]),
+        }
+    }
+
+    /// The triangle covering pixel `(x, y)`, or `None` where empty or outside the buffer.
+    #[must_use]
+    pub fn hit(&self, x: u32, y: u32) -> Option<Hit> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        let i = y as usize * self.width as usize + x as usize;
+        (self.triangle[i] != u32::MAX).then(|| Hit {
+            triangle: self.triangle[i],
+            barycentric: self.barycentric[i],
+            depth: self.depth[i],
+        })
+    }
+}
+
+/// `len` copies of `value`, written in parallel.
+fn filled<T: Copy + Send + Sync>(len: usize, value: T) -> Vec<T> {
+    (0..len).into_par_iter().map(|_| value).collect()
+}
+
+/// How to run [`rasterize`]. The output does not depend on either setting.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RasterOptions {
+    /// Worker threads; 0 runs in the current rayon pool (by default one thread per core).
+    /// Any other count builds a pool for the call: to render many frames on a fixed number of
+    /// threads, install your own pool once and pass 0.
+    pub threads: usize,
+    /// Side of the square tiles rendered in parallel, in pixels; 0 means
+    /// [`RasterOptions::DEFAULT_TILE_SIZE`].
+    pub tile_size: u32,
+}
+
+impl RasterOptions {
+    pub const DEFAULT_TILE_SIZE: u32 = 64;
+}
+
+impl Default for RasterOptions {
+    fn default() -> Self {
+        Self {
+            threads: 0,
+            tile_size: Self::DEFAULT_TILE_SIZE,
+        }
+    }
+}
+
+/// Counts from one [`rasterize`] call.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RasterStats {
+    /// Triangles in the input list.
+    pub triangles_in: usize,
+    /// Triangles skipped for an index out of range or a NaN or infinite vertex coordinate.
+    pub triangles_invalid: usize,
+    /// Triangles that reached no pixel centre's bounding box: outside the view frustum, behind
+    /// the camera, zero-area after snapping, or between pixel centres.
+    pub triangles_culled: usize,
+    /// Triangles clipped against the near or far plane or the guard band (culled ones included
+    /// when nothing of them remained).
+    pub triangles_clipped: usize,
+    /// Triangles rasterized, counting each triangle of a clipped polygon.
+    pub triangles_rasterized: usize,
+    /// Pixel centres covered, summed over triangles (≥ `pixels_covered`; the ratio is the
+    /// overdraw).
+    pub fragments: u64,
+    /// Pixels with a triangle in the output.
+    pub pixels_covered: u64,
+}
+
+impl Add for RasterStats {
+    type Output = Self;
+
+    fn add(self, other: Self) -> Self {
+        Self {
+            triangles_in: self.triangles_in + other.triangles_in,
+            triangles_invalid: self.triangles_invalid + other.triangles_invalid,
+            triangles_culled: self.triangles_culled + other.triangles_culled,
+            triangles_clipped: self.triangles_clipped + other.triangles_clipped,
+            triangles_rasterized: self.triangles_rasterized + other.triangles_rasterized,
+            fragments: self.fragments + other.fragments,
+            pixels_covered: self.pixels_covered + other.pixels_covered,
+        }
+    }
+}
+
+/// Interpolates a vertex attribute at barycentrics `b = (b1, b2)` from the visibility buffer:
+/// `a0·(1 − b1 − b2) + a1·b1 + a2·b2`. The barycentrics are already perspective-correct, so this
+/// is the perspective-correct value.
+pub fn interpolate<T>(b: [f32; 2], a0: T, a1: T, a2: T) -> T
+where
+    T: Mul<f32, Output = T> + Add<Output = T>,
+{
+    a0 * (1.0 - b[0] - b[1]) + a1 * b[0] + a2 * b[1]
+}
+
+/// Triangles set up per parallel job; the output does not depend on it.
+const CHUNK_TRIANGLES: usize = 4096;
+
+/// Rasterizes the indexed triangles `triangles` (each indexing `positions`) into a visibility
+/// buffer of `viewport`'s size. Both windings are drawn (no back-face culling). Triangles are
+/// clipped to the near and far planes (z = 0 and z = w); their parts beside or above the view
+/// are cut by the viewport. A pixel is covered when its centre is inside the triangle, on an
+/// edge under the top-left rule. Triangles with an index out of range or a NaN or infinite
+/// coordinate are skipped and counted.
+///
+/// # Panics
+/// If a viewport side exceeds [`MAX_VIEWPORT_SIDE`] or there are `u32::MAX` triangles or more.
+pub fn rasterize(
+    viewport: Viewport,
+    positions: &[ClipVertex],
+    triangles: &[[u32; 3]],
+    options: &RasterOptions,
+) -> (VisibilityBuffer, RasterStats) {
+    assert!(
+        viewport.width <= MAX_VIEWPORT_SIDE && viewport.height <= MAX_VIEWPORT_SIDE,
+        "viewport {}×{} exceeds {MAX_VIEWPORT_SIDE} pixels a side",
+        viewport.width,
+        viewport.height
+    );
+    assert!(
+        triangles.len() < u32::MAX as usize,
+        "u32::MAX marks empty pixels"
+    );
+    let tile_size = match options.tile_size {
+        0 => RasterOptions::DEFAULT_TILE_SIZE,
+        size => size,
+    };
+    in_pool(options.threads, || {
+        if viewport.width == 0 || viewport.height == 0 {
+            let stats = RasterStats {
+                triangles_in: triangles.len(),
+                triangles_culled: triangles.len(),
+                ..RasterStats::default()
+            };
+            return (VisibilityBuffer::empty(viewport), stats);
+        }
+        rasterize_in_pool(viewport, positions, triangles, tile_size)
+    })
+}
+
+/// Runs `job` in a new pool of `threads` threads, or in the current pool when `threads` is 0 (or
+/// a pool cannot be started).
+fn in_pool<R: Send>(threads: usize, job: impl FnOnce() -> R + Send) -> R {
+    if threads == 0 {
+        return job();
+    }
+    match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+        Ok(pool) => pool.install(job),
+        Err(_) => job(),
+    }
+}
+
+fn rasterize_in_pool(
+    viewport: Viewport,
+    positions: &[ClipVertex],
+    triangles: &[[u32; 3]],
+    tile_size: u32,
+) -> (VisibilityBuffer, RasterStats) {
+    let screen = Screen::new(viewport.width, viewport.height);
+    let (guard_x, guard_y) = screen.guard_band();
+    let planes = Planes::new(guard_x, guard_y);
+    let vertices = positions
+        .par_iter()
+        .map(|p| Vertex::new(*p, &planes, &screen))
+        .collect();
+    let scene = Scene {
+        positions,
+        vertices,
+        planes,
+        screen,
+    };
+    let grid = TileGrid::new(screen.bounds, tile_size);
+    let chunks: Vec<Chunk> = triangles
+        .par_chunks(CHUNK_TRIANGLES)
+        .enumerate()
+        .map(|(i, chunk)| Chunk::new(&scene, &grid, chunk, (i * CHUNK_TRIANGLES) as u32))
+        .collect();
+
+    let mut buffer = VisibilityBuffer::empty(viewport);
+    let counts = tile::tile_targets(&mut buffer, &grid)
+        .into_par_iter()
+        .map_init(Scratch::new, |scratch, target| {
+            let index = target.index;
+            let binned = chunks.iter().flat_map(|chunk| {
+                chunk
+                    .bins
+                    .tile(index)
+                    .iter()
+                    .map(|&i| &chunk.setups[i as usize])
+            });
+            tile::render_tile(target, binned, scratch)
+        })
+        .reduce(tile::TileCounts::default, |a, b| tile::TileCounts {
+            fragments: a.fragments + b.fragments,
+            pixels: a.pixels + b.pixels,
+        });
+    let stats = chunks
+        .iter()
+        .fold(RasterStats::default(), |s, c| s + c.stats);
+    let stats = RasterStats {
+        fragments: counts.fragments,
+        pixels_covered: counts.pixels,
+        ..stats
+    };
+    (buffer, stats)
+}
+
+/// A vertex classified against the clip planes and projected.
+#[derive(Clone, Copy, Debug)]
+struct Vertex {
+    outcode: u16,
+    /// Meaningful only when the vertex is inside all clip planes; triangles with a vertex
+    /// outside one are clipped from their clip-space positions instead.
+    screen: ScreenVertex,
+}
+
+impl Vertex {
+    fn new(p: ClipVertex, planes: &Planes, screen: &Screen) -> Self {
+        let p = p.as_dvec4();
+        Self {
+            outcode: planes.outcode(p),
+            screen: screen.project(p),
+        }
+    }
+}
+
+/// What setting up a triangle needs to know about the frame.
+struct Scene<'a> {
+    positions: &'a [ClipVertex],
+    vertices: Vec<Vertex>,
+    planes: Planes,
+    screen: Screen,
+}
+
+/// A run of consecutive input triangles, set up and binned.
+struct Chunk {
+    setups: Vec<TriangleSetup>,
+    bins: Bins,
+    stats: RasterStats,
+}
+
+impl Chunk {
+    /// Sets up `triangles`, the first of which has index `first`, and bins them.
+    fn new(scene: &Scene<'_>, grid: &TileGrid, triangles: &[[u32; 3]], first: u32) -> Self {
+        let mut setups = Vec::with_capacity(triangles.len());
+        let mut stats = RasterStats {
+            triangles_in: triangles.len(),
+            ..RasterStats::default()
+        };
+        for (index, corners) in (first..).zip(triangles) {
+            scene.set_up(index, corners, &mut setups, &mut stats);
+        }
+        stats.triangles_rasterized = setups.len();
+        let bins = Bins::new(grid, &setups);
+        Self {
+            setups,
+            bins,
+            stats,
+        }
+    }
+}
+
+impl Scene<'_> {
+    /// Culls, clips and sets up triangle `index` with vertex indices `corners`, appending what
+    /// is left of it to `out` and counting the outcome in `stats`.
+    fn set_up(
+        &self,
+        index: u32,
+        corners: &[u32; 3],
+        out: &mut Vec<TriangleSetup>,
+        stats: &mut RasterStats,
+    ) {
+        let Some(vertices) = self.vertices_of(corners) else {
+            stats.triangles_invalid += 1;
+            return;
+        };
+        let before = out.len();
+        match clip::classify(vertices.map(|v| v.outcode)) {
+            Verdict::Invalid => {
+                stats.triangles_invalid += 1;
+                return;
+            }
+            Verdict::Outside => {}
+            Verdict::Inside => {
+                let bary = [DVec2::ZERO, DVec2::X, DVec2::Y];
+                let v = std::array::from_fn(|i| (vertices[i].screen, bary[i]));
+                out.extend(TriangleSetup::new(v, index, &self.screen));
+            }
+            Verdict::Clip(planes) => {
+                stats.triangles_clipped += 1;
+                let v = corners.map(|i| self.positions[i as usize].as_dvec4());
+                let polygon = clip::clip_triangle(v, &self.planes, planes);
+                out.extend(polygon.fan().filter_map(|t| {
+                    let t = t.map(|p| (self.screen.project(p.pos), p.bary));
+                    TriangleSetup::new(t, index, &self.screen)
+                }));
+            }
+        }
+        stats.triangles_culled += usize::from(out.len() == before);
+    }
+
+    /// The three vertices of a triangle, or `None` if an index is out of range.
+    fn vertices_of(&self, corners: &[u32; 3]) -> Option<[Vertex; 3]> {
+        let v = |i: u32| self.vertices.get(i as usize).copied();
+        Some([v(corners[0])?, v(corners[1])?, v(corners[2])?])
+    }
+}

@@ -1,0 +1,179 @@
+//! Rendering one tile: the depth test over the pixel centres each binned triangle covers, then
+//! one resolve per pixel that writes the winner's index, depth and barycentrics.
+
+use super::bin::TileGrid;
+use super::setup::{PixelRect, TriangleSetup};
+use super::VisibilityBuffer;
+
+/// The pixels of one tile in the frame buffers, as one slice per pixel row.
+pub(super) struct TileTarget<'a> {
+    /// Index of the tile in its grid.
+    pub index: usize,
+    rect: PixelRect,
+    depth: Vec<&'a mut [f32]>,
+    triangle: Vec<&'a mut [u32]>,
+    barycentric: Vec<&'a mut [[f32; 2]]>,
+}
+
+/// Splits `buffer` into the tiles of `grid`, which each own their pixels.
+pub(super) fn tile_targets<'a>(
+    buffer: &'a mut VisibilityBuffer,
+    grid: &TileGrid,
+) -> Vec<TileTarget<'a>> {
+    let width = buffer.width as usize;
+    let depth = split_rows(&mut buffer.depth, width, grid);
+    let triangle = split_rows(&mut buffer.triangle, width, grid);
+    let barycentric = split_rows(&mut buffer.barycentric, width, grid);
+    depth
+        .into_iter()
+        .zip(triangle)
+        .zip(barycentric)
+        .enumerate()
+        .map(|(index, ((depth, triangle), barycentric))| TileTarget {
+            index,
+            rect: grid.rect(index),
+            depth,
+            triangle,
+            barycentric,
+        })
+        .collect()
+}
+
+/// For each tile of `grid`, its row slices of the row-major image `data` of width `width`.
+fn split_rows<'a, T>(data: &'a mut [T], width: usize, grid: &TileGrid) -> Vec<Vec<&'a mut [T]>> {
+    let mut tiles: Vec<Vec<&mut [T]>> = (0..grid.len()).map(|_| Vec::new()).collect();
+    for (y, row) in data.chunks_mut(width).enumerate() {
+        let first = y / grid.size() * grid.columns();
+        for (column, piece) in row.chunks_mut(grid.size()).enumerate() {
+            tiles[first + column].push(piece);
+        }
+    }
+    tiles
+}
+
+/// Per-tile working memory, reused from tile to tile: the nearest depth so far and the triangle
+/// that has it, row-major over the tile.
+pub(super) struct Scratch<'s> {
+    depth: Vec<f32>,
+    winner: Vec<Option<&'s TriangleSetup>>,
+}
+
+impl Scratch<'_> {
+    pub(super) fn new() -> Self {
+        Self {
+            depth: Vec::new(),
+            winner: Vec::new(),
+        }
+    }
+
+    fn reset(&mut self, pixels: usize) {
+        self.depth.clear();
+        self.depth.resize(pixels, f32::INFINITY);
+        self.winner.clear();
+        self.winner.resize(pixels, None);
+    }
+}
+
+/// What rendering a tile counted.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct TileCounts {
+    /// Pixel centres covered, summed over triangles.
+    pub fragments: u64,
+    /// Pixels with a triangle.
+    pub pixels: u64,
+}
+
+/// Renders `triangles` (in ascending input order) into the tile `target`.
+///
+/// Depth test: a fragment replaces the stored one only if strictly nearer, so on equal depth the
+/// triangle drawn first — the lower index — wins, whatever the traversal order of tiles.
+pub(super) fn render_tile<'s>(
+    target: TileTarget<'_>,
+    triangles: impl Iterator<Item = &'s TriangleSetup>,
+    scratch: &mut Scratch<'s>,
+) -> TileCounts {
+    let width = (target.rect.x1 - target.rect.x0 + 1) as usize;
+    scratch.reset(width * target.depth.len());
+    let fragments = triangles
+        .map(|setup| draw(setup, &target.rect, width, scratch))
+        .sum();
+    let pixels = resolve(target, width, scratch);
+    TileCounts { fragments, pixels }
+}
+
+/// The depth test over the pixels of `tile` (row width `width`) that `setup` covers, stepping
+/// the edge functions incrementally: `E(x + 1, y) = E(x, y) + step_x`,
+/// `E(x, y + 1) = E(x, y) + step_y`. A pixel centre is covered when every biased edge value is
+/// non-negative, i.e. when their bitwise or is. Returns the number of covered pixel centres.
+fn draw<'s>(
+    setup: &'s TriangleSetup,
+    tile: &PixelRect,
+    width: usize,
+    scratch: &mut Scratch<'s>,
+) -> u64 {
+    let r = setup.rect.intersection(tile);
+    if r.is_empty() {
+        return 0;
+    }
+    let [e0, e1, e2] = &setup.edges;
+    let (dx, dy) = (
+        i64::from(r.x0 - setup.rect.x0),
+        i64::from(r.y0 - setup.rect.y0),
+    );
+    let mut row = [e0.at(dx, dy), e1.at(dx, dy), e2.at(dx, dy)];
+    let span = (r.x1 - r.x0 + 1) as usize;
+    let mut fragments = 0;
+    for y in r.y0..=r.y1 {
+        let start = (y - tile.y0) as usize * width + (r.x0 - tile.x0) as usize;
+        let depth = &mut scratch.depth[start..start + span];
+        let winner = &mut scratch.winner[start..start + span];
+        let mut e = row;
+        let mut entered = false;
+        for (stored, won) in depth.iter_mut().zip(winner) {
+            if (e[0] | e[1] | e[2]) >= 0 {
+                entered = true;
+                fragments += 1;
+                let z = setup.depth_at(e);
+                if z < *stored {
+                    *stored = z;
+                    *won = Some(setup);
+                }
+            } else if entered {
+                // A triangle is convex: its pixels in a row are contiguous.
+                break;
+            }
+            e[0] += e0.step_x;
+            e[1] += e1.step_x;
+            e[2] += e2.step_x;
+        }
+        row[0] += e0.step_y;
+        row[1] += e1.step_y;
+        row[2] += e2.step_y;
+    }
+    fragments
+}
+
+/// Writes each pixel's winner into the frame buffers, its depth clamped to [0, 1] against
+/// rounding; returns the number of pixels written.
+fn resolve(mut target: TileTarget<'_>, width: usize, scratch: &Scratch<'_>) -> u64 {
+    let mut pixels = 0;
+    let rows = target
+        .depth
+        .iter_mut()
+        .zip(&mut target.triangle)
+        .zip(&mut target.barycentric);
+    for (dy, ((depth, triangle), barycentric)) in rows.enumerate() {
+        let y = target.rect.y0 + dy as i32;
+        let start = dy * width;
+        let winners = &scratch.winner[start..start + width];
+        for (dx, winner) in winners.iter().enumerate() {
+            if let Some(setup) = winner {
+                depth[dx] = scratch.depth[start + dx].clamp(0.0, 1.0);
+                triangle[dx] = setup.triangle;
+                barycentric[dx] = setup.barycentric(target.rect.x0 + dx as i32, y);
+                pixels += 1;
+            }
+        }
+    }
+    pixels
+}

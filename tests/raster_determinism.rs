@@ -1,0 +1,88 @@
+//! The visibility buffer does not depend on how the work is split: byte-identical for any
+//! thread count and tile size.
+
+use glam::{Mat4, Vec3, Vec4};
+use glint::render::raster::{rasterize, RasterOptions, Viewport, VisibilityBuffer};
+use rand::{rngs::StdRng, Rng, SeedableRng};
+
+const VIEWPORT: Viewport = Viewport {
+    width: 240,
+    height: 176,
+};
+
+/// A few thousand random triangles of all sizes in front of, around and behind a perspective
+/// camera, some of them repeated (exact depth ties).
+fn scene() -> (Vec<Vec4>, Vec<[u32; 3]>) {
+    let mut rng = StdRng::seed_from_u64(2024);
+    let projection = Mat4::perspective_rh(1.1, 240.0 / 176.0, 0.1, 30.0)
+        * Mat4::look_at_rh(Vec3::new(0.0, 0.0, 2.0), Vec3::ZERO, Vec3::Y);
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for _ in 0..3000 {
+        let mut centre = Vec3::new(
+            rng.random_range(-3.0..3.0),
+            rng.random_range(-2.0..2.0),
+            rng.random_range(-6.0..2.5),
+        );
+        // Mostly small triangles; some large ones, some across the near plane (z ≈ 1.9).
+        let size = match rng.random_range(0..20) {
+            0 => 2.0,
+            1 => {
+                centre = centre * Vec3::new(0.2, 0.2, 0.0) + Vec3::new(0.0, 0.0, 1.9);
+                0.5
+            }
+            _ => 0.15,
+        };
+        let first = positions.len() as u32;
+        for _ in 0..3 {
+            let offset = Vec3::new(
+                rng.random_range(-size..size),
+                rng.random_range(-size..size),
+                rng.random_range(-size..size),
+            );
+            positions.push(projection * (centre + offset).extend(1.0));
+        }
+        triangles.push([first, first + 1, first + 2]);
+        if rng.random_bool(0.05) {
+            triangles.push([first + 2, first + 1, first]);
+        }
+    }
+    (positions, triangles)
+}
+
+/// The buffer's bytes: depth as bit patterns, so that comparing them is exact.
+fn bytes(buffer: &VisibilityBuffer) -> (Vec<u32>, Vec<u32>, Vec<[u32; 2]>) {
+    (
+        buffer.depth.iter().map(|d| d.to_bits()).collect(),
+        buffer.triangle.clone(),
+        buffer
+            .barycentric
+            .iter()
+            .map(|b| b.map(f32::to_bits))
+            .collect(),
+    )
+}
+
+#[test]
+fn buffers_are_identical_for_any_thread_count_and_tile_size() {
+    let (positions, triangles) = scene();
+    let run = |threads, tile_size| {
+        let options = RasterOptions { threads, tile_size };
+        rasterize(VIEWPORT, &positions, &triangles, &options)
+    };
+    let (reference, reference_stats) = run(1, 64);
+
+    assert!(reference_stats.triangles_clipped > 40);
+    assert!(reference_stats.pixels_covered > 20_000);
+    assert!(reference_stats.fragments > 2 * reference_stats.pixels_covered);
+    for threads in [1, 2, 3] {
+        for tile_size in [16, 64, 37] {
+            let (buffer, stats) = run(threads, tile_size);
+            assert!(
+                bytes(&buffer) == bytes(&reference),
+                "{threads} threads, {tile_size}-pixel tiles"
+            );
+            assert_eq!(stats, reference_stats);
+        }
+    }
+}
