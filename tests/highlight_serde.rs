@@ -173,3 +173,15 @@ fn descriptions_are_generic_over_the_parameter_type() {
     };
     assert_eq!(l.opacity, 0.0);
 }
+
+#[test]
+fn the_layer_documented_in_docs_highlights_parses_and_prepares() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/highlights.md");
+    let doc = std::fs::read_to_string(path).unwrap();
+    let start = doc.find("```ron\n").unwrap() + "```ron\n".len();
+    let end = start + doc[start..].find("```").unwrap();
+    let layer: glint::highlight::Layer = ron::from_str(&doc[start..end]).unwrap();
+    assert_eq!(layer.stack.len(), 2);
+    assert!(layer.mask.is_some());
+    layer.prepare().unwrap();
+}

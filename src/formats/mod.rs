@@ -1,6 +1,8 @@
-//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, PNG images.
+//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, PNG and EXR images.
 
+pub mod atomic;
 mod bpt;
+pub mod exr;
 mod patch_ron;
 pub mod png;
 

@@ -1,22 +1,11 @@
-//! PNG output, written atomically: the image goes to a temporary file beside the target, which is
-//! renamed over the target only when complete. A reader never sees half an image, and a failed
-//! write leaves nothing behind.
+//! PNG output (8-bit RGBA, 8- and 16-bit grey), written atomically.
 
-use std::fs::File;
-use std::io::BufWriter;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
-use thiserror::Error;
 
-/// An image that could not be written.
-#[derive(Debug, Error)]
-#[error("cannot write {path}: {reason}")]
-pub struct WriteError {
-    pub path: String,
-    pub reason: String,
-}
+use super::atomic::{write_atomically, WriteError};
 
 /// The pixel layouts glint writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,15 +16,6 @@ pub enum PngLayout {
     Gray8,
     /// 16-bit grey, 2 bytes a pixel, big-endian.
     Gray16,
-}
-
-/// The temporary file a write to `path` goes through: hidden, in the same directory (so the
-/// rename is atomic), and named after the target and this process.
-pub fn temporary_path(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map_or_else(Default::default, |n| n.to_string_lossy().into_owned());
-    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
 }
 
 /// Writes `pixels` (rows top to bottom, in `layout`) as a PNG at `path`, atomically.
@@ -62,22 +42,11 @@ pub fn write_png(
             pixels.len()
         )));
     }
-    let temporary = temporary_path(path);
-    let written = (|| -> Result<(), String> {
-        let file = File::create(&temporary).map_err(|e| e.to_string())?;
-        let mut out = BufWriter::new(file);
-        PngEncoder::new(&mut out)
+    write_atomically(path, |out| {
+        PngEncoder::new(out)
             .write_image(pixels, width, height, color)
-            .map_err(|e| e.to_string())?;
-        let file = out.into_inner().map_err(|e| e.to_string())?;
-        file.sync_all().map_err(|e| e.to_string())?;
-        std::fs::rename(&temporary, path).map_err(|e| e.to_string())
-    })();
-    if written.is_err() {
-        // Best effort: the temporary file may not even exist.
-        let _ = std::fs::remove_file(&temporary);
-    }
-    written.map_err(error)
+            .map_err(|e| e.to_string())
+    })
 }
 
 #[cfg(test)]

@@ -1,0 +1,171 @@
+//! The teapot at 1280×720 with a 5-op highlight stack on every patch, outlines on and exact
+//! frames, against variants measured side by side in the same run: highlights off, interpolated
+//! frames, one thread, and an effect-free shot against a flat-colour raster of the same mesh.
+//! Run with `cargo bench --bench render`; the summary at the end prints the ratios.
+
+mod support;
+
+use std::hint::black_box;
+
+use criterion::Criterion;
+use glam::{Vec3, Vec4};
+use glint::formats::load_patches;
+use glint::geom::PatchLibrary;
+use glint::highlight::{Axis, Expr, Layer, Light, Op, SquareStyle};
+use glint::render::raster::{rasterize, RasterOptions, Viewport};
+use glint::render::tessellate::{Density, Tessellator};
+use glint::render::{
+    Aovs, Camera, FrameMode, Outlines, PatchLook, Projection, Renderer, Scene, Settings,
+};
+use glint::toon::CelRamp;
+
+const WIDTH: u32 = 1280;
+const HEIGHT: u32 = 720;
+const DENSITY: Density = Density::PerSpan { u: 12, v: 12 };
+
+fn camera() -> Camera {
+    Camera {
+        eye: Vec3::new(5.5, -7.0, 4.5),
+        target: Vec3::new(0.0, 0.0, 1.4),
+        up: Vec3::Z,
+        projection: Projection::Perspective {
+            fov_y_degrees: 30.0,
+        },
+        near: 0.1,
+        far: 100.0,
+    }
+}
+
+fn scene(library: &PatchLibrary, highlights: bool, outlines: bool) -> Scene<'_> {
+    let stack = vec![
+        Op::Translate {
+            alpha: 0.1,
+            beta: 0.05,
+        },
+        Op::Rotate { degrees: 20.0 },
+        Op::Scale {
+            delta: 0.5,
+            axis: Axis::U,
+        },
+        Op::Split {
+            gamma_u: 0.05,
+            gamma_v: 0.0,
+        },
+        Op::Square {
+            sigma: 0.2,
+            n: 2.0,
+            style: SquareStyle::Tangent,
+        },
+    ];
+    let expr = Expr::Layer(Layer {
+        stack,
+        epsilon: 0.08,
+        colour: [1.0, 1.0, 1.0],
+        opacity: 1.0,
+        feather: None,
+        mask: None,
+    })
+    .prepare()
+    .unwrap();
+    Scene {
+        library,
+        looks: (0..library.patches.len())
+            .map(|_| PatchLook {
+                tone: CelRamp::two_tone(Vec3::new(0.2, 0.25, 0.5), Vec3::new(0.4, 0.55, 0.9), 0.1),
+                highlight: highlights.then(|| expr.clone()),
+            })
+            .collect(),
+        camera: camera(),
+        light: Light::Directional {
+            towards: Vec3::new(0.3, -0.6, 0.75).normalize(),
+        },
+        outlines: outlines.then_some(Outlines {
+            width: 2.0,
+            colour: Vec3::ZERO,
+            crease_degrees: 60.0,
+            patch_borders: false,
+        }),
+        aovs: Aovs::default(),
+    }
+}
+
+fn settings(frames: FrameMode, threads: usize) -> Settings {
+    Settings {
+        density: DENSITY,
+        frames,
+        threads,
+        ..Settings::preview(WIDTH, HEIGHT)
+    }
+}
+
+fn main() {
+    let mut c = Criterion::default().configure_from_args();
+    let library = load_patches(std::path::Path::new("patches/teapot.bpt")).unwrap();
+    let full = scene(&library, true, true);
+    let plain = scene(&library, false, true);
+    let effect_free = scene(&library, false, false);
+
+    let mut group = c.benchmark_group("teapot_1280x720");
+    group.sample_size(20);
+    let variants: [(&str, &Scene, FrameMode, usize); 5] = [
+        ("full", &full, FrameMode::Exact, 0),
+        ("no_highlights", &plain, FrameMode::Exact, 0),
+        ("interpolated", &full, FrameMode::Interpolated, 0),
+        ("one_thread", &full, FrameMode::Exact, 1),
+        ("effect_free", &effect_free, FrameMode::Interpolated, 0),
+    ];
+    for (name, scene, frames, threads) in variants {
+        let mut renderer = Renderer::new(&library);
+        let settings = settings(frames, threads);
+        group.bench_function(name, |b| {
+            b.iter(|| black_box(renderer.render(scene, &settings).unwrap()))
+        });
+    }
+    // The baseline: the same mesh rasterized and filled with one flat colour per patch.
+    let mut tessellator = Tessellator::new(&library);
+    let view_projection = camera().view_projection(WIDTH as f32 / HEIGHT as f32);
+    let (mesh, _) = tessellator.mesh(DENSITY, view_projection, WIDTH, HEIGHT);
+    group.bench_function("flat_raster", |b| {
+        b.iter(|| {
+            let clip: Vec<Vec4> = mesh
+                .positions
+                .iter()
+                .map(|p| view_projection * p.extend(1.0))
+                .collect();
+            let (visibility, _) = rasterize(
+                Viewport {
+                    width: WIDTH,
+                    height: HEIGHT,
+                },
+                &clip,
+                &mesh.triangles,
+                &RasterOptions::default(),
+            );
+            let colour: Vec<Vec4> = visibility
+                .triangle
+                .iter()
+                .map(|&t| {
+                    if t == u32::MAX {
+                        Vec4::ZERO
+                    } else {
+                        Vec4::new(0.4, 0.55, 0.9, 1.0)
+                            * (1.0 + mesh.triangle_patch[t as usize] as f32 * 0.0)
+                    }
+                })
+                .collect();
+            black_box(colour)
+        })
+    });
+    group.finish();
+    c.final_summary();
+
+    support::print_ratios(
+        "frame-time ratios (teapot, 1280×720)",
+        &[
+            ("teapot_1280x720", "full", "no_highlights"),
+            ("teapot_1280x720", "full", "interpolated"),
+            ("teapot_1280x720", "one_thread", "full"),
+            ("teapot_1280x720", "effect_free", "flat_raster"),
+        ],
+    );
+}

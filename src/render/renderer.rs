@@ -1,0 +1,311 @@
+//! One frame, stage by stage: tessellate (cached), rasterize, fill the G-buffer, shade, outline,
+//! resolve. Stages the scene does not use do not run.
+
+use std::ops::{Add, Mul};
+
+use glam::{Vec2, Vec3, Vec4};
+use rayon::ThreadPool;
+
+use super::gbuffer::GBuffer;
+use super::outline::outline_mask;
+use super::raster::{rasterize, RasterOptions, Viewport};
+use super::scene::Scene;
+use super::settings::{Antialias, Settings};
+use super::shade::{shade, Shaded};
+use super::stats::{timed, RenderStats, StageStats};
+use super::tessellate::Tessellator;
+use super::RenderError;
+use crate::geom::PatchLibrary;
+
+/// A rendered frame at output resolution.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderedFrame {
+    pub width: u32,
+    pub height: u32,
+    /// Linear RGB with straight alpha (0 on the background), rows from the top.
+    pub colour: Vec<Vec4>,
+    pub aovs: AovImages,
+    pub stats: RenderStats,
+}
+
+/// The AOVs a scene asked for (`None` for the others). Under supersampling the matte is the
+/// average of a pixel's samples; the others are taken from its central sample.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AovImages {
+    pub matte: Option<Vec<f32>>,
+    /// Patch index per pixel, `u32::MAX` on the background.
+    pub patch_id: Option<Vec<u32>>,
+    /// NDC depth per pixel, `f32::INFINITY` on the background.
+    pub depth: Option<Vec<f32>>,
+    pub normal: Option<Vec<Vec3>>,
+    pub uv: Option<Vec<Vec2>>,
+    /// `N·H` of the initial half vector, 0 on the background.
+    pub n_dot_h: Option<Vec<f32>>,
+}
+
+/// Renders frames of one model, keeping its tessellation and worker threads between frames.
+pub struct Renderer<'a> {
+    library: &'a PatchLibrary,
+    tessellator: Tessellator<'a>,
+    pool: Option<(usize, ThreadPool)>,
+}
+
+impl<'a> Renderer<'a> {
+    pub fn new(library: &'a PatchLibrary) -> Self {
+        Self {
+            library,
+            tessellator: Tessellator::new(library),
+            pool: None,
+        }
+    }
+
+    /// Renders `scene` with `settings`; the scene must show this renderer's model.
+    pub fn render(
+        &mut self,
+        scene: &Scene,
+        settings: &Settings,
+    ) -> Result<RenderedFrame, RenderError> {
+        settings.validate()?;
+        scene.camera.validate()?;
+        if !std::ptr::eq(scene.library, self.library)
+            || scene.looks.len() != self.library.patches.len()
+        {
+            return Err(RenderError::Scene(format!(
+                "the scene must give one look for each of the model's {} patches, got {}",
+                self.library.patches.len(),
+                scene.looks.len()
+            )));
+        }
+        if settings.threads == 0 {
+            return Ok(self.render_frame(scene, settings));
+        }
+        if self
+            .pool
+            .as_ref()
+            .is_none_or(|(n, _)| *n != settings.threads)
+        {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(settings.threads)
+                .build()
+                .map_err(|e| {
+                    RenderError::Settings(format!("cannot start {} threads: {e}", settings.threads))
+                })?;
+            self.pool = Some((settings.threads, pool));
+        }
+        let pool = &self.pool.as_ref().expect("the pool was just made").1;
+        let (tessellator, library) = (&mut self.tessellator, self.library);
+        Ok(pool.install(|| render_frame(tessellator, library, scene, settings)))
+    }
+
+    fn render_frame(&mut self, scene: &Scene, settings: &Settings) -> RenderedFrame {
+        render_frame(&mut self.tessellator, self.library, scene, settings)
+    }
+}
+
+fn render_frame(
+    tessellator: &mut Tessellator,
+    library: &PatchLibrary,
+    scene: &Scene,
+    settings: &Settings,
+) -> RenderedFrame {
+    let (frame, total) = timed(|| {
+        let mut stats = RenderStats::default();
+        let k = settings.samples_per_side();
+        let (width, height) = (settings.width * k, settings.height * k);
+        let view_projection = scene
+            .camera
+            .view_projection(settings.width as f32 / settings.height as f32);
+
+        let ((mesh, rebuilt), seconds) = timed(|| {
+            tessellator.mesh(
+                settings.density,
+                view_projection,
+                settings.width,
+                settings.height,
+            )
+        });
+        stats.tessellation_rebuilt = rebuilt;
+        stats.triangles = mesh.triangles.len();
+        stats.tessellation.seconds = seconds;
+
+        let ((visibility, raster), seconds) = timed(|| {
+            let clip: Vec<Vec4> = mesh
+                .positions
+                .iter()
+                .map(|p| view_projection * p.extend(1.0))
+                .collect();
+            let options = RasterOptions {
+                threads: 0,
+                ..RasterOptions::default()
+            };
+            rasterize(Viewport { width, height }, &clip, &mesh.triangles, &options)
+        });
+        stats.raster = StageStats {
+            pixels: raster.pixels_covered,
+            seconds,
+        };
+
+        let ((gbuffer, exact), seconds) = timed(|| {
+            let inverse = view_projection.inverse();
+            GBuffer::fill(
+                &visibility,
+                mesh,
+                library,
+                &scene.camera,
+                inverse,
+                settings.frames,
+            )
+        });
+        stats.gbuffer = StageStats {
+            pixels: raster.pixels_covered,
+            seconds,
+        };
+        stats.exact_frames = exact;
+
+        let analytic = settings.antialias == Antialias::Analytic;
+        let (mut shaded, seconds) = timed(|| shade(&gbuffer, scene, analytic));
+        stats.shade = StageStats {
+            pixels: shaded.shaded,
+            seconds,
+        };
+        stats.highlight_pixels = shaded.highlighted;
+
+        if let Some(outlines) = &scene.outlines {
+            let (_, seconds) = timed(|| {
+                let mut scaled = *outlines;
+                scaled.width *= k as f32;
+                let mask = outline_mask(&gbuffer, &scene.camera, &scaled);
+                for (c, m) in shaded.colour.iter_mut().zip(mask) {
+                    let ink = c.truncate().lerp(outlines.colour, m);
+                    *c = ink.extend(c.w.max(m));
+                }
+            });
+            stats.outline = StageStats {
+                pixels: u64::from(width) * u64::from(height),
+                seconds,
+            };
+        }
+
+        let (aovs, seconds) = timed(|| collect_aovs(scene, &gbuffer, &mut shaded, k));
+        let aov_count = [
+            aovs.matte.is_some(),
+            aovs.patch_id.is_some(),
+            aovs.depth.is_some(),
+            aovs.normal.is_some(),
+            aovs.uv.is_some(),
+            aovs.n_dot_h.is_some(),
+        ]
+        .iter()
+        .filter(|&&on| on)
+        .count() as u64;
+        stats.aov = StageStats {
+            pixels: aov_count * u64::from(settings.width) * u64::from(settings.height),
+            seconds,
+        };
+
+        let colour = if k == 1 {
+            shaded.colour
+        } else {
+            let (colour, seconds) =
+                timed(|| resolve(&shaded.colour, settings.width, settings.height, k));
+            stats.resolve = StageStats {
+                pixels: u64::from(settings.width) * u64::from(settings.height),
+                seconds,
+            };
+            colour
+        };
+        RenderedFrame {
+            width: settings.width,
+            height: settings.height,
+            colour,
+            aovs,
+            stats,
+        }
+    });
+    RenderedFrame {
+        stats: RenderStats {
+            total_seconds: total,
+            ..frame.stats
+        },
+        ..frame
+    }
+}
+
+/// Resolves `k × k` samples per pixel by averaging premultiplied colour:
+/// `α = mean(α_s)`, `rgb = mean(α_s rgb_s) / α`.
+fn resolve(samples: &[Vec4], width: u32, height: u32, k: u32) -> Vec<Vec4> {
+    let premultiplied: Vec<Vec4> = samples
+        .iter()
+        .map(|s| (s.truncate() * s.w).extend(s.w))
+        .collect();
+    box_filter(&premultiplied, width, height, k)
+        .into_iter()
+        .map(|p| {
+            if p.w > 0.0 {
+                (p.truncate() / p.w).extend(p.w)
+            } else {
+                Vec4::ZERO
+            }
+        })
+        .collect()
+}
+
+/// The mean of each pixel's `k × k` samples, for an output of `width × height` pixels.
+fn box_filter<T>(samples: &[T], width: u32, height: u32, k: u32) -> Vec<T>
+where
+    T: Copy + Default + Add<Output = T> + Mul<f32, Output = T>,
+{
+    let (width, k) = (width as usize, k as usize);
+    let sample_width = width * k;
+    let weight = 1.0 / (k * k) as f32;
+    (0..width * height as usize)
+        .map(|i| {
+            let (x, y) = (i % width, i / width);
+            let mut sum = T::default();
+            for sy in 0..k {
+                for sx in 0..k {
+                    sum = sum + samples[(y * k + sy) * sample_width + x * k + sx];
+                }
+            }
+            sum * weight
+        })
+        .collect()
+}
+
+/// The AOVs the scene asked for, at output resolution.
+fn collect_aovs(scene: &Scene, gbuffer: &GBuffer, shaded: &mut Shaded, k: u32) -> AovImages {
+    let (width, height) = (gbuffer.width / k, gbuffer.height / k);
+    let centre = |x: u32, y: u32| gbuffer.at(x * k + k / 2, y * k + k / 2);
+    let pixels = || (0..height).flat_map(move |y| (0..width).map(move |x| (x, y)));
+    let a = scene.aovs;
+    AovImages {
+        matte: shaded
+            .matte
+            .take()
+            .map(|samples| box_filter(&samples, width, height, k)),
+        n_dot_h: shaded
+            .n_dot_h
+            .take()
+            .map(|samples| box_filter(&samples, width, height, k)),
+        patch_id: a.patch_id.then(|| {
+            pixels()
+                .map(|(x, y)| centre(x, y).map_or(u32::MAX, |t| t.patch))
+                .collect()
+        }),
+        depth: a.depth.then(|| {
+            pixels()
+                .map(|(x, y)| centre(x, y).map_or(f32::INFINITY, |t| t.depth))
+                .collect()
+        }),
+        normal: a.normal.then(|| {
+            pixels()
+                .map(|(x, y)| centre(x, y).map_or(Vec3::ZERO, |t| t.frame.n))
+                .collect()
+        }),
+        uv: a.uv.then(|| {
+            pixels()
+                .map(|(x, y)| centre(x, y).map_or(Vec2::ZERO, |t| t.uv))
+                .collect()
+        }),
+    }
+}

@@ -1,0 +1,114 @@
+//! Accuracy and output settings, with the `preview` and `final` presets (DESIGN §7).
+
+use serde::Deserialize;
+
+use super::tessellate::Density;
+use super::RenderError;
+
+/// Where shading frames come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+pub enum FrameMode {
+    /// The vertex frames, interpolated across each triangle (perspective-correct) and
+    /// re-orthonormalized.
+    Interpolated,
+    /// The exact NURBS frame, evaluated at each pixel's perspective-correct (u, v).
+    #[default]
+    Exact,
+    /// The exact frame after Newton steps move (u, v) so that the surface point lies on the
+    /// pixel's ray: the frame of the point the pixel really sees, not of the flat triangle's.
+    Refined,
+}
+
+/// Edge anti-aliasing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+pub enum Antialias {
+    /// One sample per pixel: hard edges, the paper's look.
+    #[default]
+    None,
+    /// One sample per pixel; highlight edges smoothed over the pixel's footprint of the signed
+    /// inside value (its screen-space derivatives). Silhouettes stay hard.
+    Analytic,
+    /// K × K samples per pixel, box-filtered (K from 2 to 8).
+    Supersample(u32),
+}
+
+/// How to render a frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    pub width: u32,
+    pub height: u32,
+    pub density: Density,
+    pub frames: FrameMode,
+    pub antialias: Antialias,
+    /// Worker threads; 0 uses one per core.
+    pub threads: usize,
+}
+
+/// The largest image side glint renders (samples included under supersampling).
+pub const MAX_SIDE: u32 = 16384;
+
+impl Settings {
+    /// Fast feedback: coarse adaptive tessellation, interpolated frames, no anti-aliasing.
+    pub fn preview(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            density: Density::ScreenTolerance { pixels: 1.0 },
+            frames: FrameMode::Interpolated,
+            antialias: Antialias::None,
+            threads: 0,
+        }
+    }
+
+    /// Finished frames: fine adaptive tessellation, exact frames, 3 × 3 supersampling.
+    pub fn final_quality(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            density: Density::ScreenTolerance { pixels: 0.25 },
+            frames: FrameMode::Exact,
+            antialias: Antialias::Supersample(3),
+            threads: 0,
+        }
+    }
+
+    /// Samples per pixel side.
+    pub fn samples_per_side(&self) -> u32 {
+        match self.antialias {
+            Antialias::None | Antialias::Analytic => 1,
+            Antialias::Supersample(k) => k,
+        }
+    }
+
+    /// Checks the image size, the supersampling factor and the density.
+    pub fn validate(&self) -> Result<(), RenderError> {
+        let bad = |what: String| Err(RenderError::Settings(what));
+        if let Antialias::Supersample(k) = self.antialias {
+            if !(2..=8).contains(&k) {
+                return bad(format!(
+                    "supersampling takes 2 to 8 samples per side, got {k}"
+                ));
+            }
+        }
+        let k = self.samples_per_side();
+        if self.width == 0
+            || self.height == 0
+            || self.width * k > MAX_SIDE
+            || self.height * k > MAX_SIDE
+        {
+            return bad(format!(
+                "image size {}×{} (× {k} samples per side) must be between 1 and {MAX_SIDE} per side",
+                self.width, self.height
+            ));
+        }
+        match self.density {
+            Density::PerSpan { u, v } if u == 0 || v == 0 || u > 256 || v > 256 => bad(format!(
+                "segments per span must be 1 to 256, got ({u}, {v})"
+            )),
+            Density::ScreenTolerance { pixels } if !(pixels.is_finite() && pixels >= 0.01) => bad(
+                format!("the screen tolerance must be at least 0.01 pixels, got {pixels}"),
+            ),
+            _ => Ok(()),
+        }
+    }
+}

@@ -1,0 +1,162 @@
+//! The shade pass: cel tone, then each patch's designed highlight, composited per pixel.
+
+use glam::{Vec3, Vec4};
+use rayon::prelude::*;
+
+use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
+use super::scene::Scene;
+use crate::highlight::{half_vector, PreparedExpr, PreparedLayer};
+
+/// The shaded image and what the pass did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shaded {
+    /// Linear RGB with straight alpha (1 on surfaces, 0 on the background).
+    pub colour: Vec<Vec4>,
+    /// Final highlight coverage per pixel, when the scene asked for the matte.
+    pub matte: Option<Vec<f32>>,
+    /// `N·H` of the initial half vector per pixel (0 on the background), when asked for.
+    pub n_dot_h: Option<Vec<f32>>,
+    /// Pixels shaded.
+    pub shaded: u64,
+    /// Pixels on highlighted patches: the only ones a half vector was built for.
+    pub highlighted: u64,
+}
+
+/// Shades every covered pixel: `tone = ramp(N·L)`, then on a patch with a highlight
+/// `H = normalize(L + V)`, the highlight expression's coverage c and colour h, and
+/// `colour = (1 − c) tone + c h`.
+///
+/// With `analytic_edges`, each highlight edge is smoothed over the pixel's footprint of the
+/// signed inside value `s = ε − ‖N − H'‖²/2`: the width is `fwidth(s) = |∂s/∂x| + |∂s/∂y|`
+/// from differences with the neighbouring pixels of the same patch, the largest over the
+/// expression's layers. Without it, edges are hard (the paper's look).
+pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
+    // Per texel: the half vector, on highlighted patches only.
+    let half_vectors: Vec<Option<Vec3>> = gbuffer
+        .texels
+        .par_iter()
+        .with_min_len(PIXELS_PER_JOB)
+        .map(|t| {
+            scene.looks[t.patch as usize].highlight.as_ref().map(|_| {
+                let n = t.frame.n;
+                let l = scene.light.direction(t.position, n);
+                half_vector(l, scene.camera.toward_eye(t.position), n)
+            })
+        })
+        .collect();
+    let widths = analytic_edges.then(|| edge_widths(gbuffer, scene, &half_vectors));
+    let results: Vec<(Vec4, f32)> = gbuffer
+        .texels
+        .par_iter()
+        .with_min_len(PIXELS_PER_JOB)
+        .enumerate()
+        .map(|(k, t)| {
+            let look = &scene.looks[t.patch as usize];
+            let n = t.frame.n;
+            let tone = look.tone.shade(n.dot(scene.light.direction(t.position, n)));
+            match (&look.highlight, half_vectors[k]) {
+                (Some(highlight), Some(h)) => {
+                    let width = widths.as_ref().map_or(0.0, |w| w[k]);
+                    let shade = highlight.eval(&t.frame, t.uv, h, width);
+                    let colour: Vec3 = tone.lerp(shade.colour, shade.coverage);
+                    (colour.extend(1.0), shade.coverage)
+                }
+                _ => (tone.extend(1.0), 0.0),
+            }
+        })
+        .collect();
+    let n_dot_h = scene.aovs.n_dot_h.then(|| {
+        let mut image = vec![0.0; gbuffer.slot.len()];
+        for t in &gbuffer.texels {
+            let (n, p) = (t.frame.n, t.position);
+            let h = half_vector(scene.light.direction(p, n), scene.camera.toward_eye(p), n);
+            image[t.pixel as usize] = n.dot(h);
+        }
+        image
+    });
+    let pixels = gbuffer.slot.len();
+    let mut colour = vec![Vec4::ZERO; pixels];
+    let mut matte = scene.aovs.matte.then(|| vec![0.0; pixels]);
+    for (t, (c, m)) in gbuffer.texels.iter().zip(&results) {
+        colour[t.pixel as usize] = *c;
+        if let Some(matte) = &mut matte {
+            matte[t.pixel as usize] = *m;
+        }
+    }
+    Shaded {
+        colour,
+        matte,
+        n_dot_h,
+        shaded: gbuffer.texels.len() as u64,
+        highlighted: half_vectors.iter().filter(|h| h.is_some()).count() as u64,
+    }
+}
+
+/// The layers of an expression, left to right.
+fn layers(expr: &PreparedExpr) -> Vec<&PreparedLayer> {
+    match expr {
+        PreparedExpr::Layer(layer) => vec![layer],
+        PreparedExpr::Combine(_, a, b) => {
+            let mut all = layers(a);
+            all.extend(layers(b));
+            all
+        }
+    }
+}
+
+/// Per texel, the largest `fwidth(s)` over the layers of its patch's highlight (0 without one).
+/// Differences are taken forward, or backward at the edge of the patch or image.
+fn edge_widths(gbuffer: &GBuffer, scene: &Scene, half_vectors: &[Option<Vec3>]) -> Vec<f32> {
+    let layer_lists: Vec<Vec<&PreparedLayer>> = scene
+        .looks
+        .iter()
+        .map(|look| look.highlight.as_ref().map_or_else(Vec::new, layers))
+        .collect();
+    let most = layer_lists.iter().map(Vec::len).max().unwrap_or(0);
+    // signed[k * most + j]: layer j's signed value at texel k.
+    let signed: Vec<f32> = gbuffer
+        .texels
+        .par_iter()
+        .zip(half_vectors)
+        .with_min_len(PIXELS_PER_JOB)
+        .flat_map_iter(|(t, h)| {
+            let layers = &layer_lists[t.patch as usize];
+            (0..most).map(move |j| match (h, layers.get(j)) {
+                (Some(h), Some(layer)) => layer.signed(&t.frame, *h),
+                _ => 0.0,
+            })
+        })
+        .collect();
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    gbuffer
+        .texels
+        .par_iter()
+        .with_min_len(PIXELS_PER_JOB)
+        .enumerate()
+        .map(|(k, t)| {
+            if half_vectors[k].is_none() {
+                return 0.0;
+            }
+            let i = t.pixel as usize;
+            let (x, y) = (i % w, i / w);
+            // The texel of a neighbour on the same patch: forward if possible, else backward.
+            let same_patch = |pixel: Option<usize>| {
+                let slot = gbuffer.slot[pixel?];
+                (slot != EMPTY && gbuffer.texels[slot as usize].patch == t.patch)
+                    .then_some(slot as usize)
+            };
+            let nx = same_patch((x + 1 < w).then(|| i + 1))
+                .or_else(|| same_patch((x > 0).then(|| i - 1)));
+            let ny = same_patch((y + 1 < h).then(|| i + w))
+                .or_else(|| same_patch((y > 0).then(|| i - w)));
+            (0..layer_lists[t.patch as usize].len())
+                .map(|j| {
+                    let s = signed[k * most + j];
+                    let dx = nx.map_or(0.0, |n| (signed[n * most + j] - s).abs());
+                    let dy = ny.map_or(0.0, |n| (signed[n * most + j] - s).abs());
+                    dx + dy
+                })
+                .fold(0.0, f32::max)
+        })
+        .collect()
+}
