@@ -17,6 +17,9 @@
 //! triangles in input order — so the buffers are byte-identical for any thread count and tile
 //! size.
 //!
+//! [`rasterize`] allocates per call; a [`Rasterizer`] keeps its working memory, and the buffer it
+//! renders into, from one frame to the next.
+//!
 //! ```
 //! use glam::Vec4;
 //! use glint::render::raster::{rasterize, RasterOptions, Viewport};
@@ -231,6 +234,7 @@ pub struct Rasterizer {
 }
 
 impl Rasterizer {
+    /// A rasterizer holding no memory yet.
     pub fn new() -> Self {
         Self::default()
     }
