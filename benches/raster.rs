@@ -1,9 +1,15 @@
 //! Rasterizer throughput: a 1280 × 720 frame of about 100k small triangles — a bumpy ellipsoid
 //! tessellated as a 224 × 224 grid, in perspective, covering most of the screen, both its front
 //! and back halves drawn (no back-face culling) — with 1 and with 2 threads in the same run.
+//!
+//! Two ways of calling it: `frame_loop` renders on a thread pool built once, reusing a
+//! `Rasterizer` and its buffer from frame to frame (how a renderer calls it); `one_shot` calls
+//! `rasterize` with `RasterOptions::threads`, which builds the pool and allocates the buffer and
+//! working memory in every call.
+//!
 //! Run with `cargo bench --bench raster`: criterion reports the time per frame and the triangle
-//! rate (`thrpt`, Melem/s = million triangles per second); the summary at the end prints both
-//! medians and the 2-thread speed-up.
+//! rate (`thrpt`, Melem/s = million triangles per second); the summary at the end prints the
+//! medians and the 2-thread speed-ups.
 
 mod support;
 
@@ -13,14 +19,15 @@ use std::time::Duration;
 
 use criterion::{Criterion, Throughput};
 use glam::{Mat4, Vec3, Vec4};
-use glint::render::raster::{rasterize, RasterOptions, Viewport};
+use glint::render::raster::{rasterize, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 
 const VIEWPORT: Viewport = Viewport {
     width: 1280,
     height: 720,
 };
 const GRID: u32 = 224;
-const GROUP: &str = "raster_1280x720";
+const FRAME_LOOP: &str = "raster_1280x720/frame_loop";
+const ONE_SHOT: &str = "raster_1280x720/one_shot";
 
 /// Clip-space positions and indexed triangles of the ellipsoid mesh.
 fn mesh() -> (Vec<Vec4>, Vec<[u32; 3]>) {
@@ -68,7 +75,33 @@ fn main() {
         stats.fragments as f64 / stats.pixels_covered as f64
     );
 
-    let mut group = c.benchmark_group(GROUP);
+    let mut group = c.benchmark_group(FRAME_LOOP);
+    group.throughput(Throughput::Elements(triangles.len() as u64));
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool");
+        let mut rasterizer = Rasterizer::new();
+        let mut buffer = VisibilityBuffer::default();
+        let options = RasterOptions::default();
+        group.bench_function(format!("threads_{threads}"), |b| {
+            pool.install(|| {
+                b.iter(|| {
+                    black_box(rasterizer.rasterize_into(
+                        VIEWPORT,
+                        &positions,
+                        &triangles,
+                        &options,
+                        &mut buffer,
+                    ))
+                })
+            })
+        });
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group(ONE_SHOT);
     group.throughput(Throughput::Elements(triangles.len() as u64));
     for threads in [1, 2] {
         let options = RasterOptions {
@@ -84,6 +117,9 @@ fn main() {
 
     support::print_ratios(
         "1-thread time / 2-thread time for the same frame (the speed-up)",
-        &[(GROUP, "threads_1", "threads_2")],
+        &[
+            (FRAME_LOOP, "threads_1", "threads_2"),
+            (ONE_SHOT, "threads_1", "threads_2"),
+        ],
     );
 }

@@ -2,7 +2,7 @@
 //! thread count and tile size.
 
 use glam::{Mat4, Vec3, Vec4};
-use glint::render::raster::{rasterize, RasterOptions, Viewport, VisibilityBuffer};
+use glint::render::raster::{rasterize, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 
 const VIEWPORT: Viewport = Viewport {
@@ -84,5 +84,56 @@ fn buffers_are_identical_for_any_thread_count_and_tile_size() {
             );
             assert_eq!(stats, reference_stats);
         }
+    }
+}
+
+#[test]
+fn a_reused_rasterizer_and_buffer_give_what_a_fresh_call_gives() {
+    let (positions, triangles) = scene();
+    let mut rasterizer = Rasterizer::new();
+    let mut buffer = VisibilityBuffer::default();
+    // Frames of different sizes, triangle counts and tilings through the same memory.
+    let frames = [
+        (VIEWPORT, triangles.len(), 64),
+        (
+            Viewport {
+                width: 64,
+                height: 40,
+            },
+            500,
+            16,
+        ),
+        (VIEWPORT, 2000, 37),
+        (
+            Viewport {
+                width: 0,
+                height: 9,
+            },
+            10,
+            64,
+        ),
+    ];
+    for (viewport, count, tile_size) in frames {
+        let options = RasterOptions {
+            threads: 2,
+            tile_size,
+        };
+        let stats = rasterizer.rasterize_into(
+            viewport,
+            &positions,
+            &triangles[..count],
+            &options,
+            &mut buffer,
+        );
+        let (fresh, fresh_stats) = rasterize(viewport, &positions, &triangles[..count], &options);
+        assert!(
+            bytes(&buffer) == bytes(&fresh),
+            "{viewport:?}, {count} triangles"
+        );
+        assert_eq!(
+            (buffer.width, buffer.height),
+            (viewport.width, viewport.height)
+        );
+        assert_eq!(stats, fresh_stats);
     }
 }

@@ -72,7 +72,7 @@ impl TileGrid {
 
 /// For each tile, the indices of the set-up triangles overlapping it, in ascending order (a
 /// counting sort: count per tile, prefix sums, fill).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub(super) struct Bins {
     /// `items[start[t]..start[t + 1]]` is tile `t`'s list.
     start: Vec<usize>,
@@ -80,8 +80,11 @@ pub(super) struct Bins {
 }
 
 impl Bins {
-    pub(super) fn new(grid: &TileGrid, setups: &[TriangleSetup]) -> Self {
-        let mut start = vec![0usize; grid.len() + 1];
+    /// Bins `setups` to the tiles of `grid`, replacing what the bins held.
+    pub(super) fn fill(&mut self, grid: &TileGrid, setups: &[TriangleSetup]) {
+        let start = &mut self.start;
+        start.clear();
+        start.resize(grid.len() + 1, 0);
         for setup in setups {
             for tile in grid.covering(&setup.rect) {
                 start[tile + 1] += 1;
@@ -91,14 +94,14 @@ impl Bins {
             start[t + 1] += start[t];
         }
         let mut next = start.clone();
-        let mut items = vec![0u32; start[grid.len()]];
+        self.items.clear();
+        self.items.resize(start[grid.len()], 0);
         for (index, setup) in setups.iter().enumerate() {
             for tile in grid.covering(&setup.rect) {
-                items[next[tile]] = index as u32;
+                self.items[next[tile]] = index as u32;
                 next[tile] += 1;
             }
         }
-        Self { start, items }
     }
 
     /// Indices of the set-up triangles overlapping tile `tile`, ascending.

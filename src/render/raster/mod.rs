@@ -17,6 +17,9 @@
 //! triangles in input order — so the buffers are byte-identical for any thread count and tile
 //! size.
 //!
+//! [`rasterize`] allocates per call; a [`Rasterizer`] keeps its working memory, and the buffer it
+//! renders into, from one frame to the next.
+//!
 //! ```
 //! use glam::Vec4;
 //! use glint::render::raster::{rasterize, RasterOptions, Viewport};
@@ -68,7 +71,7 @@ pub struct Viewport {
 
 /// Per pixel (row-major, top row first): the nearest triangle and where on it the pixel centre
 /// lies.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct VisibilityBuffer {
     pub width: u32,
     pub height: u32,
@@ -90,16 +93,13 @@ pub struct Hit {
 }
 
 impl VisibilityBuffer {
-    /// A buffer with every pixel empty, filled in parallel.
-    fn empty(viewport: Viewport) -> Self {
+    /// Resizes the buffer to `viewport` with every pixel empty, filling in parallel.
+    fn clear(&mut self, viewport: Viewport) {
         let pixels = viewport.width as usize * viewport.height as usize;
-        Self {
-            width: viewport.width,
-            height: viewport.height,
-            depth: filled(pixels, f32::INFINITY),
-            triangle: filled(pixels, u32::MAX),
-            barycentric: filled(pixels, [0.0; 2]),
-        }
+        (self.width, self.height) = (viewport.width, viewport.height);
+        fill(&mut self.depth, pixels, f32::INFINITY);
+        fill(&mut self.triangle, pixels, u32::MAX);
+        fill(&mut self.barycentric, pixels, [0.0; 2]);
     }
 
     /// The triangle covering pixel `(x, y)`, or `None` where empty or outside the buffer.
@@ -117,9 +117,11 @@ impl VisibilityBuffer {
     }
 }
 
-/// `len` copies of `value`, written in parallel.
-fn filled<T: Copy + Send + Sync>(len: usize, value: T) -> Vec<T> {
-    (0..len).into_par_iter().map(|_| value).collect()
+/// Makes `v` hold `len` copies of `value`, written in parallel.
+fn fill<T: Copy + Send + Sync>(v: &mut Vec<T>, len: usize, value: T) {
+    v.truncate(len);
+    v.par_iter_mut().for_each(|x| *x = value);
+    v.resize(len, value);
 }
 
 /// How to run [`rasterize`]. The output does not depend on either setting.
@@ -205,6 +207,9 @@ const CHUNK_TRIANGLES: usize = 4096;
 /// edge under the top-left rule. Triangles with an index out of range or a NaN or infinite
 /// coordinate are skipped and counted.
 ///
+/// Allocates the buffer and working memory for the call; a frame loop can reuse both with
+/// [`Rasterizer::rasterize_into`].
+///
 /// # Panics
 /// If a viewport side exceeds [`MAX_VIEWPORT_SIDE`] or there are `u32::MAX` triangles or more.
 pub fn rasterize(
@@ -213,31 +218,126 @@ pub fn rasterize(
     triangles: &[[u32; 3]],
     options: &RasterOptions,
 ) -> (VisibilityBuffer, RasterStats) {
-    assert!(
-        viewport.width <= MAX_VIEWPORT_SIDE && viewport.height <= MAX_VIEWPORT_SIDE,
-        "viewport {}×{} exceeds {MAX_VIEWPORT_SIDE} pixels a side",
-        viewport.width,
-        viewport.height
-    );
-    assert!(
-        triangles.len() < u32::MAX as usize,
-        "u32::MAX marks empty pixels"
-    );
-    let tile_size = match options.tile_size {
-        0 => RasterOptions::DEFAULT_TILE_SIZE,
-        size => size,
-    };
-    in_pool(options.threads, || {
-        if viewport.width == 0 || viewport.height == 0 {
-            let stats = RasterStats {
-                triangles_in: triangles.len(),
-                triangles_culled: triangles.len(),
-                ..RasterStats::default()
-            };
-            return (VisibilityBuffer::empty(viewport), stats);
+    let mut buffer = VisibilityBuffer::default();
+    let stats =
+        Rasterizer::new().rasterize_into(viewport, positions, triangles, options, &mut buffer);
+    (buffer, stats)
+}
+
+/// The working memory of [`rasterize`] — projected vertices, set-up and binned triangles —
+/// kept from one call to the next, so that rendering frame after frame allocates (and
+/// page-faults) nothing once the sizes have settled.
+#[derive(Debug, Default)]
+pub struct Rasterizer {
+    vertices: Vec<Vertex>,
+    chunks: Vec<Chunk>,
+}
+
+impl Rasterizer {
+    /// A rasterizer holding no memory yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// [`rasterize`] into `buffer`, which is resized to the viewport and overwritten, reusing its
+    /// memory and this rasterizer's.
+    ///
+    /// # Panics
+    /// As [`rasterize`].
+    pub fn rasterize_into(
+        &mut self,
+        viewport: Viewport,
+        positions: &[ClipVertex],
+        triangles: &[[u32; 3]],
+        options: &RasterOptions,
+        buffer: &mut VisibilityBuffer,
+    ) -> RasterStats {
+        assert!(
+            viewport.width <= MAX_VIEWPORT_SIDE && viewport.height <= MAX_VIEWPORT_SIDE,
+            "viewport {}×{} exceeds {MAX_VIEWPORT_SIDE} pixels a side",
+            viewport.width,
+            viewport.height
+        );
+        assert!(
+            triangles.len() < u32::MAX as usize,
+            "u32::MAX marks empty pixels"
+        );
+        let tile_size = match options.tile_size {
+            0 => RasterOptions::DEFAULT_TILE_SIZE,
+            size => size,
+        };
+        in_pool(options.threads, || {
+            buffer.clear(viewport);
+            if viewport.width == 0 || viewport.height == 0 {
+                return RasterStats {
+                    triangles_in: triangles.len(),
+                    triangles_culled: triangles.len(),
+                    ..RasterStats::default()
+                };
+            }
+            self.rasterize_in_pool(viewport, positions, triangles, tile_size, buffer)
+        })
+    }
+
+    fn rasterize_in_pool(
+        &mut self,
+        viewport: Viewport,
+        positions: &[ClipVertex],
+        triangles: &[[u32; 3]],
+        tile_size: u32,
+        buffer: &mut VisibilityBuffer,
+    ) -> RasterStats {
+        let screen = Screen::new(viewport.width, viewport.height);
+        let (guard_x, guard_y) = screen.guard_band();
+        let planes = Planes::new(guard_x, guard_y);
+        positions
+            .par_iter()
+            .map(|p| Vertex::new(*p, &planes, &screen))
+            .collect_into_vec(&mut self.vertices);
+        let scene = Scene {
+            positions,
+            vertices: &self.vertices,
+            planes,
+            screen,
+        };
+        let grid = TileGrid::new(screen.bounds, tile_size);
+        let runs = triangles.chunks(CHUNK_TRIANGLES).len();
+        self.chunks.resize_with(runs, Chunk::default);
+        self.chunks
+            .par_iter_mut()
+            .zip(triangles.par_chunks(CHUNK_TRIANGLES))
+            .enumerate()
+            .for_each(|(i, (chunk, run))| {
+                chunk.set_up(&scene, &grid, run, (i * CHUNK_TRIANGLES) as u32);
+            });
+
+        let chunks = &self.chunks;
+        let counts = tile::tile_targets(buffer, &grid)
+            .into_par_iter()
+            .map_init(Scratch::new, |scratch, target| {
+                let index = target.index;
+                let binned = chunks.iter().flat_map(|chunk| {
+                    chunk
+                        .bins
+                        .tile(index)
+                        .iter()
+                        .map(|&i| &chunk.setups[i as usize])
+                });
+                tile::render_tile(target, binned, scratch)
+            })
+            .reduce(tile::TileCounts::default, |a, b| tile::TileCounts {
+                fragments: a.fragments + b.fragments,
+                pixels: a.pixels + b.pixels,
+            });
+        let stats = chunks
+            .iter()
+            .fold(RasterStats::default(), |s, c| s + c.stats);
+        RasterStats {
+            fragments: counts.fragments,
+            pixels_covered: counts.pixels,
+            ..stats
         }
-        rasterize_in_pool(viewport, positions, triangles, tile_size)
-    })
+    }
 }
 
 /// Runs `job` in a new pool of `threads` threads, or in the current pool when `threads` is 0 (or
@@ -250,61 +350,6 @@ fn in_pool<R: Send>(threads: usize, job: impl FnOnce() -> R + Send) -> R {
         Ok(pool) => pool.install(job),
         Err(_) => job(),
     }
-}
-
-fn rasterize_in_pool(
-    viewport: Viewport,
-    positions: &[ClipVertex],
-    triangles: &[[u32; 3]],
-    tile_size: u32,
-) -> (VisibilityBuffer, RasterStats) {
-    let screen = Screen::new(viewport.width, viewport.height);
-    let (guard_x, guard_y) = screen.guard_band();
-    let planes = Planes::new(guard_x, guard_y);
-    let vertices = positions
-        .par_iter()
-        .map(|p| Vertex::new(*p, &planes, &screen))
-        .collect();
-    let scene = Scene {
-        positions,
-        vertices,
-        planes,
-        screen,
-    };
-    let grid = TileGrid::new(screen.bounds, tile_size);
-    let chunks: Vec<Chunk> = triangles
-        .par_chunks(CHUNK_TRIANGLES)
-        .enumerate()
-        .map(|(i, chunk)| Chunk::new(&scene, &grid, chunk, (i * CHUNK_TRIANGLES) as u32))
-        .collect();
-
-    let mut buffer = VisibilityBuffer::empty(viewport);
-    let counts = tile::tile_targets(&mut buffer, &grid)
-        .into_par_iter()
-        .map_init(Scratch::new, |scratch, target| {
-            let index = target.index;
-            let binned = chunks.iter().flat_map(|chunk| {
-                chunk
-                    .bins
-                    .tile(index)
-                    .iter()
-                    .map(|&i| &chunk.setups[i as usize])
-            });
-            tile::render_tile(target, binned, scratch)
-        })
-        .reduce(tile::TileCounts::default, |a, b| tile::TileCounts {
-            fragments: a.fragments + b.fragments,
-            pixels: a.pixels + b.pixels,
-        });
-    let stats = chunks
-        .iter()
-        .fold(RasterStats::default(), |s, c| s + c.stats);
-    let stats = RasterStats {
-        fragments: counts.fragments,
-        pixels_covered: counts.pixels,
-        ..stats
-    };
-    (buffer, stats)
 }
 
 /// A vertex classified against the clip planes and projected.
@@ -329,12 +374,13 @@ impl Vertex {
 /// What setting up a triangle needs to know about the frame.
 struct Scene<'a> {
     positions: &'a [ClipVertex],
-    vertices: Vec<Vertex>,
+    vertices: &'a [Vertex],
     planes: Planes,
     screen: Screen,
 }
 
 /// A run of consecutive input triangles, set up and binned.
+#[derive(Debug, Default)]
 struct Chunk {
     setups: Vec<TriangleSetup>,
     bins: Bins,
@@ -342,23 +388,19 @@ struct Chunk {
 }
 
 impl Chunk {
-    /// Sets up `triangles`, the first of which has index `first`, and bins them.
-    fn new(scene: &Scene<'_>, grid: &TileGrid, triangles: &[[u32; 3]], first: u32) -> Self {
-        let mut setups = Vec::with_capacity(triangles.len());
-        let mut stats = RasterStats {
+    /// Sets up `triangles`, the first of which has index `first`, and bins them, replacing what
+    /// the chunk held.
+    fn set_up(&mut self, scene: &Scene<'_>, grid: &TileGrid, triangles: &[[u32; 3]], first: u32) {
+        self.setups.clear();
+        self.stats = RasterStats {
             triangles_in: triangles.len(),
             ..RasterStats::default()
         };
         for (index, corners) in (first..).zip(triangles) {
-            scene.set_up(index, corners, &mut setups, &mut stats);
+            scene.set_up(index, corners, &mut self.setups, &mut self.stats);
         }
-        stats.triangles_rasterized = setups.len();
-        let bins = Bins::new(grid, &setups);
-        Self {
-            setups,
-            bins,
-            stats,
-        }
+        self.stats.triangles_rasterized = self.setups.len();
+        self.bins.fill(grid, &self.setups);
     }
 }
 
