@@ -8,7 +8,7 @@ use rayon::ThreadPool;
 
 use super::gbuffer::GBuffer;
 use super::outline::outline_mask;
-use super::raster::{rasterize, RasterOptions, Viewport};
+use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::Scene;
 use super::settings::{Antialias, Settings};
 use super::shade::{shade, Shaded};
@@ -43,18 +43,30 @@ pub struct AovImages {
     pub n_dot_h: Option<Vec<f32>>,
 }
 
-/// Renders frames of one model, keeping its tessellation and worker threads between frames.
+/// Renders frames of one model, keeping its tessellation, working memory and worker threads
+/// between frames.
 pub struct Renderer<'a> {
     library: &'a PatchLibrary,
-    tessellator: Tessellator<'a>,
+    stages: Stages<'a>,
     pool: Option<(usize, ThreadPool)>,
+}
+
+/// What the stages keep from one frame to the next.
+struct Stages<'a> {
+    tessellator: Tessellator<'a>,
+    rasterizer: Rasterizer,
+    visibility: VisibilityBuffer,
 }
 
 impl<'a> Renderer<'a> {
     pub fn new(library: &'a PatchLibrary) -> Self {
         Self {
             library,
-            tessellator: Tessellator::new(library),
+            stages: Stages {
+                tessellator: Tessellator::new(library),
+                rasterizer: Rasterizer::new(),
+                visibility: VisibilityBuffer::default(),
+            },
             pool: None,
         }
     }
@@ -67,17 +79,21 @@ impl<'a> Renderer<'a> {
     ) -> Result<RenderedFrame, RenderError> {
         settings.validate()?;
         scene.camera.validate()?;
-        if !std::ptr::eq(scene.library, self.library)
-            || scene.looks.len() != self.library.patches.len()
-        {
+        if !std::ptr::eq(scene.library, self.library) {
+            return Err(RenderError::Scene(
+                "the scene shows another model than this renderer was made for".into(),
+            ));
+        }
+        if scene.looks.len() != self.library.patches.len() {
             return Err(RenderError::Scene(format!(
                 "the scene must give one look for each of the model's {} patches, got {}",
                 self.library.patches.len(),
                 scene.looks.len()
             )));
         }
+        let (stages, library) = (&mut self.stages, self.library);
         if settings.threads == 0 {
-            return Ok(self.render_frame(scene, settings));
+            return Ok(stages.render(library, scene, settings));
         }
         if self
             .pool
@@ -93,22 +109,33 @@ impl<'a> Renderer<'a> {
             self.pool = Some((settings.threads, pool));
         }
         let pool = &self.pool.as_ref().expect("the pool was just made").1;
-        let (tessellator, library) = (&mut self.tessellator, self.library);
-        Ok(pool.install(|| render_frame(tessellator, library, scene, settings)))
-    }
-
-    fn render_frame(&mut self, scene: &Scene, settings: &Settings) -> RenderedFrame {
-        render_frame(&mut self.tessellator, self.library, scene, settings)
+        Ok(pool.install(|| stages.render(library, scene, settings)))
     }
 }
 
-fn render_frame(
-    tessellator: &mut Tessellator,
-    library: &PatchLibrary,
-    scene: &Scene,
-    settings: &Settings,
-) -> RenderedFrame {
-    let (frame, total) = timed(|| {
+impl Stages<'_> {
+    fn render(
+        &mut self,
+        library: &PatchLibrary,
+        scene: &Scene,
+        settings: &Settings,
+    ) -> RenderedFrame {
+        let (frame, total) = timed(|| self.stages(library, scene, settings));
+        RenderedFrame {
+            stats: RenderStats {
+                total_seconds: total,
+                ..frame.stats
+            },
+            ..frame
+        }
+    }
+
+    fn stages(
+        &mut self,
+        library: &PatchLibrary,
+        scene: &Scene,
+        settings: &Settings,
+    ) -> RenderedFrame {
         let mut stats = RenderStats::default();
         let k = settings.samples_per_side();
         let (width, height) = (settings.width * k, settings.height * k);
@@ -117,7 +144,7 @@ fn render_frame(
             .view_projection(settings.width as f32 / settings.height as f32);
 
         let ((mesh, rebuilt), seconds) = timed(|| {
-            tessellator.mesh(
+            self.tessellator.mesh(
                 settings.density,
                 view_projection,
                 settings.width,
@@ -128,7 +155,9 @@ fn render_frame(
         stats.triangles = mesh.triangles.len();
         stats.tessellation.seconds = seconds;
 
-        let ((visibility, raster), seconds) = timed(|| {
+        let visibility = &mut self.visibility;
+        let rasterizer = &mut self.rasterizer;
+        let (raster, seconds) = timed(|| {
             let clip: Vec<Vec4> = mesh
                 .positions
                 .iter()
@@ -138,8 +167,10 @@ fn render_frame(
                 threads: 0,
                 ..RasterOptions::default()
             };
-            rasterize(Viewport { width, height }, &clip, &mesh.triangles, &options)
+            let viewport = Viewport { width, height };
+            rasterizer.rasterize_into(viewport, &clip, &mesh.triangles, &options, visibility)
         });
+        let visibility = &*visibility;
         stats.raster = StageStats {
             pixels: raster.pixels_covered,
             seconds,
@@ -148,7 +179,7 @@ fn render_frame(
         let ((gbuffer, exact), seconds) = timed(|| {
             let inverse = view_projection.inverse();
             GBuffer::fill(
-                &visibility,
+                visibility,
                 mesh,
                 library,
                 &scene.camera,
@@ -221,13 +252,6 @@ fn render_frame(
             aovs,
             stats,
         }
-    });
-    RenderedFrame {
-        stats: RenderStats {
-            total_seconds: total,
-            ..frame.stats
-        },
-        ..frame
     }
 }
 
