@@ -5,6 +5,10 @@
 
 mod support;
 
+/// The allocator the `glint` binary uses.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use std::hint::black_box;
 
 use criterion::Criterion;
