@@ -13,6 +13,10 @@ pub const MAX_ORDER: usize = 2;
 pub struct KnotVector {
     knots: Vec<f64>,
     degree: usize,
+    /// `inverse_gaps[(d − 1) · len + i] = 1 / (U[i+d] − U[i])` for `1 ≤ d ≤ p`, 0 where the
+    /// gap is empty (or runs past the end): the denominators of the basis recurrences, so that
+    /// evaluation multiplies instead of dividing.
+    inverse_gaps: Vec<f64>,
 }
 
 /// Values and derivatives of the `degree + 1` basis functions that are non-zero at one
@@ -82,7 +86,21 @@ impl KnotVector {
                 end: knots[count],
             });
         }
-        Ok(Self { knots, degree })
+        let len = knots.len();
+        let inverse_gaps = (1..=degree)
+            .flat_map(|d| {
+                let knots = &knots;
+                (0..len).map(move |i| match knots.get(i + d) {
+                    Some(&end) if end > knots[i] => 1.0 / (end - knots[i]),
+                    _ => 0.0,
+                })
+            })
+            .collect();
+        Ok(Self {
+            knots,
+            degree,
+            inverse_gaps,
+        })
     }
 
     /// The clamped uniform knot vector on [0, 1] for `count` control points: `degree + 1`
@@ -94,6 +112,12 @@ impl KnotVector {
             .map(|i| (i.saturating_sub(degree) as f64 / spans as f64).min(1.0))
             .collect();
         Self::new(knots, degree, count)
+    }
+
+    /// `1 / (U[i+d] − U[i])`, or 0 for an empty gap.
+    #[inline]
+    fn inverse_gap(&self, i: usize, d: usize) -> f64 {
+        self.inverse_gaps[(d - 1) * self.knots.len() + i]
     }
 
     /// The degree p.
@@ -163,7 +187,8 @@ impl KnotVector {
         let order = order.min(MAX_ORDER);
         let mut ders = [[0.0; MAX_BASIS]; MAX_ORDER + 1];
 
-        // A2.2, in place: after step j, basis[..=j] holds the degree-j functions.
+        // A2.2, in place: after step j, basis[..=j] holds the degree-j functions. Its
+        // denominator `right[r+1] + left[j−r]` is the knot gap U[span+r+1] − U[span+1−j+r].
         let mut basis = [0.0; MAX_BASIS];
         let mut below = [[0.0; MAX_BASIS]; MAX_ORDER]; // degrees p − 1 and p − 2
         let mut left = [0.0; MAX_BASIS];
@@ -177,7 +202,7 @@ impl KnotVector {
             right[j] = self.knots[span + j] - t;
             let mut saved = 0.0;
             for r in 0..j {
-                let temp = basis[r] / (right[r + 1] + left[j - r]);
+                let temp = basis[r] * self.inverse_gap(span + 1 - j + r, j);
                 basis[r] = saved + right[r + 1] * temp;
                 saved = left[j - r] * temp;
             }
@@ -200,26 +225,17 @@ impl KnotVector {
     /// `d` values `g` of degree d − 1 that are non-zero in `span` (indices `span − d + 1 ..=
     /// span`), giving the `d + 1` values of degree d (indices `span − d ..= span`).
     fn differentiate(&self, span: usize, d: usize, g: &[f64; MAX_BASIS]) -> [f64; MAX_BASIS] {
-        let u = &self.knots;
-        let scaled = |value: f64, a: usize, b: usize| {
-            let gap = u[b] - u[a];
-            if gap > 0.0 {
-                value / gap
-            } else {
-                0.0
-            }
-        };
         let mut out = [0.0; MAX_BASIS];
         let first = span - d;
         for (k, slot) in out.iter_mut().enumerate().take(d + 1) {
             let i = first + k;
             let left_term = if k > 0 {
-                scaled(g[k - 1], i, i + d)
+                g[k - 1] * self.inverse_gap(i, d)
             } else {
                 0.0
             };
             let right_term = if k < d {
-                scaled(g[k], i + 1, i + d + 1)
+                g[k] * self.inverse_gap(i + 1, d)
             } else {
                 0.0
             };
