@@ -1,11 +1,11 @@
 //! The shade pass: cel tone, then each patch's designed highlight, composited per pixel.
 
-use glam::{Vec3, Vec4};
+use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
+use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
 use super::scene::Scene;
-use crate::highlight::{half_vector, PreparedExpr, PreparedLayer};
+use crate::highlight::{half_vector, PreparedExpr, PreparedLayer, Shade, TangentFrame};
 
 /// The shaded image and what the pass did.
 #[derive(Clone, Debug, PartialEq)]
@@ -45,24 +45,30 @@ pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
         })
         .collect();
     let widths = analytic_edges.then(|| edge_widths(gbuffer, scene, &half_vectors));
+    let shades: Vec<Shade> = gbuffer
+        .texels
+        .par_chunks(PIXELS_PER_JOB)
+        .zip(half_vectors.par_chunks(PIXELS_PER_JOB))
+        .enumerate()
+        .flat_map_iter(|(chunk, (texels, hs))| {
+            let widths = widths
+                .as_ref()
+                .map(|w| &w[chunk * PIXELS_PER_JOB..][..texels.len()]);
+            highlight_chunk(scene, texels, hs, widths)
+        })
+        .collect();
     let results: Vec<(Vec4, f32)> = gbuffer
         .texels
         .par_iter()
+        .zip(&shades)
         .with_min_len(PIXELS_PER_JOB)
-        .enumerate()
-        .map(|(k, t)| {
-            let look = &scene.looks[t.patch as usize];
+        .map(|(t, shade)| {
             let n = t.frame.n;
-            let tone = look.tone.shade(n.dot(scene.light.direction(t.position, n)));
-            match (&look.highlight, half_vectors[k]) {
-                (Some(highlight), Some(h)) => {
-                    let width = widths.as_ref().map_or(0.0, |w| w[k]);
-                    let shade = highlight.eval(&t.frame, t.uv, h, width);
-                    let colour: Vec3 = tone.lerp(shade.colour, shade.coverage);
-                    (colour.extend(1.0), shade.coverage)
-                }
-                _ => (tone.extend(1.0), 0.0),
-            }
+            let tone = scene.looks[t.patch as usize]
+                .tone
+                .shade(n.dot(scene.light.direction(t.position, n)));
+            let colour: Vec3 = tone.lerp(shade.colour, shade.coverage);
+            (colour.extend(1.0), shade.coverage)
         })
         .collect();
     let n_dot_h = scene.aovs.n_dot_h.then(|| {
@@ -90,6 +96,53 @@ pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
         shaded: gbuffer.texels.len() as u64,
         highlighted: half_vectors.iter().filter(|h| h.is_some()).count() as u64,
     }
+}
+
+/// No highlight: nothing to composite.
+const NO_HIGHLIGHT: Shade = Shade {
+    coverage: 0.0,
+    colour: Vec3::ZERO,
+};
+
+/// The highlight shade of each texel of a chunk (in pixel order), given its half vectors (on
+/// highlighted patches) and, for analytic edges, its edge widths. Runs of texels on one patch go
+/// through the expression's batch evaluation; with per-pixel widths, one by one.
+fn highlight_chunk(
+    scene: &Scene,
+    texels: &[Texel],
+    half_vectors: &[Option<Vec3>],
+    widths: Option<&[f32]>,
+) -> Vec<Shade> {
+    let mut out = vec![NO_HIGHLIGHT; texels.len()];
+    let mut start = 0;
+    while start < texels.len() {
+        let patch = texels[start].patch;
+        let end = texels[start..]
+            .iter()
+            .position(|t| t.patch != patch)
+            .map_or(texels.len(), |n| start + n);
+        if let Some(expr) = &scene.looks[patch as usize].highlight {
+            let run = &texels[start..end];
+            let hs: Vec<Vec3> = half_vectors[start..end]
+                .iter()
+                .map(|h| h.expect("highlighted patches have half vectors"))
+                .collect();
+            match widths {
+                Some(widths) => {
+                    for (k, t) in run.iter().enumerate() {
+                        out[start + k] = expr.eval(&t.frame, t.uv, hs[k], widths[start + k]);
+                    }
+                }
+                None => {
+                    let frames: Vec<TangentFrame> = run.iter().map(|t| t.frame).collect();
+                    let uvs: Vec<Vec2> = run.iter().map(|t| t.uv).collect();
+                    expr.eval_many(&frames, &uvs, &hs, 0.0, &mut out[start..end]);
+                }
+            }
+        }
+        start = end;
+    }
+    out
 }
 
 /// The layers of an expression, left to right.
