@@ -53,20 +53,26 @@ impl Frame {
             return None;
         }
         // The normal, the vector du points along, and whether this is a limit frame.
-        let (normal, along_u, degenerate) = if sq_u < RATIO_SQUARED * sq_v {
+        let (normal, along_u, degenerate, sin_squared) = if sq_u < RATIO_SQUARED * sq_v {
             let s = edge_sign(v, domain.v);
-            let n = unit_cross(d.suv, d.sv, d.suv.length_squared() * sq_v)?;
-            (s * n, s * d.suv, true)
+            let (n, sin_squared) = unit_cross(d.suv, d.sv, d.suv.length_squared() * sq_v)?;
+            (s * n, s * d.suv, true, sin_squared)
         } else if sq_v < RATIO_SQUARED * sq_u {
             let s = edge_sign(u, domain.u);
-            let n = unit_cross(d.su, d.suv, sq_u * d.suv.length_squared())?;
-            (s * n, d.su, true)
+            let (n, sin_squared) = unit_cross(d.su, d.suv, sq_u * d.suv.length_squared())?;
+            (s * n, d.su, true, sin_squared)
         } else {
-            (unit_cross(d.su, d.sv, sq_u * sq_v)?, d.su, false)
+            let (n, sin_squared) = unit_cross(d.su, d.sv, sq_u * sq_v)?;
+            (n, d.su, false, sin_squared)
         };
-        // du ⊥ N holds in exact arithmetic; projecting keeps it exact to rounding even where the
-        // cross product was short and so less accurate.
-        let du = (along_u - along_u.dot(normal) * normal).try_normalize()?;
+        // du ⊥ N holds in exact arithmetic, and to rounding where the cross product was long.
+        // Where it was short (its two vectors nearly parallel) N carries an error of about
+        // 1e-16 / sin, and du is projected onto N's tangent plane to stay orthogonal to it.
+        let du = if sin_squared < SHORT_CROSS_SIN_SQUARED {
+            (along_u - along_u.dot(normal) * normal).try_normalize()?
+        } else {
+            along_u.try_normalize()?
+        };
         Some(Frame {
             point: d.point,
             normal,
@@ -87,14 +93,18 @@ fn edge_sign(t: f64, range: (f64, f64)) -> f64 {
     }
 }
 
-/// `normalize(a × b)`, or `None` when `|a × b|²` is too small next to `|a|² |b|²` (given as
-/// `squared_lengths`) to give a direction.
-fn unit_cross(a: DVec3, b: DVec3, squared_lengths: f64) -> Option<DVec3> {
+/// `normalize(a × b)` and `sin²` of the angle between a and b, or `None` when `|a × b|²` is too
+/// small next to `|a|² |b|²` (given as `squared_lengths`) to give a direction.
+fn unit_cross(a: DVec3, b: DVec3, squared_lengths: f64) -> Option<(DVec3, f64)> {
     let n = a.cross(b);
     let sq = n.length_squared();
     (sq.is_finite() && sq > VANISHING_RATIO * VANISHING_RATIO * squared_lengths)
-        .then(|| n * sq.sqrt().recip())
+        .then(|| (n * sq.sqrt().recip(), sq / squared_lengths))
 }
+
+/// Below this `sin²` between the two vectors of a cross product (sin < 1e-4), the frame's du is
+/// projected onto the normal's tangent plane (see [`Frame`]'s construction).
+const SHORT_CROSS_SIN_SQUARED: f64 = 1e-8;
 
 impl NurbsSurface {
     /// The frame at (u, v) (see [`Frame`]); never NaN.
