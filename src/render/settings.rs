@@ -90,12 +90,9 @@ impl Settings {
                 ));
             }
         }
-        let k = self.samples_per_side();
-        if self.width == 0
-            || self.height == 0
-            || self.width * k > MAX_SIDE
-            || self.height * k > MAX_SIDE
-        {
+        let k = u64::from(self.samples_per_side());
+        let fits = |side: u32| side > 0 && u64::from(side) * k <= u64::from(MAX_SIDE);
+        if !fits(self.width) || !fits(self.height) {
             return bad(format!(
                 "image size {}×{} (× {k} samples per side) must be between 1 and {MAX_SIDE} per side",
                 self.width, self.height
@@ -109,6 +106,39 @@ impl Settings {
                 format!("the screen tolerance must be at least 0.01 pixels, got {pixels}"),
             ),
             _ => Ok(()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn out_of_range_settings_are_errors_not_panics() {
+        assert!(Settings::preview(640, 480).validate().is_ok());
+        assert!(Settings::final_quality(640, 480).validate().is_ok());
+        for bad in [
+            Settings::preview(0, 480),
+            Settings::preview(u32::MAX, 480),
+            Settings::final_quality(MAX_SIDE, 16),
+            Settings {
+                antialias: Antialias::Supersample(9),
+                ..Settings::preview(64, 64)
+            },
+            Settings {
+                density: Density::PerSpan { u: 0, v: 4 },
+                ..Settings::preview(64, 64)
+            },
+            Settings {
+                density: Density::ScreenTolerance { pixels: f32::NAN },
+                ..Settings::preview(64, 64)
+            },
+        ] {
+            assert!(
+                matches!(bad.validate(), Err(RenderError::Settings(_))),
+                "{bad:?}"
+            );
         }
     }
 }
