@@ -37,11 +37,10 @@ pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
         .par_iter()
         .with_min_len(PIXELS_PER_JOB)
         .map(|t| {
-            scene.looks[t.patch as usize].highlight.as_ref().map(|_| {
-                let n = t.frame.n;
-                let l = scene.light.direction(t.position, n);
-                half_vector(l, scene.camera.toward_eye(t.position), n)
-            })
+            scene.looks[t.patch as usize]
+                .highlight
+                .as_ref()
+                .map(|_| initial_half_vector(scene, t))
         })
         .collect();
     let widths = analytic_edges.then(|| edge_widths(gbuffer, scene, &half_vectors));
@@ -74,9 +73,7 @@ pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
     let n_dot_h = scene.aovs.n_dot_h.then(|| {
         let mut image = vec![0.0; gbuffer.slot.len()];
         for t in &gbuffer.texels {
-            let (n, p) = (t.frame.n, t.position);
-            let h = half_vector(scene.light.direction(p, n), scene.camera.toward_eye(p), n);
-            image[t.pixel as usize] = n.dot(h);
+            image[t.pixel as usize] = t.frame.n.dot(initial_half_vector(scene, t));
         }
         image
     });
@@ -96,6 +93,16 @@ pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
         shaded: gbuffer.texels.len() as u64,
         highlighted: half_vectors.iter().filter(|h| h.is_some()).count() as u64,
     }
+}
+
+/// Blinn's half vector `normalize(L + V)` at a texel: the highlight vector before any operation.
+fn initial_half_vector(scene: &Scene, t: &Texel) -> Vec3 {
+    let n = t.frame.n;
+    half_vector(
+        scene.light.direction(t.position, n),
+        scene.camera.toward_eye(t.position),
+        n,
+    )
 }
 
 /// No highlight: nothing to composite.
