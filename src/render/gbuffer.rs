@@ -61,6 +61,8 @@ impl GBuffer {
     ) -> (Self, u64) {
         let (width, height) = (visibility.width, visibility.height);
         let covered: Vec<u32> = (0..visibility.triangle.len() as u32)
+            .into_par_iter()
+            .with_min_len(PIXELS_PER_JOB)
             .filter(|&i| visibility.triangle[i as usize] != u32::MAX)
             .collect();
         let texels: Vec<Texel> = covered
@@ -147,6 +149,22 @@ impl GBuffer {
             },
             evaluated,
         )
+    }
+
+    /// A full image from one value per texel: `values[k]` at texel k's pixel, `background`
+    /// elsewhere.
+    pub fn gather<T: Copy + Send + Sync>(&self, values: &[T], background: T) -> Vec<T> {
+        self.slot
+            .par_iter()
+            .with_min_len(PIXELS_PER_JOB)
+            .map(|&slot| {
+                if slot == EMPTY {
+                    background
+                } else {
+                    values[slot as usize]
+                }
+            })
+            .collect()
     }
 
     /// The texel at pixel index `pixel`, if a surface covers it.

@@ -4,6 +4,7 @@
 use std::ops::{Add, Mul};
 
 use glam::{Vec2, Vec3, Vec4};
+use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::gbuffer::GBuffer;
@@ -206,10 +207,15 @@ impl Stages<'_> {
                 let mut scaled = *outlines;
                 scaled.width *= k as f32;
                 let mask = outline_mask(&gbuffer, &scene.camera, &scaled);
-                for (c, m) in shaded.colour.iter_mut().zip(mask) {
-                    let ink = c.truncate().lerp(outlines.colour, m);
-                    *c = ink.extend(c.w.max(m));
-                }
+                shaded
+                    .colour
+                    .par_iter_mut()
+                    .zip(mask.par_iter())
+                    .with_min_len(4096)
+                    .for_each(|(c, &m)| {
+                        let ink = c.truncate().lerp(outlines.colour, m);
+                        *c = ink.extend(c.w.max(m));
+                    });
             });
             stats.outline = StageStats {
                 pixels: u64::from(width) * u64::from(height),

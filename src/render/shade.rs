@@ -71,21 +71,20 @@ pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
         })
         .collect();
     let n_dot_h = scene.aovs.n_dot_h.then(|| {
-        let mut image = vec![0.0; gbuffer.slot.len()];
-        for t in &gbuffer.texels {
-            image[t.pixel as usize] = t.frame.n.dot(initial_half_vector(scene, t));
-        }
-        image
+        let values: Vec<f32> = gbuffer
+            .texels
+            .par_iter()
+            .with_min_len(PIXELS_PER_JOB)
+            .map(|t| t.frame.n.dot(initial_half_vector(scene, t)))
+            .collect();
+        gbuffer.gather(&values, 0.0)
     });
-    let pixels = gbuffer.slot.len();
-    let mut colour = vec![Vec4::ZERO; pixels];
-    let mut matte = scene.aovs.matte.then(|| vec![0.0; pixels]);
-    for (t, (c, m)) in gbuffer.texels.iter().zip(&results) {
-        colour[t.pixel as usize] = *c;
-        if let Some(matte) = &mut matte {
-            matte[t.pixel as usize] = *m;
-        }
-    }
+    let colours: Vec<Vec4> = results.iter().map(|r| r.0).collect();
+    let colour = gbuffer.gather(&colours, Vec4::ZERO);
+    let matte = scene.aovs.matte.then(|| {
+        let coverage: Vec<f32> = results.iter().map(|r| r.1).collect();
+        gbuffer.gather(&coverage, 0.0)
+    });
     Shaded {
         colour,
         matte,
