@@ -107,3 +107,97 @@ fn documented_example_parses_into_every_kind_of_surface() {
     let panel = &lib.find("panel").unwrap().surface;
     assert_eq!(panel.control_point(1, 0).1, 0.7);
 }
+
+/// A camera framing a model: its control points' bounding sphere seen from the front-right,
+/// above.
+fn framing_camera(library: &PatchLibrary) -> glint::render::Camera {
+    use glam::{DVec3, Vec3};
+    let points: Vec<DVec3> = library
+        .patches
+        .iter()
+        .flat_map(|p| {
+            let s = &p.surface;
+            (0..s.count_u())
+                .flat_map(move |i| (0..s.count_v()).map(move |j| s.control_point(i, j).0))
+        })
+        .collect();
+    let (lo, hi) = points
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    let centre = ((lo + hi) * 0.5).as_vec3();
+    let radius = ((hi - lo).length() * 0.5) as f32;
+    glint::render::Camera {
+        eye: centre + Vec3::new(1.0, -1.6, 0.9).normalize() * radius * 3.5,
+        target: centre,
+        up: Vec3::Z,
+        projection: glint::render::Projection::Perspective {
+            fov_y_degrees: 40.0,
+        },
+        near: 0.01 * radius,
+        far: 10.0 * radius,
+    }
+}
+
+#[test]
+fn every_shipped_model_renders() {
+    use glint::highlight::{Expr, Layer, Light};
+    use glint::render::{Aovs, PatchLook, Renderer, Scene, Settings};
+    use glint::toon::CelRamp;
+    let highlight = Expr::Layer(Layer {
+        stack: vec![],
+        epsilon: 0.1,
+        colour: [1.0, 1.0, 1.0],
+        opacity: 1.0,
+        feather: None,
+        mask: None,
+    })
+    .prepare()
+    .unwrap();
+    for file in patch_files() {
+        let library = load_patches(&file).unwrap();
+        let scene = Scene {
+            library: &library,
+            looks: library
+                .patches
+                .iter()
+                .map(|_| PatchLook {
+                    tone: CelRamp::two_tone(glam::Vec3::splat(0.2), glam::Vec3::splat(0.7), 0.0),
+                    highlight: Some(highlight.clone()),
+                })
+                .collect(),
+            camera: framing_camera(&library),
+            light: Light::Directional {
+                towards: glam::Vec3::new(0.3, -0.5, 0.8).normalize(),
+            },
+            outlines: None,
+            aovs: Aovs {
+                matte: true,
+                ..Aovs::default()
+            },
+        };
+        let frame = Renderer::new(&library)
+            .render(&scene, &Settings::preview(96, 96))
+            .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        let covered = frame.colour.iter().filter(|c| c.w > 0.0).count();
+        assert!(
+            covered > 200,
+            "{}: {covered} pixels covered",
+            file.display()
+        );
+        assert!(
+            frame.colour.iter().all(|c| c.is_finite()),
+            "{}",
+            file.display()
+        );
+        let lit = frame
+            .aovs
+            .matte
+            .unwrap()
+            .iter()
+            .filter(|&&m| m > 0.5)
+            .count();
+        assert!(lit > 0, "{}: the highlight shows somewhere", file.display());
+    }
+}
