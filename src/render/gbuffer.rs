@@ -231,11 +231,18 @@ pub const REFINE_STEPS: usize = 4;
 /// `du = normalize(a − (a·N) N)`; `dv = N × du`. Degenerate input falls back to any frame
 /// around the viewer direction, never NaN.
 pub fn facing_frame(n: Vec3, along_u: Vec3, toward_eye: Vec3) -> TangentFrame {
-    let mut normal = n.normalize_or(toward_eye);
-    if normal.dot(toward_eye) < 0.0 {
-        normal = -normal;
+    let length_squared = n.length_squared();
+    if !(length_squared > f32::MIN_POSITIVE && length_squared.is_finite()) {
+        let normal = toward_eye.normalize_or(Vec3::Z);
+        let du = normal.any_orthonormal_vector();
+        return TangentFrame::new(du, normal.cross(du), normal);
     }
-    let du = (along_u - along_u.dot(normal) * normal)
+    // The projection uses `1/|n|²` and the normal `1/|n|`, so the two normalizations do not
+    // wait for each other: `du ∝ a − (a·n) n / |n|²`.
+    let inverse_squared = length_squared.recip();
+    let facing = if n.dot(toward_eye) < 0.0 { -1.0 } else { 1.0 };
+    let normal = n * (facing * inverse_squared.sqrt());
+    let du = (along_u - (along_u.dot(n) * inverse_squared) * n)
         .try_normalize()
         .unwrap_or_else(|| normal.any_orthonormal_vector());
     TangentFrame::new(du, normal.cross(du), normal)
