@@ -43,14 +43,7 @@ fn points() -> Points {
 }
 
 fn layer(stack: Vec<Op>, epsilon: f32) -> Layer {
-    Layer {
-        stack,
-        epsilon,
-        colour: [1.0, 1.0, 1.0],
-        opacity: 1.0,
-        feather: None,
-        mask: None,
-    }
+    Layer::new(stack, epsilon, [1.0, 1.0, 1.0])
 }
 
 fn square() -> Op {

@@ -61,16 +61,9 @@ fn scene(library: &PatchLibrary, highlights: bool, outlines: bool) -> Scene<'_> 
             style: SquareStyle::Tangent,
         },
     ];
-    let expr = Expr::Layer(Layer {
-        stack,
-        epsilon: 0.08,
-        colour: [1.0, 1.0, 1.0],
-        opacity: 1.0,
-        feather: None,
-        mask: None,
-    })
-    .prepare()
-    .unwrap();
+    let expr = Expr::Layer(Layer::new(stack, 0.08, [1.0, 1.0, 1.0]))
+        .prepare()
+        .unwrap();
     Scene {
         library,
         looks: (0..library.patches.len())

@@ -24,14 +24,7 @@ fn light() -> Vec3 {
 }
 
 fn layer(stack: Vec<Op>) -> Layer {
-    Layer {
-        stack,
-        epsilon: EPSILON,
-        colour: [1.0, 1.0, 0.95],
-        opacity: 1.0,
-        feather: None,
-        mask: None,
-    }
+    Layer::new(stack, EPSILON, [1.0, 1.0, 0.95])
 }
 
 fn single(stack: Vec<Op>) -> Expr {

@@ -13,14 +13,7 @@ use glint::render::{Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Sce
 use glint::toon::CelRamp;
 
 fn layer(stack: Vec<Op>, epsilon: f32) -> Layer {
-    Layer {
-        stack,
-        epsilon,
-        colour: [1.0, 1.0, 0.95],
-        opacity: 1.0,
-        feather: None,
-        mask: None,
-    }
+    Layer::new(stack, epsilon, [1.0, 1.0, 0.95])
 }
 
 fn main() -> anyhow::Result<()> {

@@ -21,14 +21,7 @@ fn sphere_frame(n: DVec3) -> (TangentFrame, Vec2) {
 }
 
 fn layer(stack: Vec<Op>, epsilon: f32) -> Layer {
-    Layer {
-        stack,
-        epsilon,
-        colour: [1.0, 1.0, 1.0],
-        opacity: 1.0,
-        feather: None,
-        mask: None,
-    }
+    Layer::new(stack, epsilon, [1.0, 1.0, 1.0])
 }
 
 fn prepared(stack: Vec<Op>, epsilon: f32) -> PreparedLayer {

@@ -183,7 +183,7 @@ proptest! {
         eps in prop_oneof![Just(1e-7f32), Just(2.0f32), (1e-7f32.log2()..1.0).prop_map(f32::exp2)],
     ) {
         let h = unit_h(&f, &d);
-        let layer = Layer { stack: ops, epsilon: eps, colour: [1.0; 3], opacity: 1.0, feather: None, mask: None }
+        let layer = Layer::new(ops, eps, [1.0; 3])
             .prepare()
             .unwrap();
         assert_unit(layer.highlight_vector(&f, h))?;
@@ -213,7 +213,7 @@ proptest! {
         let reference = f64::from(eps) - 0.5 * (f.n.as_dvec3() - h.as_dvec3()).length_squared();
         if reference.abs() > 1e-3 * f64::from(eps) {
             prop_assert_eq!(inside(f.n, h, eps), reference > 0.0, "ε = {}, k = {}", eps, k);
-            let layer = Layer { stack: vec![], epsilon: eps, colour: [1.0; 3], opacity: 1.0, feather: None, mask: None }
+            let layer = Layer::new(vec![], eps, [1.0; 3])
                 .prepare()
                 .unwrap();
             prop_assert_eq!(layer.signed(&f, h) > 0.0, reference > 0.0, "layer path, ε = {}", eps);

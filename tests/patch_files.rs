@@ -145,16 +145,9 @@ fn every_shipped_model_renders() {
     use glint::highlight::{Expr, Layer, Light};
     use glint::render::{Aovs, PatchLook, Renderer, Scene, Settings};
     use glint::toon::CelRamp;
-    let highlight = Expr::Layer(Layer {
-        stack: vec![],
-        epsilon: 0.1,
-        colour: [1.0, 1.0, 1.0],
-        opacity: 1.0,
-        feather: None,
-        mask: None,
-    })
-    .prepare()
-    .unwrap();
+    let highlight = Expr::Layer(Layer::new(vec![], 0.1, [1.0, 1.0, 1.0]))
+        .prepare()
+        .unwrap();
     for file in patch_files() {
         let library = load_patches(&file).unwrap();
         let scene = Scene {

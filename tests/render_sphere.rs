@@ -40,16 +40,9 @@ fn camera(projection: Projection) -> Camera {
 }
 
 fn expression(stack: Vec<Op>) -> PreparedExpr {
-    Expr::Layer(Layer {
-        stack,
-        epsilon: 0.04,
-        colour: [1.0, 1.0, 1.0],
-        opacity: 1.0,
-        feather: None,
-        mask: None,
-    })
-    .prepare()
-    .unwrap()
+    Expr::Layer(Layer::new(stack, 0.04, [1.0, 1.0, 1.0]))
+        .prepare()
+        .unwrap()
 }
 
 /// The renderer's highlight matte (coverage > 1/2 per pixel).

@@ -37,17 +37,14 @@ fn scene<'a>(
     outlines: bool,
     aovs: Aovs,
 ) -> Scene<'a> {
-    let expr = Expr::Layer(Layer {
-        stack: vec![Op::Scale {
+    let expr = Expr::Layer(Layer::new(
+        vec![Op::Scale {
             delta: 0.5,
             axis: Default::default(),
         }],
-        epsilon: 0.05,
-        colour: [1.0, 1.0, 1.0],
-        opacity: 1.0,
-        feather: None,
-        mask: None,
-    })
+        0.05,
+        [1.0, 1.0, 1.0],
+    ))
     .prepare()
     .unwrap();
     Scene {

@@ -54,6 +54,22 @@ pub struct Mask<P = f32> {
     pub feather: P,
 }
 
+impl Layer {
+    /// The paper's highlight: the stack's region `(N, H') > 1 − ε` in one opaque colour, with a
+    /// hard edge and no mask.
+    #[must_use]
+    pub fn new(stack: Vec<Op>, epsilon: f32, colour: [f32; 3]) -> Self {
+        Self {
+            stack,
+            epsilon,
+            colour,
+            opacity: 1.0,
+            feather: None,
+            mask: None,
+        }
+    }
+}
+
 impl<P> Layer<P> {
     /// The same layer with every numeric parameter mapped through `f`.
     #[must_use]
