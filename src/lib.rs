@@ -21,9 +21,11 @@
 //! assert!(pole.degenerate && (pole.normal - DVec3::Z).length() < 1e-12);
 //! ```
 
+pub mod anim;
 pub mod cli;
 pub mod formats;
 pub mod geom;
 pub mod highlight;
 pub mod render;
+pub mod scene;
 pub mod toon;

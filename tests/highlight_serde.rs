@@ -1,7 +1,7 @@
 //! The RON syntax of highlight descriptions, and their genericity over the parameter type.
 
+use glint::anim::Track;
 use glint::highlight::{Axis, Expr, Layer, Mask, Op, SquareStyle};
-use serde::{Deserialize, Serialize};
 
 fn op(s: &str) -> Op {
     ron::from_str(s).unwrap_or_else(|e| panic!("{s}: {e}"))
@@ -118,35 +118,9 @@ fn expression_parses_prepares_and_round_trips() {
     assert_eq!(ron::from_str::<Expr>(&text).unwrap(), e);
 }
 
-/// A stand-in for an animation track: a constant or `(frame, value)` keys.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
-enum Track {
-    Constant(f32),
-    Keys(Vec<(f32, f32)>),
-}
-
-impl Track {
-    fn at(&self, frame: f32) -> f32 {
-        match self {
-            Track::Constant(v) => *v,
-            Track::Keys(k) => {
-                let i = k.iter().rposition(|&(f, _)| f <= frame).unwrap_or(0);
-                match (k.get(i), k.get(i + 1)) {
-                    (Some(&(f0, v0)), Some(&(f1, v1))) if frame >= f0 => {
-                        v0 + (v1 - v0) * (frame - f0) / (f1 - f0)
-                    }
-                    (Some(&(_, v0)), _) => v0,
-                    _ => 0.0,
-                }
-            }
-        }
-    }
-}
-
 #[test]
 fn descriptions_are_generic_over_the_parameter_type() {
-    let animated: Expr<Track> = ron::from_str(
+    let animated: Expr<Track<f32>> = ron::from_str(
         r#"Layer((
             stack: [Translate(alpha: [(0.0, 0.0), (10.0, 0.5)], beta: 0.0), Rotate(degrees: 15.0)],
             epsilon: 0.05,
@@ -167,11 +141,14 @@ fn descriptions_are_generic_over_the_parameter_type() {
     assert_eq!(l.stack[1], Op::Rotate { degrees: 15.0 });
     assert!((l.opacity - 0.6).abs() < 1e-6);
     assert!(at4.prepare().is_ok());
-    // Resolved past the last key, the opacity holds its last value.
+    // Resolved past the last key, the opacity holds its last value; left out, it is 1.
     let Expr::Layer(l) = animated.map(|t| t.at(20.0)) else {
         panic!()
     };
     assert_eq!(l.opacity, 0.0);
+    let plain: Layer<Track<f32>> =
+        ron::from_str("(stack: [], epsilon: 0.1, colour: (1, 1, 1))").unwrap();
+    assert_eq!(plain.map(|t| t.at(0.0)), Layer::new(vec![], 0.1, [1.0; 3]));
 }
 
 #[test]

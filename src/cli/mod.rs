@@ -1,7 +1,10 @@
 //! The command line: argument parsing, terminal output and exit codes (0 success, 2 bad input or
 //! usage, 1 a failure while working).
 
+mod frames;
+mod inspect;
 mod probe;
+mod render;
 
 use std::process::ExitCode;
 
@@ -18,6 +21,8 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    Render(render::RenderArgs),
+    Inspect(inspect::InspectArgs),
     Probe(probe::ProbeArgs),
 }
 
@@ -36,6 +41,8 @@ pub enum CliError {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Render(args) => render::run(&args),
+        Command::Inspect(args) => inspect::run(&args),
         Command::Probe(args) => probe::run(&args),
     };
     match result {

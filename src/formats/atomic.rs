@@ -49,3 +49,69 @@ pub fn write_atomically(
         reason,
     })
 }
+
+/// Removes the temporary files earlier writes to `path` left behind when their process was
+/// killed (`.NAME.PID.tmp` beside it). Returns how many were removed.
+pub fn remove_stale_temporaries(path: &Path) -> std::io::Result<usize> {
+    let (Some(folder), Some(name)) = (path.parent(), path.file_name()) else {
+        return Ok(0);
+    };
+    let folder = if folder.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        folder
+    };
+    let prefix = format!(".{}.", name.to_string_lossy());
+    let mut removed = 0;
+    let entries = match std::fs::read_dir(folder) {
+        Ok(entries) => entries,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(0),
+        Err(e) => return Err(e),
+    };
+    for entry in entries {
+        let entry = entry?;
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let pid = file
+            .strip_prefix(&prefix)
+            .and_then(|rest| rest.strip_suffix(".tmp"));
+        if pid.is_some_and(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit())) {
+            std::fs::remove_file(entry.path())?;
+            removed += 1;
+        }
+    }
+    Ok(removed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stale_temporaries_of_one_target_go_and_nothing_else() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("shot.0001.png");
+        for name in [
+            ".shot.0001.png.123.tmp",
+            ".shot.0001.png.99.tmp",
+            ".shot.0002.png.123.tmp",
+            ".shot.0001.png.x.tmp",
+            "shot.0001.png",
+        ] {
+            std::fs::write(dir.path().join(name), b"x").unwrap();
+        }
+        assert_eq!(remove_stale_temporaries(&target).unwrap(), 2);
+        let mut left: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(
+            left,
+            [
+                ".shot.0001.png.x.tmp",
+                ".shot.0002.png.123.tmp",
+                "shot.0001.png"
+            ]
+        );
+    }
+}

@@ -5,6 +5,7 @@ mod bpt;
 pub mod exr;
 mod patch_ron;
 pub mod png;
+pub mod ron_location;
 
 use std::path::Path;
 

@@ -4,6 +4,7 @@
 use glam::DVec3;
 use serde::Deserialize;
 
+use super::ron_location::{explain, position_of, start_of_value_closed_at};
 use super::FormatError;
 use crate::geom::{shapes, GeomError, NamedPatch, NurbsSurface, PatchLibrary};
 
@@ -146,7 +147,7 @@ pub fn parse_patch_ron(text: &str, path: &str) -> Result<PatchLibrary, FormatErr
             path: path.into(),
             line: at.0,
             col: at.1,
-            message: e.code.to_string(),
+            message: explain(&e.code),
         }
     })?;
     let mut patches: Vec<NamedPatch> = Vec::with_capacity(file.patches.len());
@@ -169,42 +170,6 @@ pub fn parse_patch_ron(text: &str, path: &str) -> Result<PatchLibrary, FormatErr
         });
     }
     Ok(PatchLibrary { patches })
-}
-
-/// Where the value that ends with the `)` at 1-based `(line, col)` starts: the identifier before
-/// its matching `(` (as in `Nurbs(...)`), or the parenthesis itself. `None` when no `)` is there.
-fn start_of_value_closed_at(text: &str, (line, col): (usize, usize)) -> Option<(usize, usize)> {
-    let line_start = text
-        .split_inclusive('\n')
-        .take(line - 1)
-        .map(str::len)
-        .sum::<usize>();
-    let close = line_start + text[line_start..].char_indices().nth(col - 1)?.0;
-    if text.as_bytes().get(close) != Some(&b')') {
-        return None;
-    }
-    let mut depth = 0usize;
-    let open = text[..=close].rfind(|c| {
-        match c {
-            ')' => depth += 1,
-            '(' => depth -= 1,
-            _ => {}
-        }
-        depth == 0
-    })?;
-    let head = text[..open].trim_end_matches(|c: char| c.is_alphanumeric() || c == '_');
-    Some(position_of(text, head.len()))
-}
-
-/// The 1-based line and column of byte `offset` in `text`.
-fn position_of(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset];
-    let line = before.matches('\n').count() + 1;
-    let col = before[before.rfind('\n').map_or(0, |i| i + 1)..]
-        .chars()
-        .count()
-        + 1;
-    (line, col)
 }
 
 /// The 1-based line and column of the second occurrence of `needle` (or of the first, or 1:1).

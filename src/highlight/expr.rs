@@ -19,6 +19,7 @@ use super::stack::{LocalChunk, CHUNK};
 ///
 /// RON: `Subtract(Layer((stack: [], epsilon: 0.05, …)), Layer((stack: [Translate(…)], …)))`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(bound(deserialize = "P: Deserialize<'de> + From<f32>"))]
 pub enum Expr<P = f32> {
     /// A single layer.
     Layer(Layer<P>),

@@ -20,7 +20,10 @@ use super::stack::{LocalChunk, PreparedStack, CHUNK};
 ///  mask: Some((u: (0.0, 0.5), v: (0.0, 1.0), feather: 0.05)))
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    bound(deserialize = "P: Deserialize<'de> + From<f32>")
+)]
 pub struct Layer<P = f32> {
     /// The operations, applied in order to the initial H.
     pub stack: Vec<Op<P>>,
@@ -28,14 +31,23 @@ pub struct Layer<P = f32> {
     pub epsilon: P,
     /// Linear RGB.
     pub colour: [P; 3],
-    /// Opacity ∈ [0, 1], scaling the final coverage.
+    /// Opacity ∈ [0, 1], scaling the final coverage (default 1).
+    #[serde(default = "opaque")]
     pub opacity: P,
     /// Feather width ≥ 0 in units of the signed value `s = ε − ‖N − H'‖²/2` (the units of ε): the
-    /// edge becomes a smoothstep over `[−w/2, w/2]` around the hard edge. None: a hard edge.
+    /// edge becomes a smoothstep over `[−w/2, w/2]` around the hard edge. None (the default): a
+    /// hard edge.
+    #[serde(default)]
     pub feather: Option<P>,
     /// Keeps the highlight only inside a rectangle of the patch's (u, v) parameters, the paper's
-    /// clean-up of "an unnecessary part of a highlight". None: no mask.
+    /// clean-up of "an unnecessary part of a highlight". None (the default): no mask.
+    #[serde(default)]
     pub mask: Option<Mask<P>>,
+}
+
+/// The default opacity of a layer as written in a file: 1.
+fn opaque<P: From<f32>>() -> P {
+    P::from(1.0)
 }
 
 /// A rectangle `[u.0, u.1] × [v.0, v.1]` in patch parameters with an inward feather.

@@ -13,7 +13,8 @@ use crate::formats::png::{write_png, PngLayout};
 /// Writes the colour to `path` (PNG) and each AOV the frame holds beside it, named after it:
 /// `shot.0001.png` gives `shot.0001.matte.png`, `.patch_id.png` (16-bit indices),
 /// `.patches.png` (flat colours, the paper's Figure 9 view), `.depth.png` (16-bit),
-/// `.normal.png`, `.uv.png` and `.n_dot_h.png` (heat map). Returns the paths written.
+/// `.normal.png`, `.uv.png` and `.n_dot_h.png` (heat map). The colour is written last, so once
+/// it exists the whole frame does. Returns the paths written.
 pub fn write_pngs(frame: &RenderedFrame, path: &Path) -> Result<Vec<PathBuf>, WriteError> {
     let (w, h) = (frame.width, frame.height);
     let beside = |name: &str| -> PathBuf {
@@ -23,11 +24,7 @@ pub fn write_pngs(frame: &RenderedFrame, path: &Path) -> Result<Vec<PathBuf>, Wr
         path.with_file_name(format!("{stem}.{name}.png"))
     };
     let a = &frame.aovs;
-    let mut images: Vec<(PathBuf, PngLayout, Vec<u8>)> = vec![(
-        path.to_path_buf(),
-        PngLayout::Rgba8,
-        colour_rgba8(&frame.colour),
-    )];
+    let mut images: Vec<(PathBuf, PngLayout, Vec<u8>)> = Vec::new();
     if let Some(matte) = &a.matte {
         images.push((beside("matte"), PngLayout::Gray8, grey8(matte)));
     }
@@ -56,6 +53,11 @@ pub fn write_pngs(frame: &RenderedFrame, path: &Path) -> Result<Vec<PathBuf>, Wr
             heat_rgba8(nh, &alpha, HEAT_RANGE),
         ));
     }
+    images.push((
+        path.to_path_buf(),
+        PngLayout::Rgba8,
+        colour_rgba8(&frame.colour),
+    ));
     let mut written = Vec::with_capacity(images.len());
     for (file, layout, pixels) in images {
         write_png(&file, w, h, layout, &pixels)?;

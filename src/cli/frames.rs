@@ -1,0 +1,93 @@
+//! Frame lists as render farms pass them: `12`, `1-48`, `1-48x2` (every second frame),
+//! `1,5,9-12`, and negative frames such as `-5--1`.
+
+/// The frames of `spec` in the order written, without repeats.
+pub fn parse_frames(spec: &str) -> Result<Vec<i64>, String> {
+    let mut frames = Vec::new();
+    for part in spec.split(',').map(str::trim) {
+        for frame in parse_part(part)? {
+            if !frames.contains(&frame) {
+                frames.push(frame);
+            }
+        }
+    }
+    Ok(frames)
+}
+
+/// The most frames one spec may list.
+const MAX_FRAMES: i64 = 1_000_000;
+
+fn parse_part(part: &str) -> Result<Vec<i64>, String> {
+    let bad = || {
+        format!(
+            "cannot read the frame list part '{part}'; write frames as 12, 1-48, 1-48x2 or 1,5,9-12"
+        )
+    };
+    let number = |s: &str| s.trim().parse::<i64>().map_err(|_| bad());
+    let (range, step) = match part.split_once('x') {
+        Some((range, step)) => (range, number(step)?),
+        None => (part, 1),
+    };
+    if step < 1 {
+        return Err(format!(
+            "the step in '{part}' must be at least 1, as in 1-48x2"
+        ));
+    }
+    // The dash between two numbers is the first one after a digit.
+    let dash = range
+        .char_indices()
+        .skip(1)
+        .find(|&(i, c)| c == '-' && range[..i].ends_with(|d: char| d.is_ascii_digit()))
+        .map(|(i, _)| i);
+    let (first, last) = match dash {
+        Some(i) => (number(&range[..i])?, number(&range[i + 1..])?),
+        None if step == 1 => {
+            let frame = number(range)?;
+            (frame, frame)
+        }
+        None => return Err(bad()),
+    };
+    if first > last {
+        return Err(format!(
+            "the range '{part}' runs backwards; write the first frame first"
+        ));
+    }
+    if (last - first) / step >= MAX_FRAMES {
+        return Err(format!("'{part}' lists more than {MAX_FRAMES} frames"));
+    }
+    Ok((first..=last).step_by(step as usize).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn farm_frame_lists_expand_in_order() {
+        assert_eq!(parse_frames("12").unwrap(), vec![12]);
+        assert_eq!(parse_frames("1-4").unwrap(), vec![1, 2, 3, 4]);
+        assert_eq!(parse_frames("1-9x3").unwrap(), vec![1, 4, 7]);
+        assert_eq!(parse_frames("1,5,9-12").unwrap(), vec![1, 5, 9, 10, 11, 12]);
+        assert_eq!(parse_frames("3, 1-3").unwrap(), vec![3, 1, 2]);
+        assert_eq!(parse_frames("-3--1").unwrap(), vec![-3, -2, -1]);
+        assert_eq!(parse_frames("-2-1").unwrap(), vec![-2, -1, 0, 1]);
+    }
+
+    #[test]
+    fn malformed_lists_explain_the_syntax() {
+        for bad in [
+            "",
+            "a",
+            "1-",
+            "5-1",
+            "1-4x0",
+            "1-4x",
+            "1..4",
+            "4x2",
+            "0-9999999999",
+        ] {
+            let e = parse_frames(bad).unwrap_err();
+            assert!(e.contains(bad) || bad.is_empty(), "{bad}: {e}");
+        }
+    }
+}

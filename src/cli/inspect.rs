@@ -1,0 +1,153 @@
+//! `glint inspect`: every track of a shot read at one frame, as the animator wrote it.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use anyhow::anyhow;
+use clap::Args;
+use ron::ser::PrettyConfig;
+use serde::Serialize;
+
+use super::CliError;
+use crate::highlight::Light;
+use crate::render::Projection;
+use crate::scene::{load_shot, Shot};
+
+/// Print the value of every track of a shot at one frame: camera, light, materials and each
+/// parameter of each highlight layer, in the shot file's own syntax.
+///
+/// Fractional frames show what the interpolation gives between keys.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:
+  glint inspect shots/sphere_ops.ron --frame 12
+  glint inspect shots/teapot_turntable.ron --frame 30.5 --patch 'teapot/2*'")]
+pub struct InspectArgs {
+    /// The shot file (RON)
+    shot: PathBuf,
+    /// The frame (fractional frames allowed)
+    #[arg(long, allow_negative_numbers = true)]
+    frame: f64,
+    /// Show only the patches this name or glob pattern picks (INSTANCE/PATCH)
+    #[arg(long, value_name = "NAME")]
+    patch: Option<String>,
+}
+
+pub fn run(args: &InspectArgs) -> Result<(), CliError> {
+    let shot = load_shot(&args.shot).map_err(|e| CliError::BadInput(e.into()))?;
+    if !args.frame.is_finite() {
+        return Err(CliError::BadInput(anyhow!(
+            "the frame must be a finite number"
+        )));
+    }
+    let report = inspect(&shot, args.frame, args.patch.as_deref()).map_err(CliError::BadInput)?;
+    print!("{report}");
+    Ok(())
+}
+
+/// The report `glint inspect` prints.
+fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<String> {
+    let state = shot.at(frame);
+    let patches: Vec<usize> = (0..shot.library.patches.len())
+        .filter(|&i| {
+            patch.is_none_or(|p| crate::scene::matches_patch(p, &shot.library.patches[i].name))
+        })
+        .collect();
+    if patches.is_empty() {
+        return Err(anyhow!(
+            "--patch {} picks no patch of {}; patches are named INSTANCE/PATCH, e.g. \"{}\"",
+            patch.unwrap_or_default(),
+            shot.path.display(),
+            shot.library.patches[0].name
+        ));
+    }
+    let mut out = String::new();
+    let (first, last) = shot.frames;
+    let _ = writeln!(
+        out,
+        "{} at frame {frame} (range {first}-{last})",
+        shot.path.display()
+    );
+    let c = &state.camera;
+    let _ = writeln!(out, "camera:");
+    let _ = writeln!(out, "  eye: {}", triple(c.eye));
+    let _ = writeln!(out, "  target: {}", triple(c.target));
+    let _ = writeln!(out, "  up: {}", triple(c.up));
+    let _ = match c.projection {
+        Projection::Perspective { fov_y_degrees } => {
+            writeln!(
+                out,
+                "  projection: Perspective(fov_y_degrees: {fov_y_degrees})"
+            )
+        }
+        Projection::Orthographic { height } => {
+            writeln!(out, "  projection: Orthographic(height: {height})")
+        }
+    };
+    let _ = match state.light {
+        Light::Directional { towards } => {
+            writeln!(out, "light: Directional(towards: {})", triple(towards))
+        }
+        Light::Point { position } => writeln!(out, "light: Point(position: {})", triple(position)),
+    };
+    let names: Vec<&str> = shot.material_names().collect();
+    for (index, ramp) in state.materials.iter().enumerate() {
+        if !patches.iter().any(|&p| shot.material_of(p) == index) {
+            continue;
+        }
+        let bands: Vec<String> = ramp
+            .bands
+            .iter()
+            .map(|(t, c)| format!("({t}, {})", triple(*c)))
+            .collect();
+        let _ = writeln!(
+            out,
+            "material \"{}\": base {}, bands [{}]",
+            names[index],
+            triple(ramp.base),
+            bands.join(", ")
+        );
+    }
+    for (index, (expr, selector)) in state
+        .highlights
+        .iter()
+        .zip(shot.highlight_selectors())
+        .enumerate()
+    {
+        let on: Vec<&str> = patches
+            .iter()
+            .filter(|&&p| shot.highlight_of(p) == Some(index))
+            .map(|&p| shot.library.patches[p].name.as_str())
+            .collect();
+        if on.is_empty() {
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "highlight {} ({}) on {}:",
+            index + 1,
+            selector.join(", "),
+            on.join(", ")
+        );
+        let _ = writeln!(out, "  {}", pretty(expr)?.replace('\n', "\n  "));
+    }
+    let bare: Vec<&str> = patches
+        .iter()
+        .filter(|&&p| shot.highlight_of(p).is_none())
+        .map(|&p| shot.library.patches[p].name.as_str())
+        .collect();
+    if !bare.is_empty() {
+        let _ = writeln!(out, "no highlight on {}", bare.join(", "));
+    }
+    Ok(out)
+}
+
+fn triple(v: glam::Vec3) -> String {
+    format!("({}, {}, {})", v.x, v.y, v.z)
+}
+
+fn pretty(value: &impl Serialize) -> anyhow::Result<String> {
+    let config = PrettyConfig::new()
+        .indentor("  ".to_string())
+        .struct_names(false);
+    Ok(ron::ser::to_string_pretty(value, config)?)
+}

@@ -1,0 +1,311 @@
+//! `glint render`: the frames of a shot, written atomically, for a person at a terminal or a
+//! render farm task.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::anyhow;
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::frames::parse_frames;
+use super::CliError;
+use crate::formats::atomic::remove_stale_temporaries;
+use crate::render::output::{write_frame_exr, write_pngs};
+use crate::render::{RenderStats, Renderer, StageStats};
+use crate::scene::{load_shot, Aov, Preset, Shot};
+
+/// Render the frames of a shot to PNG files.
+///
+/// Every frame is written atomically (to a hidden temporary file, then renamed), so a frame file
+/// that exists is complete. Output is deterministic: the same frame gives the same bytes on any
+/// machine and with any number of threads, so a farm task can be retried anywhere. Exit code 0
+/// when every requested frame was written (or, with --skip-existing, already there), 2 for bad
+/// input (the shot, the options, an output folder that cannot be written), 1 when rendering or
+/// writing failed.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:
+  glint render shots/teapot_turntable.ron
+  glint render shots/sphere_ops.ron --frames 1-24 --preset preview --size 320x320
+  glint render shots/crescent.ron --frames 1-48x2 --aov matte,patch_id --stats
+  glint render shots/teapot_turntable.ron --frames 101-200 --skip-existing --quiet   # a farm task
+
+Frame lists: 12 | 1-48 | 1-48x2 (every second frame) | 1,5,9-12.")]
+pub struct RenderArgs {
+    /// The shot file (RON)
+    shot: PathBuf,
+    /// Frames to render [default: the shot's whole range]
+    #[arg(long, value_name = "SPEC", value_parser = frame_list)]
+    frames: Option<FrameList>,
+    /// Output path pattern; a run of # becomes the zero-padded frame number. Relative to the
+    /// shot file's folder unless absolute [default: the shot's `output`]
+    #[arg(long, value_name = "PATTERN")]
+    out: Option<PathBuf>,
+    /// Image size instead of the shot's resolution
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Accuracy preset instead of the shot's; the shot's explicit settings still refine it
+    #[arg(long, value_enum)]
+    preset: Option<PresetArg>,
+    /// Worker threads [default: one per core]
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+    /// Leave frames whose file already exists (resume an interrupted render)
+    #[arg(long)]
+    skip_existing: bool,
+    /// Print per-stage statistics (pixels and time) for every frame
+    #[arg(long)]
+    stats: bool,
+    /// Extra images instead of the shot's list, comma-separated: matte, patch_id, depth,
+    /// normal, uv, n_dot_h (or none). Written as PNGs beside the frame and as layers of one EXR
+    #[arg(long, value_name = "LIST", value_parser = parse_aovs)]
+    aov: Option<AovList>,
+    /// Print nothing but errors
+    #[arg(long)]
+    quiet: bool,
+}
+
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum PresetArg {
+    /// Fast feedback: coarse tessellation, interpolated frames, no anti-aliasing
+    Preview,
+    /// Finished frames: fine tessellation, exact frames, supersampling
+    Final,
+}
+
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    text.split_once(['x', 'X'])
+        .and_then(|(w, h)| Some((w.trim().parse().ok()?, h.trim().parse().ok()?)))
+        .filter(|&(w, h): &(u32, u32)| w > 0 && h > 0)
+        .ok_or_else(|| format!("expected a size WxH such as 1280x720, got '{text}'"))
+}
+
+/// Frames as `--frames` lists them.
+#[derive(Clone, Debug)]
+struct FrameList(Vec<i64>);
+
+fn frame_list(text: &str) -> Result<FrameList, String> {
+    parse_frames(text).map(FrameList)
+}
+
+/// AOVs as `--aov` lists them.
+#[derive(Clone, Debug)]
+struct AovList(Vec<Aov>);
+
+fn parse_aovs(text: &str) -> Result<AovList, String> {
+    if text.trim() == "none" {
+        return Ok(AovList(Vec::new()));
+    }
+    text.split(',')
+        .map(|name| name.trim().parse())
+        .collect::<Result<_, _>>()
+        .map(AovList)
+}
+
+pub fn run(args: &RenderArgs) -> Result<(), CliError> {
+    let bad = |e: anyhow::Error| CliError::BadInput(e);
+    let mut shot = load_shot(&args.shot).map_err(|e| bad(e.into()))?;
+    let preset = args.preset.map(|p| match p {
+        PresetArg::Preview => Preset::Preview,
+        PresetArg::Final => Preset::Final,
+    });
+    let mut settings = shot.settings_with(preset, args.size);
+    if let Some(threads) = args.threads {
+        settings.threads = threads;
+    }
+    settings
+        .validate()
+        .map_err(|e| bad(anyhow!("{}: {e}", args.shot.display())))?;
+    if let Some(aovs) = &args.aov {
+        shot.aovs.clone_from(&aovs.0);
+    }
+    if let Some(out) = &args.out {
+        shot.output = args.shot.parent().unwrap_or(Path::new("")).join(out);
+    }
+    let frames = match &args.frames {
+        Some(frames) => frames.0.clone(),
+        None => (shot.frames.0..=shot.frames.1).collect(),
+    };
+    let (first, last) = shot.frames;
+    if let Some(outside) = frames.iter().find(|f| !(first..=last).contains(*f)) {
+        return Err(bad(anyhow!(
+            "frame {outside} is outside the shot's frame range {first}-{last} ({})",
+            args.shot.display()
+        )));
+    }
+    if frames.len() > 1 && shot.frame_path(frames[0]) == shot.frame_path(frames[1]) {
+        return Err(bad(anyhow!(
+            "the output pattern {} has no # for the frame number, so every frame would overwrite the same file",
+            shot.output.display()
+        )));
+    }
+    for frame in &frames {
+        check_writable(&shot.frame_path(*frame)).map_err(bad)?;
+    }
+
+    let log = Log::new(args.quiet, frames.len());
+    let mut renderer = Renderer::new(&shot.library);
+    let (mut written, mut skipped) = (0usize, 0usize);
+    let started = Instant::now();
+    for &frame in &frames {
+        let path = shot.frame_path(frame);
+        if args.skip_existing && path.exists() {
+            skipped += 1;
+            log.frame(format!("frame {frame}: {} exists, skipped", path.display()));
+            continue;
+        }
+        let frame_started = Instant::now();
+        let scene = shot
+            .at(frame as f64)
+            .scene(&shot)
+            .map_err(|e| CliError::Failed(e.into()))?;
+        let image = renderer
+            .render(&scene, &settings)
+            .map_err(|e| CliError::Failed(anyhow!("frame {frame}: {e}")))?;
+        write_frame(&shot, &image, &path).map_err(CliError::Failed)?;
+        written += 1;
+        let seconds = frame_started.elapsed().as_secs_f64();
+        log.frame(format!(
+            "frame {frame}: {} ({:.0} ms)",
+            path.display(),
+            seconds * 1e3
+        ));
+        if args.stats {
+            log.always(stats_report(frame, &image.stats));
+        }
+    }
+    log.finish(format!(
+        "{written} frames written, {skipped} skipped, in {:.1} s",
+        started.elapsed().as_secs_f64()
+    ));
+    Ok(())
+}
+
+/// Writes the frame: stale temporaries of earlier, killed runs removed; the EXR (when there
+/// are AOVs) and the AOV PNGs first, the colour PNG last.
+fn write_frame(
+    shot: &Shot,
+    image: &crate::render::RenderedFrame,
+    path: &Path,
+) -> anyhow::Result<()> {
+    let exr = path.with_extension("exr");
+    for target in [path, exr.as_path()] {
+        remove_stale_temporaries(target).map_err(|e| {
+            anyhow!(
+                "cannot clear old temporary files beside {}: {e}",
+                target.display()
+            )
+        })?;
+    }
+    if !shot.aovs.is_empty() {
+        write_frame_exr(image, &exr)?;
+    }
+    write_pngs(image, path)?;
+    Ok(())
+}
+
+/// Makes the folder of `path` and checks that a file can be created in it.
+fn check_writable(path: &Path) -> anyhow::Result<()> {
+    let folder = match path.parent() {
+        Some(f) if !f.as_os_str().is_empty() => f.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&folder)
+        .map_err(|e| anyhow!("cannot create the output folder {}: {e}", folder.display()))?;
+    let probe = folder.join(format!(".glint-write-check.{}.tmp", std::process::id()));
+    std::fs::write(&probe, b"").map_err(|e| {
+        anyhow!(
+            "cannot write in the output folder {}: {e}",
+            folder.display()
+        )
+    })?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+/// One stage line per stage that ran, for `--stats`.
+fn stats_report(frame: i64, s: &RenderStats) -> String {
+    let stage = |name: &str, st: &StageStats| {
+        format!(
+            "\n  {name:<12} {:>10} px {:>8.2} ms",
+            st.pixels,
+            st.seconds * 1e3
+        )
+    };
+    let mut out = format!(
+        "frame {frame} stats: {:.2} ms total, {} triangles (tessellation {})",
+        s.total_seconds * 1e3,
+        s.triangles,
+        if s.tessellation_rebuilt {
+            "rebuilt"
+        } else {
+            "cached"
+        }
+    );
+    for (name, st) in [
+        ("tessellation", &s.tessellation),
+        ("raster", &s.raster),
+        ("gbuffer", &s.gbuffer),
+        ("shade", &s.shade),
+        ("outline", &s.outline),
+        ("aov", &s.aov),
+        ("resolve", &s.resolve),
+    ] {
+        out.push_str(&stage(name, st));
+    }
+    out.push_str(&format!(
+        "\n  exact frames {}, highlighted samples {}",
+        s.exact_frames, s.highlight_pixels
+    ));
+    out
+}
+
+/// Progress: a bar on a terminal, one line per frame otherwise (farm logs), nothing when quiet.
+struct Log {
+    bar: Option<ProgressBar>,
+    quiet: bool,
+}
+
+impl Log {
+    fn new(quiet: bool, frames: usize) -> Self {
+        let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
+            let bar = ProgressBar::new(frames as u64);
+            bar.set_style(
+                ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {eta} left  {msg}")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            );
+            bar
+        });
+        Self { bar, quiet }
+    }
+
+    /// A finished (or skipped) frame.
+    fn frame(&self, line: String) {
+        match &self.bar {
+            Some(bar) => {
+                bar.set_message(line);
+                bar.inc(1);
+            }
+            None if !self.quiet => println!("{line}"),
+            None => {}
+        }
+    }
+
+    /// A report asked for explicitly, printed even when quiet.
+    fn always(&self, text: String) {
+        match &self.bar {
+            Some(bar) => bar.println(text),
+            None => println!("{text}"),
+        }
+    }
+
+    fn finish(self, line: String) {
+        if let Some(bar) = self.bar {
+            bar.finish_and_clear();
+        }
+        if !self.quiet {
+            println!("{line}");
+        }
+    }
+}

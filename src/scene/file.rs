@@ -1,0 +1,285 @@
+//! The shot file as written: serde types, every numeric parameter of what is animated a
+//! [`Track`]. `docs/shot-format.md` describes each field with an annotated example.
+
+use std::collections::BTreeMap;
+
+use glam::Vec3;
+use serde::Deserialize;
+
+use crate::anim::{Direction, Track};
+use crate::highlight::Expr;
+use crate::render::tessellate::Density;
+use crate::render::{Antialias, FrameMode};
+
+/// A shot: `Shot(resolution: …, frames: …, …)`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, rename = "Shot")]
+pub struct ShotFile {
+    /// Image size in pixels, `(width, height)`.
+    pub resolution: (u32, u32),
+    /// The first and last frame, inclusive.
+    pub frames: (i64, i64),
+    /// Frames per second (for players; tracks are keyed in frames).
+    pub fps: f64,
+    /// Where frames go: a path with a run of `#` replaced by the zero-padded frame number,
+    /// relative to the shot file unless absolute.
+    pub output: String,
+    /// Look libraries whose materials and highlights this shot uses, relative to this file.
+    #[serde(default)]
+    pub includes: Vec<String>,
+    /// Patch files placed in the scene.
+    pub instances: Vec<InstanceSpec>,
+    /// Named cel materials.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialSpec>,
+    pub camera: CameraSpec,
+    pub light: LightSpec,
+    /// Designed highlights, each on the patches its selector picks; a later entry replaces an
+    /// earlier one on the patches both pick.
+    #[serde(default)]
+    pub highlights: Vec<HighlightSpec>,
+    #[serde(default)]
+    pub render: RenderSpec,
+}
+
+/// A look library: materials and highlights shared between shots.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, rename = "Looks")]
+pub struct LooksFile {
+    #[serde(default)]
+    pub includes: Vec<String>,
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialSpec>,
+    #[serde(default)]
+    pub highlights: Vec<HighlightSpec>,
+}
+
+/// One placement of a patch file: its patches are named `NAME/PATCH`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InstanceSpec {
+    pub name: String,
+    /// A patch library (`.ron`) or Bezier patches (`.bpt`), relative to the file that names it.
+    pub file: String,
+    /// The material of every patch of the instance.
+    pub material: String,
+    #[serde(default)]
+    pub transform: TransformSpec,
+}
+
+/// `p ↦ translate + R(axis, degrees) (scale · p)`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TransformSpec {
+    #[serde(default)]
+    pub translate: (f64, f64, f64),
+    #[serde(default = "z_axis")]
+    pub axis: (f64, f64, f64),
+    #[serde(default)]
+    pub degrees: f64,
+    #[serde(default = "one")]
+    pub scale: f64,
+}
+
+impl Default for TransformSpec {
+    fn default() -> Self {
+        Self {
+            translate: (0.0, 0.0, 0.0),
+            axis: z_axis(),
+            degrees: 0.0,
+            scale: 1.0,
+        }
+    }
+}
+
+fn z_axis() -> (f64, f64, f64) {
+    (0.0, 0.0, 1.0)
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// A cel ramp over `n·l` with animated colours and thresholds.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Linear RGB below every threshold.
+    pub base: Track<Vec3>,
+    /// `(threshold, linear RGB)` in increasing threshold order.
+    #[serde(default)]
+    pub bands: Vec<(Track<f32>, Track<Vec3>)>,
+}
+
+/// A camera whose placement and lens are tracks.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSpec {
+    pub eye: Track<Vec3>,
+    pub target: Track<Vec3>,
+    #[serde(default = "z_up")]
+    pub up: Track<Vec3>,
+    pub projection: ProjectionSpec,
+    #[serde(default = "near")]
+    pub near: f32,
+    #[serde(default = "far")]
+    pub far: f32,
+}
+
+fn z_up() -> Track<Vec3> {
+    Track::Constant(Vec3::Z)
+}
+
+fn near() -> f32 {
+    0.1
+}
+
+fn far() -> f32 {
+    1000.0
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum ProjectionSpec {
+    Perspective { fov_y_degrees: Track<f32> },
+    Orthographic { height: Track<f32> },
+}
+
+/// The light for tone and highlights.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum LightSpec {
+    /// Light arriving from the direction `towards` points to (keys turn along great circles).
+    Directional { towards: Track<Direction> },
+    /// A point light.
+    Point { position: Track<Vec3> },
+}
+
+/// A highlight expression on the patches a selector picks.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HighlightSpec {
+    pub patches: Selector,
+    pub expr: Expr<Track<f32>>,
+}
+
+/// Patch names (`INSTANCE/PATCH`) as one glob pattern or a list of them: `*` any run of
+/// characters, `?` one character, `[a-c]` one of a set.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum Selector {
+    One(String),
+    Any(Vec<String>),
+}
+
+impl Selector {
+    pub fn patterns(&self) -> &[String] {
+        match self {
+            Selector::One(p) => std::slice::from_ref(p),
+            Selector::Any(ps) => ps,
+        }
+    }
+}
+
+/// How frames are rendered.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderSpec {
+    /// The accuracy preset the other fields refine (default `Final`).
+    #[serde(default)]
+    pub preset: Preset,
+    #[serde(default)]
+    pub tessellation: Option<Density>,
+    #[serde(default)]
+    pub frames: Option<FrameMode>,
+    #[serde(default)]
+    pub antialias: Option<Antialias>,
+    #[serde(default)]
+    pub outlines: Option<OutlinesSpec>,
+    /// Extra images written beside each frame.
+    #[serde(default)]
+    pub aovs: Vec<Aov>,
+}
+
+/// The accuracy presets of DESIGN §7.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+pub enum Preset {
+    /// Fast feedback: coarse tessellation, interpolated frames, no anti-aliasing.
+    Preview,
+    /// Finished frames: fine tessellation, exact frames, supersampling.
+    #[default]
+    Final,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutlinesSpec {
+    #[serde(default = "outline_width")]
+    pub width: f32,
+    #[serde(default)]
+    pub colour: (f32, f32, f32),
+    #[serde(default = "crease_degrees")]
+    pub crease_degrees: f32,
+    #[serde(default)]
+    pub patch_borders: bool,
+}
+
+fn outline_width() -> f32 {
+    2.0
+}
+
+fn crease_degrees() -> f32 {
+    60.0
+}
+
+/// An extra image (arbitrary output variable).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+pub enum Aov {
+    /// Final highlight coverage.
+    Matte,
+    /// Patch index (16-bit) and patches as flat colours.
+    PatchId,
+    /// NDC depth (16-bit).
+    Depth,
+    /// Shading normal.
+    Normal,
+    /// Patch parameters.
+    Uv,
+    /// `N·H` heat map of the undesigned Blinn highlight.
+    NDotH,
+}
+
+impl Aov {
+    /// Every AOV, in the order the command line and the docs list them.
+    pub const ALL: [Aov; 6] = [
+        Aov::Matte,
+        Aov::PatchId,
+        Aov::Depth,
+        Aov::Normal,
+        Aov::Uv,
+        Aov::NDotH,
+    ];
+
+    /// The name on the command line: `matte`, `patch_id`, `depth`, `normal`, `uv`, `n_dot_h`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Aov::Matte => "matte",
+            Aov::PatchId => "patch_id",
+            Aov::Depth => "depth",
+            Aov::Normal => "normal",
+            Aov::Uv => "uv",
+            Aov::NDotH => "n_dot_h",
+        }
+    }
+}
+
+impl std::str::FromStr for Aov {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        Aov::ALL.into_iter().find(|a| a.name() == s).ok_or_else(|| {
+            let names: Vec<&str> = Aov::ALL.iter().map(|a| a.name()).collect();
+            format!("unknown AOV `{s}`; choose from {}", names.join(", "))
+        })
+    }
+}
