@@ -94,8 +94,12 @@ impl Source {
             .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
         options.from_str(&self.text).map_err(|e| {
             let mut at = (e.span.start.line, e.span.start.col);
-            if matches!(e.code, ron::Error::Message(_)) {
-                // A value that failed its own checks is reported at its closing bracket.
+            if matches!(
+                e.code,
+                ron::Error::Message(_) | ron::Error::MissingStructField { .. }
+            ) {
+                // A value that failed its own checks, or lacks a field, is reported at its
+                // closing bracket.
                 at = start_of_value_closed_at(&self.text, at).unwrap_or(at);
             }
             ShotError::At {

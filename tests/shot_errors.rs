@@ -1,0 +1,346 @@
+//! Bad shot files: each mistake is one error line naming the file, the line and column where the
+//! mistake is written and a sentence a person can act on; exit code 2; nothing written.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const TEMPLATE: &str = r#"Shot(
+    resolution: (64, 48),
+    frames: (1, 10),
+    fps: 24,
+    output: "out/t.####.png",
+    instances: [
+        (name: "ball", file: "sphere.ron", material: "blue"),
+    ],
+    materials: {
+        "blue": (base: (0.1, 0.1, 0.3), bands: [(0.0, (0.2, 0.3, 0.8))]),
+    },
+    camera: (
+        eye: (0.0, -6.0, 0.0),
+        target: (0.0, 0.0, 0.0),
+        projection: Perspective(fov_y_degrees: 30.0),
+    ),
+    light: Directional(towards: (0.3, -1.0, 0.4)),
+    highlights: [
+        (
+            patches: "ball/*",
+            expr: Layer((
+                stack: [Translate(alpha: [(1, 0.0), (10, 0.3)], beta: 0.0), Scale(delta: 0.5)],
+                epsilon: 0.05,
+                colour: (1.0, 1.0, 1.0),
+            )),
+        ),
+    ],
+    render: (preset: Preview),
+)
+"#;
+
+/// One mistake: the template with `from` replaced by `to`; the error must be at the first
+/// occurrence of `at` in the file named `file` and contain every one of `says`.
+struct Case {
+    name: &'static str,
+    from: &'static str,
+    to: &'static str,
+    file: &'static str,
+    at: &'static str,
+    says: &'static [&'static str],
+}
+
+const CASES: &[Case] = &[
+    Case {
+        name: "missing comma",
+        from: "fps: 24,",
+        to: "fps: 24",
+        file: "shot.ron",
+        at: "output:",
+        says: &["comma"],
+    },
+    Case {
+        name: "misspelt field",
+        from: "epsilon: 0.05",
+        to: "epsilom: 0.05",
+        file: "shot.ron",
+        at: "epsilom",
+        says: &["unknown field `epsilom`", "did you mean `epsilon`?"],
+    },
+    Case {
+        name: "misspelt top-level field",
+        from: "resolution: (64, 48)",
+        to: "resolutoin: (64, 48)",
+        file: "shot.ron",
+        at: "resolutoin",
+        says: &["did you mean `resolution`?"],
+    },
+    Case {
+        name: "misspelt operation",
+        from: "Scale(delta: 0.5)",
+        to: "Scael(delta: 0.5)",
+        file: "shot.ron",
+        at: "Scael",
+        says: &["unknown variant `Scael`", "did you mean `Scale`?"],
+    },
+    Case {
+        name: "missing field",
+        from: "    fps: 24,\n",
+        to: "",
+        file: "shot.ron",
+        at: "Shot(",
+        says: &["missing field `fps`"],
+    },
+    Case {
+        name: "keys out of order",
+        from: "alpha: [(1, 0.0), (10, 0.3)]",
+        to: "alpha: [(10, 0.0), (5, 0.3)]",
+        file: "shot.ron",
+        at: "[(10, 0.0)",
+        says: &["frame 5 follows frame 10"],
+    },
+    Case {
+        name: "constant mixed with keys",
+        from: "alpha: [(1, 0.0), (10, 0.3)]",
+        to: "alpha: [(1, 0.0), 0.3]",
+        file: "shot.ron",
+        at: "[(1, 0.0), 0.3]",
+        says: &["not a mix"],
+    },
+    Case {
+        name: "epsilon out of range",
+        from: "epsilon: 0.05",
+        to: "epsilon: 2.5",
+        file: "shot.ron",
+        at: "\"ball/*\"",
+        says: &["layer 1", "epsilon (ε) is 2.5", "(0, 2]"],
+    },
+    Case {
+        name: "keyed value out of range at one key",
+        from: "Scale(delta: 0.5)",
+        to: "Scale(delta: [(1, 0.5), (8, 1.5)])",
+        file: "shot.ron",
+        at: "\"ball/*\"",
+        // δ = 0.5 + (f − 1)/7 first exceeds 1 at frame 5.
+        says: &["at frame 5", "op 2 (Scale)", "scale delta (δ) is 1.07", "[0, 1]"],
+    },
+    Case {
+        name: "selector matches no patch",
+        from: "patches: \"ball/*\"",
+        to: "patches: \"bal/*\"",
+        file: "shot.ron",
+        at: "\"bal/*\"",
+        says: &["\"bal/*\" matches no patch", "did you mean \"ball/sphere\"?"],
+    },
+    Case {
+        name: "missing patch file",
+        from: "file: \"sphere.ron\"",
+        to: "file: \"spere.ron\"",
+        file: "shot.ron",
+        at: "\"spere.ron\"",
+        says: &["cannot read the patch file", "spere.ron"],
+    },
+    Case {
+        name: "malformed patch file",
+        from: "file: \"sphere.ron\"",
+        to: "file: \"broken.ron\"",
+        file: "shot.ron",
+        at: "\"broken.ron\"",
+        says: &["in the patch file", "broken.ron:2:"],
+    },
+    Case {
+        name: "unknown material",
+        from: "material: \"blue\"",
+        to: "material: \"blu\"",
+        file: "shot.ron",
+        at: "\"blu\"",
+        says: &["unknown material \"blu\"", "did you mean \"blue\"?"],
+    },
+    Case {
+        name: "missing include",
+        from: "    instances: [",
+        to: "    includes: [\"looks/none.ron\"],\n    instances: [",
+        file: "shot.ron",
+        at: "\"looks/none.ron\"",
+        says: &["does not exist"],
+    },
+    Case {
+        name: "cyclic include",
+        from: "    instances: [",
+        to: "    includes: [\"a.ron\"],\n    instances: [",
+        file: "b.ron",
+        at: "\"a.ron\"",
+        says: &["cycle"],
+    },
+    Case {
+        name: "material defined twice",
+        from: "    instances: [",
+        to: "    includes: [\"looks.ron\"],\n    instances: [",
+        file: "shot.ron",
+        at: "\"blue\":",
+        says: &["\"blue\" is already defined in", "looks.ron"],
+    },
+    Case {
+        name: "output pattern without a frame number",
+        from: "out/t.####.png",
+        to: "out/t.png",
+        file: "shot.ron",
+        at: "\"out/t.png\"",
+        says: &["no `#`", "overwrite"],
+    },
+    Case {
+        name: "backwards frame range",
+        from: "frames: (1, 10)",
+        to: "frames: (10, 1)",
+        file: "shot.ron",
+        at: "frames:",
+        says: &["backwards"],
+    },
+    Case {
+        name: "camera looking at itself",
+        from: "target: (0.0, 0.0, 0.0)",
+        to: "target: (0.0, -6.0, 0.0)",
+        file: "shot.ron",
+        at: "camera:",
+        says: &["at frame 1", "eye and target are the same point"],
+    },
+    Case {
+        name: "field of view out of range",
+        from: "fov_y_degrees: 30.0",
+        to: "fov_y_degrees: [(1, 30.0), (10, 190.0)]",
+        file: "shot.ron",
+        at: "camera:",
+        says: &["at frame", "fov_y_degrees must be in (0, 180)"],
+    },
+    Case {
+        name: "light direction of no length",
+        from: "towards: (0.3, -1.0, 0.4)",
+        to: "towards: (0.0, 0.0, 0.0)",
+        file: "shot.ron",
+        at: "(0.0, 0.0, 0.0))",
+        says: &["has no length"],
+    },
+    Case {
+        name: "duplicate instance",
+        from: "        (name: \"ball\", file: \"sphere.ron\", material: \"blue\"),\n",
+        to: "        (name: \"ball\", file: \"sphere.ron\", material: \"blue\"),\n        (name: \"ball\", file: \"sphere.ron\", material: \"blue\"),\n",
+        file: "shot.ron",
+        at: "\"ball\"",
+        says: &["\"ball\" is used twice"],
+    },
+    Case {
+        name: "band thresholds out of order",
+        from: "bands: [(0.0, (0.2, 0.3, 0.8))]",
+        to: "bands: [(0.5, (0.2, 0.3, 0.8)), (0.2, (0.3, 0.4, 0.9))]",
+        file: "shot.ron",
+        at: "\"blue\": (",
+        says: &["material \"blue\"", "thresholds must increase"],
+    },
+    Case {
+        name: "zero resolution",
+        from: "resolution: (64, 48)",
+        to: "resolution: (0, 48)",
+        file: "shot.ron",
+        at: "resolution:",
+        says: &["image size 0×48"],
+    },
+];
+
+fn glint() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_glint"))
+}
+
+/// The 1-based line and column of the first `needle` in `text`.
+fn location(text: &str, needle: &str) -> (usize, usize) {
+    let offset = text
+        .find(needle)
+        .unwrap_or_else(|| panic!("`{needle}` not in the file"));
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let col = before[before.rfind('\n').map_or(0, |i| i + 1)..]
+        .chars()
+        .count()
+        + 1;
+    (line, col)
+}
+
+/// A folder with the sphere, a broken patch file, two includes that include each other and a
+/// look library that defines "blue" again.
+fn workspace() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = Path::new(env!("CARGO_MANIFEST_DIR")).join("patches/sphere.ron");
+    std::fs::copy(sphere, dir.path().join("sphere.ron")).unwrap();
+    std::fs::write(
+        dir.path().join("broken.ron"),
+        "(patches: [\n  (name: \"s\", surface: Sphere(radius: -1.0))])",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("a.ron"), "Looks(includes: [\"b.ron\"])").unwrap();
+    std::fs::write(
+        dir.path().join("b.ron"),
+        "Looks(\n  includes: [\"a.ron\"],\n)",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("looks.ron"),
+        "Looks(materials: {\"blue\": (base: (0, 0, 1))})",
+    )
+    .unwrap();
+    dir
+}
+
+#[test]
+fn the_template_renders() {
+    let dir = workspace();
+    let shot = dir.path().join("shot.ron");
+    std::fs::write(&shot, TEMPLATE).unwrap();
+    let out = glint()
+        .args(["render", "--quiet", "--frames", "1"])
+        .arg(&shot)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(dir.path().join("out/t.0001.png").exists());
+}
+
+#[test]
+fn every_mistake_is_one_located_actionable_error_and_nothing_is_written() {
+    assert!(CASES.len() >= 15);
+    let dir = workspace();
+    let mut failures = Vec::new();
+    for case in CASES {
+        assert!(
+            TEMPLATE.contains(case.from),
+            "{}: template lacks {}",
+            case.name,
+            case.from
+        );
+        let text = TEMPLATE.replacen(case.from, case.to, 1);
+        let shot = dir.path().join("shot.ron");
+        std::fs::write(&shot, &text).unwrap();
+        let out = glint().arg("render").arg(&shot).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).trim().to_string();
+        let file_text = if case.file == "shot.ron" {
+            text.clone()
+        } else {
+            std::fs::read_to_string(dir.path().join(case.file)).unwrap()
+        };
+        let (line, col) = location(&file_text, case.at);
+        let path: PathBuf = dir.path().join(case.file);
+        let expected = format!("error: {}:{line}:{col}: ", path.display());
+        let ok = out.status.code() == Some(2)
+            && stderr.lines().count() == 1
+            && stderr.starts_with(&expected)
+            && case.says.iter().all(|s| stderr.contains(s))
+            && !dir.path().join("out").exists();
+        if !ok {
+            failures.push(format!(
+                "{}: exit {:?}\n  expected {expected}… {:?}\n  got      {stderr}",
+                case.name,
+                out.status.code(),
+                case.says
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "\n{}", failures.join("\n"));
+}
