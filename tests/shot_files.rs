@@ -35,3 +35,38 @@ fn every_shot_loads_and_renders_small() {
     }
     assert!(count >= 4, "only {count} shots");
 }
+
+/// The `ron` code blocks of a document, in order.
+fn ron_blocks(doc: &str) -> Vec<&str> {
+    doc.split("```ron\n")
+        .skip(1)
+        .map(|block| &block[..block.find("```").unwrap()])
+        .collect()
+}
+
+#[test]
+fn the_documented_example_and_look_library_load_and_render() {
+    let doc = std::fs::read_to_string("docs/shot-format.md").unwrap();
+    let blocks = ron_blocks(&doc);
+    let example = blocks[0];
+    let looks = blocks.iter().find(|b| b.starts_with("Looks(")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let shots = dir.path().join("shots");
+    std::fs::create_dir_all(shots.join("looks")).unwrap();
+    std::fs::write(shots.join("looks/studio.ron"), looks).unwrap();
+    std::fs::write(shots.join("looks/more_looks.ron"), "Looks()").unwrap();
+    let patches = concat!(env!("CARGO_MANIFEST_DIR"), "/patches/");
+    std::fs::write(
+        shots.join("example.ron"),
+        example.replace("../patches/", patches),
+    )
+    .unwrap();
+    let shot = load_shot(&shots.join("example.ron")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(shot.library.patches.len(), 33);
+    assert_eq!(shot.frame_path(7), shots.join("out/example/example.0007.png"));
+    let mut settings = shot.settings_with(None, Some((64, 36)));
+    settings.antialias = glint::render::Antialias::None;
+    let scene = shot.at(24.5).scene(&shot).unwrap();
+    let image = Renderer::new(&shot.library).render(&scene, &settings).unwrap();
+    assert!(image.aovs.matte.unwrap().iter().any(|&m| m > 0.5));
+}

@@ -9,7 +9,7 @@ use ron::ser::PrettyConfig;
 use serde::Serialize;
 
 use super::CliError;
-use crate::highlight::Light;
+use crate::highlight::{Expr, Light};
 use crate::render::Projection;
 use crate::scene::{load_shot, Shot};
 
@@ -128,7 +128,7 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
             selector.join(", "),
             on.join(", ")
         );
-        let _ = writeln!(out, "  {}", pretty(expr)?.replace('\n', "\n  "));
+        describe(expr, 1, &mut 0, &mut out)?;
     }
     let bare: Vec<&str> = patches
         .iter()
@@ -145,9 +145,42 @@ fn triple(v: glam::Vec3) -> String {
     format!("({}, {}, {})", v.x, v.y, v.z)
 }
 
-fn pretty(value: &impl Serialize) -> anyhow::Result<String> {
+/// The expression as an indented tree: Booleans with their operands, each layer's parameters
+/// and then its ops one per line, in the shot file's syntax.
+fn describe(expr: &Expr, depth: usize, layers: &mut usize, out: &mut String) -> anyhow::Result<()> {
+    let pad = "  ".repeat(depth);
+    let (name, a, b) = match expr {
+        Expr::Layer(layer) => {
+            *layers += 1;
+            let _ = writeln!(
+                out,
+                "{pad}layer {layers}: epsilon {}, colour {}, opacity {}, feather {}, mask {}",
+                layer.epsilon,
+                compact(&layer.colour)?,
+                layer.opacity,
+                compact(&layer.feather)?,
+                compact(&layer.mask)?
+            );
+            for (i, op) in layer.stack.iter().enumerate() {
+                let _ = writeln!(out, "{pad}  op {}: {}", i + 1, compact(op)?);
+            }
+            return Ok(());
+        }
+        Expr::Union(a, b) => ("union", a, b),
+        Expr::Subtract(a, b) => ("subtract (first minus second)", a, b),
+        Expr::Intersect(a, b) => ("intersect", a, b),
+    };
+    let _ = writeln!(out, "{pad}{name}:");
+    describe(a, depth + 1, layers, out)?;
+    describe(b, depth + 1, layers, out)
+}
+
+/// A value on one line in RON, e.g. `Translate(alpha: 0.2, beta: 0.0)`.
+fn compact(value: &impl Serialize) -> anyhow::Result<String> {
     let config = PrettyConfig::new()
-        .indentor("  ".to_string())
-        .struct_names(false);
+        .compact_structs(true)
+        .compact_arrays(true)
+        .new_line(" ".to_string())
+        .indentor(String::new());
     Ok(ron::ser::to_string_pretty(value, config)?)
 }
