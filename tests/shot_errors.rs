@@ -233,6 +233,14 @@ const CASES: &[Case] = &[
         says: &["material \"blue\"", "thresholds must increase"],
     },
     Case {
+        name: "selector of the wrong type",
+        from: "patches: \"ball/*\"",
+        to: "patches: 3",
+        file: "shot.ron",
+        at: "3,\n",
+        says: &["a patch name pattern such as"],
+    },
+    Case {
         name: "zero resolution",
         from: "resolution: (64, 48)",
         to: "resolution: (0, 48)",

@@ -63,10 +63,15 @@ fn the_documented_example_and_look_library_load_and_render() {
     .unwrap();
     let shot = load_shot(&shots.join("example.ron")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(shot.library.patches.len(), 33);
-    assert_eq!(shot.frame_path(7), shots.join("out/example/example.0007.png"));
+    assert_eq!(
+        shot.frame_path(7),
+        shots.join("out/example/example.0007.png")
+    );
     let mut settings = shot.settings_with(None, Some((64, 36)));
     settings.antialias = glint::render::Antialias::None;
     let scene = shot.at(24.5).scene(&shot).unwrap();
-    let image = Renderer::new(&shot.library).render(&scene, &settings).unwrap();
+    let image = Renderer::new(&shot.library)
+        .render(&scene, &settings)
+        .unwrap();
     assert!(image.aovs.matte.unwrap().iter().any(|&m| m > 0.5));
 }

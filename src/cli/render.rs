@@ -14,7 +14,7 @@ use super::CliError;
 use crate::formats::atomic::remove_stale_temporaries;
 use crate::render::output::{write_frame_exr, write_pngs};
 use crate::render::{RenderStats, Renderer, StageStats};
-use crate::scene::{load_shot, Aov, Preset, Shot};
+use crate::scene::{load_shot, resolve_path, Aov, Preset, Shot};
 
 /// Render the frames of a shot to PNG files.
 ///
@@ -121,7 +121,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         shot.aovs.clone_from(&aovs.0);
     }
     if let Some(out) = &args.out {
-        shot.output = args.shot.parent().unwrap_or(Path::new("")).join(out);
+        shot.output = resolve_path(args.shot.parent().unwrap_or(Path::new("")), out);
     }
     let frames = match &args.frames {
         Some(frames) => frames.0.clone(),
@@ -175,8 +175,16 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
             log.always(stats_report(frame, &image.stats));
         }
     }
+    let frames = |n: usize| {
+        if n == 1 {
+            "1 frame".to_string()
+        } else {
+            format!("{n} frames")
+        }
+    };
     log.finish(format!(
-        "{written} frames written, {skipped} skipped, in {:.1} s",
+        "{} written, {skipped} skipped, in {:.1} s",
+        frames(written),
         started.elapsed().as_secs_f64()
     ));
     Ok(())

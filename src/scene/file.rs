@@ -165,11 +165,41 @@ pub struct HighlightSpec {
 
 /// Patch names (`INSTANCE/PATCH`) as one glob pattern or a list of them: `*` any run of
 /// characters, `?` one character, `[a-c]` one of a set.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(untagged)]
+#[derive(Clone, Debug)]
 pub enum Selector {
     One(String),
     Any(Vec<String>),
+}
+
+impl<'de> Deserialize<'de> for Selector {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct SelectorVisitor;
+        impl<'de> serde::de::Visitor<'de> for SelectorVisitor {
+            type Value = Selector;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a patch name pattern such as \"teapot/*\", or a list of them")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Selector, E> {
+                Ok(Selector::One(v.to_string()))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<Selector, A::Error> {
+                let mut patterns = Vec::new();
+                while let Some(p) = seq.next_element()? {
+                    patterns.push(p);
+                }
+                if patterns.is_empty() {
+                    return Err(serde::de::Error::custom(
+                        "an empty list of patch patterns picks nothing; name at least one",
+                    ));
+                }
+                Ok(Selector::Any(patterns))
+            }
+        }
+        deserializer.deserialize_any(SelectorVisitor)
+    }
 }
 
 impl Selector {

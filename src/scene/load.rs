@@ -9,11 +9,14 @@ use serde::de::DeserializeOwned;
 
 use super::file::{HighlightSpec, LightSpec, LooksFile, MaterialSpec, ProjectionSpec, ShotFile};
 use super::glob;
-use super::shot::{frame_path, placement, Accuracy, FrameState, Instance, Shot};
+use super::shot::{frame_path, placement, resolve_path, Accuracy, FrameState, Instance, Shot};
 use super::ShotError;
 use crate::formats::load_patches;
 use crate::formats::ron_location::{closest_name, explain, position_of, start_of_value_closed_at};
 use crate::geom::{NamedPatch, PatchLibrary};
+
+/// The longest frame range a shot may have.
+const MAX_FRAMES: i64 = 1_000_000;
 
 /// The most files an include chain may nest.
 const MAX_INCLUDE_DEPTH: usize = 16;
@@ -144,13 +147,19 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
             format!("the frame range ({first}, {last}) is backwards; write the first frame first"),
         ));
     }
+    if last - first >= MAX_FRAMES {
+        return Err(shot_source.error_at_field(
+            "frames",
+            format!("the frame range ({first}, {last}) is longer than {MAX_FRAMES} frames"),
+        ));
+    }
     if !(file.fps.is_finite() && file.fps > 0.0) {
         return Err(shot_source.error_at_field(
             "fps",
             format!("fps is {}, but it must be greater than 0", file.fps),
         ));
     }
-    let output = shot_source.folder.join(&file.output);
+    let output = resolve_path(&shot_source.folder, Path::new(&file.output));
     if first != last && frame_path(&output, first) == frame_path(&output, last) {
         return Err(shot_source.error_at_string(
             "output",

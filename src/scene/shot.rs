@@ -246,6 +246,27 @@ pub(super) fn frame_path(pattern: &Path, frame: i64) -> PathBuf {
     PathBuf::from(format!("{}{number}{}", &text[..start], &text[end..]))
 }
 
+/// `base` joined with `path` (kept as it is when absolute), with `name/..` pairs removed, so
+/// that messages show `out/a.png` rather than `shots/../out/a.png`.
+pub fn resolve_path(base: &Path, path: &Path) -> PathBuf {
+    let mut clean = PathBuf::new();
+    for part in base.join(path).components() {
+        match part {
+            std::path::Component::CurDir => {}
+            std::path::Component::ParentDir
+                if matches!(
+                    clean.components().next_back(),
+                    Some(std::path::Component::Normal(_))
+                ) =>
+            {
+                clean.pop();
+            }
+            other => clean.push(other),
+        }
+    }
+    clean
+}
+
 impl From<&OutlinesSpec> for Outlines {
     fn from(spec: &OutlinesSpec) -> Self {
         Outlines {
@@ -280,5 +301,14 @@ mod tests {
         assert_eq!(p("out#/s.#.png", 5), "out#/s.5.png");
         assert_eq!(p("out/s.####.png", -3), "out/s.-003.png");
         assert_eq!(p("out/still.png", 3), "out/still.png");
+    }
+
+    #[test]
+    fn resolved_paths_lose_their_detours() {
+        let r = |a: &str, b: &str| resolve_path(Path::new(a), Path::new(b));
+        assert_eq!(r("shots", "../out/a.png"), Path::new("out/a.png"));
+        assert_eq!(r("shots/x", "./../../out"), Path::new("out"));
+        assert_eq!(r("", "../out"), Path::new("../out"));
+        assert_eq!(r("shots", "/abs/out"), Path::new("/abs/out"));
     }
 }
