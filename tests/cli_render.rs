@@ -42,6 +42,18 @@ fn run(command: &mut Command) -> Output {
     command.output().unwrap()
 }
 
+/// Runs `command` and checks that it exited with 0.
+fn succeed(command: &mut Command) -> Output {
+    let out = run(command);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 fn files(folder: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(folder)
         .map(|entries| {
@@ -57,14 +69,10 @@ fn files(folder: &Path) -> Vec<String> {
 #[test]
 fn frame_lists_and_padding_pick_exactly_the_files() {
     let (dir, shot) = shot((32, 24), "Preview");
-    let out = run(glint()
-        .args(["render", "--frames", "2-6x2,9", "--out", "p/f.##.png"])
-        .arg(&shot));
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let out = succeed(
+        glint()
+            .args(["render", "--frames", "2-6x2,9", "--out", "p/f.##.png"])
+            .arg(&shot),
     );
     assert_eq!(
         files(&dir.path().join("p")),
@@ -80,14 +88,10 @@ fn frame_lists_and_padding_pick_exactly_the_files() {
 #[test]
 fn aovs_are_written_beside_the_frame_and_in_one_exr() {
     let (dir, shot) = shot((32, 24), "Preview");
-    let out = run(glint()
-        .args(["render", "--quiet", "--frames", "3", "--aov", "matte,depth"])
-        .arg(&shot));
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let out = succeed(
+        glint()
+            .args(["render", "--quiet", "--frames", "3", "--aov", "matte,depth"])
+            .arg(&shot),
     );
     assert!(out.stdout.is_empty());
     assert_eq!(
@@ -128,13 +132,7 @@ fn a_killed_render_resumes_with_skip_existing_and_leaves_only_whole_files() {
         image::open(out_dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
     }
 
-    let resumed = run(glint().args(["render", "--skip-existing"]).arg(&shot));
-    assert_eq!(
-        resumed.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&resumed.stderr)
-    );
+    let resumed = succeed(glint().args(["render", "--skip-existing"]).arg(&shot));
     let stdout = String::from_utf8_lossy(&resumed.stdout);
     assert_eq!(
         stdout.matches("exists, skipped").count(),
@@ -193,13 +191,7 @@ fn exit_codes_tell_bad_input_from_a_failed_render() {
 fn inspect_prints_the_interpolated_value_between_keys() {
     let (_dir, shot) = shot((32, 24), "Preview");
     // alpha runs from 0 at frame 1 to 0.4 at frame 12: at frame 6.5 it is 0.4 · 5.5 / 11.
-    let out = run(glint().args(["inspect", "--frame", "6.5"]).arg(&shot));
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = succeed(glint().args(["inspect", "--frame", "6.5"]).arg(&shot));
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("alpha: 0.2,"), "{stdout}");
     assert!(stdout.contains("eye: (0, -6, 0)"), "{stdout}");
