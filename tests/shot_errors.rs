@@ -221,7 +221,7 @@ const CASES: &[Case] = &[
         from: "        (name: \"ball\", file: \"sphere.ron\", material: \"blue\"),\n",
         to: "        (name: \"ball\", file: \"sphere.ron\", material: \"blue\"),\n        (name: \"ball\", file: \"sphere.ron\", material: \"blue\"),\n",
         file: "shot.ron",
-        at: "\"ball\"",
+        at: "\"ball\", file: \"sphere.ron\", material: \"blue\"),\n    ]",
         says: &["\"ball\" is used twice"],
     },
     Case {

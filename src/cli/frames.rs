@@ -52,7 +52,7 @@ fn parse_part(part: &str) -> Result<Vec<i64>, String> {
             "the range '{part}' runs backwards; write the first frame first"
         ));
     }
-    if (last - first) / step >= MAX_FRAMES {
+    if (i128::from(last) - i128::from(first)) / i128::from(step) >= i128::from(MAX_FRAMES) {
         return Err(format!("'{part}' lists more than {MAX_FRAMES} frames"));
     }
     Ok((first..=last).step_by(step as usize).collect())

@@ -55,7 +55,12 @@ impl Source {
 
     /// An error at where `field: "value"` is written (or, failing that, `"value"` or `field`).
     fn error_at_string(&self, field: &str, value: &str, message: impl Into<String>) -> ShotError {
-        self.error_at(self.find_string(field, value), message)
+        self.error_at(self.find_string(field, value, 0), message)
+    }
+
+    /// An error at the second place `field: "value"` is written (a name defined twice).
+    fn error_at_repeat(&self, field: &str, value: &str, message: impl Into<String>) -> ShotError {
+        self.error_at(self.find_string(field, value, 1), message)
     }
 
     /// An error at where `field:` is first written.
@@ -72,9 +77,10 @@ impl Source {
             .unwrap_or(0)
     }
 
-    /// The offset of the first `"value"` written right after `field:` (possibly inside a
-    /// list), else of the first `"value"`, else of the first `field`, else 0.
-    fn find_string(&self, field: &str, value: &str) -> usize {
+    /// The offset of the `"value"` written right after `field:` (possibly inside a list),
+    /// skipping `skip` such places; else of the first `"value"`, else of the first `field`,
+    /// else 0.
+    fn find_string(&self, field: &str, value: &str, skip: usize) -> usize {
         let quoted = format!("\"{value}\"");
         let text = &self.text;
         let after_field = |at: usize| {
@@ -86,7 +92,8 @@ impl Source {
         };
         text.match_indices(&quoted)
             .map(|(i, _)| i)
-            .find(|&i| after_field(i))
+            .filter(|&i| after_field(i))
+            .nth(skip)
             .or_else(|| text.find(&quoted))
             .unwrap_or_else(|| self.find_field(field))
     }
@@ -147,7 +154,7 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
             format!("the frame range ({first}, {last}) is backwards; write the first frame first"),
         ));
     }
-    if last - first >= MAX_FRAMES {
+    if i128::from(last) - i128::from(first) >= i128::from(MAX_FRAMES) {
         return Err(shot_source.error_at_field(
             "frames",
             format!("the frame range ({first}, {last}) is longer than {MAX_FRAMES} frames"),
@@ -184,10 +191,14 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
             )));
         }
         if instances.iter().any(|i| i.name == spec.name) {
-            return Err(name_error(format!(
-                "the instance name \"{}\" is used twice; instance names must be unique",
-                spec.name
-            )));
+            return Err(shot_source.error_at_repeat(
+                "name",
+                &spec.name,
+                format!(
+                    "the instance name \"{}\" is used twice; instance names must be unique",
+                    spec.name
+                ),
+            ));
         }
         let material = looks
             .materials
