@@ -1,10 +1,12 @@
-//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, PNG and EXR images.
+//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, PNG and EXR images,
+//! 2D toon textures.
 
 pub mod atomic;
 mod bpt;
 pub mod exr;
 mod patch_ron;
 pub mod png;
+mod texture;
 
 use std::path::Path;
 
@@ -14,6 +16,7 @@ use crate::geom::PatchLibrary;
 
 pub use bpt::parse_bpt;
 pub use patch_ron::parse_patch_ron;
+pub use texture::{read_toon_texture, srgb_to_linear, toon_texture_from_srgb8};
 
 /// A file that could not be read, with where in it the problem is.
 #[derive(Debug, Error)]
@@ -36,6 +39,8 @@ pub enum FormatError {
         line: usize,
         message: String,
     },
+    #[error("{path}: {message}")]
+    Image { path: String, message: String },
     #[error(
         "{path}: unknown patch file type; use .ron (a patch library) or .bpt (Bezier patches)"
     )]
