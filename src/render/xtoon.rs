@@ -51,33 +51,43 @@ pub(super) fn detail(gbuffer: &GBuffer, scene: &Scene) -> Detail {
                 .as_ref()
                 .map(|v| shade_texel(v, scene, t))
         };
-        let pixels = gbuffer
-            .texels
-            .par_iter()
-            .with_min_len(PIXELS_PER_JOB)
-            .filter(|t| views[t.patch as usize].is_some())
-            .count() as u64;
+        let mut tones = vec![Vec3::ZERO; gbuffer.texels.len()];
         if !abstract_highlights.contains(&true) {
-            let tones = gbuffer
+            let pixels = gbuffer
                 .texels
-                .par_iter()
-                .with_min_len(PIXELS_PER_JOB)
-                .map(|t| shade(t).map_or(Vec3::ZERO, |s| s.colour))
-                .collect();
+                .par_chunks(PIXELS_PER_JOB)
+                .zip(tones.par_chunks_mut(PIXELS_PER_JOB))
+                .map(|(texels, tones)| {
+                    let mut count = 0;
+                    for (t, tone) in texels.iter().zip(tones) {
+                        if let Some(s) = shade(t) {
+                            *tone = s.colour;
+                            count += 1;
+                        }
+                    }
+                    count
+                })
+                .sum();
             return (tones, None, pixels);
         }
-        let (tones, texels): (Vec<Vec3>, Vec<Texel>) = gbuffer
-            .texels
-            .par_iter()
-            .with_min_len(PIXELS_PER_JOB)
-            .map(|t| match shade(t) {
-                Some(s) if abstract_highlights[t.patch as usize] => {
-                    let frame = facing_frame(s.normal, t.frame.du, s.normal);
-                    (s.colour, Texel { frame, ..*t })
+        let mut texels = gbuffer.texels.clone();
+        let pixels = texels
+            .par_chunks_mut(PIXELS_PER_JOB)
+            .zip(tones.par_chunks_mut(PIXELS_PER_JOB))
+            .map(|(texels, tones)| {
+                let mut count = 0;
+                for (t, tone) in texels.iter_mut().zip(tones) {
+                    if let Some(s) = shade(t) {
+                        *tone = s.colour;
+                        count += 1;
+                        if abstract_highlights[t.patch as usize] {
+                            t.frame = facing_frame(s.normal, t.frame.du, s.normal);
+                        }
+                    }
                 }
-                s => (s.map_or(Vec3::ZERO, |s| s.colour), *t),
+                count
             })
-            .unzip();
+            .sum();
         let highlight_gbuffer = GBuffer {
             width: gbuffer.width,
             height: gbuffer.height,
@@ -105,7 +115,7 @@ fn shade_texel(view: &ViewXToon, scene: &Scene, t: &Texel) -> XToonShade {
     };
     view.shade(
         &point,
-        scene.camera.toward_eye(t.position),
+        || scene.camera.toward_eye(t.position),
         scene.light.direction(t.position, n),
     )
 }

@@ -240,6 +240,17 @@ impl PreparedDetail {
 }
 
 impl ViewDetail {
+    /// Whether [`value`](Self::value) reads its `view` vector (the orientation maps do, the
+    /// depth maps do not).
+    #[inline]
+    #[must_use]
+    pub fn uses_view(&self) -> bool {
+        matches!(
+            self.map,
+            InView::NearSilhouette { .. } | InView::Highlight { .. }
+        )
+    }
+
     /// The detail D ∈ [0, 1] at `point` (see [`DetailMap`] for each formula), with `view` and
     /// `light` the unit vectors from the point toward the eye and the light, `normal` the
     /// surface's unit normal (near-silhouette) and `highlight_normal` the unit normal the

@@ -1,7 +1,7 @@
 //! The 2D toon texture of X-Toon (Barla et al. 2006, §3): a stack of 1D toon textures, one per
 //! detail level.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 use super::error::XToonError;
 
@@ -15,7 +15,15 @@ pub struct ToonTexture {
     width: usize,
     height: usize,
     /// Rows from the top (D = 1), each `width` texels from `n·l = −1`.
-    texels: Vec<Vec3>,
+    texels: Vec<Vec3A>,
+    /// The lookup's affine maps: `s = n·l · width/2 + (width − 1)/2`,
+    /// `t = (height − ½) − D · height`, and their upper clamps.
+    half_width: f32,
+    s_offset: f32,
+    height_f: f32,
+    t_offset: f32,
+    last_s: f32,
+    last_t: f32,
 }
 
 /// The largest texture side accepted.
@@ -52,7 +60,13 @@ impl ToonTexture {
         Ok(Self {
             width,
             height,
-            texels,
+            texels: texels.into_iter().map(Vec3A::from).collect(),
+            half_width: 0.5 * width as f32,
+            s_offset: 0.5 * (width as f32 - 1.0),
+            height_f: height as f32,
+            t_offset: height as f32 - 0.5,
+            last_s: (width - 1) as f32,
+            last_t: (height - 1) as f32,
         })
     }
 
@@ -68,10 +82,10 @@ impl ToonTexture {
         self.height
     }
 
-    /// The texel in column `x` (from `n·l = −1`) of row `y` (from D = 1).
+    /// The texel in column `x` (from `n·l = −1`) of row `y` (from D = 1), clamped to the edge.
     #[must_use]
     pub fn texel(&self, x: usize, y: usize) -> Vec3 {
-        self.texels[y.min(self.height - 1) * self.width + x.min(self.width - 1)]
+        self.texels[y.min(self.height - 1) * self.width + x.min(self.width - 1)].into()
     }
 
     /// The colour at tone `n_dot_l` and detail `detail`: bilinear between the texel centres
@@ -80,25 +94,23 @@ impl ToonTexture {
     #[inline]
     #[must_use]
     pub fn sample(&self, n_dot_l: f32, detail: f32) -> Vec3 {
-        let (x0, x1, fx) = axis((n_dot_l + 1.0) * 0.5, self.width);
-        let (y0, y1, fy) = axis(1.0 - detail, self.height);
-        let row0 = &self.texels[y0 * self.width..][..self.width];
-        let row1 = &self.texels[y1 * self.width..][..self.width];
-        let top = row0[x0].lerp(row0[x1], fx);
-        let bottom = row1[x0].lerp(row1[x1], fx);
-        top.lerp(bottom, fy)
+        // `max` then `min` clamps, and takes NaN to 0.
+        let s = (n_dot_l * self.half_width + self.s_offset)
+            .max(0.0)
+            .min(self.last_s);
+        let t = (self.t_offset - detail * self.height_f)
+            .max(0.0)
+            .min(self.last_t);
+        let (x, y) = (s as usize, t as usize);
+        let (fx, fy) = (s - x as f32, t - y as f32);
+        // The next column and row, or the same at the last one (its weight is then 0).
+        let right = usize::from(x + 1 < self.width);
+        let down = if y + 1 < self.height { self.width } else { 0 };
+        let k = y * self.width + x;
+        let top = self.texels[k].lerp(self.texels[k + right], fx);
+        let bottom = self.texels[k + down].lerp(self.texels[k + down + right], fx);
+        top.lerp(bottom, fy).into()
     }
-}
-
-/// The two texel indices around coordinate `c ∈ [0, 1]` of an axis of `n` texels and the weight
-/// of the second: `c n − ½` clamped to `[0, n − 1]` (NaN clamps to 0).
-#[inline]
-fn axis(c: f32, n: usize) -> (usize, usize, f32) {
-    let last = (n - 1) as f32;
-    let s = (c * n as f32 - 0.5).max(0.0).min(last);
-    let i = s as usize;
-    let next = (i + 1).min(n - 1);
-    (i, next, s - i as f32)
 }
 
 #[cfg(test)]

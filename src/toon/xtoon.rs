@@ -26,8 +26,8 @@ pub struct XToon<P = f32> {
     /// Use `1 − D` (the paper's Figure 4: low detail where the map is high). Default false.
     #[serde(default)]
     pub invert: bool,
-    /// Shading normals blended toward an abstracted shape. None: the true normals.
-    #[serde(default)]
+    /// Shading normals blended toward an abstracted shape. None (or left out): the true
+    /// normals.
     pub shape: Option<ShapeDetail<P>>,
 }
 
@@ -136,13 +136,19 @@ pub struct SurfacePoint {
 }
 
 impl ViewXToon<'_> {
-    /// The tone at `point`, seen along the unit `view` (toward the eye) and lit from the unit
-    /// `light`: n' the shading normal ([`PreparedShape::shading_normal`], or n), D from the
-    /// detail map (the highlight map reflects about n' or n, as the shape detail's
-    /// [`HighlightFrame`] says; near-silhouette uses n), and the texture at `(n'·l, D)`.
+    /// The tone at `point`, seen along the unit vector `view()` (toward the eye; asked for only
+    /// by the orientation maps) and lit from the unit `light`: n' the shading normal
+    /// ([`PreparedShape::shading_normal`], or n), D from the detail map (the highlight map
+    /// reflects about n' or n, as the shape detail's [`HighlightFrame`] says; near-silhouette
+    /// uses n), and the texture at `(n'·l, D)`.
     #[inline]
     #[must_use]
-    pub fn shade(&self, point: &SurfacePoint, view: Vec3, light: Vec3) -> XToonShade {
+    pub fn shade(
+        &self,
+        point: &SurfacePoint,
+        view: impl FnOnce() -> Vec3,
+        light: Vec3,
+    ) -> XToonShade {
         let n = point.normal;
         let (shading, highlight) = match &self.tone.shape {
             Some(shape) => {
@@ -154,6 +160,12 @@ impl ViewXToon<'_> {
                 (shading, highlight)
             }
             None => (n, n),
+        };
+        // The depth maps do not read the view vector.
+        let view = if self.detail.uses_view() {
+            view()
+        } else {
+            Vec3::ZERO
         };
         let d = self.detail.value(point.position, view, light, n, highlight);
         XToonShade {
