@@ -19,7 +19,7 @@ use glint::highlight::{Axis, Expr, Layer, Light, Op, SquareStyle};
 use glint::render::raster::{rasterize, RasterOptions, Viewport};
 use glint::render::tessellate::{Density, Tessellator};
 use glint::render::{
-    Aovs, Camera, FrameMode, Outlines, PatchLook, Projection, Renderer, Scene, Settings,
+    Aovs, Camera, FrameMode, Outlines, PatchLook, Projection, Renderer, Scene, Settings, Tone,
 };
 use glint::toon::CelRamp;
 
@@ -68,7 +68,11 @@ fn scene(library: &PatchLibrary, highlights: bool, outlines: bool) -> Scene<'_> 
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
-                tone: CelRamp::two_tone(Vec3::new(0.2, 0.25, 0.5), Vec3::new(0.4, 0.55, 0.9), 0.1),
+                tone: Tone::Cel(CelRamp::two_tone(
+                    Vec3::new(0.2, 0.25, 0.5),
+                    Vec3::new(0.4, 0.55, 0.9),
+                    0.1,
+                )),
                 highlight: highlights.then(|| expr.clone()),
             })
             .collect(),

@@ -9,7 +9,9 @@ use glam::Vec3;
 use glint::formats::load_patches;
 use glint::highlight::{Expr, Layer, Light, Op, SquareStyle};
 use glint::render::output::{write_frame_exr, write_pngs};
-use glint::render::{Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Scene, Settings};
+use glint::render::{
+    Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Scene, Settings, Tone,
+};
 use glint::toon::CelRamp;
 
 fn layer(stack: Vec<Op>, epsilon: f32) -> Layer {
@@ -52,11 +54,11 @@ fn main() -> anyhow::Result<()> {
     .prepare()?;
     let looks = (0..library.patches.len())
         .map(|i| PatchLook {
-            tone: CelRamp::two_tone(
+            tone: Tone::Cel(CelRamp::two_tone(
                 Vec3::new(0.16, 0.25, 0.55),
                 Vec3::new(0.35, 0.55, 0.95),
                 0.1,
-            ),
+            )),
             // Body patches 4–11 carry the designed highlight; the others only their tone.
             highlight: (4..12).contains(&i).then(|| body.clone()),
         })

@@ -21,7 +21,7 @@ fn shot(size: (u32, u32), preset: &str) -> (tempfile::TempDir, PathBuf) {
     fps: 24,
     output: "out/t.####.png",
     instances: [(name: "ball", file: "sphere.ron", material: "blue")],
-    materials: {{"blue": (base: (0.1, 0.1, 0.3), bands: [(0.0, (0.2, 0.3, 0.8))])}},
+    materials: {{"blue": Cel(base: (0.1, 0.1, 0.3), bands: [(0.0, (0.2, 0.3, 0.8))])}},
     camera: (eye: (0, -6, 0), target: (0, 0, 0), projection: Perspective(fov_y_degrees: 30)),
     light: Directional(towards: (0.3, -1.0, 0.4)),
     highlights: [(

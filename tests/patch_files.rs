@@ -143,7 +143,7 @@ fn framing_camera(library: &PatchLibrary) -> glint::render::Camera {
 #[test]
 fn every_shipped_model_renders() {
     use glint::highlight::{Expr, Layer, Light};
-    use glint::render::{Aovs, PatchLook, Renderer, Scene, Settings};
+    use glint::render::{Aovs, PatchLook, Renderer, Scene, Settings, Tone};
     use glint::toon::CelRamp;
     let highlight = Expr::Layer(Layer::new(vec![], 0.1, [1.0, 1.0, 1.0]))
         .prepare()
@@ -156,7 +156,11 @@ fn every_shipped_model_renders() {
                 .patches
                 .iter()
                 .map(|_| PatchLook {
-                    tone: CelRamp::two_tone(glam::Vec3::splat(0.2), glam::Vec3::splat(0.7), 0.0),
+                    tone: Tone::Cel(CelRamp::two_tone(
+                        glam::Vec3::splat(0.2),
+                        glam::Vec3::splat(0.7),
+                        0.0,
+                    )),
                     highlight: Some(highlight.clone()),
                 })
                 .collect(),

@@ -9,7 +9,7 @@ use glint::highlight::{
 };
 use glint::render::tessellate::Density;
 use glint::render::{
-    Antialias, Aovs, Camera, FrameMode, PatchLook, Projection, Renderer, Scene, Settings,
+    Antialias, Aovs, Camera, FrameMode, PatchLook, Projection, Renderer, Scene, Settings, Tone,
 };
 use glint::toon::CelRamp;
 
@@ -64,7 +64,7 @@ fn rendered_matte(expr: &PreparedExpr, camera: Camera, settings: &Settings) -> V
     let scene = Scene {
         library: &library,
         looks: vec![PatchLook {
-            tone: CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.6), 0.0),
+            tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.6), 0.0)),
             highlight: Some(expr.clone()),
         }],
         camera,

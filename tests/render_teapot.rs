@@ -7,7 +7,9 @@ use glint::geom::PatchLibrary;
 use glint::highlight::{Expr, Layer, Light, Op};
 use glint::render::output::colour_rgba8;
 use glint::render::tessellate::Density;
-use glint::render::{Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Scene, Settings};
+use glint::render::{
+    Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Scene, Settings, Tone,
+};
 use glint::toon::CelRamp;
 
 fn teapot() -> PatchLibrary {
@@ -51,7 +53,7 @@ fn scene<'a>(
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
-                tone: CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.7), 0.0),
+                tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.7), 0.0)),
                 highlight: highlight.then(|| expr.clone()),
             })
             .collect(),

@@ -13,7 +13,7 @@ const TEMPLATE: &str = r#"Shot(
         (name: "ball", file: "sphere.ron", material: "blue"),
     ],
     materials: {
-        "blue": (base: (0.1, 0.1, 0.3), bands: [(0.0, (0.2, 0.3, 0.8))]),
+        "blue": Cel(base: (0.1, 0.1, 0.3), bands: [(0.0, (0.2, 0.3, 0.8))]),
     },
     camera: (
         eye: (0.0, -6.0, 0.0),
@@ -229,7 +229,7 @@ const CASES: &[Case] = &[
         from: "bands: [(0.0, (0.2, 0.3, 0.8))]",
         to: "bands: [(0.5, (0.2, 0.3, 0.8)), (0.2, (0.3, 0.4, 0.9))]",
         file: "shot.ron",
-        at: "\"blue\": (",
+        at: "\"blue\": Cel(",
         says: &["material \"blue\"", "thresholds must increase"],
     },
     Case {
@@ -287,7 +287,7 @@ fn workspace() -> tempfile::TempDir {
     .unwrap();
     std::fs::write(
         dir.path().join("looks.ron"),
-        "Looks(materials: {\"blue\": (base: (0, 0, 1))})",
+        "Looks(materials: {\"blue\": Cel(base: (0, 0, 1))})",
     )
     .unwrap();
     dir

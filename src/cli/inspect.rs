@@ -11,7 +11,7 @@ use serde::Serialize;
 use super::CliError;
 use crate::highlight::{Expr, Light};
 use crate::render::Projection;
-use crate::scene::{load_shot, Shot};
+use crate::scene::{load_shot, MaterialState, Shot};
 
 /// Print the value of every track of a shot at one frame: camera, light, materials and each
 /// parameter of each highlight layer, in the shot file's own syntax.
@@ -90,22 +90,31 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
         Light::Point { position } => writeln!(out, "light: Point(position: {})", triple(position)),
     };
     let names: Vec<&str> = shot.material_names().collect();
-    for (index, ramp) in state.materials.iter().enumerate() {
+    for (index, material) in state.materials.iter().enumerate() {
         if !patches.iter().any(|&p| shot.material_of(p) == index) {
             continue;
         }
-        let bands: Vec<String> = ramp
-            .bands
-            .iter()
-            .map(|(t, c)| format!("({t}, {})", triple(*c)))
-            .collect();
-        let _ = writeln!(
-            out,
-            "material \"{}\": base {}, bands [{}]",
-            names[index],
-            triple(ramp.base),
-            bands.join(", ")
-        );
+        let _ = match material {
+            MaterialState::Cel(ramp) => {
+                let bands: Vec<String> = ramp
+                    .bands
+                    .iter()
+                    .map(|(t, c)| format!("({t}, {})", triple(*c)))
+                    .collect();
+                writeln!(
+                    out,
+                    "material \"{}\": Cel(base: {}, bands: [{}])",
+                    names[index],
+                    triple(ramp.base),
+                    bands.join(", ")
+                )
+            }
+            MaterialState::XToon(tone) => writeln!(
+                out,
+                "material \"{}\": XToon(detail: {:?}, invert: {}, shape: {:?})",
+                names[index], tone.detail, tone.invert, tone.shape
+            ),
+        };
     }
     for (index, (expr, selector)) in state
         .highlights

@@ -1,4 +1,5 @@
-//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, PNG and EXR images.
+//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, PNG and EXR images,
+//! 2D toon textures.
 
 pub mod atomic;
 mod bpt;
@@ -6,6 +7,7 @@ pub mod exr;
 mod patch_ron;
 pub mod png;
 pub mod ron_location;
+mod texture;
 
 use std::path::Path;
 
@@ -15,6 +17,7 @@ use crate::geom::PatchLibrary;
 
 pub use bpt::parse_bpt;
 pub use patch_ron::parse_patch_ron;
+pub use texture::{read_toon_texture, srgb_to_linear, toon_texture_from_srgb8};
 
 /// A file that could not be read, with where in it the problem is.
 #[derive(Debug, Error)]
@@ -37,6 +40,8 @@ pub enum FormatError {
         line: usize,
         message: String,
     },
+    #[error("{path}: {message}")]
+    Image { path: String, message: String },
     #[error(
         "{path}: unknown patch file type; use .ron (a patch library) or .bpt (Bezier patches)"
     )]

@@ -1,7 +1,8 @@
 //! Rendering: camera, tessellation, rasterization, the G-buffer, shading and output.
 //!
-//! A frame runs tessellate (cached) ▸ rasterize ▸ G-buffer ▸ shade (cel tone ▸ highlight) ▸
-//! outlines ▸ resolve; a stage the scene does not use does not run, and [`RenderStats`] shows it.
+//! A frame runs tessellate (cached) ▸ rasterize ▸ G-buffer ▸ shade (X-Toon detail ▸ tone ▸
+//! highlight) ▸ outlines ▸ resolve; a stage the scene does not use does not run, and
+//! [`RenderStats`] shows it.
 
 pub mod camera;
 mod gbuffer;
@@ -14,11 +15,12 @@ mod settings;
 mod shade;
 mod stats;
 pub mod tessellate;
+mod xtoon;
 
 pub use camera::{Camera, Projection};
 pub use gbuffer::{facing_frame, GBuffer, Texel};
 pub use renderer::{AovImages, RenderedFrame, Renderer};
-pub use scene::{Aovs, Outlines, PatchLook, Scene};
+pub use scene::{Aovs, Outlines, PatchLook, Scene, Tone};
 pub use settings::{Antialias, FrameMode, Settings};
 pub use stats::{RenderStats, StageStats};
 

@@ -201,6 +201,7 @@ impl Stages<'_> {
             seconds,
         };
         stats.highlight_pixels = shaded.highlighted;
+        stats.detail = shaded.detail;
 
         if let Some(outlines) = &scene.outlines {
             let (_, seconds) = timed(|| {

@@ -5,13 +5,26 @@ use glam::Vec3;
 use super::camera::Camera;
 use crate::geom::PatchLibrary;
 use crate::highlight::{Light, PreparedExpr};
-use crate::toon::CelRamp;
+use crate::toon::{CelRamp, PreparedXToon};
 
-/// How one patch is drawn: its cel tone and, optionally, its designed highlight.
+/// How one patch is drawn: its tone and, optionally, its designed highlight.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PatchLook {
-    pub tone: CelRamp,
+    pub tone: Tone,
     pub highlight: Option<PreparedExpr>,
+}
+
+/// The tone of a patch.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Tone {
+    /// Flat cel bands over `N·L`.
+    Cel(CelRamp),
+    /// X-Toon: a 2D toon texture over `(n'·l, D)`, with a detail map and optional shape detail
+    /// (see docs/xtoon.md). A patch with shape detail and [`HighlightFrame::Abstracted`] has its
+    /// designed highlight evaluated in the abstracted frame.
+    ///
+    /// [`HighlightFrame::Abstracted`]: crate::toon::HighlightFrame::Abstracted
+    XToon(PreparedXToon),
 }
 
 /// Lines drawn over the shaded image where the G-buffer is discontinuous.

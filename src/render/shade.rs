@@ -4,7 +4,9 @@ use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
-use super::scene::Scene;
+use super::scene::{Scene, Tone};
+use super::stats::StageStats;
+use super::xtoon;
 use crate::highlight::{half_vector, PreparedExpr, PreparedLayer, Shade, TangentFrame};
 
 /// The shaded image and what the pass did.
@@ -20,17 +22,22 @@ pub struct Shaded {
     pub shaded: u64,
     /// Pixels on highlighted patches: the only ones a half vector was built for.
     pub highlighted: u64,
+    /// The X-Toon detail pass: pixels on X-Toon patches (0 without X-Toon) and its time.
+    pub detail: StageStats,
 }
 
-/// Shades every covered pixel: `tone = ramp(N·L)`, then on a patch with a highlight
-/// `H = normalize(L + V)`, the highlight expression's coverage c and colour h, and
-/// `colour = (1 − c) tone + c h`.
+/// Shades every covered pixel: `tone = ramp(N·L)`, or the X-Toon tone from the detail pass,
+/// then on a patch with a highlight `H = normalize(L + V)`, the highlight expression's coverage
+/// c and colour h, and `colour = (1 − c) tone + c h`.
 ///
 /// With `analytic_edges`, each highlight edge is smoothed over the pixel's footprint of the
 /// signed inside value `s = ε − ‖N − H'‖²/2`: the width is `fwidth(s) = |∂s/∂x| + |∂s/∂y|`
 /// from differences with the neighbouring pixels of the same patch, the largest over the
 /// expression's layers. Without it, edges are hard (the paper's look).
 pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
+    let detail = xtoon::detail(gbuffer, scene);
+    // Highlights see the abstracted frames of X-Toon patches that ask for them.
+    let gbuffer = detail.highlight_gbuffer.as_ref().unwrap_or(gbuffer);
     // Per texel: the half vector, on highlighted patches only.
     let half_vectors: Vec<Option<Vec3>> = gbuffer
         .texels
@@ -60,12 +67,16 @@ pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
         .texels
         .par_iter()
         .zip(&shades)
+        .enumerate()
         .with_min_len(PIXELS_PER_JOB)
-        .map(|(t, shade)| {
-            let n = t.frame.n;
-            let tone = scene.looks[t.patch as usize]
-                .tone
-                .shade(n.dot(scene.light.direction(t.position, n)));
+        .map(|(k, (t, shade))| {
+            let tone = match &scene.looks[t.patch as usize].tone {
+                Tone::Cel(ramp) => {
+                    let n = t.frame.n;
+                    ramp.shade(n.dot(scene.light.direction(t.position, n)))
+                }
+                Tone::XToon(_) => detail.tones[k],
+            };
             let colour: Vec3 = tone.lerp(shade.colour, shade.coverage);
             (colour.extend(1.0), shade.coverage)
         })
@@ -91,6 +102,7 @@ pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
         n_dot_h,
         shaded: gbuffer.texels.len() as u64,
         highlighted: half_vectors.iter().filter(|h| h.is_some()).count() as u64,
+        detail: detail.stats,
     }
 }
 

@@ -27,7 +27,10 @@ pub struct RenderStats {
     pub gbuffer: StageStats,
     /// NURBS frames evaluated per pixel (exact and refined frames).
     pub exact_frames: u64,
-    /// Pixels: samples shaded (cel tone, and highlights where a patch has them).
+    /// Pixels: samples on X-Toon patches, whose shading normal, detail and texture colour the
+    /// detail pass computed (0 without X-Toon). Its time is part of `shade`'s.
+    pub detail: StageStats,
+    /// Pixels: samples shaded (tone, and highlights where a patch has them).
     pub shade: StageStats,
     /// Samples on highlighted patches: the only ones a half vector was built for.
     pub highlight_pixels: u64,

@@ -10,6 +10,7 @@ use crate::anim::{Direction, Track};
 use crate::highlight::Expr;
 use crate::render::tessellate::Density;
 use crate::render::{Antialias, FrameMode};
+use crate::toon::{DetailMap, ShapeDetail};
 
 /// A shot: `Shot(resolution: …, frames: …, …)`.
 #[derive(Debug, Deserialize)]
@@ -100,15 +101,28 @@ fn one() -> f64 {
     1.0
 }
 
-/// A cel ramp over `n·l` with animated colours and thresholds.
+/// A material: a cel ramp, or an X-Toon tone (docs/xtoon.md), every number a track.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct MaterialSpec {
-    /// Linear RGB below every threshold.
-    pub base: Track<Vec3>,
-    /// `(threshold, linear RGB)` in increasing threshold order.
-    #[serde(default)]
-    pub bands: Vec<(Track<f32>, Track<Vec3>)>,
+pub enum MaterialSpec {
+    /// Flat bands over `n·l`.
+    Cel {
+        /// Linear RGB below every threshold.
+        base: Track<Vec3>,
+        /// `(threshold, linear RGB)` in increasing threshold order.
+        #[serde(default)]
+        bands: Vec<(Track<f32>, Track<Vec3>)>,
+    },
+    /// A 2D toon texture over `(n'·l, D)`.
+    XToon {
+        /// The texture (PNG), relative to the file that names it.
+        texture: String,
+        detail: DetailMap<Track<f32>>,
+        #[serde(default)]
+        invert: bool,
+        #[serde(default)]
+        shape: Option<ShapeDetail<Track<f32>>>,
+    },
 }
 
 /// A camera whose placement and lens are tracks.

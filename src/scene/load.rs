@@ -3,17 +3,22 @@
 
 use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::DVec3;
 use serde::de::DeserializeOwned;
 
 use super::file::{HighlightSpec, LightSpec, LooksFile, MaterialSpec, ProjectionSpec, ShotFile};
 use super::glob;
-use super::shot::{frame_path, placement, resolve_path, Accuracy, FrameState, Instance, Shot};
+use super::shot::{
+    frame_path, placement, resolve_path, Accuracy, FrameState, Instance, Material, MaterialState,
+    Shot,
+};
 use super::ShotError;
-use crate::formats::load_patches;
 use crate::formats::ron_location::{closest_name, explain, position_of, start_of_value_closed_at};
+use crate::formats::{load_patches, read_toon_texture};
 use crate::geom::{NamedPatch, PatchLibrary};
+use crate::toon::{AbstractShape, Abstraction, ToonTexture, XToon};
 
 /// The longest frame range a shot may have.
 const MAX_FRAMES: i64 = 1_000_000;
@@ -307,11 +312,14 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
         }
     }
 
-    let (materials, material_origins): (Vec<_>, Vec<_>) = looks
-        .materials
-        .into_iter()
-        .map(|(name, spec, origin)| ((name, spec), origin))
-        .unzip();
+    let mut assets = Assets::default();
+    let mut materials = Vec::with_capacity(looks.materials.len());
+    let mut material_origins = Vec::with_capacity(looks.materials.len());
+    for (name, spec, origin) in looks.materials {
+        let material = assets.material(spec, &name, &sources[origin], &library)?;
+        materials.push((name, material));
+        material_origins.push(origin);
+    }
     let (highlights, highlight_origins): (Vec<_>, Vec<_>) = looks.highlights.into_iter().unzip();
     let shot = Shot {
         path: path.to_path_buf(),
@@ -333,6 +341,77 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
     };
     check_every_frame(&shot, &sources, &material_origins, &highlight_origins)?;
     Ok(shot)
+}
+
+/// Toon textures and abstracted shapes, each read or built once however many materials use it.
+#[derive(Default)]
+struct Assets {
+    textures: HashMap<PathBuf, Arc<ToonTexture>>,
+    shapes: Vec<(Abstraction, Arc<AbstractShape>)>,
+}
+
+impl Assets {
+    /// The material `spec` (named `name`, written in `source`) with its texture and shape.
+    fn material(
+        &mut self,
+        spec: MaterialSpec,
+        name: &str,
+        source: &Source,
+        library: &PatchLibrary,
+    ) -> Result<Material, ShotError> {
+        let (texture_name, detail, invert, shape) = match spec {
+            MaterialSpec::Cel { base, bands } => return Ok(Material::Cel { base, bands }),
+            MaterialSpec::XToon {
+                texture,
+                detail,
+                invert,
+                shape,
+            } => (texture, detail, invert, shape),
+        };
+        let path = resolve_path(&source.folder, Path::new(&texture_name));
+        let texture = match self.textures.get(&canonical(&path)) {
+            Some(texture) => Arc::clone(texture),
+            None => {
+                let texture = Arc::new(read_toon_texture(&path).map_err(|e| {
+                    source.error_at_string(
+                        "texture",
+                        &texture_name,
+                        format!("cannot use the toon texture: {e}"),
+                    )
+                })?);
+                self.textures.insert(canonical(&path), Arc::clone(&texture));
+                texture
+            }
+        };
+        let built = match &shape {
+            None => None,
+            Some(detail) => Some(
+                match self.shapes.iter().find(|s| s.0 == detail.abstraction) {
+                    Some((_, built)) => Arc::clone(built),
+                    None => {
+                        let built = detail.abstraction.build(library).map_err(|e| {
+                            source.error_at_string(
+                                "materials",
+                                name,
+                                format!("material \"{name}\": {e}"),
+                            )
+                        })?;
+                        self.shapes.push((detail.abstraction, Arc::clone(&built)));
+                        built
+                    }
+                },
+            ),
+        };
+        Ok(Material::XToon {
+            tone: XToon {
+                detail,
+                invert,
+                shape,
+            },
+            texture,
+            shape: built,
+        })
+    }
 }
 
 /// Reads the include `name` written in `sources[from]`, and its includes, depth first.
@@ -442,10 +521,19 @@ fn check_every_frame(
         LightSpec::Point { position } => add(&mut position.key_frames()),
     }
     for (_, m) in &shot.materials {
-        add(&mut m.base.key_frames());
-        for (threshold, colour) in &m.bands {
-            add(&mut threshold.key_frames());
-            add(&mut colour.key_frames());
+        match m {
+            Material::Cel { base, bands } => {
+                add(&mut base.key_frames());
+                for (threshold, colour) in bands {
+                    add(&mut threshold.key_frames());
+                    add(&mut colour.key_frames());
+                }
+            }
+            Material::XToon { tone, .. } => {
+                let mut keys = Vec::new();
+                let _ = tone.map(|t| keys.extend(t.key_frames()));
+                add(&mut keys.into_iter());
+            }
         }
     }
     for h in &shot.highlights {
@@ -469,13 +557,17 @@ fn check_every_frame(
                 ));
             }
         }
-        for ((ramp, name), &origin) in state
+        for ((material, name), &origin) in state
             .materials
             .iter()
             .zip(shot.material_names())
             .zip(material_origins)
         {
-            ramp.validate().map_err(|e| {
+            let valid = match material {
+                MaterialState::Cel(ramp) => ramp.validate().map_err(|e| e.to_string()),
+                MaterialState::XToon(tone) => tone.validate().map_err(|e| e.to_string()),
+            };
+            valid.map_err(|e| {
                 sources[origin].error_at_string(
                     "materials",
                     name,

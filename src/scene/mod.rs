@@ -9,7 +9,7 @@ mod shot;
 pub use file::{Aov, Preset, Selector};
 pub use glob::matches as matches_patch;
 pub use load::load_shot;
-pub use shot::{resolve_path, FrameState, Instance, Shot};
+pub use shot::{resolve_path, FrameState, Instance, MaterialState, Shot};
 
 use thiserror::Error;
 

@@ -1,20 +1,23 @@
 //! A loaded shot and its state at a frame.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 
 use super::file::{
-    Aov, CameraSpec, HighlightSpec, LightSpec, MaterialSpec, OutlinesSpec, Preset, ProjectionSpec,
+    Aov, CameraSpec, HighlightSpec, LightSpec, OutlinesSpec, Preset, ProjectionSpec,
 };
 use super::ShotError;
+use crate::anim::Track;
 use crate::geom::PatchLibrary;
 use crate::highlight::{Expr, Light};
 use crate::render::tessellate::Density;
+use crate::render::Tone;
 use crate::render::{
     Antialias, Aovs, Camera, FrameMode, Outlines, PatchLook, Projection, Scene, Settings,
 };
-use crate::toon::CelRamp;
+use crate::toon::{AbstractShape, CelRamp, ToonTexture, XToon};
 
 /// A validated shot: the model with every instance placed, and every track ready to be read at
 /// any frame.
@@ -37,7 +40,7 @@ pub struct Shot {
     pub aovs: Vec<Aov>,
     pub(super) camera: CameraSpec,
     pub(super) light: LightSpec,
-    pub(super) materials: Vec<(String, MaterialSpec)>,
+    pub(super) materials: Vec<(String, Material)>,
     pub(super) highlights: Vec<HighlightSpec>,
     /// The material (index into `materials`) of each patch of `library`.
     pub(super) patch_material: Vec<usize>,
@@ -75,6 +78,28 @@ impl Accuracy {
     }
 }
 
+/// A material ready to be read at any frame.
+#[derive(Debug)]
+pub(super) enum Material {
+    Cel {
+        base: Track<Vec3>,
+        bands: Vec<(Track<f32>, Track<Vec3>)>,
+    },
+    XToon {
+        tone: XToon<Track<f32>>,
+        texture: Arc<ToonTexture>,
+        /// The model's abstracted shape, when the tone has shape detail.
+        shape: Option<Arc<AbstractShape>>,
+    },
+}
+
+/// A material's parameters at one frame.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialState {
+    Cel(CelRamp),
+    XToon(XToon),
+}
+
 /// One placed patch file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Instance {
@@ -89,8 +114,8 @@ pub struct FrameState {
     pub frame: f64,
     pub camera: Camera,
     pub light: Light,
-    /// Each material's ramp, in the order of [`Shot::material_names`].
-    pub materials: Vec<CelRamp>,
+    /// Each material, in the order of [`Shot::material_names`].
+    pub materials: Vec<MaterialState>,
     /// Each highlight entry's expression, in the order they are written (includes first).
     pub highlights: Vec<Expr>,
 }
@@ -130,13 +155,15 @@ impl Shot {
             materials: self
                 .materials
                 .iter()
-                .map(|(_, m)| CelRamp {
-                    base: m.base.at(frame),
-                    bands: m
-                        .bands
-                        .iter()
-                        .map(|(threshold, colour)| (threshold.at(frame), colour.at(frame)))
-                        .collect(),
+                .map(|(_, m)| match m {
+                    Material::Cel { base, bands } => MaterialState::Cel(CelRamp {
+                        base: base.at(frame),
+                        bands: bands
+                            .iter()
+                            .map(|(threshold, colour)| (threshold.at(frame), colour.at(frame)))
+                            .collect(),
+                    }),
+                    Material::XToon { tone, .. } => MaterialState::XToon(tone.map(|t| t.at(frame))),
                 })
                 .collect(),
             highlights: self
@@ -208,9 +235,24 @@ impl FrameState {
             .map(Expr::prepare)
             .collect::<Result<Vec<_>, _>>()
             .map_err(|e| invalid(e.to_string()))?;
+        let tones = self
+            .materials
+            .iter()
+            .zip(&shot.materials)
+            .map(|(state, (name, material))| match (state, material) {
+                (MaterialState::Cel(ramp), _) => Ok(Tone::Cel(ramp.clone())),
+                (MaterialState::XToon(tone), Material::XToon { texture, shape, .. }) => tone
+                    .prepare(Arc::clone(texture), shape.as_ref())
+                    .map(Tone::XToon)
+                    .map_err(|e| invalid(format!("material \"{name}\": {e}"))),
+                (MaterialState::XToon(_), Material::Cel { .. }) => Err(invalid(format!(
+                    "material \"{name}\" is not the shot's material of that name"
+                ))),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let looks = (0..shot.library.patches.len())
             .map(|patch| PatchLook {
-                tone: self.materials[shot.material_of(patch)].clone(),
+                tone: tones[shot.material_of(patch)].clone(),
                 highlight: shot.highlight_of(patch).map(|h| prepared[h].clone()),
             })
             .collect();

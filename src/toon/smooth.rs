@@ -1,0 +1,264 @@
+//! The smoothed shape of a NURBS model: its control net Laplacian-smoothed as one net across
+//! patches, and a grid of the smoothed patches' normals to look up per point.
+
+use glam::{DVec3, Vec2, Vec3};
+
+use super::error::XToonError;
+use crate::geom::{GridEvaluator, NurbsSurface, PatchLibrary};
+
+/// How far each smoothing iteration moves a control point toward its neighbours' mean.
+const LAMBDA: f64 = 0.5;
+
+/// Normal grid samples per knot span, in each direction.
+const SAMPLES_PER_SPAN: usize = 16;
+
+/// Per patch, the normals of the smoothed patch on a uniform grid over its domain.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SmoothedNormals {
+    patches: Vec<NormalGrid>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct NormalGrid {
+    /// Domain start and `(samples − 1) / length` per direction.
+    origin: Vec2,
+    scale: Vec2,
+    samples_u: usize,
+    samples_v: usize,
+    /// Row-major: entry `i * samples_v + j` at the i-th u and j-th v sample.
+    normals: Vec<Vec3>,
+}
+
+impl SmoothedNormals {
+    /// Smooths the model's control net `iterations` times and samples the smoothed patches'
+    /// normals.
+    ///
+    /// Control points that coincide (within 10⁻⁹ of the model's size: shared patch edges,
+    /// collapsed edges, seams) are welded into one node whose neighbours are the net
+    /// neighbours of all its copies; each iteration moves every node by
+    /// `λ (mean of its neighbours − itself)` with λ = ½, all at once. Welded copies move
+    /// together, so patches that met still meet. Weights and knots are kept.
+    pub fn new(library: &PatchLibrary, iterations: u32) -> Result<Self, XToonError> {
+        let nets: Vec<&NurbsSurface> = library.patches.iter().map(|p| &p.surface).collect();
+        let points: Vec<DVec3> = nets
+            .iter()
+            .flat_map(|s| {
+                (0..s.count_u())
+                    .flat_map(move |i| (0..s.count_v()).map(move |j| s.control_point(i, j).0))
+            })
+            .collect();
+        if points.is_empty() {
+            return Err(XToonError::Shape("the model has no control points".into()));
+        }
+        let (node_of, mut nodes) = weld(&points);
+        let neighbours = neighbours(&nets, &node_of, nodes.len());
+        for _ in 0..iterations {
+            nodes = nodes
+                .iter()
+                .zip(&neighbours)
+                .map(|(p, around)| {
+                    if around.is_empty() {
+                        return *p;
+                    }
+                    let mean =
+                        around.iter().map(|&k| nodes[k]).sum::<DVec3>() / around.len() as f64;
+                    *p + LAMBDA * (mean - *p)
+                })
+                .collect();
+        }
+        let mut next = 0;
+        let mut patches = Vec::with_capacity(nets.len());
+        for s in nets {
+            let rows: Vec<Vec<DVec3>> = (0..s.count_u())
+                .map(|_| {
+                    (0..s.count_v())
+                        .map(|_| {
+                            next += 1;
+                            nodes[node_of[next - 1]]
+                        })
+                        .collect()
+                })
+                .collect();
+            let weights: Vec<Vec<f64>> = (0..s.count_u())
+                .map(|i| (0..s.count_v()).map(|j| s.control_point(i, j).1).collect())
+                .collect();
+            let smoothed = NurbsSurface::new(
+                s.knots_u().degree(),
+                s.knots_v().degree(),
+                s.knots_u().knots().to_vec(),
+                s.knots_v().knots().to_vec(),
+                &rows,
+                Some(&weights),
+            )
+            .map_err(|e| XToonError::Shape(format!("smoothed patch: {e}")))?;
+            patches.push(NormalGrid::new(&smoothed));
+        }
+        Ok(Self { patches })
+    }
+
+    /// The smoothed normal of patch `patch` at `uv`: bilinear between the grid normals around
+    /// it (not normalized; zero for a patch index out of range).
+    #[inline]
+    #[must_use]
+    pub fn at(&self, patch: usize, uv: Vec2) -> Vec3 {
+        self.patches.get(patch).map_or(Vec3::ZERO, |g| g.at(uv))
+    }
+}
+
+impl NormalGrid {
+    fn new(surface: &NurbsSurface) -> Self {
+        let domain = surface.domain();
+        let samples = |spans: usize| SAMPLES_PER_SPAN * spans.max(1) + 1;
+        let (samples_u, samples_v) = (
+            samples(spans(surface.knots_u().knots())),
+            samples(spans(surface.knots_v().knots())),
+        );
+        let grid = GridEvaluator::uniform(surface, samples_u, samples_v);
+        let normals = (0..samples_u)
+            .flat_map(|i| {
+                grid.row_frames(i)
+                    .map(|f| f.normal.as_vec3())
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let length = |(a, b): (f64, f64)| (b - a) as f32;
+        Self {
+            origin: Vec2::new(domain.u.0 as f32, domain.v.0 as f32),
+            scale: Vec2::new(
+                (samples_u - 1) as f32 / length(domain.u),
+                (samples_v - 1) as f32 / length(domain.v),
+            ),
+            samples_u,
+            samples_v,
+            normals,
+        }
+    }
+
+    #[inline]
+    fn at(&self, uv: Vec2) -> Vec3 {
+        let s = (uv - self.origin) * self.scale;
+        let cell = |x: f32, n: usize| {
+            let x = x.max(0.0).min((n - 1) as f32);
+            let i = (x as usize).min(n.saturating_sub(2));
+            (i, (i + 1).min(n - 1), x - i as f32)
+        };
+        let (i0, i1, fu) = cell(s.x, self.samples_u);
+        let (j0, j1, fv) = cell(s.y, self.samples_v);
+        let n = |i: usize, j: usize| self.normals[i * self.samples_v + j];
+        n(i0, j0)
+            .lerp(n(i0, j1), fv)
+            .lerp(n(i1, j0).lerp(n(i1, j1), fv), fu)
+    }
+}
+
+/// The number of non-empty knot spans of a knot vector.
+fn spans(knots: &[f64]) -> usize {
+    knots.windows(2).filter(|w| w[1] > w[0]).count()
+}
+
+/// Welds coincident points: for each point its node index, and the nodes' positions. Points
+/// within 10⁻⁹ of the set's size of each other (a sweep over the points sorted by x) share a
+/// node.
+fn weld(points: &[DVec3]) -> (Vec<usize>, Vec<DVec3>) {
+    let (low, high) = points
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+            (l.min(*p), h.max(*p))
+        });
+    let tolerance = 1e-9 * (high - low).max_element().max(f64::MIN_POSITIVE);
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.sort_by(|&a, &b| points[a].x.total_cmp(&points[b].x));
+    let mut node_of = vec![usize::MAX; points.len()];
+    let mut nodes = Vec::new();
+    for (k, &a) in order.iter().enumerate() {
+        if node_of[a] != usize::MAX {
+            continue;
+        }
+        node_of[a] = nodes.len();
+        for &b in &order[k + 1..] {
+            if points[b].x - points[a].x > tolerance {
+                break;
+            }
+            if node_of[b] == usize::MAX && (points[b] - points[a]).abs().max_element() <= tolerance
+            {
+                node_of[b] = nodes.len();
+            }
+        }
+        nodes.push(points[a]);
+    }
+    (node_of, nodes)
+}
+
+/// For each node, the distinct other nodes next to one of its copies in a control net (along u
+/// or v).
+fn neighbours(nets: &[&NurbsSurface], node_of: &[usize], count: usize) -> Vec<Vec<usize>> {
+    let mut around: Vec<Vec<usize>> = vec![Vec::new(); count];
+    let mut start = 0;
+    for s in nets {
+        let (nu, nv) = (s.count_u(), s.count_v());
+        let node = |i: usize, j: usize| node_of[start + i * nv + j];
+        for i in 0..nu {
+            for j in 0..nv {
+                let (a, b) = (
+                    node(i, j),
+                    [
+                        (i + 1 < nu).then(|| node(i + 1, j)),
+                        (j + 1 < nv).then(|| node(i, j + 1)),
+                    ],
+                );
+                for b in b.into_iter().flatten() {
+                    if a != b {
+                        if !around[a].contains(&b) {
+                            around[a].push(b);
+                        }
+                        if !around[b].contains(&a) {
+                            around[b].push(a);
+                        }
+                    }
+                }
+            }
+        }
+        start += nu * nv;
+    }
+    around
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{shapes, NamedPatch};
+
+    #[test]
+    fn welding_joins_shared_points_only() {
+        let points = [
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::new(1e-12, 0.0, 0.0),
+            DVec3::new(1.0, 1e-3, 0.0),
+        ];
+        let (node_of, nodes) = weld(&points);
+        assert_eq!(node_of[0], node_of[2]);
+        assert_ne!(node_of[1], node_of[3]);
+        assert_eq!(nodes.len(), 3);
+    }
+
+    #[test]
+    fn a_plane_stays_flat_and_its_normals_stay_put() {
+        let library = PatchLibrary {
+            patches: vec![NamedPatch {
+                name: "plane".into(),
+                surface: shapes::plane(2.0, 1.0).unwrap(),
+            }],
+        };
+        let smoothed = SmoothedNormals::new(&library, 5).unwrap();
+        for uv in [
+            Vec2::ZERO,
+            Vec2::new(0.3, 0.9),
+            Vec2::ONE,
+            Vec2::splat(-4.0),
+        ] {
+            assert!((smoothed.at(0, uv).normalize() - Vec3::Z).length() < 1e-6);
+        }
+        assert_eq!(smoothed.at(1, Vec2::ZERO), Vec3::ZERO);
+    }
+}
