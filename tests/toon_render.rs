@@ -211,9 +211,7 @@ fn the_detail_stage_counts_the_pixels_of_xtoon_patches() {
     let mut looks = cel_looks(&library);
     let xtoon = xtoon_looks(&library, None);
     // The body patches (4–11) with X-Toon, the rest cel.
-    for i in 4..12 {
-        looks[i] = xtoon[i].clone();
-    }
+    looks[4..12].clone_from_slice(&xtoon[4..12]);
     let frame = render(&library, looks, teapot_camera());
     let ids = frame.aovs.patch_id.as_ref().unwrap();
     let on_body = ids.iter().filter(|&&p| (4..12).contains(&p)).count() as u64;
