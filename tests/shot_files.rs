@@ -31,6 +31,13 @@ fn every_shot_loads_and_renders_small() {
                 path.display()
             );
             assert!(image.colour.iter().all(|c| c.is_finite()));
+            // Only what the shot calls for runs: X-Toon detail only in the X-Toon shots.
+            let xtoon = path
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("xtoon_");
+            assert_eq!(image.stats.detail.pixels > 0, xtoon, "{}", path.display());
         }
     }
     assert!(count >= 4, "only {count} shots");
@@ -56,13 +63,16 @@ fn the_documented_example_and_look_library_load_and_render() {
     std::fs::write(shots.join("looks/studio.ron"), looks).unwrap();
     std::fs::write(shots.join("looks/more_looks.ron"), "Looks()").unwrap();
     let patches = concat!(env!("CARGO_MANIFEST_DIR"), "/patches/");
+    let textures = concat!(env!("CARGO_MANIFEST_DIR"), "/textures/");
     std::fs::write(
         shots.join("example.ron"),
-        example.replace("../patches/", patches),
+        example
+            .replace("../patches/", patches)
+            .replace("../textures/", textures),
     )
     .unwrap();
     let shot = load_shot(&shots.join("example.ron")).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(shot.library.patches.len(), 33);
+    assert_eq!(shot.library.patches.len(), 34);
     assert_eq!(
         shot.frame_path(7),
         shots.join("out/example/example.0007.png")
