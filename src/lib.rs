@@ -26,6 +26,7 @@ pub mod cli;
 pub mod formats;
 pub mod geom;
 pub mod highlight;
+pub mod param;
 pub mod render;
 pub mod scene;
 pub mod toon;

@@ -4,11 +4,12 @@
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
-use super::error::{check, HighlightError, Range};
+use super::error::HighlightError;
 use super::frame::TangentFrame;
 use super::inside::{coverage_from_signed, signed_inside};
 use super::ops::Op;
 use super::stack::{LocalChunk, PreparedStack, CHUNK};
+use crate::param::{check, Range};
 
 /// One highlight: the region `{ ‖N − H'‖² / 2 < ε }` of the vector `H'` that the op stack makes
 /// from the initial H, painted with a colour.
@@ -115,7 +116,8 @@ impl Mask<f32> {
             self.feather,
             Range::NonNegative,
             "; 0 is a hard rectangle",
-        )
+        )?;
+        Ok(())
     }
 
     /// The mask factor at `uv`, in [0, 1].

@@ -11,8 +11,9 @@
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
-use super::error::{check, HighlightError, Range};
+use super::error::HighlightError;
 use super::frame::{normalize_or, TangentFrame};
+use crate::param::{check, Range};
 
 /// One operation on the highlight vector H at a surface point.
 ///
@@ -171,7 +172,7 @@ impl<P> Op<P> {
 impl Op<f32> {
     /// Checks every parameter: all finite, δ ∈ [0, 1], γ ≥ 0, σ ∈ [0, 1], n > 0.
     pub fn validate(&self) -> Result<(), HighlightError> {
-        match *self {
+        let checked = match *self {
             Op::Translate { alpha, beta } => {
                 let hint = "; beyond that H is tangent to the surface and the highlight gone";
                 check("translate alpha (α)", alpha, Range::Step, hint)?;
@@ -209,7 +210,8 @@ impl Op<f32> {
                     "; larger values sharpen the corners",
                 )
             }
-        }
+        };
+        Ok(checked?)
     }
 
     /// Validates and precomputes the per-point form (cosines and sines of angles).

@@ -4,7 +4,8 @@
 use glam::Vec3;
 use serde::Deserialize;
 
-use super::error::{check, Range, XToonError};
+use super::error::XToonError;
+use crate::param::{check, Range};
 
 /// Where the detail D of a point comes from. Every number is a parameter of type `P` (a number,
 /// or an animation track resolved to one per frame).
@@ -88,7 +89,7 @@ impl DetailMap<f32> {
     /// Checks `z_min > 0`, `r > 1` (depth, depth of field), a finite focus, `r ≥ 0`
     /// (near-silhouette) and `s ≥ 1` (highlight).
     pub fn validate(&self) -> Result<(), XToonError> {
-        match *self {
+        let checked = match *self {
             DetailMap::Depth { z_min, r } => {
                 check("depth z_min", z_min, Range::Positive, Z_MIN_HINT)?;
                 check("depth r", r, Range::AboveOne, R_HINT)
@@ -112,7 +113,8 @@ impl DetailMap<f32> {
                 Range::AtLeastOne,
                 "; the shininess: 1 is a broad spot, larger values tighter",
             ),
-        }
+        };
+        Ok(checked?)
     }
 
     /// Validates and precomputes the per-point form; `invert` maps D to `1 − D`.

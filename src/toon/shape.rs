@@ -8,9 +8,10 @@ use glam::{DMat3, DVec3, Mat3, Vec2, Vec3};
 use nalgebra::{Matrix3, SymmetricEigen};
 use serde::Deserialize;
 
-use super::error::{check, Range, XToonError, MAX_ITERATIONS};
+use super::error::{XToonError, MAX_ITERATIONS};
 use super::smooth::SmoothedNormals;
 use crate::geom::PatchLibrary;
+use crate::param::{check, Range};
 
 /// The abstracted shape whose normals the shading blends toward.
 ///
@@ -85,7 +86,8 @@ impl ShapeDetail<f32> {
             self.weight,
             Range::Unit,
             "; 0 shades the true shape, 1 the abstracted one",
-        )
+        )?;
+        Ok(())
     }
 
     /// Validates and pairs the weight with `shape`, the model's abstracted shape built once by
