@@ -106,6 +106,10 @@ fn nearest_end<const N: usize>(b: &FirstBasis<N>) -> usize {
     }
 }
 
+/// Parameters evaluated together: first their derivatives, then their frames, so that the
+/// square roots and divisions of neighbouring frames overlap in the processor.
+const BATCH: usize = 32;
+
 impl NurbsSurface {
     /// [`frames`](Self::frames) for degrees `NU − 1` along u and `NV − 1` along v. Where the
     /// regular frame does not exist (a collapsed edge), the general evaluation takes over.
@@ -117,23 +121,28 @@ impl NurbsSurface {
         let domain = self.domain();
         let rational = self.is_rational();
         let mut net = LocalNet::<NU, NV>::new();
-        for (&(u, v), frame) in params.iter().zip(out) {
-            let bu = self.knots_u().first_basis::<NU>(u);
-            let bv = self.knots_v().first_basis::<NV>(v);
-            let first = (bu.span + 1 - NU, bv.span + 1 - NV);
-            let key = (
-                first,
-                (first.0 + nearest_end(&bu), first.1 + nearest_end(&bv)),
-            );
-            net.load(self, key);
-            let d = if rational {
-                net.rational_derivs(&bu, &bv)
-            } else {
-                net.polynomial_derivs(&bu, &bv)
-            };
-            *frame = Frame::from_derivs(&d, u, v, &domain)
-                .filter(|f| !f.degenerate)
-                .unwrap_or_else(|| self.frame_general(u, v));
+        let mut derivs = [SurfaceDerivs::default(); BATCH];
+        for (params, out) in params.chunks(BATCH).zip(out.chunks_mut(BATCH)) {
+            for (&(u, v), d) in params.iter().zip(&mut derivs) {
+                let bu = self.knots_u().first_basis::<NU>(u);
+                let bv = self.knots_v().first_basis::<NV>(v);
+                let first = (bu.span + 1 - NU, bv.span + 1 - NV);
+                let key = (
+                    first,
+                    (first.0 + nearest_end(&bu), first.1 + nearest_end(&bv)),
+                );
+                net.load(self, key);
+                *d = if rational {
+                    net.rational_derivs(&bu, &bv)
+                } else {
+                    net.polynomial_derivs(&bu, &bv)
+                };
+            }
+            for ((&(u, v), d), frame) in params.iter().zip(&derivs).zip(out) {
+                *frame = Frame::from_derivs(d, u, v, &domain)
+                    .filter(|f| !f.degenerate)
+                    .unwrap_or_else(|| self.frame_general(u, v));
+            }
         }
     }
 }
