@@ -200,7 +200,7 @@ where
 }
 
 /// Triangles set up per parallel job; the output does not depend on it.
-const CHUNK_TRIANGLES: usize = 4096;
+const CHUNK_TRIANGLES: usize = 1024;
 
 /// Rasterizes the indexed triangles `triangles` (each indexing `positions`) into a visibility
 /// buffer of `viewport`'s size. Both windings are drawn (no back-face culling). Triangles are
