@@ -1,7 +1,8 @@
 //! Point + frame evaluations per second: glint against the `curvo` crate computing the same
-//! quantities (point, unit normal, du, dv) on the same surfaces, at random (u, v) and over a
-//! 256 × 256 grid. Run with `cargo bench --bench geometry`; the summary at the end prints the
-//! speed-ups measured side by side in this run.
+//! quantities (point, unit normal, du, dv) on the same surfaces, at random (u, v) — one call per
+//! point, and all points in one `frames` call — and over a 256 × 256 grid. Run with
+//! `cargo bench --bench geometry`; the summary at the end prints the speed-ups measured side by
+//! side in this run.
 
 mod support;
 
@@ -75,6 +76,13 @@ fn bench_surface(c: &mut Criterion, name: &str, surface: &NurbsSurface, uvs: &[(
             }
         })
     });
+    let mut frames = vec![surface.frame(0.5, 0.5); uvs.len()];
+    group.bench_function("glint_batch", |b| {
+        b.iter(|| {
+            surface.frames(uvs, &mut frames);
+            black_box(&frames);
+        })
+    });
     group.bench_function("curvo", |b| {
         b.iter(|| {
             for &(u, v) in uvs {
@@ -126,7 +134,9 @@ fn main() {
         "curvo time / glint time for the same frames (higher = glint faster)",
         &[
             ("random_uv/sphere", "curvo", "glint"),
+            ("random_uv/sphere", "curvo", "glint_batch"),
             ("random_uv/bicubic", "curvo", "glint"),
+            ("random_uv/bicubic", "curvo", "glint_batch"),
             ("grid_256/sphere", "curvo", "glint"),
             ("grid_256/bicubic", "curvo", "glint"),
         ],

@@ -154,6 +154,11 @@ fn unused_stages_do_no_work_and_used_ones_do() {
         .unwrap()
         .stats;
     assert!(plain.shade.pixels > 0 && plain.raster.pixels > 0);
+    assert_eq!(plain.shade.pixels, plain.raster.pixels);
+    assert_eq!(
+        plain.gbuffer.pixels, 0,
+        "the tone alone is shaded straight from the visibility buffer"
+    );
     assert_eq!(plain.highlight_pixels, 0);
     assert_eq!(plain.outline.pixels, 0);
     assert_eq!(plain.aov.pixels, 0);
@@ -168,6 +173,7 @@ fn unused_stages_do_no_work_and_used_ones_do() {
         .render(&scene(&library, camera, true, true, aovs), &settings(128))
         .unwrap()
         .stats;
+    assert_eq!(full.gbuffer.pixels, full.raster.pixels);
     assert_eq!(full.highlight_pixels, full.shade.pixels);
     assert!(full.outline.pixels > 0);
     assert_eq!(full.aov.pixels, 128 * 128);
@@ -175,6 +181,30 @@ fn unused_stages_do_no_work_and_used_ones_do() {
         !full.tessellation_rebuilt,
         "same camera and density: the cached mesh serves"
     );
+}
+
+#[test]
+fn shading_straight_from_the_visibility_buffer_gives_the_g_buffer_image() {
+    let library = teapot();
+    let mut renderer = Renderer::new(&library);
+    for (k, camera) in [camera_at(20.0, 25.0), camera_at(200.0, -30.0)]
+        .into_iter()
+        .enumerate()
+    {
+        let direct = scene(&library, camera, false, false, Aovs::default());
+        // Asking for an AOV makes the frame build the G-buffer; the colour must not change.
+        let depth = Aovs {
+            depth: true,
+            ..Aovs::default()
+        };
+        let through_texels = scene(&library, camera, false, false, depth);
+        let a = renderer.render(&direct, &settings(160)).unwrap();
+        let b = renderer.render(&through_texels, &settings(160)).unwrap();
+        assert_eq!(a.stats.gbuffer.pixels, 0, "view {k}");
+        assert!(b.stats.gbuffer.pixels > 2000, "view {k}");
+        assert_eq!(a.stats.shade.pixels, b.stats.shade.pixels, "view {k}");
+        assert!(a.colour == b.colour, "view {k}: the two paths shade alike");
+    }
 }
 
 #[test]

@@ -46,7 +46,8 @@ impl Frame {
     ///   (h > 0) and `−1` near `v_max`.
     /// - `Sv` vanishes (a collapsed edge `u = u0`): `N = s normalize(Su × Suv)` with `s = +1` near
     ///   `u_min` and `−1` near `u_max`; `du = normalize(Su)`.
-    fn from_derivs(d: &SurfaceDerivs, u: f64, v: f64, domain: &Domain) -> Option<Frame> {
+    #[inline(always)]
+    pub(super) fn from_derivs(d: &SurfaceDerivs, u: f64, v: f64, domain: &Domain) -> Option<Frame> {
         const RATIO_SQUARED: f64 = VANISHING_RATIO * VANISHING_RATIO;
         let (sq_u, sq_v) = (d.su.length_squared(), d.sv.length_squared());
         if !(sq_u.is_finite() && sq_v.is_finite()) || sq_u.max(sq_v) == 0.0 {
@@ -102,6 +103,15 @@ fn unit_cross(a: DVec3, b: DVec3, squared_lengths: f64) -> Option<(DVec3, f64)> 
         .then(|| (n * sq.sqrt().recip(), sq / squared_lengths))
 }
 
+/// The world axes at the origin: the frame of last resort.
+pub(super) const WORLD_AXES: Frame = Frame {
+    point: DVec3::ZERO,
+    normal: DVec3::Z,
+    du: DVec3::X,
+    dv: DVec3::Y,
+    degenerate: false,
+};
+
 /// Below this `sin²` between the two vectors of a cross product (sin < 1e-4), the frame's du is
 /// projected onto the normal's tangent plane (see [`Frame`]'s construction).
 const SHORT_CROSS_SIN_SQUARED: f64 = 1e-8;
@@ -109,6 +119,43 @@ const SHORT_CROSS_SIN_SQUARED: f64 = 1e-8;
 impl NurbsSurface {
     /// The frame at (u, v) (see [`Frame`]); never NaN.
     pub fn frame(&self, u: f64, v: f64) -> Frame {
+        let mut out = [WORLD_AXES];
+        self.frames(&[(u, v)], &mut out);
+        out[0]
+    }
+
+    /// The frames at many parameters: `out[k]` is the frame at `params[k]`, as
+    /// [`frame`](Self::frame) gives it.
+    ///
+    /// Degrees 1 to 3 in each direction (Bezier patches, the conics of the exact shapes) are
+    /// evaluated with arrays of exactly their length (see `fixed_degree`), the same operations
+    /// in the same order as for any other degree, so the same frames.
+    ///
+    /// # Panics
+    /// If the slices differ in length.
+    pub fn frames(&self, params: &[(f64, f64)], out: &mut [Frame]) {
+        assert_eq!(params.len(), out.len(), "one frame per parameter");
+        match (self.knots_u().degree(), self.knots_v().degree()) {
+            (1, 1) => self.frames_fixed::<2, 2>(params, out),
+            (1, 2) => self.frames_fixed::<2, 3>(params, out),
+            (1, 3) => self.frames_fixed::<2, 4>(params, out),
+            (2, 1) => self.frames_fixed::<3, 2>(params, out),
+            (2, 2) => self.frames_fixed::<3, 3>(params, out),
+            (2, 3) => self.frames_fixed::<3, 4>(params, out),
+            (3, 1) => self.frames_fixed::<4, 2>(params, out),
+            (3, 2) => self.frames_fixed::<4, 3>(params, out),
+            (3, 3) => self.frames_fixed::<4, 4>(params, out),
+            _ => {
+                for (&(u, v), frame) in params.iter().zip(out) {
+                    *frame = self.frame_general(u, v);
+                }
+            }
+        }
+    }
+
+    /// The frame at (u, v) for any degree: basis functions to first order, and second
+    /// derivatives only where the regular frame does not exist.
+    pub(crate) fn frame_general(&self, u: f64, v: f64) -> Frame {
         let bu = self.knots_u().basis_derivs(u, 1);
         let bv = self.knots_v().basis_derivs(v, 1);
         self.frame_with(u, v, |order| {
@@ -157,10 +204,8 @@ impl NurbsSurface {
             })
             .unwrap_or(Frame {
                 point,
-                normal: DVec3::Z,
-                du: DVec3::X,
-                dv: DVec3::Y,
                 degenerate: true,
+                ..WORLD_AXES
             })
     }
 }

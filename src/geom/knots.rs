@@ -29,6 +29,18 @@ pub struct BasisDerivs {
     pub ders: [[f64; MAX_BASIS]; MAX_ORDER + 1],
 }
 
+/// Values and first derivatives of the `N = degree + 1` basis functions that are non-zero at one
+/// parameter, in arrays of exactly that length ([`KnotVector::first_basis`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FirstBasis<const N: usize> {
+    /// The knot span, as in [`BasisDerivs`].
+    pub span: usize,
+    /// `N_{span−p+j, p}(t)`.
+    pub value: [f64; N],
+    /// `N'_{span−p+j, p}(t)`.
+    pub slope: [f64; N],
+}
+
 /// The largest number of non-zero basis functions at a parameter, i.e. the highest supported
 /// degree plus one.
 pub const MAX_BASIS: usize = MAX_DEGREE + 1;
@@ -186,27 +198,15 @@ impl KnotVector {
         let span = self.find_span(t);
         let order = order.min(MAX_ORDER);
         let mut ders = [[0.0; MAX_BASIS]; MAX_ORDER + 1];
-
-        // A2.2, in place: after step j, basis[..=j] holds the degree-j functions. Its
-        // denominator `right[r+1] + left[j−r]` is the knot gap U[span+r+1] − U[span+1−j+r].
         let mut basis = [0.0; MAX_BASIS];
         let mut below = [[0.0; MAX_BASIS]; MAX_ORDER]; // degrees p − 1 and p − 2
-        let mut left = [0.0; MAX_BASIS];
-        let mut right = [0.0; MAX_BASIS];
+        let (mut left, mut right) = ([0.0; MAX_BASIS], [0.0; MAX_BASIS]);
         basis[0] = 1.0;
         for j in 1..=p {
             if j + MAX_ORDER > p {
                 below[p - j] = basis; // degree j − 1 = p − (p − j + 1)
             }
-            left[j] = t - self.knots[span + 1 - j];
-            right[j] = self.knots[span + j] - t;
-            let mut saved = 0.0;
-            for r in 0..j {
-                let temp = basis[r] * self.inverse_gap(span + 1 - j + r, j);
-                basis[r] = saved + right[r + 1] * temp;
-                saved = left[j - r] * temp;
-            }
-            basis[j] = saved;
+            self.raise_degree(span, t, j, &mut basis, &mut left, &mut right);
         }
         ders[0] = basis;
         if order == 0 {
@@ -221,11 +221,63 @@ impl KnotVector {
         BasisDerivs { span, ders }
     }
 
+    /// The values and first derivatives of the `N = degree + 1` basis functions non-zero at `t`:
+    /// [`basis_derivs`](Self::basis_derivs) to first order, with arrays of exactly `N` entries
+    /// so that every loop has a fixed trip count (the evaluation of small degrees). The same
+    /// operations in the same order, so the same values.
+    #[inline(always)]
+    pub(crate) fn first_basis<const N: usize>(&self, t: f64) -> FirstBasis<N> {
+        debug_assert_eq!(self.degree + 1, N, "basis arrays sized for another degree");
+        let p = N - 1;
+        let span = self.find_span(t);
+        let mut value = [0.0; N];
+        let mut lower = [0.0; N]; // degree p − 1
+        let (mut left, mut right) = ([0.0; N], [0.0; N]);
+        value[0] = 1.0;
+        for j in 1..=p {
+            if j == p {
+                lower = value;
+            }
+            self.raise_degree(span, t, j, &mut value, &mut left, &mut right);
+        }
+        FirstBasis {
+            span,
+            value,
+            slope: self.differentiate(span, p, &lower),
+        }
+    }
+
+    /// Step j of the triangular recurrence (A2.2) in place: `basis[..j]`, the degree j − 1
+    /// functions non-zero in `span`, becomes `basis[..=j]` of degree j. `left[j] = t −
+    /// U[span+1−j]` and `right[j] = U[span+j] − t` are recorded for the later steps; the
+    /// denominator `right[r+1] + left[j−r]` is the knot gap `U[span+r+1] − U[span+1−j+r]`.
+    #[inline(always)]
+    fn raise_degree<const N: usize>(
+        &self,
+        span: usize,
+        t: f64,
+        j: usize,
+        basis: &mut [f64; N],
+        left: &mut [f64; N],
+        right: &mut [f64; N],
+    ) {
+        left[j] = t - self.knots[span + 1 - j];
+        right[j] = self.knots[span + j] - t;
+        let mut saved = 0.0;
+        for r in 0..j {
+            let temp = basis[r] * self.inverse_gap(span + 1 - j + r, j);
+            basis[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        basis[j] = saved;
+    }
+
     /// Applies `f_{i,d} = d [g_{i,d−1}/(U[i+d] − U[i]) − g_{i+1,d−1}/(U[i+d+1] − U[i+1])]` to the
     /// `d` values `g` of degree d − 1 that are non-zero in `span` (indices `span − d + 1 ..=
     /// span`), giving the `d + 1` values of degree d (indices `span − d ..= span`).
-    fn differentiate(&self, span: usize, d: usize, g: &[f64; MAX_BASIS]) -> [f64; MAX_BASIS] {
-        let mut out = [0.0; MAX_BASIS];
+    #[inline(always)]
+    fn differentiate<const N: usize>(&self, span: usize, d: usize, g: &[f64; N]) -> [f64; N] {
+        let mut out = [0.0; N];
         let first = span - d;
         for (k, slot) in out.iter_mut().enumerate().take(d + 1) {
             let i = first + k;

@@ -2,6 +2,7 @@
 //! grid evaluation and exact shapes.
 
 mod error;
+mod fixed_degree;
 mod frame;
 mod grid;
 pub mod knots;

@@ -16,6 +16,8 @@ pub struct NurbsSurface {
     knots_v: KnotVector,
     /// Row-major homogeneous net: entry `i * count_v + j`.
     net: Vec<DVec4>,
+    /// Whether a weight differs from 1 (otherwise the surface is a polynomial B-spline).
+    rational: bool,
 }
 
 /// The point and partial derivatives of a surface at one parameter. Second derivatives are zero
@@ -36,7 +38,7 @@ pub(crate) type ContractedRows = [[DVec4; MAX_ORDER + 1]; MAX_BASIS];
 
 /// Homogeneous derivatives `A^(k,l)` with `k + l ≤ 2`, as sums over the columns of a span.
 #[derive(Clone, Copy, Debug, Default)]
-struct Homogeneous {
+pub(super) struct Homogeneous {
     a: DVec4,
     au: DVec4,
     av: DVec4,
@@ -49,7 +51,7 @@ impl Homogeneous {
     /// Adds one column's u-contraction `column[k]` weighted by its v basis derivatives
     /// `nv(l)`: `A^(k,l) += N^(l)(v) column[k]`, for `k + l ≤ order`.
     #[inline]
-    fn add_column(
+    pub(super) fn add_column(
         &mut self,
         column: &[DVec4; MAX_ORDER + 1],
         nv: impl Fn(usize) -> f64,
@@ -73,7 +75,8 @@ impl Homogeneous {
     /// `Su = (Au − wu S)/w`, `Sv = (Av − wv S)/w`, `Suu = (Auu − 2 wu Su − wuu S)/w`,
     /// `Suv = (Auv − wu Sv − wv Su − wuv S)/w`, `Svv = (Avv − 2 wv Sv − wvv S)/w`.
     /// Orders above `order` are left zero.
-    fn rational(&self, origin: DVec3, order: usize) -> SurfaceDerivs {
+    #[inline]
+    pub(super) fn rational(&self, origin: DVec3, order: usize) -> SurfaceDerivs {
         let inv_w = 1.0 / self.a.w;
         let local = self.a.truncate() * inv_w;
         let mut d = SurfaceDerivs {
@@ -180,6 +183,7 @@ impl NurbsSurface {
         Ok(Self {
             knots_u,
             knots_v,
+            rational: net.iter().any(|h| h.w != 1.0),
             net,
         })
     }
@@ -202,6 +206,18 @@ impl NurbsSurface {
     /// Number of control points along v (points per row).
     pub fn count_v(&self) -> usize {
         self.knots_v.count()
+    }
+
+    /// Whether a weight differs from 1; otherwise the surface is a polynomial B-spline, whose
+    /// homogeneous weight sums are 1.
+    pub fn is_rational(&self) -> bool {
+        self.rational
+    }
+
+    /// Control point `P_ij` as stored, homogeneous: `(w_ij P_ij, w_ij)`.
+    #[inline]
+    pub(super) fn homogeneous_point(&self, i: usize, j: usize) -> DVec4 {
+        self.net[i * self.count_v() + j]
     }
 
     /// Control point `P_ij` (Euclidean) and its weight `w_ij`.
@@ -345,6 +361,7 @@ impl NurbsSurface {
             knots_u: self.knots_u.clone(),
             knots_v: self.knots_v.clone(),
             net,
+            rational: self.rational,
         }
     }
 }

@@ -98,7 +98,9 @@ impl Camera {
     /// line of sight under orthographic projection.
     pub fn toward_eye(&self, point: Vec3) -> Vec3 {
         match self.projection {
-            Projection::Perspective { .. } => (self.eye - point).normalize_or(-self.forward()),
+            Projection::Perspective { .. } => (self.eye - point)
+                .try_normalize()
+                .unwrap_or_else(|| -self.forward()),
             Projection::Orthographic { .. } => -self.forward(),
         }
     }

@@ -8,7 +8,7 @@ use super::camera::Camera;
 use super::raster::{interpolate, VisibilityBuffer};
 use super::settings::FrameMode;
 use super::tessellate::Mesh;
-use crate::geom::{NurbsSurface, PatchLibrary};
+use crate::geom::{Frame, NurbsSurface, PatchLibrary};
 use crate::highlight::TangentFrame;
 
 /// The slot of a pixel no surface covers.
@@ -32,7 +32,7 @@ pub struct Texel {
 }
 
 /// The covered pixels of an image; work per pixel is done for these only.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct GBuffer {
     pub width: u32,
     pub height: u32,
@@ -45,110 +45,88 @@ pub struct GBuffer {
 /// Items per parallel job in the per-pixel passes.
 pub(crate) const PIXELS_PER_JOB: usize = 2048;
 
+/// What a texel holds before it is filled.
+const UNFILLED: Texel = Texel {
+    pixel: 0,
+    depth: 0.0,
+    patch: 0,
+    uv: Vec2::ZERO,
+    position: Vec3::ZERO,
+    frame: TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z),
+};
+
+/// What filling the texels of one block of pixels needs to know.
+struct Fill<'a> {
+    visibility: &'a VisibilityBuffer,
+    mesh: &'a Mesh,
+    library: &'a PatchLibrary,
+    camera: &'a Camera,
+    inverse_view_projection: Mat4,
+    mode: FrameMode,
+}
+
+/// Per-job scratch for evaluating a run of frames on one patch.
+#[derive(Default)]
+struct FrameScratch {
+    params: Vec<(f64, f64)>,
+    frames: Vec<Frame>,
+}
+
 impl GBuffer {
-    /// Fills the G-buffer from the visibility buffer of `mesh`. Frames come from the mesh's
-    /// vertex frames, or from the patch itself at the pixel's (u, v) ([`FrameMode::Exact`]), or
-    /// at (u, v) moved so the surface point lies on the pixel's ray ([`FrameMode::Refined`]).
-    /// `inverse_view_projection` maps NDC back to the world, for the pixel rays. Returns the
-    /// buffer and the number of frames evaluated on the patches.
+    /// Fills the G-buffer from the visibility buffer of `mesh`, reusing its memory. Frames come
+    /// from the mesh's vertex frames, or from the patch itself at the pixel's (u, v)
+    /// ([`FrameMode::Exact`]), or at (u, v) moved so the surface point lies on the pixel's ray
+    /// ([`FrameMode::Refined`]). `inverse_view_projection` maps NDC back to the world, for the
+    /// pixel rays. Returns the number of frames evaluated on the patches.
+    ///
+    /// Blocks of pixels are filled in parallel: each block counts its covered pixels, and the
+    /// running sum of the counts says where its texels start, so texels stay in pixel order.
     pub fn fill(
+        &mut self,
         visibility: &VisibilityBuffer,
         mesh: &Mesh,
         library: &PatchLibrary,
         camera: &Camera,
         inverse_view_projection: Mat4,
         mode: FrameMode,
-    ) -> (Self, u64) {
-        let (width, height) = (visibility.width, visibility.height);
-        let covered: Vec<u32> = (0..visibility.triangle.len() as u32)
-            .into_par_iter()
-            .with_min_len(PIXELS_PER_JOB)
-            .filter(|&i| visibility.triangle[i as usize] != u32::MAX)
+    ) -> u64 {
+        (self.width, self.height) = (visibility.width, visibility.height);
+        let counts: Vec<usize> = visibility
+            .triangle
+            .par_chunks(PIXELS_PER_JOB)
+            .map(|block| block.iter().filter(|&&t| t != EMPTY).count())
             .collect();
-        let texels: Vec<Texel> = covered
-            .par_iter()
-            .with_min_len(PIXELS_PER_JOB)
-            .map(|&pixel| {
-                let i = pixel as usize;
-                let triangle = visibility.triangle[i];
-                let b = visibility.barycentric[i];
-                let [i0, i1, i2] = mesh.triangles[triangle as usize].map(|k| k as usize);
-                let patch = mesh.triangle_patch[triangle as usize];
-                let mut uv = interpolate(b, mesh.uvs[i0], mesh.uvs[i1], mesh.uvs[i2]);
-                let mut position = interpolate(
-                    b,
-                    mesh.positions[i0],
-                    mesh.positions[i1],
-                    mesh.positions[i2],
-                );
-                let surface = &library.patches[patch as usize].surface;
-                let (normal, along_u) = match mode {
-                    FrameMode::Interpolated => (
-                        interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]),
-                        interpolate(
-                            b,
-                            mesh.tangents_u[i0],
-                            mesh.tangents_u[i1],
-                            mesh.tangents_u[i2],
-                        ),
-                    ),
-                    FrameMode::Exact => {
-                        let f = surface.frame(f64::from(uv.x), f64::from(uv.y));
-                        (f.normal.as_vec3(), f.du.as_vec3())
-                    }
-                    FrameMode::Refined => {
-                        let (x, y) = (
-                            (i as u32 % width) as f32 + 0.5,
-                            (i as u32 / width) as f32 + 0.5,
-                        );
-                        let ndc =
-                            Vec2::new(2.0 * x / width as f32 - 1.0, 1.0 - 2.0 * y / height as f32);
-                        let near = inverse_view_projection
-                            .project_point3(ndc.extend(0.0))
-                            .as_dvec3();
-                        let far = inverse_view_projection
-                            .project_point3(ndc.extend(1.0))
-                            .as_dvec3();
-                        let (u, v) = refine_on_ray(
-                            surface,
-                            (f64::from(uv.x), f64::from(uv.y)),
-                            near,
-                            far - near,
-                        );
-                        let f = surface.frame(u, v);
-                        uv = Vec2::new(u as f32, v as f32);
-                        position = f.point.as_vec3();
-                        (f.normal.as_vec3(), f.du.as_vec3())
-                    }
-                };
-                let toward_eye = camera.toward_eye(position);
-                Texel {
-                    pixel,
-                    depth: visibility.depth[i],
-                    patch,
-                    uv,
-                    position,
-                    frame: facing_frame(normal, along_u, toward_eye),
-                }
-            })
-            .collect();
-        let evaluated = match mode {
-            FrameMode::Interpolated => 0,
-            FrameMode::Exact | FrameMode::Refined => texels.len() as u64,
-        };
-        let mut slot = vec![EMPTY; visibility.triangle.len()];
-        for (k, t) in texels.iter().enumerate() {
-            slot[t.pixel as usize] = k as u32;
+        self.texels.resize(counts.iter().sum(), UNFILLED);
+        self.slot.resize(visibility.triangle.len(), EMPTY);
+        let mut blocks = Vec::with_capacity(counts.len());
+        let (mut rest, mut first) = (&mut self.texels[..], 0);
+        for &count in &counts {
+            let (texels, tail) = std::mem::take(&mut rest).split_at_mut(count);
+            blocks.push((first as u32, texels));
+            (rest, first) = (tail, first + count);
         }
-        (
-            Self {
-                width,
-                height,
-                slot,
-                texels,
-            },
-            evaluated,
-        )
+        let fill = Fill {
+            visibility,
+            mesh,
+            library,
+            camera,
+            inverse_view_projection,
+            mode,
+        };
+        blocks
+            .into_par_iter()
+            .zip(self.slot.par_chunks_mut(PIXELS_PER_JOB))
+            .enumerate()
+            .for_each_init(
+                FrameScratch::default,
+                |scratch, (block, ((first, texels), slots))| {
+                    fill.block(block * PIXELS_PER_JOB, first, texels, slots, scratch);
+                },
+            );
+        match mode {
+            FrameMode::Interpolated => 0,
+            FrameMode::Exact | FrameMode::Refined => self.texels.len() as u64,
+        }
     }
 
     /// A full image from one value per texel: `values[k]` at texel k's pixel, `background`
@@ -178,6 +156,121 @@ impl GBuffer {
         self.texel((y * self.width + x) as usize)
     }
 }
+
+impl Fill<'_> {
+    /// Fills the slots of the pixels from `start` on and their texels, numbered from `first`.
+    fn block(
+        &self,
+        start: usize,
+        first: u32,
+        texels: &mut [Texel],
+        slots: &mut [u32],
+        scratch: &mut FrameScratch,
+    ) {
+        let mut k = 0;
+        for (i, slot) in (start..).zip(slots.iter_mut()) {
+            let triangle = self.visibility.triangle[i];
+            if triangle == EMPTY {
+                *slot = EMPTY;
+                continue;
+            }
+            *slot = first + k as u32;
+            texels[k] = self.texel(i, triangle);
+            k += 1;
+        }
+        if self.mode != FrameMode::Interpolated {
+            self.exact_frames(texels, scratch);
+        }
+    }
+
+    /// The texel of pixel `i`, covered by `triangle`: patch, (u, v) and position interpolated
+    /// from the mesh, and with [`FrameMode::Interpolated`] the frame too.
+    fn texel(&self, i: usize, triangle: u32) -> Texel {
+        let mesh = self.mesh;
+        let b = self.visibility.barycentric[i];
+        let [i0, i1, i2] = mesh.triangles[triangle as usize].map(|k| k as usize);
+        let position = interpolate(
+            b,
+            mesh.positions[i0],
+            mesh.positions[i1],
+            mesh.positions[i2],
+        );
+        let frame = match self.mode {
+            FrameMode::Interpolated => facing_frame(
+                interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]),
+                interpolate(
+                    b,
+                    mesh.tangents_u[i0],
+                    mesh.tangents_u[i1],
+                    mesh.tangents_u[i2],
+                ),
+                self.camera.toward_eye(position),
+            ),
+            FrameMode::Exact | FrameMode::Refined => UNFILLED.frame,
+        };
+        Texel {
+            pixel: i as u32,
+            depth: self.visibility.depth[i],
+            patch: mesh.triangle_patch[triangle as usize],
+            uv: interpolate(b, mesh.uvs[i0], mesh.uvs[i1], mesh.uvs[i2]),
+            position,
+            frame,
+        }
+    }
+
+    /// The frames of `texels` evaluated on their patches, a run of texels on one patch at a
+    /// time; with [`FrameMode::Refined`], at (u, v) refined onto the pixel's ray, which also
+    /// moves the texel's (u, v) and position there.
+    fn exact_frames(&self, texels: &mut [Texel], scratch: &mut FrameScratch) {
+        let refined = self.mode == FrameMode::Refined;
+        for run in texels.chunk_by_mut(|a, b| a.patch == b.patch) {
+            let surface = &self.library.patches[run[0].patch as usize].surface;
+            scratch.params.clear();
+            scratch.params.extend(run.iter().map(|t| {
+                let uv = (f64::from(t.uv.x), f64::from(t.uv.y));
+                if refined {
+                    self.on_ray(surface, t.pixel, uv)
+                } else {
+                    uv
+                }
+            }));
+            scratch.frames.resize(run.len(), NO_FRAME);
+            surface.frames(&scratch.params, &mut scratch.frames);
+            for ((t, f), &(u, v)) in run.iter_mut().zip(&scratch.frames).zip(&scratch.params) {
+                if refined {
+                    t.uv = Vec2::new(u as f32, v as f32);
+                    t.position = f.point.as_vec3();
+                }
+                let toward_eye = self.camera.toward_eye(t.position);
+                t.frame = facing_frame(f.normal.as_vec3(), f.du.as_vec3(), toward_eye);
+            }
+        }
+    }
+
+    /// (u, v) near `start` whose surface point lies on the ray through the centre of pixel
+    /// `pixel` ([`refine_on_ray`]).
+    fn on_ray(&self, surface: &NurbsSurface, pixel: u32, start: (f64, f64)) -> (f64, f64) {
+        let (width, height) = (self.visibility.width, self.visibility.height);
+        let (x, y) = ((pixel % width) as f32 + 0.5, (pixel / width) as f32 + 0.5);
+        let ndc = Vec2::new(2.0 * x / width as f32 - 1.0, 1.0 - 2.0 * y / height as f32);
+        let unproject = |z: f32| {
+            self.inverse_view_projection
+                .project_point3(ndc.extend(z))
+                .as_dvec3()
+        };
+        let (near, far) = (unproject(0.0), unproject(1.0));
+        refine_on_ray(surface, start, near, far - near)
+    }
+}
+
+/// A frame to fill scratch buffers with before evaluation overwrites it.
+const NO_FRAME: Frame = Frame {
+    point: DVec3::ZERO,
+    normal: DVec3::Z,
+    du: DVec3::X,
+    dv: DVec3::Y,
+    degenerate: false,
+};
 
 /// Newton steps moving `(u, v)` until `S(u, v)` lies on the ray `origin + t direction`.
 ///
@@ -231,21 +324,40 @@ pub const REFINE_STEPS: usize = 4;
 /// `du = normalize(a − (a·N) N)`; `dv = N × du`. Degenerate input falls back to any frame
 /// around the viewer direction, never NaN.
 pub fn facing_frame(n: Vec3, along_u: Vec3, toward_eye: Vec3) -> TangentFrame {
-    let length_squared = n.length_squared();
-    if !(length_squared > f32::MIN_POSITIVE && length_squared.is_finite()) {
-        let normal = toward_eye.normalize_or(Vec3::Z);
+    let Some((normal, inverse_squared)) = facing(n, toward_eye) else {
+        let normal = unfacing_fallback(toward_eye);
         let du = normal.any_orthonormal_vector();
         return TangentFrame::new(du, normal.cross(du), normal);
-    }
+    };
     // The projection uses `1/|n|²` and the normal `1/|n|`, so the two normalizations do not
     // wait for each other: `du ∝ a − (a·n) n / |n|²`.
-    let inverse_squared = length_squared.recip();
-    let facing = if n.dot(toward_eye) < 0.0 { -1.0 } else { 1.0 };
-    let normal = n * (facing * inverse_squared.sqrt());
     let du = (along_u - (along_u.dot(n) * inverse_squared) * n)
         .try_normalize()
         .unwrap_or_else(|| normal.any_orthonormal_vector());
     TangentFrame::new(du, normal.cross(du), normal)
+}
+
+/// The normal of [`facing_frame`] alone, for shading that needs no tangents.
+pub(crate) fn facing_normal(n: Vec3, toward_eye: Vec3) -> Vec3 {
+    facing(n, toward_eye).map_or_else(|| unfacing_fallback(toward_eye), |(normal, _)| normal)
+}
+
+/// `normalize(n)` turned toward the viewer, and `1/|n|²`; `None` when `n` is zero or not
+/// finite.
+#[inline]
+fn facing(n: Vec3, toward_eye: Vec3) -> Option<(Vec3, f32)> {
+    let length_squared = n.length_squared();
+    if !(length_squared > f32::MIN_POSITIVE && length_squared.is_finite()) {
+        return None;
+    }
+    let inverse_squared = length_squared.recip();
+    let facing = if n.dot(toward_eye) < 0.0 { -1.0 } else { 1.0 };
+    Some((n * (facing * inverse_squared.sqrt()), inverse_squared))
+}
+
+/// The normal where no normal is given: the viewer direction.
+fn unfacing_fallback(toward_eye: Vec3) -> Vec3 {
+    toward_eye.normalize_or(Vec3::Z)
 }
 
 #[cfg(test)]

@@ -8,6 +8,7 @@ pub mod camera;
 mod gbuffer;
 mod outline;
 pub mod output;
+mod plan;
 pub mod raster;
 mod renderer;
 mod scene;

@@ -1,6 +1,7 @@
 //! Outlines: ink lines where the G-buffer is discontinuous — silhouettes against the background
 //! and against farther surfaces, creases, and (optionally) borders between patches.
 
+use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::camera::Camera;
@@ -12,78 +13,144 @@ use super::scene::Outlines;
 /// smooth surfaces and is large where a nearer surface overlaps a farther one.
 const DEPTH_JUMP: f32 = 0.02;
 
-/// Per pixel, 1 where a line is drawn and 0 elsewhere, for lines `outlines.width` pixels wide.
-pub fn outline_mask(gbuffer: &GBuffer, camera: &Camera, outlines: &Outlines) -> Vec<f32> {
-    let (w, h) = (gbuffer.width as i64, gbuffer.height as i64);
-    let forward = camera.forward();
-    let inverse_depth: Vec<f32> = gbuffer
-        .texels
-        .iter()
-        .map(|t| 1.0 / (t.position - camera.eye).dot(forward).max(1e-6))
-        .collect();
-    let crease_cos = outlines.crease_degrees.to_radians().cos();
-    let slot = |x: i64, y: i64| -> Option<usize> {
-        let s = gbuffer.slot[(y * w + x) as usize];
-        (s != EMPTY).then_some(s as usize)
-    };
-    // Two neighbouring pixels differ when exactly one is covered, or when both are and either
-    // they lie on different patches (with patch borders on) or the normal turns by more than
-    // the crease angle.
-    let differs = |a: Option<usize>, b: Option<usize>| -> bool {
-        match (a, b) {
-            (None, None) => false,
-            (Some(a), Some(b)) => {
-                let (a, b) = (&gbuffer.texels[a], &gbuffer.texels[b]);
-                (outlines.patch_borders && a.patch != b.patch)
-                    || (a.patch == b.patch && a.frame.n.dot(b.frame.n) < crease_cos)
-            }
-            _ => true,
-        }
-    };
-    // A nearer surface overlapping a farther one: the second difference of inverse depth across
-    // the pixel jumps.
-    let occludes = |x: i64, y: i64, dx: i64, dy: i64| -> bool {
-        let (x0, y0, x1, y1) = (x - dx, y - dy, x + dx, y + dy);
-        if x0 < 0 || y0 < 0 || x1 >= w || y1 >= h {
-            return false;
-        }
-        match (slot(x0, y0), slot(x, y), slot(x1, y1)) {
-            (Some(a), Some(c), Some(b)) => {
-                let (a, c, b) = (inverse_depth[a], inverse_depth[c], inverse_depth[b]);
-                (a + b - 2.0 * c).abs() > DEPTH_JUMP * c
-            }
-            _ => false,
-        }
-    };
-    // A pixel is an edge pixel when it differs from its right or lower neighbour.
-    let edges: Vec<bool> = (0..(w * h) as usize)
-        .into_par_iter()
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|i| {
-            let (x, y) = (i as i64 % w, i as i64 / w);
-            let here = slot(x, y);
-            (x + 1 < w && differs(here, slot(x + 1, y)))
-                || (y + 1 < h && differs(here, slot(x, y + 1)))
-                || (here.is_some() && (occludes(x, y, 1, 0) || occludes(x, y, 0, 1)))
-        })
-        .collect();
-    // Widen each edge pixel to a disc of the line's width.
+/// Working memory of the outline pass, kept from one frame to the next.
+#[derive(Debug, Default)]
+pub struct OutlineBuffers {
+    /// Per texel, what the edge tests compare.
+    surfaces: Vec<EdgeSurface>,
+    /// Per pixel, whether it differs from its right or lower neighbour.
+    edges: Vec<bool>,
+}
+
+/// What the edge tests read of a texel.
+#[derive(Clone, Copy, Debug)]
+struct EdgeSurface {
+    patch: u32,
+    normal: Vec3,
+    /// `1 / ((P − eye)·forward)`.
+    inverse_depth: f32,
+}
+
+/// Inks lines `outlines.width` pixels wide over `colour` (an image of the G-buffer's size):
+/// every pixel within `(width − 1)/2` of an edge pixel becomes `rgb = outlines.colour`, `α = 1`.
+pub fn draw_outlines(
+    gbuffer: &GBuffer,
+    camera: &Camera,
+    outlines: &Outlines,
+    colour: &mut [Vec4],
+    buffers: &mut OutlineBuffers,
+) {
+    find_edges(gbuffer, camera, outlines, buffers);
+    let edges = &buffers.edges;
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    // The disc of the line around an edge pixel, row by row: (dy, largest |dx|).
     let radius = ((outlines.width.max(1.0) - 1.0) * 0.5).max(0.0);
     let reach = radius.ceil() as i64;
-    let mut mask = vec![0.0; (w * h) as usize];
-    for (i, _) in edges.iter().enumerate().filter(|(_, &edge)| edge) {
-        let (x, y) = (i as i64 % w, i as i64 / w);
-        for dy in -reach..=reach {
-            for dx in -reach..=reach {
-                let (nx, ny) = (x + dx, y + dy);
-                if (dx * dx + dy * dy) as f32 <= radius * radius + 1e-3
-                    && (0..w).contains(&nx)
-                    && (0..h).contains(&ny)
-                {
-                    mask[(ny * w + nx) as usize] = 1.0;
+    let disc: Vec<(i64, i64)> = (-reach..=reach)
+        .filter_map(|dy| {
+            (0..=reach)
+                .rev()
+                .find(|&dx| (dx * dx + dy * dy) as f32 <= radius * radius + 1e-3)
+                .map(|dx| (dy, dx))
+        })
+        .collect();
+    colour
+        .par_chunks_mut(w)
+        .with_min_len(PIXELS_PER_JOB.div_ceil(w))
+        .enumerate()
+        .for_each_init(Vec::new, |inked: &mut Vec<bool>, (y, row)| {
+            inked.clear();
+            inked.resize(w, false);
+            let mut any = false;
+            for &(dy, dx) in &disc {
+                let Some(edge_row) = (y as i64 + dy)
+                    .try_into()
+                    .ok()
+                    .filter(|&y: &usize| y < h)
+                    .map(|y| &edges[y * w..][..w])
+                else {
+                    continue;
+                };
+                for (x, _) in edge_row.iter().enumerate().filter(|(_, &edge)| edge) {
+                    let (x0, x1) = (x.saturating_sub(dx as usize), (x + dx as usize).min(w - 1));
+                    inked[x0..=x1].fill(true);
+                    any = true;
                 }
             }
+            if any {
+                for (c, _) in row.iter_mut().zip(inked.iter()).filter(|(_, &ink)| ink) {
+                    *c = c.truncate().lerp(outlines.colour, 1.0).extend(1.0);
+                }
+            }
+        });
+}
+
+/// Marks the pixels that differ from their right or lower neighbour: exactly one of the two is
+/// covered; or both are, on different patches (with patch borders on), or on one patch with
+/// normals turning by more than the crease angle. A covered pixel whose inverse depth has a
+/// jump in its second difference across it, along a row or a column, is marked too: a nearer
+/// surface overlaps a farther one there.
+fn find_edges(
+    gbuffer: &GBuffer,
+    camera: &Camera,
+    outlines: &Outlines,
+    buffers: &mut OutlineBuffers,
+) {
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    let forward = camera.forward();
+    gbuffer
+        .texels
+        .par_iter()
+        .with_min_len(PIXELS_PER_JOB)
+        .map(|t| EdgeSurface {
+            patch: t.patch,
+            normal: t.frame.n,
+            inverse_depth: 1.0 / (t.position - camera.eye).dot(forward).max(1e-6),
+        })
+        .collect_into_vec(&mut buffers.surfaces);
+    let surfaces = &buffers.surfaces;
+    let crease_cos = outlines.crease_degrees.to_radians().cos();
+    let differs = |a: u32, b: u32| -> bool {
+        if b == EMPTY {
+            return true;
         }
-    }
-    mask
+        let (a, b) = (&surfaces[a as usize], &surfaces[b as usize]);
+        (outlines.patch_borders && a.patch != b.patch)
+            || (a.patch == b.patch && a.normal.dot(b.normal) < crease_cos)
+    };
+    let occludes = |before: u32, here: u32, after: u32| -> bool {
+        if before == EMPTY || after == EMPTY {
+            return false;
+        }
+        let depth = |s: u32| surfaces[s as usize].inverse_depth;
+        let (a, c, b) = (depth(before), depth(here), depth(after));
+        (a + b - 2.0 * c).abs() > DEPTH_JUMP * c
+    };
+    let row = |y: usize| &gbuffer.slot[y * w..][..w];
+    buffers.edges.resize(w * h, false);
+    buffers
+        .edges
+        .par_chunks_mut(w)
+        .with_min_len(PIXELS_PER_JOB.div_ceil(w))
+        .enumerate()
+        .for_each(|(y, edges)| {
+            let (here, above, below) = (
+                row(y),
+                (y > 0).then(|| row(y - 1)),
+                (y + 1 < h).then(|| row(y + 1)),
+            );
+            for (x, edge) in edges.iter_mut().enumerate() {
+                let s = here[x];
+                let right = (x + 1 < w).then(|| here[x + 1]);
+                let down = below.map(|b| b[x]);
+                *edge = if s == EMPTY {
+                    right.is_some_and(|r| r != EMPTY) || down.is_some_and(|d| d != EMPTY)
+                } else {
+                    right.is_some_and(|r| differs(s, r))
+                        || down.is_some_and(|d| differs(s, d))
+                        || (x > 0 && right.is_some_and(|r| occludes(here[x - 1], s, r)))
+                        || above.zip(down).is_some_and(|(a, d)| occludes(a[x], s, d))
+                };
+            }
+        });
 }

@@ -7,12 +7,13 @@ use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
-use super::gbuffer::GBuffer;
-use super::outline::outline_mask;
+use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use super::outline::{draw_outlines, OutlineBuffers};
+use super::plan::{Plan, Surfaces};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
-use super::scene::Scene;
+use super::scene::{Outlines, Scene};
 use super::settings::{Antialias, Settings};
-use super::shade::{shade, Shaded};
+use super::shade::{shade, shade_visibility, ShadeBuffers, Shaded};
 use super::stats::{timed, RenderStats, StageStats};
 use super::tessellate::Tessellator;
 use super::RenderError;
@@ -52,11 +53,17 @@ pub struct Renderer<'a> {
     pool: Option<(usize, ThreadPool)>,
 }
 
-/// What the stages keep from one frame to the next.
+/// What the stages keep from one frame to the next: the mesh, and every buffer whose size
+/// depends only on the image and the mesh, so that a frame allocates just the images it returns.
 struct Stages<'a> {
     tessellator: Tessellator<'a>,
+    /// The mesh's vertices in clip space.
+    clip: Vec<Vec4>,
     rasterizer: Rasterizer,
     visibility: VisibilityBuffer,
+    gbuffer: GBuffer,
+    shading: ShadeBuffers,
+    outlining: OutlineBuffers,
 }
 
 impl<'a> Renderer<'a> {
@@ -65,8 +72,12 @@ impl<'a> Renderer<'a> {
             library,
             stages: Stages {
                 tessellator: Tessellator::new(library),
+                clip: Vec::new(),
                 rasterizer: Rasterizer::new(),
                 visibility: VisibilityBuffer::default(),
+                gbuffer: GBuffer::default(),
+                shading: ShadeBuffers::default(),
+                outlining: OutlineBuffers::default(),
             },
             pool: None,
         }
@@ -137,6 +148,7 @@ impl Stages<'_> {
         scene: &Scene,
         settings: &Settings,
     ) -> RenderedFrame {
+        let plan = Plan::new(scene, settings);
         let mut stats = RenderStats::default();
         let k = settings.samples_per_side();
         let (width, height) = (settings.width * k, settings.height * k);
@@ -156,20 +168,20 @@ impl Stages<'_> {
         stats.triangles = mesh.triangles.len();
         stats.tessellation.seconds = seconds;
 
-        let visibility = &mut self.visibility;
+        let (visibility, clip) = (&mut self.visibility, &mut self.clip);
         let rasterizer = &mut self.rasterizer;
         let (raster, seconds) = timed(|| {
-            let clip: Vec<Vec4> = mesh
-                .positions
-                .iter()
+            mesh.positions
+                .par_iter()
+                .with_min_len(PIXELS_PER_JOB)
                 .map(|p| view_projection * p.extend(1.0))
-                .collect();
+                .collect_into_vec(clip);
             let options = RasterOptions {
                 threads: 0,
                 ..RasterOptions::default()
             };
             let viewport = Viewport { width, height };
-            rasterizer.rasterize_into(viewport, &clip, &mesh.triangles, &options, visibility)
+            rasterizer.rasterize_into(viewport, clip, &mesh.triangles, &options, visibility)
         });
         let visibility = &*visibility;
         stats.raster = StageStats {
@@ -177,46 +189,53 @@ impl Stages<'_> {
             seconds,
         };
 
-        let ((gbuffer, exact), seconds) = timed(|| {
-            let inverse = view_projection.inverse();
-            GBuffer::fill(
-                visibility,
-                mesh,
-                library,
-                &scene.camera,
-                inverse,
-                settings.frames,
-            )
-        });
-        stats.gbuffer = StageStats {
-            pixels: raster.pixels_covered,
-            seconds,
+        let (gbuffer, shading) = (&mut self.gbuffer, &mut self.shading);
+        let (mut shaded, seconds) = match plan.surfaces {
+            Surfaces::Visibility => timed(|| Shaded {
+                colour: shade_visibility(visibility, mesh, scene),
+                matte: None,
+                n_dot_h: None,
+                shaded: raster.pixels_covered,
+                highlighted: 0,
+                detail: StageStats::default(),
+            }),
+            Surfaces::Texels => {
+                let (exact, seconds) = timed(|| {
+                    let inverse = view_projection.inverse();
+                    gbuffer.fill(
+                        visibility,
+                        mesh,
+                        library,
+                        &scene.camera,
+                        inverse,
+                        settings.frames,
+                    )
+                });
+                stats.gbuffer = StageStats {
+                    pixels: raster.pixels_covered,
+                    seconds,
+                };
+                stats.exact_frames = exact;
+                let analytic = settings.antialias == Antialias::Analytic;
+                timed(|| shade(gbuffer, scene, analytic, shading))
+            }
         };
-        stats.exact_frames = exact;
-
-        let analytic = settings.antialias == Antialias::Analytic;
-        let (mut shaded, seconds) = timed(|| shade(&gbuffer, scene, analytic));
         stats.shade = StageStats {
             pixels: shaded.shaded,
             seconds,
         };
         stats.highlight_pixels = shaded.highlighted;
         stats.detail = shaded.detail;
+        let gbuffer = &*gbuffer;
 
-        if let Some(outlines) = &scene.outlines {
+        if let (true, Some(outlines)) = (plan.outlines, &scene.outlines) {
             let (_, seconds) = timed(|| {
-                let mut scaled = *outlines;
-                scaled.width *= k as f32;
-                let mask = outline_mask(&gbuffer, &scene.camera, &scaled);
-                shaded
-                    .colour
-                    .par_iter_mut()
-                    .zip(mask.par_iter())
-                    .with_min_len(4096)
-                    .for_each(|(c, &m)| {
-                        let ink = c.truncate().lerp(outlines.colour, m);
-                        *c = ink.extend(c.w.max(m));
-                    });
+                let scaled = Outlines {
+                    width: outlines.width * k as f32,
+                    ..*outlines
+                };
+                let buffers = &mut self.outlining;
+                draw_outlines(gbuffer, &scene.camera, &scaled, &mut shaded.colour, buffers);
             });
             stats.outline = StageStats {
                 pixels: u64::from(width) * u64::from(height),
@@ -224,22 +243,26 @@ impl Stages<'_> {
             };
         }
 
-        let (aovs, seconds) = timed(|| collect_aovs(scene, &gbuffer, &mut shaded, k));
-        let aov_count = [
-            aovs.matte.is_some(),
-            aovs.patch_id.is_some(),
-            aovs.depth.is_some(),
-            aovs.normal.is_some(),
-            aovs.uv.is_some(),
-            aovs.n_dot_h.is_some(),
-        ]
-        .iter()
-        .filter(|&&on| on)
-        .count() as u64;
-        stats.aov = StageStats {
-            pixels: aov_count * u64::from(settings.width) * u64::from(settings.height),
-            seconds,
-        };
+        let mut aovs = AovImages::default();
+        if plan.aovs {
+            let (images, seconds) = timed(|| collect_aovs(scene, gbuffer, &mut shaded, k));
+            let count = [
+                images.matte.is_some(),
+                images.patch_id.is_some(),
+                images.depth.is_some(),
+                images.normal.is_some(),
+                images.uv.is_some(),
+                images.n_dot_h.is_some(),
+            ]
+            .iter()
+            .filter(|&&on| on)
+            .count() as u64;
+            stats.aov = StageStats {
+                pixels: count * u64::from(settings.width) * u64::from(settings.height),
+                seconds,
+            };
+            aovs = images;
+        }
 
         let colour = if k == 1 {
             shaded.colour

@@ -3,11 +3,13 @@
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
+use super::gbuffer::{facing_normal, GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
+use super::raster::{interpolate, VisibilityBuffer};
 use super::scene::{Scene, Tone};
 use super::stats::StageStats;
+use super::tessellate::Mesh;
 use super::xtoon;
-use crate::highlight::{half_vector, PreparedExpr, PreparedLayer, Shade, TangentFrame};
+use crate::highlight::{half_vector, PreparedExpr, PreparedLayer, Shade, TangentFrame, CHUNK};
 
 /// The shaded image and what the pass did.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,6 +28,14 @@ pub struct Shaded {
     pub detail: StageStats,
 }
 
+/// Per-texel results of the shade pass, kept from one frame to the next so that shading
+/// allocates only the images it returns.
+#[derive(Debug, Default)]
+pub struct ShadeBuffers {
+    colour: Vec<Vec4>,
+    coverage: Vec<f32>,
+}
+
 /// Shades every covered pixel: `tone = ramp(N·L)`, or the X-Toon tone from the detail pass,
 /// then on a patch with a highlight `H = normalize(L + V)`, the highlight expression's coverage
 /// c and colour h, and `colour = (1 − c) tone + c h`.
@@ -34,53 +44,36 @@ pub struct Shaded {
 /// signed inside value `s = ε − ‖N − H'‖²/2`: the width is `fwidth(s) = |∂s/∂x| + |∂s/∂y|`
 /// from differences with the neighbouring pixels of the same patch, the largest over the
 /// expression's layers. Without it, edges are hard (the paper's look).
-pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
+pub fn shade(
+    gbuffer: &GBuffer,
+    scene: &Scene,
+    analytic_edges: bool,
+    buffers: &mut ShadeBuffers,
+) -> Shaded {
     let detail = xtoon::detail(gbuffer, scene);
     // Highlights see the abstracted frames of X-Toon patches that ask for them.
     let gbuffer = detail.highlight_gbuffer.as_ref().unwrap_or(gbuffer);
-    // Per texel: the half vector, on highlighted patches only.
-    let half_vectors: Vec<Option<Vec3>> = gbuffer
-        .texels
-        .par_iter()
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|t| {
-            scene.looks[t.patch as usize]
-                .highlight
-                .as_ref()
-                .map(|_| initial_half_vector(scene, t))
-        })
-        .collect();
-    let widths = analytic_edges.then(|| edge_widths(gbuffer, scene, &half_vectors));
-    let shades: Vec<Shade> = gbuffer
+    let widths = analytic_edges.then(|| edge_widths(gbuffer, scene));
+    let texels = gbuffer.texels.len();
+    buffers.colour.resize(texels, Vec4::ZERO);
+    buffers.coverage.resize(texels, 0.0);
+    let highlighted = gbuffer
         .texels
         .par_chunks(PIXELS_PER_JOB)
-        .zip(half_vectors.par_chunks(PIXELS_PER_JOB))
+        .zip(buffers.colour.par_chunks_mut(PIXELS_PER_JOB))
+        .zip(buffers.coverage.par_chunks_mut(PIXELS_PER_JOB))
         .enumerate()
-        .flat_map_iter(|(chunk, (texels, hs))| {
-            let widths = widths
-                .as_ref()
-                .map(|w| &w[chunk * PIXELS_PER_JOB..][..texels.len()]);
-            highlight_chunk(scene, texels, hs, widths)
-        })
-        .collect();
-    let results: Vec<(Vec4, f32)> = gbuffer
-        .texels
-        .par_iter()
-        .zip(&shades)
-        .enumerate()
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|(k, (t, shade))| {
-            let tone = match &scene.looks[t.patch as usize].tone {
-                Tone::Cel(ramp) => {
-                    let n = t.frame.n;
-                    ramp.shade(n.dot(scene.light.direction(t.position, n)))
-                }
-                Tone::XToon(_) => detail.tones[k],
-            };
-            let colour: Vec3 = tone.lerp(shade.colour, shade.coverage);
-            (colour.extend(1.0), shade.coverage)
-        })
-        .collect();
+        .map_init(
+            RunScratch::new,
+            |scratch, (chunk, ((texels, colour), coverage))| {
+                let range = chunk * PIXELS_PER_JOB..chunk * PIXELS_PER_JOB + texels.len();
+                let widths = widths.as_ref().map(|w| &w[range.clone()]);
+                let tones = (!detail.tones.is_empty()).then(|| &detail.tones[range]);
+                let out = Out { colour, coverage };
+                shade_texels(scene, texels, widths, tones, out, scratch)
+            },
+        )
+        .sum();
     let n_dot_h = scene.aovs.n_dot_h.then(|| {
         let values: Vec<f32> = gbuffer
             .texels
@@ -90,19 +83,52 @@ pub fn shade(gbuffer: &GBuffer, scene: &Scene, analytic_edges: bool) -> Shaded {
             .collect();
         gbuffer.gather(&values, 0.0)
     });
-    let colours: Vec<Vec4> = results.iter().map(|r| r.0).collect();
-    let colour = gbuffer.gather(&colours, Vec4::ZERO);
-    let matte = scene.aovs.matte.then(|| {
-        let coverage: Vec<f32> = results.iter().map(|r| r.1).collect();
-        gbuffer.gather(&coverage, 0.0)
-    });
     Shaded {
-        colour,
-        matte,
+        colour: gbuffer.gather(&buffers.colour, Vec4::ZERO),
+        matte: scene
+            .aovs
+            .matte
+            .then(|| gbuffer.gather(&buffers.coverage, 0.0)),
         n_dot_h,
-        shaded: gbuffer.texels.len() as u64,
-        highlighted: half_vectors.iter().filter(|h| h.is_some()).count() as u64,
+        shaded: texels as u64,
+        highlighted,
         detail: detail.stats,
+    }
+}
+
+/// Shades straight from the visibility buffer, for a plan that builds no G-buffer
+/// ([`Surfaces::Visibility`](super::plan::Surfaces::Visibility)): at each covered pixel the tone
+/// of the vertex normal interpolated there and turned toward the viewer — the normal and the
+/// colour a texel with interpolated frames gets. Returns the colour image.
+pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scene) -> Vec<Vec4> {
+    visibility
+        .triangle
+        .par_iter()
+        .zip(&visibility.barycentric)
+        .with_min_len(PIXELS_PER_JOB)
+        .map(|(&triangle, &b)| {
+            if triangle == EMPTY {
+                return Vec4::ZERO;
+            }
+            let [i0, i1, i2] = mesh.triangles[triangle as usize].map(|k| k as usize);
+            let p = &mesh.positions;
+            let position = interpolate(b, p[i0], p[i1], p[i2]);
+            let n = interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]);
+            let normal = facing_normal(n, scene.camera.toward_eye(position));
+            let patch = mesh.triangle_patch[triangle as usize];
+            tone(scene, patch, position, normal, None).extend(1.0)
+        })
+        .collect()
+}
+
+/// The tone at a point of `patch` with unit normal `n`: `ramp(N·L)` for a cel tone; for an
+/// X-Toon tone, `xtoon`, the detail pass's value there (black where there is none: a plan
+/// shades from the visibility buffer only without X-Toon patches).
+#[inline]
+fn tone(scene: &Scene, patch: u32, position: Vec3, n: Vec3, xtoon: Option<Vec3>) -> Vec3 {
+    match &scene.looks[patch as usize].tone {
+        Tone::Cel(ramp) => ramp.shade(n.dot(scene.light.direction(position, n))),
+        Tone::XToon(_) => xtoon.unwrap_or(Vec3::ZERO),
     }
 }
 
@@ -122,45 +148,96 @@ const NO_HIGHLIGHT: Shade = Shade {
     colour: Vec3::ZERO,
 };
 
-/// The highlight shade of each texel of a chunk (in pixel order), given its half vectors (on
-/// highlighted patches) and, for analytic edges, its edge widths. Runs of texels on one patch go
-/// through the expression's batch evaluation; with per-pixel widths, one by one.
-fn highlight_chunk(
+/// Where the shade of a run of texels goes: colour and highlight coverage per texel.
+struct Out<'a> {
+    colour: &'a mut [Vec4],
+    coverage: &'a mut [f32],
+}
+
+/// The inputs and results of the highlight expression for up to [`CHUNK`] texels of one patch,
+/// kept by each worker from one run to the next.
+struct RunScratch {
+    half_vectors: [Vec3; CHUNK],
+    frames: [TangentFrame; CHUNK],
+    uvs: [Vec2; CHUNK],
+    shades: [Shade; CHUNK],
+}
+
+impl RunScratch {
+    fn new() -> Self {
+        Self {
+            half_vectors: [Vec3::ZERO; CHUNK],
+            frames: [TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z); CHUNK],
+            uvs: [Vec2::ZERO; CHUNK],
+            shades: [NO_HIGHLIGHT; CHUNK],
+        }
+    }
+}
+
+/// Shades `texels` (in pixel order) into `out`, given their edge widths for analytic edges and
+/// their X-Toon tones from the detail pass.
+/// Runs of texels on one patch go through the highlight expression together, [`CHUNK`] at a
+/// time; with per-pixel widths, one by one. Returns the number of texels on highlighted
+/// patches.
+fn shade_texels(
     scene: &Scene,
     texels: &[Texel],
-    half_vectors: &[Option<Vec3>],
     widths: Option<&[f32]>,
-) -> Vec<Shade> {
-    let mut out = vec![NO_HIGHLIGHT; texels.len()];
+    xtoon_tones: Option<&[Vec3]>,
+    out: Out<'_>,
+    scratch: &mut RunScratch,
+) -> u64 {
+    let mut highlighted = 0;
     let mut start = 0;
-    while start < texels.len() {
-        let patch = texels[start].patch;
-        let end = texels[start..]
-            .iter()
-            .position(|t| t.patch != patch)
-            .map_or(texels.len(), |n| start + n);
-        if let Some(expr) = &scene.looks[patch as usize].highlight {
-            let run = &texels[start..end];
-            let hs: Vec<Vec3> = half_vectors[start..end]
-                .iter()
-                .map(|h| h.expect("highlighted patches have half vectors"))
-                .collect();
-            match widths {
-                Some(widths) => {
-                    for (k, t) in run.iter().enumerate() {
-                        out[start + k] = expr.eval(&t.frame, t.uv, hs[k], widths[start + k]);
-                    }
-                }
-                None => {
-                    let frames: Vec<TangentFrame> = run.iter().map(|t| t.frame).collect();
-                    let uvs: Vec<Vec2> = run.iter().map(|t| t.uv).collect();
-                    expr.eval_many(&frames, &uvs, &hs, 0.0, &mut out[start..end]);
-                }
+    for run in texels.chunk_by(|a, b| a.patch == b.patch) {
+        for piece in run.chunks(CHUNK) {
+            let range = start..start + piece.len();
+            let widths = widths.map(|w| &w[range.clone()]);
+            let shades = highlight(scene, piece, widths, scratch);
+            highlighted += if shades.is_some() {
+                piece.len() as u64
+            } else {
+                0
+            };
+            for (k, t) in piece.iter().enumerate() {
+                let shade = shades.map_or(NO_HIGHLIGHT, |s| s[k]);
+                let xtoon = xtoon_tones.map(|tones| tones[start + k]);
+                let tone = tone(scene, t.patch, t.position, t.frame.n, xtoon);
+                out.colour[start + k] = tone.lerp(shade.colour, shade.coverage).extend(1.0);
+                out.coverage[start + k] = shade.coverage;
+            }
+            start = range.end;
+        }
+    }
+    highlighted
+}
+
+/// The highlight shades of up to [`CHUNK`] texels on one patch, or `None` when the patch has no
+/// highlight (no half vector is built then).
+fn highlight<'s>(
+    scene: &Scene,
+    texels: &[Texel],
+    widths: Option<&[f32]>,
+    scratch: &'s mut RunScratch,
+) -> Option<&'s [Shade]> {
+    let expr = scene.looks[texels[0].patch as usize].highlight.as_ref()?;
+    let n = texels.len();
+    for (k, t) in texels.iter().enumerate() {
+        scratch.half_vectors[k] = initial_half_vector(scene, t);
+        scratch.frames[k] = t.frame;
+        scratch.uvs[k] = t.uv;
+    }
+    let (hs, frames, uvs) = (&scratch.half_vectors, &scratch.frames, &scratch.uvs);
+    let shades = &mut scratch.shades[..n];
+    match widths {
+        Some(widths) => {
+            for (k, shade) in shades.iter_mut().enumerate() {
+                *shade = expr.eval(&frames[k], uvs[k], hs[k], widths[k]);
             }
         }
-        start = end;
+        None => expr.eval_many(&frames[..n], &uvs[..n], &hs[..n], 0.0, shades),
     }
-    out
+    Some(shades)
 }
 
 /// The layers of an expression, left to right.
@@ -177,7 +254,18 @@ fn layers(expr: &PreparedExpr) -> Vec<&PreparedLayer> {
 
 /// Per texel, the largest `fwidth(s)` over the layers of its patch's highlight (0 without one).
 /// Differences are taken forward, or backward at the edge of the patch or image.
-fn edge_widths(gbuffer: &GBuffer, scene: &Scene, half_vectors: &[Option<Vec3>]) -> Vec<f32> {
+fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<f32> {
+    let half_vectors: Vec<Option<Vec3>> = gbuffer
+        .texels
+        .par_iter()
+        .with_min_len(PIXELS_PER_JOB)
+        .map(|t| {
+            scene.looks[t.patch as usize]
+                .highlight
+                .as_ref()
+                .map(|_| initial_half_vector(scene, t))
+        })
+        .collect();
     let layer_lists: Vec<Vec<&PreparedLayer>> = scene
         .looks
         .iter()
@@ -188,7 +276,7 @@ fn edge_widths(gbuffer: &GBuffer, scene: &Scene, half_vectors: &[Option<Vec3>]) 
     let signed: Vec<f32> = gbuffer
         .texels
         .par_iter()
-        .zip(half_vectors)
+        .zip(&half_vectors)
         .with_min_len(PIXELS_PER_JOB)
         .flat_map_iter(|(t, h)| {
             let layers = &layer_lists[t.patch as usize];

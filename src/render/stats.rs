@@ -23,7 +23,8 @@ pub struct RenderStats {
     pub tessellation: StageStats,
     /// Pixels: samples covered by a surface.
     pub raster: StageStats,
-    /// Pixels: covered samples filled.
+    /// Pixels: covered samples filled (0 when the frame's only effect is the cel tone over
+    /// interpolated frames, which is shaded straight from the visibility buffer).
     pub gbuffer: StageStats,
     /// NURBS frames evaluated per pixel (exact and refined frames).
     pub exact_frames: u64,

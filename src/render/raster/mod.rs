@@ -93,13 +93,17 @@ pub struct Hit {
 }
 
 impl VisibilityBuffer {
-    /// Resizes the buffer to `viewport` with every pixel empty, filling in parallel.
-    fn clear(&mut self, viewport: Viewport) {
+    /// Sizes the buffer for `viewport`. The tiles write every pixel they own, so a buffer of
+    /// that size is left as it is; one of another size is replaced by an empty one, filled in
+    /// parallel.
+    fn resize(&mut self, viewport: Viewport) {
         let pixels = viewport.width as usize * viewport.height as usize;
         (self.width, self.height) = (viewport.width, viewport.height);
-        fill(&mut self.depth, pixels, f32::INFINITY);
-        fill(&mut self.triangle, pixels, u32::MAX);
-        fill(&mut self.barycentric, pixels, [0.0; 2]);
+        if self.triangle.len() != pixels {
+            self.depth = filled(pixels, f32::INFINITY);
+            self.triangle = filled(pixels, u32::MAX);
+            self.barycentric = filled(pixels, [0.0; 2]);
+        }
     }
 
     /// The triangle covering pixel `(x, y)`, or `None` where empty or outside the buffer.
@@ -117,11 +121,9 @@ impl VisibilityBuffer {
     }
 }
 
-/// Makes `v` hold `len` copies of `value`, written in parallel.
-fn fill<T: Copy + Send + Sync>(v: &mut Vec<T>, len: usize, value: T) {
-    v.truncate(len);
-    v.par_iter_mut().for_each(|x| *x = value);
-    v.resize(len, value);
+/// `len` copies of `value`, written in parallel.
+fn filled<T: Copy + Send + Sync>(len: usize, value: T) -> Vec<T> {
+    (0..len).into_par_iter().map(|_| value).collect()
 }
 
 /// How to run [`rasterize`]. The output does not depend on either setting.
@@ -198,7 +200,7 @@ where
 }
 
 /// Triangles set up per parallel job; the output does not depend on it.
-const CHUNK_TRIANGLES: usize = 4096;
+const CHUNK_TRIANGLES: usize = 1024;
 
 /// Rasterizes the indexed triangles `triangles` (each indexing `positions`) into a visibility
 /// buffer of `viewport`'s size. Both windings are drawn (no back-face culling). Triangles are
@@ -267,7 +269,7 @@ impl Rasterizer {
             size => size,
         };
         in_pool(options.threads, || {
-            buffer.clear(viewport);
+            buffer.resize(viewport);
             if viewport.width == 0 || viewport.height == 0 {
                 return RasterStats {
                     triangles_in: triangles.len(),

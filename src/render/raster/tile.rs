@@ -153,8 +153,9 @@ fn draw<'s>(
     fragments
 }
 
-/// Writes each pixel's winner into the frame buffers, its depth clamped to [0, 1] against
-/// rounding; returns the number of pixels written.
+/// Writes every pixel of the tile into the frame buffers: the winner's index, depth (clamped to
+/// [0, 1] against rounding) and barycentrics, or the empty values; returns the number of pixels
+/// with a winner.
 fn resolve(mut target: TileTarget<'_>, width: usize, scratch: &Scratch<'_>) -> u64 {
     let mut pixels = 0;
     let rows = target
@@ -167,12 +168,17 @@ fn resolve(mut target: TileTarget<'_>, width: usize, scratch: &Scratch<'_>) -> u
         let start = dy * width;
         let winners = &scratch.winner[start..start + width];
         for (dx, winner) in winners.iter().enumerate() {
-            if let Some(setup) = winner {
-                depth[dx] = scratch.depth[start + dx].clamp(0.0, 1.0);
-                triangle[dx] = setup.triangle;
-                barycentric[dx] = setup.barycentric(target.rect.x0 + dx as i32, y);
-                pixels += 1;
-            }
+            (depth[dx], triangle[dx], barycentric[dx]) = match winner {
+                Some(setup) => {
+                    pixels += 1;
+                    (
+                        scratch.depth[start + dx].clamp(0.0, 1.0),
+                        setup.triangle,
+                        setup.barycentric(target.rect.x0 + dx as i32, y),
+                    )
+                }
+                None => (f32::INFINITY, u32::MAX, [0.0; 2]),
+            };
         }
     }
     pixels
