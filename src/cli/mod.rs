@@ -1,6 +1,7 @@
 //! The command line: argument parsing, terminal output and exit codes (0 success, 2 bad input or
 //! usage, 1 a failure while working).
 
+mod bench;
 mod probe;
 
 use std::process::ExitCode;
@@ -19,6 +20,7 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     Probe(probe::ProbeArgs),
+    Bench(bench::BenchArgs),
 }
 
 /// Why a command stopped.
@@ -37,6 +39,7 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Probe(args) => probe::run(&args),
+        Command::Bench(args) => bench::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
