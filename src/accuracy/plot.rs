@@ -5,6 +5,14 @@ use plotters::prelude::*;
 
 use super::sweep::Summary;
 
+/// One colour per image size, distinct on white.
+const COLOURS: [RGBColor; 4] = [
+    RGBColor(214, 39, 40),
+    RGBColor(31, 119, 180),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+];
+
 /// The smallest 1 − IoU drawn: lower values sit on the axis (log scale).
 const FLOOR: f64 = 1e-5;
 
@@ -49,12 +57,19 @@ fn draw(summaries: &[Summary], svg: &mut String) -> Result<(), Box<dyn std::erro
         .configure_mesh()
         .x_desc("time per frame (ms, median)")
         .y_desc("1 − IoU (mean over highlight stacks)")
-        .x_label_formatter(&|x| format!("{x:.3}"))
+        .light_line_style(WHITE)
+        .x_label_formatter(&|&x| {
+            if x >= 1.0 {
+                format!("{x:.0}")
+            } else {
+                format!("{x:.2}")
+            }
+        })
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()?;
 
     for (index, &size) in sizes.iter().enumerate() {
-        let colour = Palette99::pick(index).to_rgba();
+        let colour = COLOURS[index % COLOURS.len()].to_rgba();
         let of_size: Vec<&Summary> = summaries.iter().filter(|s| s.size == size).collect();
         chart
             .draw_series(of_size.iter().map(|s| {

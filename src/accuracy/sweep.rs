@@ -303,28 +303,28 @@ impl Sweep {
         }
     }
 
-    /// The presets side by side on all five stacks at one size, with two cheaper ways to
-    /// accurate highlight edges: exact frames and refined frames (0.5 px tolerance) with
-    /// analytic edges.
+    /// The presets side by side on all five stacks at one size, with the candidates they were
+    /// chosen from: at a 0.25 px tolerance exact frames with analytic, 3 × 3 and 4 × 4 edges
+    /// and refined frames with 3 × 3 edges; at 0.5 px refined frames with analytic edges.
     pub fn presets(size: u32, repeats: usize, threads: usize) -> Self {
+        let rung = |pixels: f32, frames: FrameMode, antialias: Antialias| Rung {
+            density: Density::ScreenTolerance { pixels },
+            frames,
+            antialias,
+        };
+        let candidates = [
+            rung(0.25, FrameMode::Exact, Antialias::Analytic),
+            rung(0.25, FrameMode::Exact, Antialias::Supersample(3)),
+            rung(0.25, FrameMode::Exact, Antialias::Supersample(4)),
+            rung(0.25, FrameMode::Refined, Antialias::Supersample(3)),
+            rung(0.5, FrameMode::Refined, Antialias::Analytic),
+        ];
+        let mut rungs = Self::ladder(&[], &[], &[]);
+        rungs.extend(candidates.iter().filter(|c| c.preset().is_none()));
         Self {
             sizes: vec![size],
             stacks: Stack::ALL.to_vec(),
-            rungs: Self::ladder(&[], &[], &[])
-                .into_iter()
-                .chain([
-                    Rung {
-                        density: Density::ScreenTolerance { pixels: 0.25 },
-                        frames: FrameMode::Exact,
-                        antialias: Antialias::Analytic,
-                    },
-                    Rung {
-                        density: Density::ScreenTolerance { pixels: 0.5 },
-                        frames: FrameMode::Refined,
-                        antialias: Antialias::Analytic,
-                    },
-                ])
-                .collect(),
+            rungs,
             repeats,
             threads,
         }
