@@ -103,6 +103,9 @@ fn bar(length: usize, what: &str) -> ProgressBar {
 
 fn accuracy(args: &AccuracyArgs) -> Result<(), CliError> {
     let model = load_patches(&args.teapot).map_err(|e| CliError::BadInput(e.into()))?;
+    // Before the long measurements: an output directory that cannot be made fails at once.
+    fs::create_dir_all(&args.out)
+        .map_err(|e| CliError::Failed(anyhow!("cannot create {}: {e}", args.out.display())))?;
     let (repeats, threads) = (args.repeats as usize, args.threads as usize);
     let sizes = match (args.resolutions.is_empty(), args.quick) {
         (false, _) => args.resolutions.clone(),
@@ -193,7 +196,6 @@ fn accuracy(args: &AccuracyArgs) -> Result<(), CliError> {
 }
 
 fn write_all(dir: &Path, files: &[(&str, String)]) -> anyhow::Result<()> {
-    fs::create_dir_all(dir).map_err(|e| anyhow!("cannot create {}: {e}", dir.display()))?;
     for (name, text) in files {
         write_atomically(&dir.join(name), |out| {
             use std::io::Write;
