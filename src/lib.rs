@@ -21,6 +21,7 @@
 //! assert!(pole.degenerate && (pole.normal - DVec3::Z).length() < 1e-12);
 //! ```
 
+pub mod accuracy;
 pub mod anim;
 pub mod cli;
 pub mod formats;

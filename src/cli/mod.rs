@@ -1,6 +1,7 @@
 //! The command line: argument parsing, terminal output and exit codes (0 success, 2 bad input or
 //! usage, 1 a failure while working).
 
+mod bench;
 mod frames;
 mod inspect;
 mod probe;
@@ -24,6 +25,7 @@ enum Command {
     Render(render::RenderArgs),
     Inspect(inspect::InspectArgs),
     Probe(probe::ProbeArgs),
+    Bench(bench::BenchArgs),
 }
 
 /// Why a command stopped.
@@ -44,6 +46,7 @@ pub fn main() -> ExitCode {
         Command::Render(args) => render::run(&args),
         Command::Inspect(args) => inspect::run(&args),
         Command::Probe(args) => probe::run(&args),
+        Command::Bench(args) => bench::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,18 @@
+//! The accuracy ladder measured (DESIGN §7): each rung — tessellation density, interpolated,
+//! exact or refined frames, edge anti-aliasing — rendered on the exact NURBS sphere and compared
+//! with the analytic sphere ray-cast per pixel, with its time per frame; the geometry's own
+//! error and cost; and how frame time scales with resolution, patches and threads.
+//!
+//! The measuring logic lives here; `glint bench accuracy` runs it, prints the tables and writes
+//! the CSV files and the plot.
+
+pub mod csv;
+pub mod geometry;
+pub mod metrics;
+pub mod plot;
+pub mod reference;
+pub mod scaling;
+pub mod sweep;
+pub mod timing;
+
+pub use reference::AnalyticSphere;

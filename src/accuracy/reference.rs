@@ -1,0 +1,188 @@
+//! The analytic reference: the unit sphere about the origin, ray-cast through each pixel, with
+//! the highlight operations run on its analytic frame (east, north, outward). The NURBS sphere
+//! renders of the same view are measured against it.
+
+use glam::{DVec3, Mat4, Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::geom::{shapes, NamedPatch, PatchLibrary};
+use crate::highlight::{half_vector, Light, PreparedExpr, TangentFrame};
+use crate::render::{Aovs, Camera, PatchLook, Projection, Scene, Tone};
+use crate::toon::CelRamp;
+
+/// The unit sphere seen by a camera on the −y axis, 5 units away, lit from the front left and
+/// above.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AnalyticSphere {
+    camera: Camera,
+    /// The unit direction toward the light.
+    light: Vec3,
+    /// Clip space back to the world, for the pixel rays (square images).
+    inverse_view_projection: Mat4,
+}
+
+impl AnalyticSphere {
+    /// The standard view with the given projection.
+    pub fn new(projection: Projection) -> Self {
+        let camera = Camera {
+            eye: Vec3::new(0.0, -5.0, 0.0),
+            target: Vec3::ZERO,
+            up: Vec3::Z,
+            projection,
+            near: 0.5,
+            far: 20.0,
+        };
+        Self {
+            camera,
+            light: Vec3::new(0.35, -1.0, 0.45).normalize(),
+            inverse_view_projection: camera.view_projection(1.0).inverse(),
+        }
+    }
+
+    pub fn camera(&self) -> Camera {
+        self.camera
+    }
+
+    /// The unit direction toward the light.
+    pub fn light(&self) -> Vec3 {
+        self.light
+    }
+
+    /// The exact NURBS unit sphere, one patch named `sphere`.
+    pub fn library() -> PatchLibrary {
+        PatchLibrary {
+            patches: vec![NamedPatch {
+                name: "sphere".into(),
+                surface: shapes::sphere(DVec3::ZERO, 1.0)
+                    .expect("the unit sphere has a positive radius"),
+            }],
+        }
+    }
+
+    /// The scene rendering `library` (from [`Self::library`]) with `highlight` in this view: a
+    /// two-tone cel ramp, no outlines, the given AOVs.
+    pub fn scene<'a>(
+        &self,
+        library: &'a PatchLibrary,
+        highlight: &PreparedExpr,
+        aovs: Aovs,
+    ) -> Scene<'a> {
+        Scene {
+            library,
+            looks: vec![PatchLook {
+                tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.6), 0.0)),
+                highlight: Some(highlight.clone()),
+            }],
+            camera: self.camera,
+            light: Light::Directional {
+                towards: self.light,
+            },
+            outlines: None,
+            aovs,
+        }
+    }
+
+    /// Where the ray through the image point `(x, y)` (in pixels from the top left corner of a
+    /// `size × size` image) first meets the sphere: the smaller root of `|o + t d| = 1`,
+    /// `t = −(o·d) − sqrt((o·d)² − (|o|² − 1))`, with `o` on the near plane and `d` unit.
+    pub fn hit(&self, size: u32, x: f32, y: f32) -> Option<DVec3> {
+        let inverse = self.inverse_view_projection;
+        let ndc = Vec2::new(2.0 * x / size as f32 - 1.0, 1.0 - 2.0 * y / size as f32);
+        let near = inverse.project_point3(ndc.extend(0.0)).as_dvec3();
+        let far = inverse.project_point3(ndc.extend(1.0)).as_dvec3();
+        let d = (far - near).try_normalize()?;
+        let b = near.dot(d);
+        let disc = b * b - (near.length_squared() - 1.0);
+        (disc >= 0.0).then(|| near + (-b - disc.sqrt()) * d)
+    }
+
+    /// Whether the sphere point `p` lies inside `highlight`, evaluated on the analytic frame
+    /// `N = p`, `du = (−N.y, N.x, 0)/|…|` (east), `dv = N × du` (north), with the half vector of
+    /// this view's light and the eye. Masks see `(u, v) = (0, 0)`.
+    pub fn inside(&self, highlight: &PreparedExpr, p: DVec3) -> bool {
+        let n = p.normalize();
+        let east = DVec3::new(-n.y, n.x, 0.0)
+            .try_normalize()
+            .unwrap_or(DVec3::NEG_X);
+        let north = n.cross(east);
+        let frame = TangentFrame::new(east.as_vec3(), north.as_vec3(), n.as_vec3());
+        let v = self.camera.toward_eye(p.as_vec3());
+        let h = half_vector(self.light, v, n.as_vec3());
+        highlight.eval(&frame, Vec2::ZERO, h, 0.0).coverage > 0.5
+    }
+
+    /// The fraction of `k × k` sub-pixel samples (at `((i + ½)/k, (j + ½)/k)` within the pixel)
+    /// inside the highlight, per pixel of a `size × size` image, rows from the top. With `k = 1`
+    /// it is the pixel-centre classification; with large `k` the true area coverage.
+    pub fn coverage(&self, highlight: &PreparedExpr, size: u32, k: u32) -> Vec<f32> {
+        let k = k.max(1);
+        (0..size * size)
+            .into_par_iter()
+            .map(|i| {
+                let (px, py) = ((i % size) as f32, (i / size) as f32);
+                let hits = (0..k * k)
+                    .filter(|s| {
+                        let sx = px + ((s % k) as f32 + 0.5) / k as f32;
+                        let sy = py + ((s / k) as f32 + 0.5) / k as f32;
+                        self.hit(size, sx, sy)
+                            .is_some_and(|p| self.inside(highlight, p))
+                    })
+                    .count();
+                hits as f32 / (k * k) as f32
+            })
+            .collect()
+    }
+
+    /// The angles, in degrees, between rendered normals (the normal AOV of a `size × size`
+    /// frame with `k × k` samples per pixel, zero where nothing was drawn) and the sphere's
+    /// normal at the hit of the ray through the sample the AOV comes from (sample
+    /// `(⌊k/2⌋, ⌊k/2⌋)`): their largest and their mean. Pixels the sphere or the render leaves
+    /// empty are skipped; `None` when none is left.
+    pub fn normal_errors(&self, normals: &[Vec3], size: u32, k: u32) -> Option<NormalErrors> {
+        let offset = ((k / 2) as f32 + 0.5) / k as f32;
+        let (max, sum, count) = normals
+            .par_iter()
+            .enumerate()
+            .filter_map(|(i, n)| {
+                let n = n.as_dvec3().try_normalize()?;
+                let (x, y) = ((i as u32 % size) as f32, (i as u32 / size) as f32);
+                let truth = self.hit(size, x + offset, y + offset)?.normalize();
+                Some(n.dot(truth).clamp(-1.0, 1.0).acos().to_degrees())
+            })
+            .fold(
+                || (0.0f64, 0.0f64, 0usize),
+                |(max, sum, count), angle| (max.max(angle), sum + angle, count + 1),
+            )
+            .reduce(
+                || (0.0, 0.0, 0),
+                |a, b| (a.0.max(b.0), a.1 + b.1, a.2 + b.2),
+            );
+        (count > 0).then(|| NormalErrors {
+            max_degrees: max,
+            mean_degrees: sum / count as f64,
+        })
+    }
+}
+
+/// How far rendered normals are from the sphere's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalErrors {
+    pub max_degrees: f64,
+    pub mean_degrees: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn central_ray_hits_the_front_pole_and_corner_rays_miss() {
+        let sphere = AnalyticSphere::new(Projection::Orthographic { height: 2.4 });
+        let p = sphere.hit(100, 50.0, 50.0).unwrap();
+        assert!((p - DVec3::NEG_Y).length() < 1e-5, "{p}");
+        assert!(sphere.hit(100, 0.5, 0.5).is_none());
+        // 1/1.2 of the half height to the right: x = 1/1.2 · 1.2 = 1 is the rim.
+        let rim = sphere.hit(1000, 500.0 + 500.0 / 1.2 - 1.0, 500.0).unwrap();
+        assert!(rim.x > 0.99 && rim.y.abs() < 0.15, "{rim}");
+    }
+}
