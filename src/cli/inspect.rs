@@ -13,10 +13,10 @@ use crate::highlight::{Expr, Light};
 use crate::render::Projection;
 use crate::scene::{load_shot, MaterialState, Shot};
 
-/// Print the value of every track of a shot at one frame: camera, light, materials and each
-/// parameter of each highlight layer, in the shot file's own syntax.
+/// Print the value of every track of a shot at one frame.
 ///
-/// Fractional frames show what the interpolation gives between keys.
+/// Camera, light, materials and each parameter of each highlight layer, in the shot file's own
+/// syntax. Fractional frames show what the interpolation gives between keys.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:
   glint inspect shots/sphere_ops.ron --frame 12

@@ -29,7 +29,7 @@ use crate::scene::{load_shot, resolve_path, Aov, Preset, Shot};
   glint render shots/teapot_turntable.ron
   glint render shots/sphere_ops.ron --frames 1-24 --preset preview --size 320x320
   glint render shots/crescent.ron --frames 1-48x2 --aov matte,patch_id --stats
-  glint render shots/teapot_turntable.ron --frames 101-200 --skip-existing --quiet   # a farm task
+  glint render shots/teapot_turntable.ron --frames 49-96 --skip-existing --quiet   # a farm task
 
 Frame lists: 12 | 1-48 | 1-48x2 (every second frame) | 1,5,9-12.")]
 pub struct RenderArgs {
@@ -255,6 +255,7 @@ fn stats_report(frame: i64, s: &RenderStats) -> String {
         ("tessellation", &s.tessellation),
         ("raster", &s.raster),
         ("gbuffer", &s.gbuffer),
+        ("detail", &s.detail),
         ("shade", &s.shade),
         ("outline", &s.outline),
         ("aov", &s.aov),
