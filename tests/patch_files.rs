@@ -112,15 +112,7 @@ fn documented_example_parses_into_every_kind_of_surface() {
 /// above.
 fn framing_camera(library: &PatchLibrary) -> glint::render::Camera {
     use glam::{DVec3, Vec3};
-    let points: Vec<DVec3> = library
-        .patches
-        .iter()
-        .flat_map(|p| {
-            let s = &p.surface;
-            (0..s.count_u())
-                .flat_map(move |i| (0..s.count_v()).map(move |j| s.control_point(i, j).0))
-        })
-        .collect();
+    let points: Vec<DVec3> = library.control_points().collect();
     let (lo, hi) = points
         .iter()
         .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {

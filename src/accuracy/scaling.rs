@@ -67,15 +67,7 @@ pub fn copies(model: &PatchLibrary, count: usize, spacing: f64) -> PatchLibrary 
 /// The centre and radius of a sphere around every control point of `library` (the surfaces lie
 /// in the hull of their control points).
 fn bounds(library: &PatchLibrary) -> (DVec3, f64) {
-    let points: Vec<DVec3> = library
-        .patches
-        .iter()
-        .flat_map(|p| {
-            let s = &p.surface;
-            (0..s.count_u())
-                .flat_map(move |i| (0..s.count_v()).map(move |j| s.control_point(i, j).0))
-        })
-        .collect();
+    let points: Vec<DVec3> = library.control_points().collect();
     let (low, high) = points.iter().fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
         |(lo, hi), &p| (lo.min(p), hi.max(p)),

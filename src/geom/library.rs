@@ -43,6 +43,11 @@ impl PatchLibrary {
                 names: self.patches.iter().map(|p| p.name.clone()).collect(),
             })
     }
+
+    /// Every control point of every patch, patch by patch (the surfaces lie in their hull).
+    pub fn control_points(&self) -> impl Iterator<Item = glam::DVec3> + '_ {
+        self.patches.iter().flat_map(|p| p.surface.control_points())
+    }
 }
 
 #[cfg(test)]

@@ -226,6 +226,12 @@ impl NurbsSurface {
         (h.truncate() / h.w, h.w)
     }
 
+    /// The control points (without weights), row by row: `(i, j)` in the order
+    /// `(0, 0), (0, 1), …, (1, 0), …`.
+    pub fn control_points(&self) -> impl Iterator<Item = DVec3> + '_ {
+        self.net.iter().map(|h| h.truncate() / h.w)
+    }
+
     /// The parameter domain.
     pub fn domain(&self) -> Domain {
         Domain {

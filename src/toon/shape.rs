@@ -130,16 +130,7 @@ impl Abstraction {
                 Geometry::Smoothed(SmoothedNormals::new(library, *iterations)?)
             }
             analytic => {
-                let points: Vec<DVec3> = library
-                    .patches
-                    .iter()
-                    .flat_map(|p| {
-                        let s = &p.surface;
-                        (0..s.count_u()).flat_map(move |i| {
-                            (0..s.count_v()).map(move |j| s.control_point(i, j).0)
-                        })
-                    })
-                    .collect();
+                let points: Vec<DVec3> = library.control_points().collect();
                 let b = PrincipalBox::fit(&points)?;
                 let centre = b.centre.as_vec3();
                 match analytic {

@@ -40,13 +40,7 @@ impl SmoothedNormals {
     /// together, so patches that met still meet. Weights and knots are kept.
     pub fn new(library: &PatchLibrary, iterations: u32) -> Result<Self, XToonError> {
         let nets: Vec<&NurbsSurface> = library.patches.iter().map(|p| &p.surface).collect();
-        let points: Vec<DVec3> = nets
-            .iter()
-            .flat_map(|s| {
-                (0..s.count_u())
-                    .flat_map(move |i| (0..s.count_v()).map(move |j| s.control_point(i, j).0))
-            })
-            .collect();
+        let points: Vec<DVec3> = library.control_points().collect();
         if points.is_empty() {
             return Err(XToonError::Shape("the model has no control points".into()));
         }
