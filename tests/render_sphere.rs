@@ -3,8 +3,9 @@
 //! ray-casting the analytic sphere and running the same operations on its analytic frame
 //! (`glint::accuracy::AnalyticSphere`, shared with `glint bench accuracy`).
 
+use glint::accuracy::sweep::Stack;
 use glint::accuracy::{metrics, AnalyticSphere};
-use glint::highlight::{Expr, Layer, Op, PreparedExpr, SquareStyle};
+use glint::highlight::{Expr, Layer, Op, PreparedExpr};
 use glint::render::tessellate::Density;
 use glint::render::{Antialias, Aovs, FrameMode, Projection, Renderer, Settings};
 
@@ -82,29 +83,9 @@ fn identity_highlight_matches_the_analytic_region_orthographic_and_perspective()
 
 #[test]
 fn operated_highlights_match_the_same_operations_on_the_analytic_frame() {
-    let stacks = [
-        vec![
-            Op::Translate {
-                alpha: 0.15,
-                beta: -0.1,
-            },
-            Op::Scale {
-                delta: 0.6,
-                axis: Default::default(),
-            },
-        ],
-        vec![Op::Split {
-            gamma_u: 0.08,
-            gamma_v: 0.0,
-        }],
-        vec![Op::Square {
-            sigma: 0.2,
-            n: 2.0,
-            style: SquareStyle::Tangent,
-        }],
-    ];
-    for stack in stacks {
-        assert_matches_analytic(&expression(stack), 0.99);
+    // The accuracy ladder's stacks: translation + scaling, split and squaring, ε = 0.04.
+    for stack in [Stack::TranslateScale, Stack::Split, Stack::Square] {
+        assert_matches_analytic(&stack.expression(), 0.99);
     }
 }
 
