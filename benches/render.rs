@@ -16,6 +16,10 @@
 //! leaves to the effect-free shot is the tone itself and the renderer's bookkeeping.
 
 mod support;
+#[path = "support/teapot.rs"]
+mod teapot;
+
+use teapot::{camera, HEIGHT, WIDTH};
 
 /// The allocator the `glint` binary uses.
 #[global_allocator]
@@ -31,28 +35,12 @@ use glint::highlight::{Axis, Expr, Layer, Light, Op, SquareStyle};
 use glint::render::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use glint::render::tessellate::{Density, Tessellator};
 use glint::render::{
-    Aovs, Camera, FrameMode, Outlines, PatchLook, Projection, RenderStats, Renderer, Scene,
-    Settings, Tone,
+    Aovs, FrameMode, Outlines, PatchLook, RenderStats, Renderer, Scene, Settings, Tone,
 };
 use glint::toon::CelRamp;
 use rayon::prelude::*;
 
-const WIDTH: u32 = 1280;
-const HEIGHT: u32 = 720;
 const DENSITY: Density = Density::PerSpan { u: 12, v: 12 };
-
-fn camera() -> Camera {
-    Camera {
-        eye: Vec3::new(5.5, -7.0, 4.5),
-        target: Vec3::new(0.0, 0.0, 1.4),
-        up: Vec3::Z,
-        projection: Projection::Perspective {
-            fov_y_degrees: 30.0,
-        },
-        near: 0.1,
-        far: 100.0,
-    }
-}
 
 fn scene(library: &PatchLibrary, highlights: bool, outlines: bool) -> Scene<'_> {
     let stack = vec![

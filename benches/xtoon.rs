@@ -6,6 +6,8 @@
 //! Run with `cargo bench --bench xtoon`; the summary at the end prints the ratios.
 
 mod support;
+#[path = "support/teapot.rs"]
+mod teapot;
 
 /// The allocator the `glint` binary uses.
 #[global_allocator]
@@ -21,9 +23,7 @@ use glint::formats::{load_patches, read_toon_texture};
 use glint::geom::PatchLibrary;
 use glint::highlight::Light;
 use glint::render::tessellate::Density;
-use glint::render::{
-    Aovs, Camera, FrameMode, PatchLook, Projection, Renderer, Scene, Settings, Tone,
-};
+use glint::render::{Aovs, FrameMode, PatchLook, Renderer, Scene, Settings, Tone};
 use glint::toon::{Abstraction, CelRamp, DetailMap, HighlightFrame, ShapeDetail, XToon};
 
 const GROUP: &str = "xtoon_teapot_1280x720";
@@ -37,16 +37,7 @@ fn scene(library: &PatchLibrary, tone: Tone) -> Scene<'_> {
                 highlight: None,
             })
             .collect(),
-        camera: Camera {
-            eye: Vec3::new(5.5, -7.0, 4.5),
-            target: Vec3::new(0.0, 0.0, 1.4),
-            up: Vec3::Z,
-            projection: Projection::Perspective {
-                fov_y_degrees: 30.0,
-            },
-            near: 0.1,
-            far: 100.0,
-        },
+        camera: teapot::camera(),
         light: Light::Directional {
             towards: Vec3::new(0.3, -0.6, 0.75).normalize(),
         },
@@ -131,7 +122,7 @@ fn main() {
     let settings = Settings {
         density: Density::PerSpan { u: 12, v: 12 },
         frames: FrameMode::Exact,
-        ..Settings::preview(1280, 720)
+        ..Settings::preview(teapot::WIDTH, teapot::HEIGHT)
     };
     let mut group = c.benchmark_group(GROUP);
     group.sample_size(30);
