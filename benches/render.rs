@@ -1,8 +1,8 @@
 //! The teapot at 1280×720 with a 5-op highlight stack on every patch, outlines on and exact
 //! frames, against variants measured side by side in the same run: highlights off, interpolated
 //! frames, one thread, and an effect-free shot against a flat-colour raster of the same mesh.
-//! Run with `cargo bench --bench render`; the summary at the end prints the ratios and the
-//! full frame's time per stage.
+//! Run with `cargo bench --bench render`; the summary at the end prints the ratios and each
+//! variant's frame time by stage.
 //!
 //! The effect-free comparison. The effect-free shot has cel tone only — no highlight, no
 //! outline, no AOV — and is rendered with interpolated frames, the preview setting: an exact
@@ -15,6 +15,8 @@
 //! one flat colour per covered pixel written in parallel into a new image. What the ratio
 //! leaves to the effect-free shot is the tone itself and the renderer's bookkeeping.
 
+#[path = "support/stages.rs"]
+mod stages;
 mod support;
 #[path = "support/teapot.rs"]
 mod teapot;
@@ -34,9 +36,7 @@ use glint::geom::PatchLibrary;
 use glint::highlight::{Axis, Expr, Layer, Light, Op, SquareStyle};
 use glint::render::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use glint::render::tessellate::{Density, Tessellator};
-use glint::render::{
-    Aovs, FrameMode, Outlines, PatchLook, RenderStats, Renderer, Scene, Settings, Tone,
-};
+use glint::render::{Aovs, FrameMode, Outlines, PatchLook, Renderer, Scene, Settings, Tone};
 use glint::toon::CelRamp;
 use rayon::prelude::*;
 
@@ -110,18 +110,21 @@ fn main() {
 
     let mut group = c.benchmark_group("teapot_1280x720");
     group.sample_size(20);
-    let variants: [(&str, &Scene, FrameMode, usize); 5] = [
-        ("full", &full, FrameMode::Exact, 0),
-        ("no_highlights", &plain, FrameMode::Exact, 0),
-        ("interpolated", &full, FrameMode::Interpolated, 0),
-        ("one_thread", &full, FrameMode::Exact, 1),
-        ("effect_free", &effect_free, FrameMode::Interpolated, 0),
+    let variants: [(&str, &Scene, Settings); 5] = [
+        ("full", &full, settings(FrameMode::Exact, 0)),
+        ("no_highlights", &plain, settings(FrameMode::Exact, 0)),
+        ("interpolated", &full, settings(FrameMode::Interpolated, 0)),
+        ("one_thread", &full, settings(FrameMode::Exact, 1)),
+        (
+            "effect_free",
+            &effect_free,
+            settings(FrameMode::Interpolated, 0),
+        ),
     ];
-    for (name, scene, frames, threads) in variants {
+    for (name, scene, settings) in &variants {
         let mut renderer = Renderer::new(&library);
-        let settings = settings(frames, threads);
-        group.bench_function(name, |b| {
-            b.iter(|| black_box(renderer.render(scene, &settings).unwrap()))
+        group.bench_function(*name, |b| {
+            b.iter(|| black_box(renderer.render(scene, settings).unwrap()))
         });
     }
     // The baseline: the same mesh rasterized and filled with one flat colour.
@@ -163,37 +166,9 @@ fn main() {
             ("teapot_1280x720", "effect_free", "flat_raster"),
         ],
     );
-    print_stages(&library, &full);
-}
-
-/// Seconds of one stage in a frame's statistics.
-type Stage = fn(&RenderStats) -> f64;
-
-/// The full frame's time per stage: the median over frames rendered one after another.
-fn print_stages(library: &PatchLibrary, scene: &Scene) {
-    const FRAMES: usize = 40;
-    let mut renderer = Renderer::new(library);
-    let settings = settings(FrameMode::Exact, 0);
-    let stats: Vec<RenderStats> = (0..FRAMES)
-        .map(|_| renderer.render(scene, &settings).unwrap().stats)
+    let stage_variants: Vec<(&str, &Scene, &Settings)> = variants
+        .iter()
+        .map(|(name, scene, settings)| (*name, *scene, settings))
         .collect();
-    let median = |stage: Stage| {
-        let mut seconds: Vec<f64> = stats.iter().map(stage).collect();
-        seconds.sort_by(f64::total_cmp);
-        seconds[FRAMES / 2] * 1e3
-    };
-    println!("\nfull frame by stage (median of {FRAMES} frames)");
-    let stages: [(&str, Stage); 8] = [
-        ("tessellation", |s| s.tessellation.seconds),
-        ("raster", |s| s.raster.seconds),
-        ("g-buffer", |s| s.gbuffer.seconds),
-        ("shade", |s| s.shade.seconds),
-        ("outline", |s| s.outline.seconds),
-        ("aov", |s| s.aov.seconds),
-        ("resolve", |s| s.resolve.seconds),
-        ("total", |s| s.total_seconds),
-    ];
-    for (name, stage) in stages {
-        println!("{name:<14} {:>8.3} ms", median(stage));
-    }
+    stages::print_stages("frame time by stage", &stage_variants);
 }

@@ -3,8 +3,11 @@
 //! highlight map, and the depth map with ellipsoid and smoothed shape detail. Exact frames, no
 //! designed highlights, no outlines: the tone is most of the shading work. The paper's GPU
 //! shader ran at 1.19 times the plain toon shader's frame time.
-//! Run with `cargo bench --bench xtoon`; the summary at the end prints the ratios.
+//! Run with `cargo bench --bench xtoon`; the summary at the end prints the ratios and each
+//! variant's frame time by stage.
 
+#[path = "support/stages.rs"]
+mod stages;
 mod support;
 #[path = "support/teapot.rs"]
 mod teapot;
@@ -124,13 +127,16 @@ fn main() {
         frames: FrameMode::Exact,
         ..Settings::preview(teapot::WIDTH, teapot::HEIGHT)
     };
+    let scenes: Vec<(&str, Scene)> = variants
+        .iter()
+        .map(|(name, tone)| (*name, scene(&library, tone.clone())))
+        .collect();
     let mut group = c.benchmark_group(GROUP);
     group.sample_size(30);
-    for (name, tone) in &variants {
-        let scene = scene(&library, tone.clone());
+    for (name, scene) in &scenes {
         let mut renderer = Renderer::new(&library);
         group.bench_function(*name, |b| {
-            b.iter(|| black_box(renderer.render(&scene, &settings).unwrap()))
+            b.iter(|| black_box(renderer.render(scene, &settings).unwrap()))
         });
     }
     group.finish();
@@ -145,4 +151,9 @@ fn main() {
             (GROUP, "xtoon_smoothed", "cel"),
         ],
     );
+    let stage_variants: Vec<(&str, &Scene, &Settings)> = scenes
+        .iter()
+        .map(|(name, scene)| (*name, scene, &settings))
+        .collect();
+    stages::print_stages("frame time by stage", &stage_variants);
 }

@@ -36,7 +36,7 @@ pub struct ShadeBuffers {
     coverage: Vec<f32>,
 }
 
-/// Shades every covered pixel: `tone = ramp(N·L)`, or the X-Toon tone from the detail pass,
+/// Shades every covered pixel: `tone = ramp(N·L)`, or the X-Toon tone ([`xtoon`]),
 /// then on a patch with a highlight `H = normalize(L + V)`, the highlight expression's coverage
 /// c and colour h, and `colour = (1 − c) tone + c h`.
 ///
@@ -57,7 +57,7 @@ pub fn shade(
     let texels = gbuffer.texels.len();
     buffers.colour.resize(texels, Vec4::ZERO);
     buffers.coverage.resize(texels, 0.0);
-    let highlighted = gbuffer
+    let counts = gbuffer
         .texels
         .par_chunks(PIXELS_PER_JOB)
         .zip(buffers.colour.par_chunks_mut(PIXELS_PER_JOB))
@@ -68,12 +68,15 @@ pub fn shade(
             |scratch, (chunk, ((texels, colour), coverage))| {
                 let range = chunk * PIXELS_PER_JOB..chunk * PIXELS_PER_JOB + texels.len();
                 let widths = widths.as_ref().map(|w| &w[range.clone()]);
-                let tones = (!detail.tones.is_empty()).then(|| &detail.tones[range]);
+                let xtoon = XToonTones {
+                    views: &detail.views,
+                    ahead: (!detail.tones.is_empty()).then(|| &detail.tones[range]),
+                };
                 let out = Out { colour, coverage };
-                shade_texels(scene, texels, widths, tones, out, scratch)
+                shade_texels(scene, texels, widths, &xtoon, out, scratch)
             },
         )
-        .sum();
+        .reduce(Counts::default, Counts::add);
     let n_dot_h = scene.aovs.n_dot_h.then(|| {
         let values: Vec<f32> = gbuffer
             .texels
@@ -91,8 +94,11 @@ pub fn shade(
             .then(|| gbuffer.gather(&buffers.coverage, 0.0)),
         n_dot_h,
         shaded: texels as u64,
-        highlighted,
-        detail: detail.stats,
+        highlighted: counts.highlighted,
+        detail: StageStats {
+            pixels: counts.xtoon,
+            seconds: detail.ahead.seconds,
+        },
     }
 }
 
@@ -116,19 +122,44 @@ pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scen
             let n = interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]);
             let normal = facing_normal(n, scene.camera.toward_eye(position));
             let patch = mesh.triangle_patch[triangle as usize];
-            tone(scene, patch, position, normal, None).extend(1.0)
+            cel_tone(scene, patch, position, normal).extend(1.0)
         })
         .collect()
 }
 
-/// The tone at a point of `patch` with unit normal `n`: `ramp(N·L)` for a cel tone; for an
-/// X-Toon tone, `xtoon`, the detail pass's value there (black where there is none: a plan
-/// shades from the visibility buffer only without X-Toon patches).
+/// The cel tone `ramp(N·L)` at a point of `patch` with unit normal `n` (black on an X-Toon
+/// patch, whose tone comes from [`XToonTones`]).
 #[inline]
-fn tone(scene: &Scene, patch: u32, position: Vec3, n: Vec3, xtoon: Option<Vec3>) -> Vec3 {
+fn cel_tone(scene: &Scene, patch: u32, position: Vec3, n: Vec3) -> Vec3 {
     match &scene.looks[patch as usize].tone {
         Tone::Cel(ramp) => ramp.shade(n.dot(scene.light.direction(position, n))),
-        Tone::XToon(_) => xtoon.unwrap_or(Vec3::ZERO),
+        Tone::XToon(_) => Vec3::ZERO,
+    }
+}
+
+/// Where the X-Toon tones of a run of texels come from: computed per texel from its patch's
+/// tone placed in the view, or read from the pass that ran ahead of shading.
+struct XToonTones<'a, 's> {
+    views: &'a xtoon::Views<'s>,
+    /// The tones of the run's texels, when they ran ahead.
+    ahead: Option<&'a [Vec3]>,
+}
+
+/// What the shade pass counted.
+#[derive(Clone, Copy, Debug, Default)]
+struct Counts {
+    /// Texels on highlighted patches.
+    highlighted: u64,
+    /// Texels on X-Toon patches.
+    xtoon: u64,
+}
+
+impl Counts {
+    fn add(self, other: Self) -> Self {
+        Self {
+            highlighted: self.highlighted + other.highlighted,
+            xtoon: self.xtoon + other.xtoon,
+        }
     }
 }
 
@@ -174,42 +205,57 @@ impl RunScratch {
     }
 }
 
-/// Shades `texels` (in pixel order) into `out`, given their edge widths for analytic edges and
-/// their X-Toon tones from the detail pass.
+/// Shades `texels` (in pixel order) into `out`, given their edge widths for analytic edges.
 /// Runs of texels on one patch go through the highlight expression together, [`CHUNK`] at a
-/// time; with per-pixel widths, one by one. Returns the number of texels on highlighted
-/// patches.
+/// time; with per-pixel widths, one by one. Their tones are computed first, in a loop of their
+/// own: with the X-Toon tone inlined whole into it, the loop decides the kinds of detail map
+/// and shape detail once rather than at every texel.
 fn shade_texels(
     scene: &Scene,
     texels: &[Texel],
     widths: Option<&[f32]>,
-    xtoon_tones: Option<&[Vec3]>,
+    xtoon: &XToonTones,
     out: Out<'_>,
     scratch: &mut RunScratch,
-) -> u64 {
-    let mut highlighted = 0;
+) -> Counts {
+    let mut counts = Counts::default();
     let mut start = 0;
     for run in texels.chunk_by(|a, b| a.patch == b.patch) {
+        let view = xtoon
+            .views
+            .get(run[0].patch as usize)
+            .and_then(Option::as_ref);
         for piece in run.chunks(CHUNK) {
             let range = start..start + piece.len();
             let widths = widths.map(|w| &w[range.clone()]);
             let shades = highlight(scene, piece, widths, scratch);
-            highlighted += if shades.is_some() {
-                piece.len() as u64
-            } else {
-                0
-            };
-            for (k, t) in piece.iter().enumerate() {
+            let len = piece.len() as u64;
+            counts.highlighted += if shades.is_some() { len } else { 0 };
+            counts.xtoon += if view.is_some() { len } else { 0 };
+            let mut tones = [Vec3::ZERO; CHUNK];
+            let tones = &mut tones[..piece.len()];
+            match (view, xtoon.ahead) {
+                (None, _) => {
+                    for (tone, t) in tones.iter_mut().zip(piece) {
+                        *tone = cel_tone(scene, t.patch, t.position, t.frame.n);
+                    }
+                }
+                (Some(_), Some(ahead)) => tones.copy_from_slice(&ahead[range.clone()]),
+                (Some(view), None) => {
+                    for (tone, t) in tones.iter_mut().zip(piece) {
+                        *tone = xtoon::shade_texel(view, scene, t).colour;
+                    }
+                }
+            }
+            for (k, &tone) in tones.iter().enumerate() {
                 let shade = shades.map_or(NO_HIGHLIGHT, |s| s[k]);
-                let xtoon = xtoon_tones.map(|tones| tones[start + k]);
-                let tone = tone(scene, t.patch, t.position, t.frame.n, xtoon);
                 out.colour[start + k] = tone.lerp(shade.colour, shade.coverage).extend(1.0);
                 out.coverage[start + k] = shade.coverage;
             }
             start = range.end;
         }
     }
-    highlighted
+    counts
 }
 
 /// The highlight shades of up to [`CHUNK`] texels on one patch, or `None` when the patch has no

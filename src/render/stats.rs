@@ -28,8 +28,10 @@ pub struct RenderStats {
     pub gbuffer: StageStats,
     /// NURBS frames evaluated per pixel (exact and refined frames).
     pub exact_frames: u64,
-    /// Pixels: samples on X-Toon patches, whose shading normal, detail and texture colour the
-    /// detail pass computed (0 without X-Toon). Its time is part of `shade`'s.
+    /// Pixels: samples on X-Toon patches, whose shading normal, detail and texture colour were
+    /// computed (0 without X-Toon). Seconds: the pass that runs them ahead of shading when a
+    /// designed highlight uses the abstracted frame, and is part of `shade`'s time; 0 when the
+    /// shade pass computes them as it goes.
     pub detail: StageStats,
     /// Pixels: samples shaded (tone, and highlights where a patch has them).
     pub shade: StageStats,

@@ -1,5 +1,10 @@
-//! The X-Toon detail pass: on patches with an X-Toon tone, each texel's shading normal, detail
-//! and texture colour, before the shade pass composites highlights over them.
+//! The X-Toon detail work: on patches with an X-Toon tone, each texel's shading normal, detail
+//! and texture colour.
+//!
+//! The shade pass computes the tone texel by texel as it goes, while the texel is at hand. Only
+//! when some patch's designed highlight uses the abstracted frame does the tone run as a pass of
+//! its own, ahead of shading: the highlights (and their analytic edge widths) then need every
+//! texel's abstracted frame before they start.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -9,24 +14,30 @@ use super::scene::{Scene, Tone};
 use super::stats::{timed, StageStats};
 use crate::toon::{SurfacePoint, ViewXToon, XToonShade};
 
-/// What the detail pass made.
+/// Each patch's X-Toon tone placed in a frame's view: `None` on cel patches, empty when no
+/// patch has an X-Toon tone.
+pub(super) type Views<'s> = Vec<Option<ViewXToon<'s>>>;
+
+/// What the shade pass needs of the X-Toon tones of a frame.
 #[derive(Debug, Default)]
-pub(super) struct Detail {
-    /// Per texel, the X-Toon tone on X-Toon patches (zero on the others); empty when no patch
-    /// has an X-Toon tone.
+pub(super) struct Detail<'s> {
+    pub views: Views<'s>,
+    /// Per texel, the X-Toon tone (zero on cel patches), when it ran ahead of the shade pass;
+    /// empty otherwise.
     pub tones: Vec<Vec3>,
     /// The G-buffer with the abstracted frame on every texel of a patch whose designed
     /// highlight uses it; None when no patch's does.
     pub highlight_gbuffer: Option<GBuffer>,
-    /// Pixels: texels on X-Toon patches.
-    pub stats: StageStats,
+    /// The pass ahead of shading: texels on X-Toon patches and its time (zero when it did not
+    /// run).
+    pub ahead: StageStats,
 }
 
-/// Runs the X-Toon tone of every texel on an X-Toon patch. Does nothing (and reports zero)
-/// when no patch has one.
-pub(super) fn detail(gbuffer: &GBuffer, scene: &Scene) -> Detail {
+/// Places every X-Toon tone of `scene` in its view, and runs the tones ahead of the shade pass
+/// when a highlight uses the abstracted frame. Does nothing when no patch has an X-Toon tone.
+pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
     let (eye, forward) = (scene.camera.eye, scene.camera.forward());
-    let views: Vec<Option<ViewXToon>> = scene
+    let views: Views = scene
         .looks
         .iter()
         .map(|look| match &look.tone {
@@ -45,31 +56,14 @@ pub(super) fn detail(gbuffer: &GBuffer, scene: &Scene) -> Detail {
                 && matches!(&look.tone, Tone::XToon(tone) if tone.abstracts_highlights())
         })
         .collect();
-    let ((tones, highlight_gbuffer, pixels), seconds) = timed(|| {
-        let shade = |t: &Texel| {
-            views[t.patch as usize]
-                .as_ref()
-                .map(|v| shade_texel(v, scene, t))
+    if !abstract_highlights.contains(&true) {
+        return Detail {
+            views,
+            ..Detail::default()
         };
+    }
+    let ((tones, highlight_gbuffer, pixels), seconds) = timed(|| {
         let mut tones = vec![Vec3::ZERO; gbuffer.texels.len()];
-        if !abstract_highlights.contains(&true) {
-            let pixels = gbuffer
-                .texels
-                .par_chunks(PIXELS_PER_JOB)
-                .zip(tones.par_chunks_mut(PIXELS_PER_JOB))
-                .map(|(texels, tones)| {
-                    let mut count = 0;
-                    for (t, tone) in texels.iter().zip(tones) {
-                        if let Some(s) = shade(t) {
-                            *tone = s.colour;
-                            count += 1;
-                        }
-                    }
-                    count
-                })
-                .sum();
-            return (tones, None, pixels);
-        }
         let mut texels = gbuffer.texels.clone();
         let pixels = texels
             .par_chunks_mut(PIXELS_PER_JOB)
@@ -77,7 +71,8 @@ pub(super) fn detail(gbuffer: &GBuffer, scene: &Scene) -> Detail {
             .map(|(texels, tones)| {
                 let mut count = 0;
                 for (t, tone) in texels.iter_mut().zip(tones) {
-                    if let Some(s) = shade(t) {
+                    if let Some(view) = &views[t.patch as usize] {
+                        let s = shade_texel(view, scene, t);
                         *tone = s.colour;
                         count += 1;
                         if abstract_highlights[t.patch as usize] {
@@ -97,15 +92,16 @@ pub(super) fn detail(gbuffer: &GBuffer, scene: &Scene) -> Detail {
         (tones, Some(highlight_gbuffer), pixels)
     });
     Detail {
+        views,
         tones,
         highlight_gbuffer,
-        stats: StageStats { pixels, seconds },
+        ahead: StageStats { pixels, seconds },
     }
 }
 
 /// The X-Toon tone at a texel, seen from the scene's camera and lit by its light.
-#[inline]
-fn shade_texel(view: &ViewXToon, scene: &Scene, t: &Texel) -> XToonShade {
+#[inline(always)]
+pub(super) fn shade_texel(view: &ViewXToon, scene: &Scene, t: &Texel) -> XToonShade {
     let n = t.frame.n;
     let point = SurfacePoint {
         position: t.position,

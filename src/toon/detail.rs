@@ -258,7 +258,7 @@ impl ViewDetail {
     /// surface's unit normal (near-silhouette) and `highlight_normal` the unit normal the
     /// highlight map reflects the light about. Clamped to [0, 1] (NaN gives 0), then `1 − D`
     /// when inverted.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn value(
         &self,

@@ -251,7 +251,7 @@ impl AbstractShape {
     /// The unit normal of the abstracted shape at the surface point `point` of patch `patch`
     /// at `uv` (see [`Abstraction`] for each formula), or `None` where it has none (the centre
     /// of the sphere or ellipsoid, the axis of the cylinder).
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn normal(&self, point: Vec3, patch: usize, uv: Vec2) -> Option<Vec3> {
         let direction = match &self.geometry {
@@ -291,7 +291,7 @@ impl PreparedShape {
     /// `n_a` is the abstracted shape's normal taken on the side of `n` (`n_a·n ≥ 0`), so the two
     /// never cancel and a two-sided surface shades alike from both sides. Where the shape has no
     /// normal, or the blend vanishes, `n` is returned.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn shading_normal(&self, n: Vec3, point: Vec3, patch: usize, uv: Vec2) -> Vec3 {
         let Some(a) = self.shape.normal(point, patch, uv) else {

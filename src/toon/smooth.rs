@@ -92,7 +92,7 @@ impl SmoothedNormals {
 
     /// The smoothed normal of patch `patch` at `uv`: bilinear between the grid normals around
     /// it (not normalized; zero for a patch index out of range).
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn at(&self, patch: usize, uv: Vec2) -> Vec3 {
         self.patches.get(patch).map_or(Vec3::ZERO, |g| g.at(uv))

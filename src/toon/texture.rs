@@ -91,7 +91,7 @@ impl ToonTexture {
     /// The colour at tone `n_dot_l` and detail `detail`: bilinear between the texel centres
     /// around `s = (n·l + 1)/2 · width − ½` and `t = (1 − D) · height − ½`, both clamped to the
     /// edge texels. NaN coordinates read the first column or the top row, never NaN.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn sample(&self, n_dot_l: f32, detail: f32) -> Vec3 {
         // `max` then `min` clamps, and takes NaN to 0.

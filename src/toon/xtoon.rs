@@ -141,7 +141,10 @@ impl ViewXToon<'_> {
     /// ([`PreparedShape::shading_normal`], or n), D from the detail map (the highlight map
     /// reflects about n' or n, as the shape detail's [`HighlightFrame`] says; near-silhouette
     /// uses n), and the texture at `(n'·l, D)`.
-    #[inline]
+    ///
+    /// Always inlined, with the functions it calls: a loop over many points then decides the
+    /// kinds of detail map and shape detail once, outside the loop.
+    #[inline(always)]
     #[must_use]
     pub fn shade(
         &self,
