@@ -10,6 +10,7 @@ use super::stats::StageStats;
 use super::tessellate::Mesh;
 use super::xtoon;
 use crate::highlight::{half_vector, PreparedExpr, PreparedLayer, Shade, TangentFrame, CHUNK};
+use crate::toon::NO_SHADE;
 
 /// The shaded image and what the pass did.
 #[derive(Clone, Debug, PartialEq)]
@@ -145,6 +146,9 @@ struct XToonTones<'a, 's> {
     ahead: Option<&'a [Vec3]>,
 }
 
+// A piece of texels on one patch is at most one run of X-Toon tones.
+const _: () = assert!(CHUNK <= crate::toon::RUN);
+
 /// What the shade pass counted.
 #[derive(Clone, Copy, Debug, Default)]
 struct Counts {
@@ -242,8 +246,10 @@ fn shade_texels(
                 }
                 (Some(_), Some(ahead)) => tones.copy_from_slice(&ahead[range.clone()]),
                 (Some(view), None) => {
-                    for (tone, t) in tones.iter_mut().zip(piece) {
-                        *tone = xtoon::shade_texel(view, scene, t).colour;
+                    let mut shades = [NO_SHADE; CHUNK];
+                    xtoon::shade_texels(view, scene, piece, &mut shades);
+                    for (tone, s) in tones.iter_mut().zip(&shades) {
+                        *tone = s.colour;
                     }
                 }
             }

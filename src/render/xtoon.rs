@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use super::gbuffer::{facing_frame, GBuffer, Texel, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
 use super::stats::{timed, StageStats};
-use crate::toon::{SurfacePoint, ViewXToon, XToonShade};
+use crate::toon::{SurfacePoint, ViewXToon, XToonShade, NO_SHADE, RUN};
 
 /// Each patch's X-Toon tone placed in a frame's view: `None` on cel patches, empty when no
 /// patch has an X-Toon tone.
@@ -70,13 +70,23 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
             .zip(tones.par_chunks_mut(PIXELS_PER_JOB))
             .map(|(texels, tones)| {
                 let mut count = 0;
-                for (t, tone) in texels.iter_mut().zip(tones) {
-                    if let Some(view) = &views[t.patch as usize] {
-                        let s = shade_texel(view, scene, t);
-                        *tone = s.colour;
-                        count += 1;
-                        if abstract_highlights[t.patch as usize] {
-                            t.frame = facing_frame(s.normal, t.frame.du, s.normal);
+                let mut shades = [NO_SHADE; RUN];
+                let mut start = 0;
+                for run in texels.chunk_by_mut(|a, b| a.patch == b.patch) {
+                    let patch = run[0].patch as usize;
+                    let range = start..start + run.len();
+                    start = range.end;
+                    let Some(view) = &views[patch] else {
+                        continue;
+                    };
+                    count += run.len() as u64;
+                    for (piece, tones) in run.chunks_mut(RUN).zip(tones[range].chunks_mut(RUN)) {
+                        shade_texels(view, scene, piece, &mut shades);
+                        for ((t, tone), s) in piece.iter_mut().zip(tones).zip(&shades) {
+                            *tone = s.colour;
+                            if abstract_highlights[patch] {
+                                t.frame = facing_frame(s.normal, t.frame.du, s.normal);
+                            }
                         }
                     }
                 }
@@ -99,19 +109,29 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
     }
 }
 
-/// The X-Toon tone at a texel, seen from the scene's camera and lit by its light.
+/// The X-Toon tones of up to [`RUN`] `texels` of one patch, whose tone is `view`, into `out`:
+/// seen from the scene's camera and lit by its light.
 #[inline(always)]
-pub(super) fn shade_texel(view: &ViewXToon, scene: &Scene, t: &Texel) -> XToonShade {
-    let n = t.frame.n;
-    let point = SurfacePoint {
-        position: t.position,
-        normal: n,
-        patch: t.patch as usize,
-        uv: t.uv,
+pub(super) fn shade_texels(
+    view: &ViewXToon,
+    scene: &Scene,
+    texels: &[Texel],
+    out: &mut [XToonShade],
+) {
+    let point = |i: usize| {
+        let t = &texels[i];
+        SurfacePoint {
+            position: t.position,
+            normal: t.frame.n,
+            patch: t.patch as usize,
+            uv: t.uv,
+        }
     };
-    view.shade(
-        &point,
-        || scene.camera.toward_eye(t.position),
-        scene.light.direction(t.position, n),
-    )
+    view.shade_run(
+        texels.len(),
+        point,
+        |position| scene.camera.toward_eye(position),
+        |position, n| scene.light.direction(position, n),
+        out,
+    );
 }

@@ -27,4 +27,4 @@ pub use shape::{
 };
 pub use smooth::SmoothedNormals;
 pub use texture::{ToonTexture, MAX_TEXTURE_SIDE};
-pub use xtoon::{PreparedXToon, SurfacePoint, ViewXToon, XToon, XToonShade};
+pub use xtoon::{PreparedXToon, SurfacePoint, ViewXToon, XToon, XToonShade, NO_SHADE, RUN};

@@ -10,6 +10,7 @@ use serde::Deserialize;
 
 use super::error::{XToonError, MAX_ITERATIONS};
 use super::smooth::SmoothedNormals;
+use super::xtoon::SurfacePoint;
 use crate::geom::PatchLibrary;
 use crate::param::{check, Range};
 
@@ -251,10 +252,16 @@ impl AbstractShape {
     /// The unit normal of the abstracted shape at the surface point `point` of patch `patch`
     /// at `uv` (see [`Abstraction`] for each formula), or `None` where it has none (the centre
     /// of the sphere or ellipsoid, the axis of the cylinder).
-    #[inline(always)]
     #[must_use]
     pub fn normal(&self, point: Vec3, patch: usize, uv: Vec2) -> Option<Vec3> {
-        let direction = match &self.geometry {
+        self.direction(point, patch, uv).try_normalize()
+    }
+
+    /// The abstracted shape's normal direction at a surface point, not normalized (zero where
+    /// it has none).
+    #[inline(always)]
+    fn direction(&self, point: Vec3, patch: usize, uv: Vec2) -> Vec3 {
+        match &self.geometry {
             Geometry::Sphere { centre } => point - *centre,
             Geometry::Ellipsoid {
                 centre,
@@ -266,8 +273,7 @@ impl AbstractShape {
                 d - d.dot(*axis) * *axis
             }
             Geometry::Smoothed(normals) => normals.at(patch, uv),
-        };
-        direction.try_normalize()
+        }
     }
 }
 
@@ -291,10 +297,29 @@ impl PreparedShape {
     /// `n_a` is the abstracted shape's normal taken on the side of `n` (`n_a·n ≥ 0`), so the two
     /// never cancel and a two-sided surface shades alike from both sides. Where the shape has no
     /// normal, or the blend vanishes, `n` is returned.
-    #[inline(always)]
     #[must_use]
     pub fn shading_normal(&self, n: Vec3, point: Vec3, patch: usize, uv: Vec2) -> Vec3 {
-        let Some(a) = self.shape.normal(point, patch, uv) else {
+        self.blend(n, self.shape.direction(point, patch, uv))
+    }
+
+    /// [`shading_normal`](Self::shading_normal) at `point(i)` into each `out[i]`, in two
+    /// loops: first every abstracted direction, then every blend.
+    #[inline(always)]
+    pub fn shading_normals(&self, point: impl Fn(usize) -> SurfacePoint, out: &mut [Vec3]) {
+        for (i, o) in out.iter_mut().enumerate() {
+            let p = point(i);
+            *o = self.shape.direction(p.position, p.patch, p.uv);
+        }
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.blend(point(i).normal, *o);
+        }
+    }
+
+    /// The shading normal at unit normal `n` toward the abstracted shape's normal `direction`
+    /// (not normalized).
+    #[inline(always)]
+    fn blend(&self, n: Vec3, direction: Vec3) -> Vec3 {
+        let Some(a) = direction.try_normalize() else {
             return n;
         };
         let a = if a.dot(n) < 0.0 { -a } else { a };

@@ -135,45 +135,79 @@ pub struct SurfacePoint {
     pub uv: Vec2,
 }
 
+/// The most points [`ViewXToon::shade_run`] takes at once.
+pub const RUN: usize = 64;
+
 impl ViewXToon<'_> {
-    /// The tone at `point`, seen along the unit vector `view()` (toward the eye; asked for only
-    /// by the orientation maps) and lit from the unit `light`: n' the shading normal
-    /// ([`PreparedShape::shading_normal`], or n), D from the detail map (the highlight map
-    /// reflects about n' or n, as the shape detail's [`HighlightFrame`] says; near-silhouette
-    /// uses n), and the texture at `(n'·l, D)`.
-    ///
-    /// Always inlined, with the functions it calls: a loop over many points then decides the
-    /// kinds of detail map and shape detail once, outside the loop.
-    #[inline(always)]
+    /// The tone at `point`, seen along the unit vector `view(position)` (toward the eye; asked
+    /// for only by the orientation maps) and lit from the unit `light(position, normal)`: n' the
+    /// shading normal ([`PreparedShape::shading_normal`], or n), D from the detail map (the
+    /// highlight map reflects about n' or n, as the shape detail's [`HighlightFrame`] says;
+    /// near-silhouette uses n), and the texture at `(n'·l, D)`.
     #[must_use]
     pub fn shade(
         &self,
         point: &SurfacePoint,
-        view: impl FnOnce() -> Vec3,
-        light: Vec3,
+        view: impl Fn(Vec3) -> Vec3,
+        light: impl Fn(Vec3, Vec3) -> Vec3,
     ) -> XToonShade {
-        let n = point.normal;
-        let (shading, highlight) = match &self.tone.shape {
-            Some(shape) => {
-                let shading = shape.shading_normal(n, point.position, point.patch, point.uv);
-                let highlight = match shape.highlight_frame() {
-                    HighlightFrame::Abstracted => shading,
-                    HighlightFrame::True => n,
-                };
-                (shading, highlight)
+        let mut out = [NO_SHADE];
+        self.shade_run(1, |_| *point, view, light, &mut out);
+        out[0]
+    }
+
+    /// [`shade`](Self::shade) at `point(i)` for i < `n` ≤ [`RUN`] into `out[i]`: first every
+    /// shading normal, then per point its detail and texture lookup. The points' independent
+    /// chains of square roots and divisions overlap in the processor, and each loop, inlined
+    /// whole, is specialized to the tone's kinds of detail map and shape detail.
+    ///
+    /// # Panics
+    /// If `n` is more than [`RUN`] or than there are outputs.
+    #[inline(always)]
+    pub fn shade_run(
+        &self,
+        n: usize,
+        point: impl Fn(usize) -> SurfacePoint,
+        view: impl Fn(Vec3) -> Vec3,
+        light: impl Fn(Vec3, Vec3) -> Vec3,
+        out: &mut [XToonShade],
+    ) {
+        assert!(n <= RUN && out.len() >= n, "bad run");
+        let mut shading = [Vec3::ZERO; RUN];
+        let shading = &mut shading[..n];
+        match &self.tone.shape {
+            Some(shape) => shape.shading_normals(&point, shading),
+            None => {
+                for (i, s) in shading.iter_mut().enumerate() {
+                    *s = point(i).normal;
+                }
             }
-            None => (n, n),
-        };
+        }
+        let abstracted = self.tone.abstracts_highlights();
         // The depth maps do not read the view vector.
-        let view = if self.detail.uses_view() {
-            view()
-        } else {
-            Vec3::ZERO
-        };
-        let d = self.detail.value(point.position, view, light, n, highlight);
-        XToonShade {
-            colour: self.tone.texture.sample(shading.dot(light), d),
-            normal: shading,
+        let uses_view = self.detail.uses_view();
+        for (i, (o, &shading)) in out[..n].iter_mut().zip(&*shading).enumerate() {
+            let p = point(i);
+            let light = light(p.position, p.normal);
+            let view = if uses_view {
+                view(p.position)
+            } else {
+                Vec3::ZERO
+            };
+            let highlight = if abstracted { shading } else { p.normal };
+            let d = self
+                .detail
+                .value(p.position, view, light, p.normal, highlight);
+            *o = XToonShade {
+                colour: self.tone.texture.sample(shading.dot(light), d),
+                normal: shading,
+            };
         }
     }
 }
+
+/// A shade to fill output arrays with before they are written.
+pub const NO_SHADE: XToonShade = XToonShade {
+    colour: Vec3::ZERO,
+    normal: Vec3::Z,
+};
