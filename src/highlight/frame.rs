@@ -72,6 +72,57 @@ pub(crate) fn normalize_or(v: Vec3, fallback: Vec3) -> Vec3 {
     }
 }
 
+/// Normalizes the vectors `(x[k], y[k], z[k])` in place, side by side: each one whose squared
+/// length is finite and above the zero threshold becomes `v · (1/√(v·v))` — the same value
+/// [`normalize_or`] and glam's `try_normalize` give it — in loops over one coordinate array at
+/// a time, which vectorize; every other one becomes `exact(v, k)`.
+///
+/// # Panics
+/// If the arrays differ in length.
+#[inline]
+pub(crate) fn normalize_lanes(
+    x: &mut [f32],
+    y: &mut [f32],
+    z: &mut [f32],
+    exact: impl Fn(Vec3, usize) -> Vec3,
+) {
+    let n = x.len();
+    assert!(y.len() == n && z.len() == n, "lane lengths differ");
+    // The scale of each lane, 0 where `exact` takes over.
+    let mut scale = [0.0f32; LANES];
+    for (start, ((x, y), z)) in (0..n).step_by(LANES).zip(
+        x.chunks_mut(LANES)
+            .zip(y.chunks_mut(LANES))
+            .zip(z.chunks_mut(LANES)),
+    ) {
+        let scale = &mut scale[..x.len()];
+        let (y, z) = (&mut y[..x.len()], &mut z[..x.len()]);
+        for k in 0..x.len() {
+            let len2 = x[k] * x[k] + y[k] * y[k] + z[k] * z[k];
+            scale[k] = if len2 > MIN_LENGTH_SQUARED && len2 < f32::INFINITY {
+                len2.sqrt().recip()
+            } else {
+                0.0
+            };
+        }
+        for k in 0..x.len() {
+            if scale[k] > 0.0 {
+                x[k] *= scale[k];
+                y[k] *= scale[k];
+                z[k] *= scale[k];
+            }
+        }
+        for k in 0..x.len() {
+            if scale[k] <= 0.0 {
+                (x[k], y[k], z[k]) = exact(Vec3::new(x[k], y[k], z[k]), start + k).into();
+            }
+        }
+    }
+}
+
+/// Lanes [`normalize_lanes`] works on at once.
+const LANES: usize = 64;
+
 #[cfg(test)]
 mod tests {
     use super::*;

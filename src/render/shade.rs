@@ -3,13 +3,16 @@
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
+use super::camera::Projection;
 use super::gbuffer::{facing_normal, GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
 use super::raster::{interpolate, VisibilityBuffer};
 use super::scene::{Scene, Tone};
 use super::stats::StageStats;
 use super::tessellate::Mesh;
 use super::xtoon;
-use crate::highlight::{half_vector, PreparedExpr, PreparedLayer, Shade, TangentFrame, CHUNK};
+use crate::highlight::{
+    half_vector, normalize_lanes, Light, PreparedExpr, PreparedLayer, Shade, TangentFrame, CHUNK,
+};
 use crate::toon::NO_SHADE;
 
 /// The shaded image and what the pass did.
@@ -177,6 +180,61 @@ fn initial_half_vector(scene: &Scene, t: &Texel) -> Vec3 {
     )
 }
 
+/// [`initial_half_vector`] at each of up to [`CHUNK`] `texels` into `out`, side by side: the
+/// light vectors, the view vectors and their normalized sums each in loops over one coordinate
+/// array at a time ([`normalize_lanes`]), with the same values as texel by texel.
+fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
+    let n = texels.len();
+    let lanes = || ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
+    let ((mut lx, mut ly, mut lz), (mut vx, mut vy, mut vz)) = (lanes(), lanes());
+    let (lx, ly, lz) = (&mut lx[..n], &mut ly[..n], &mut lz[..n]);
+    let (vx, vy, vz) = (&mut vx[..n], &mut vy[..n], &mut vz[..n]);
+    // L: toward the light, per texel for a point light.
+    let towards = |to: Vec3, x: &mut [f32], y: &mut [f32], z: &mut [f32]| {
+        for (k, t) in texels.iter().enumerate() {
+            (x[k], y[k], z[k]) = (to - t.position).into();
+        }
+    };
+    match scene.light {
+        Light::Directional { towards: l } => {
+            lx.fill(l.x);
+            ly.fill(l.y);
+            lz.fill(l.z);
+        }
+        Light::Point { position } => {
+            towards(position, lx, ly, lz);
+            normalize_lanes(lx, ly, lz, |_, k| {
+                scene.light.direction(texels[k].position, texels[k].frame.n)
+            });
+        }
+    }
+    // V: toward the eye, per texel under perspective.
+    match scene.camera.projection {
+        Projection::Perspective { .. } => {
+            towards(scene.camera.eye, vx, vy, vz);
+            normalize_lanes(vx, vy, vz, |_, k| {
+                scene.camera.toward_eye(texels[k].position)
+            });
+        }
+        Projection::Orthographic { .. } => {
+            let v = scene.camera.toward_eye(Vec3::ZERO);
+            vx.fill(v.x);
+            vy.fill(v.y);
+            vz.fill(v.z);
+        }
+    }
+    // H = normalize(L + V).
+    for k in 0..n {
+        lx[k] += vx[k];
+        ly[k] += vy[k];
+        lz[k] += vz[k];
+    }
+    normalize_lanes(lx, ly, lz, |_, k| initial_half_vector(scene, &texels[k]));
+    for (k, h) in out.iter_mut().enumerate() {
+        *h = Vec3::new(lx[k], ly[k], lz[k]);
+    }
+}
+
 /// No highlight: nothing to composite.
 const NO_HIGHLIGHT: Shade = Shade {
     coverage: 0.0,
@@ -274,8 +332,8 @@ fn highlight<'s>(
 ) -> Option<&'s [Shade]> {
     let expr = scene.looks[texels[0].patch as usize].highlight.as_ref()?;
     let n = texels.len();
+    initial_half_vectors(scene, texels, &mut scratch.half_vectors[..n]);
     for (k, t) in texels.iter().enumerate() {
-        scratch.half_vectors[k] = initial_half_vector(scene, t);
         scratch.frames[k] = t.frame;
         scratch.uvs[k] = t.uv;
     }
@@ -370,4 +428,87 @@ fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<f32> {
                 .fold(0.0, f32::max)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::PatchLibrary;
+    use crate::render::scene::Aovs;
+    use crate::render::Camera;
+
+    /// Texels at scattered points, one of them on the eye and one on the point light.
+    fn texels(eye: Vec3, light: Vec3) -> Vec<Texel> {
+        (0..CHUNK)
+            .map(|k| {
+                let a = k as f32 * 0.7;
+                let position = match k {
+                    3 => eye,
+                    5 => light,
+                    _ => Vec3::new(a.cos(), a.sin(), 0.1 * a) * (1.0 + 0.3 * a),
+                };
+                let n = Vec3::new(a.sin(), 0.3, a.cos()).normalize();
+                let du = n.any_orthonormal_vector();
+                Texel {
+                    pixel: k as u32,
+                    depth: 0.5,
+                    patch: 0,
+                    uv: Vec2::ZERO,
+                    position,
+                    frame: TangentFrame::new(du, n.cross(du), n),
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn half_vectors_side_by_side_equal_those_texel_by_texel() {
+        let library = PatchLibrary::default();
+        let eye = Vec3::new(0.5, -6.0, 2.0);
+        let light_at = Vec3::new(-3.0, 2.0, 5.0);
+        let lights = [
+            Light::Directional {
+                towards: Vec3::new(0.3, -0.6, 0.75).normalize(),
+            },
+            Light::Point { position: light_at },
+            // Straight behind every point seen by the orthographic camera: L + V vanishes.
+            Light::Directional { towards: Vec3::Y },
+        ];
+        let projections = [
+            Projection::Perspective {
+                fov_y_degrees: 40.0,
+            },
+            Projection::Orthographic { height: 4.0 },
+        ];
+        let texels = texels(eye, light_at);
+        for light in lights {
+            for projection in projections {
+                let scene = Scene {
+                    library: &library,
+                    looks: Vec::new(),
+                    camera: Camera {
+                        eye,
+                        target: eye + Vec3::Y,
+                        up: Vec3::Z,
+                        projection,
+                        near: 0.1,
+                        far: 100.0,
+                    },
+                    light,
+                    outlines: None,
+                    aovs: Aovs::default(),
+                };
+                let mut side_by_side = [Vec3::ZERO; CHUNK];
+                initial_half_vectors(&scene, &texels, &mut side_by_side);
+                for (t, h) in texels.iter().zip(side_by_side) {
+                    let one = initial_half_vector(&scene, t);
+                    assert!(h.is_finite(), "{light:?} {projection:?}: {h}");
+                    assert_eq!(
+                        h.to_array().map(f32::to_bits),
+                        one.to_array().map(f32::to_bits)
+                    );
+                }
+            }
+        }
+    }
 }
