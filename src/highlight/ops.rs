@@ -468,11 +468,23 @@ impl Exponent {
     /// The largest n raised by multiplication (seven bits).
     pub const MAX_INTEGER: i32 = 127;
 
-    fn new(n: f32) -> Self {
+    /// The exponent `n` (> 0), an [`Exponent::Integer`] where it is one.
+    #[must_use]
+    pub fn new(n: f32) -> Self {
         if n.fract() == 0.0 && (1.0..=Self::MAX_INTEGER as f32).contains(&n) {
             Exponent::Integer(n as i32)
         } else {
             Exponent::Real(n)
+        }
+    }
+
+    /// `x^n`: by multiplication for an integer n, else `powf`.
+    #[inline(always)]
+    #[must_use]
+    pub fn pow(self, x: f32) -> f32 {
+        match self {
+            Exponent::Integer(k) => int_pow(x, k),
+            Exponent::Real(r) => x.powf(r),
         }
     }
 }

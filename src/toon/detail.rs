@@ -5,6 +5,7 @@ use glam::Vec3;
 use serde::Deserialize;
 
 use super::error::XToonError;
+use crate::highlight::Exponent;
 use crate::param::{check, Range};
 
 /// Where the detail D of a point comes from. Every number is a parameter of type `P` (a number,
@@ -130,8 +131,12 @@ impl DetailMap<f32> {
                 z_min,
                 r,
             },
-            DetailMap::NearSilhouette { r } => Prepared::NearSilhouette { r },
-            DetailMap::Highlight { s } => Prepared::Highlight { s },
+            DetailMap::NearSilhouette { r } => Prepared::NearSilhouette {
+                r: Exponent::new(r),
+            },
+            DetailMap::Highlight { s } => Prepared::Highlight {
+                s: Exponent::new(s),
+            },
         };
         Ok(PreparedDetail { map, invert })
     }
@@ -148,8 +153,8 @@ pub struct PreparedDetail {
 enum Prepared {
     Depth { ln_z_min: f32, inverse_ln_r: f32 },
     DepthOfField { focus: Vec3, z_min: f32, r: f32 },
-    NearSilhouette { r: f32 },
-    Highlight { s: f32 },
+    NearSilhouette { r: Exponent },
+    Highlight { s: Exponent },
 }
 
 /// A detail map seen from one eye: what [`ViewDetail::value`] needs per point.
@@ -198,10 +203,10 @@ enum InView {
         far: Ramp,
     },
     NearSilhouette {
-        r: f32,
+        r: Exponent,
     },
     Highlight {
-        s: f32,
+        s: Exponent,
     },
 }
 
@@ -295,10 +300,10 @@ impl ViewDetail {
                     near.map_or(1.0, |ramp| ramp.at(z))
                 }
             }
-            InView::NearSilhouette { r } => normal.dot(view).abs().powf(r),
+            InView::NearSilhouette { r } => r.pow(normal.dot(view).abs()),
             InView::Highlight { s } => {
                 let reflected = 2.0 * highlight_normal.dot(light) * highlight_normal - light;
-                view.dot(reflected).abs().powf(s)
+                s.pow(view.dot(reflected).abs())
             }
         };
         let d = clamp_unit(d);
