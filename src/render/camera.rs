@@ -94,6 +94,18 @@ impl Camera {
         (self.target - self.eye).normalize()
     }
 
+    /// A vector from `point` toward the eye, of any length: `eye − point` under perspective,
+    /// `eye − target` (the reverse line of sight) under orthographic projection. Enough to tell
+    /// which side of a surface the eye is on, without a square root.
+    #[inline]
+    #[must_use]
+    pub fn eye_direction(&self, point: Vec3) -> Vec3 {
+        match self.projection {
+            Projection::Perspective { .. } => self.eye - point,
+            Projection::Orthographic { .. } => self.eye - self.target,
+        }
+    }
+
     /// The unit vector V from `point` toward the eye: per point under perspective, the reverse
     /// line of sight under orthographic projection.
     pub fn toward_eye(&self, point: Vec3) -> Vec3 {
@@ -149,6 +161,11 @@ mod tests {
         assert!((persp.toward_eye(p) - (persp.eye - p).normalize()).length() < 1e-6);
         let ortho = camera(Projection::Orthographic { height: 4.0 });
         assert!((ortho.toward_eye(p) - Vec3::NEG_Y).length() < 1e-6);
+        // The unnormalized direction points the same way.
+        for c in [persp, ortho] {
+            let d = c.eye_direction(p);
+            assert!((d.normalize() - c.toward_eye(p)).length() < 1e-6, "{d}");
+        }
     }
 
     #[test]

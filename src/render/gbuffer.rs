@@ -204,7 +204,7 @@ impl Fill<'_> {
                     mesh.tangents_u[i1],
                     mesh.tangents_u[i2],
                 ),
-                self.camera.toward_eye(position),
+                self.camera.eye_direction(position),
             ),
             FrameMode::Exact | FrameMode::Refined => UNFILLED.frame,
         };
@@ -241,7 +241,7 @@ impl Fill<'_> {
                     t.uv = Vec2::new(u as f32, v as f32);
                     t.position = f.point.as_vec3();
                 }
-                let toward_eye = self.camera.toward_eye(t.position);
+                let toward_eye = self.camera.eye_direction(t.position);
                 t.frame = facing_frame(f.normal.as_vec3(), f.du.as_vec3(), toward_eye);
             }
         }
@@ -321,8 +321,9 @@ pub const REFINE_STEPS: usize = 4;
 
 /// An orthonormal frame from a normal and a direction along u, turned toward the viewer:
 /// `N = normalize(n)`, flipped when `N·V < 0` (the back of a two-sided surface);
-/// `du = normalize(a − (a·N) N)`; `dv = N × du`. Degenerate input falls back to any frame
-/// around the viewer direction, never NaN.
+/// `du = normalize(a − (a·N) N)`; `dv = N × du`. `toward_eye` is V at any length (only its
+/// direction counts). Degenerate input falls back to any frame around the viewer direction,
+/// never NaN.
 pub fn facing_frame(n: Vec3, along_u: Vec3, toward_eye: Vec3) -> TangentFrame {
     let Some((normal, inverse_squared)) = facing(n, toward_eye) else {
         let normal = unfacing_fallback(toward_eye);

@@ -124,7 +124,7 @@ pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scen
             let p = &mesh.positions;
             let position = interpolate(b, p[i0], p[i1], p[i2]);
             let n = interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]);
-            let normal = facing_normal(n, scene.camera.toward_eye(position));
+            let normal = facing_normal(n, scene.camera.eye_direction(position));
             let patch = mesh.triangle_patch[triangle as usize];
             cel_tone(scene, patch, position, normal).extend(1.0)
         })
