@@ -241,8 +241,7 @@ impl Fill<'_> {
                     t.uv = Vec2::new(u as f32, v as f32);
                     t.position = f.point.as_vec3();
                 }
-                let toward_eye = self.camera.eye_direction(t.position);
-                t.frame = facing_frame(f.normal.as_vec3(), f.du.as_vec3(), toward_eye);
+                t.frame = facing_patch_frame(f, self.camera.eye_direction(t.position));
             }
         }
     }
@@ -338,6 +337,20 @@ pub fn facing_frame(n: Vec3, along_u: Vec3, toward_eye: Vec3) -> TangentFrame {
     TangentFrame::new(du, normal.cross(du), normal)
 }
 
+/// An evaluated patch frame — orthonormal and right-handed, in f64 — in f32 and turned toward
+/// the viewer: `(du, s dv, s N)` with `s = −1` where `N·V < 0`. This is [`facing_frame`] of it
+/// without normalizing again; a frame whose axes are not unit to within 10⁻⁵ after rounding
+/// goes through [`facing_frame`].
+fn facing_patch_frame(f: &Frame, toward_eye: Vec3) -> TangentFrame {
+    let (n, du, dv) = (f.normal.as_vec3(), f.du.as_vec3(), f.dv.as_vec3());
+    let unit = |v: Vec3| (v.length_squared() - 1.0).abs() < 1e-5;
+    if !(unit(n) && unit(du) && unit(dv)) {
+        return facing_frame(n, du, toward_eye);
+    }
+    let s = if n.dot(toward_eye) < 0.0 { -1.0 } else { 1.0 };
+    TangentFrame::new(du, dv * s, n * s)
+}
+
 /// The normal of [`facing_frame`] alone, for shading that needs no tangents.
 pub(crate) fn facing_normal(n: Vec3, toward_eye: Vec3) -> Vec3 {
     facing(n, toward_eye).map_or_else(|| unfacing_fallback(toward_eye), |(normal, _)| normal)
@@ -381,6 +394,36 @@ mod tests {
             refine_on_ray(&sphere, start, origin, DVec3::new(0.0, 0.0, 1.0)),
             start
         );
+    }
+
+    #[test]
+    fn patch_frames_turn_like_facing_frames_without_normalizing_again() {
+        let sphere = crate::geom::shapes::sphere(DVec3::new(0.5, 0.0, -1.0), 2.0).unwrap();
+        let params: Vec<(f64, f64)> = (0..200)
+            .map(|k| ((k as f64 * 0.618).fract(), (k as f64 * 0.371).fract()))
+            .collect();
+        let mut frames = vec![NO_FRAME; params.len()];
+        sphere.frames(&params, &mut frames);
+        let mut flipped = 0;
+        for f in &frames {
+            for eye in [Vec3::new(0.0, -9.0, 1.0), Vec3::new(3.0, 4.0, -2.0)] {
+                let toward_eye = eye - f.point.as_vec3();
+                let got = facing_patch_frame(f, toward_eye);
+                let want = facing_frame(f.normal.as_vec3(), f.du.as_vec3(), toward_eye);
+                for (a, b) in [(got.du, want.du), (got.dv, want.dv), (got.n, want.n)] {
+                    assert!((a - b).length() < 1e-6, "{a} vs {b}");
+                }
+                flipped += usize::from(got.n.dot(f.normal.as_vec3()) < 0.0);
+            }
+        }
+        assert!(flipped > 50, "{flipped}");
+        // Not a unit frame: the general construction takes over, and gives no NaN.
+        let broken = Frame {
+            normal: DVec3::new(f64::NAN, 0.0, 0.0),
+            ..NO_FRAME
+        };
+        let f = facing_patch_frame(&broken, Vec3::Z);
+        assert!(f.n.is_finite() && f.du.is_finite() && f.dv.is_finite());
     }
 
     #[test]
