@@ -75,7 +75,7 @@ pub(crate) fn normalize_or(v: Vec3, fallback: Vec3) -> Vec3 {
 /// Normalizes the vectors `(x[k], y[k], z[k])` in place, side by side: each one whose squared
 /// length is finite and above the zero threshold becomes `v · (1/√(v·v))` — the same value
 /// [`normalize_or`] and glam's `try_normalize` give it — in loops over one coordinate array at
-/// a time, which vectorize; every other one becomes `exact(v, k)`.
+/// a time, which vectorize; every other one becomes `exact(k)`.
 ///
 /// # Panics
 /// If the arrays differ in length.
@@ -84,7 +84,7 @@ pub(crate) fn normalize_lanes(
     x: &mut [f32],
     y: &mut [f32],
     z: &mut [f32],
-    exact: impl Fn(Vec3, usize) -> Vec3,
+    exact: impl Fn(usize) -> Vec3,
 ) {
     let n = x.len();
     assert!(y.len() == n && z.len() == n, "lane lengths differ");
@@ -114,7 +114,7 @@ pub(crate) fn normalize_lanes(
         }
         for k in 0..x.len() {
             if scale[k] <= 0.0 {
-                (x[k], y[k], z[k]) = exact(Vec3::new(x[k], y[k], z[k]), start + k).into();
+                (x[k], y[k], z[k]) = exact(start + k).into();
             }
         }
     }

@@ -101,7 +101,7 @@ pub fn shade(
         highlighted: counts.highlighted,
         detail: StageStats {
             pixels: counts.xtoon,
-            seconds: detail.ahead.seconds,
+            seconds: detail.ahead_seconds,
         },
     }
 }
@@ -203,7 +203,7 @@ fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
         }
         Light::Point { position } => {
             towards(position, lx, ly, lz);
-            normalize_lanes(lx, ly, lz, |_, k| {
+            normalize_lanes(lx, ly, lz, |k| {
                 scene.light.direction(texels[k].position, texels[k].frame.n)
             });
         }
@@ -212,9 +212,7 @@ fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
     match scene.camera.projection {
         Projection::Perspective { .. } => {
             towards(scene.camera.eye, vx, vy, vz);
-            normalize_lanes(vx, vy, vz, |_, k| {
-                scene.camera.toward_eye(texels[k].position)
-            });
+            normalize_lanes(vx, vy, vz, |k| scene.camera.toward_eye(texels[k].position));
         }
         Projection::Orthographic { .. } => {
             let v = scene.camera.toward_eye(Vec3::ZERO);
@@ -229,7 +227,7 @@ fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
         ly[k] += vy[k];
         lz[k] += vz[k];
     }
-    normalize_lanes(lx, ly, lz, |_, k| initial_half_vector(scene, &texels[k]));
+    normalize_lanes(lx, ly, lz, |k| initial_half_vector(scene, &texels[k]));
     for (k, h) in out.iter_mut().enumerate() {
         *h = Vec3::new(lx[k], ly[k], lz[k]);
     }

@@ -1,17 +1,17 @@
 //! The X-Toon detail work: on patches with an X-Toon tone, each texel's shading normal, detail
 //! and texture colour.
 //!
-//! The shade pass computes the tone texel by texel as it goes, while the texel is at hand. Only
-//! when some patch's designed highlight uses the abstracted frame does the tone run as a pass of
-//! its own, ahead of shading: the highlights (and their analytic edge widths) then need every
-//! texel's abstracted frame before they start.
+//! The shade pass computes the tone as it goes, a run of texels on one patch at a time, while
+//! the texels are at hand. Only when some patch's designed highlight uses the abstracted frame
+//! does the tone run as a pass of its own, ahead of shading: the highlights (and their analytic
+//! edge widths) then need every texel's abstracted frame before they start.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::gbuffer::{facing_frame, GBuffer, Texel, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
-use super::stats::{timed, StageStats};
+use super::stats::timed;
 use crate::toon::{SurfacePoint, ViewXToon, XToonShade, NO_SHADE, RUN};
 
 /// Each patch's X-Toon tone placed in a frame's view: `None` on cel patches, empty when no
@@ -28,9 +28,8 @@ pub(super) struct Detail<'s> {
     /// The G-buffer with the abstracted frame on every texel of a patch whose designed
     /// highlight uses it; None when no patch's does.
     pub highlight_gbuffer: Option<GBuffer>,
-    /// The pass ahead of shading: texels on X-Toon patches and its time (zero when it did not
-    /// run).
-    pub ahead: StageStats,
+    /// The time of the pass ahead of shading (0 when it did not run).
+    pub ahead_seconds: f64,
 }
 
 /// Places every X-Toon tone of `scene` in its view, and runs the tones ahead of the shade pass
@@ -62,14 +61,13 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
             ..Detail::default()
         };
     }
-    let ((tones, highlight_gbuffer, pixels), seconds) = timed(|| {
+    let ((tones, highlight_gbuffer), ahead_seconds) = timed(|| {
         let mut tones = vec![Vec3::ZERO; gbuffer.texels.len()];
         let mut texels = gbuffer.texels.clone();
-        let pixels = texels
+        texels
             .par_chunks_mut(PIXELS_PER_JOB)
             .zip(tones.par_chunks_mut(PIXELS_PER_JOB))
-            .map(|(texels, tones)| {
-                let mut count = 0;
+            .for_each(|(texels, tones)| {
                 let mut shades = [NO_SHADE; RUN];
                 let mut start = 0;
                 for run in texels.chunk_by_mut(|a, b| a.patch == b.patch) {
@@ -79,7 +77,6 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
                     let Some(view) = &views[patch] else {
                         continue;
                     };
-                    count += run.len() as u64;
                     for (piece, tones) in run.chunks_mut(RUN).zip(tones[range].chunks_mut(RUN)) {
                         shade_texels(view, scene, piece, &mut shades);
                         for ((t, tone), s) in piece.iter_mut().zip(tones).zip(&shades) {
@@ -90,22 +87,20 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
                         }
                     }
                 }
-                count
-            })
-            .sum();
+            });
         let highlight_gbuffer = GBuffer {
             width: gbuffer.width,
             height: gbuffer.height,
             slot: gbuffer.slot.clone(),
             texels,
         };
-        (tones, Some(highlight_gbuffer), pixels)
+        (tones, Some(highlight_gbuffer))
     });
     Detail {
         views,
         tones,
         highlight_gbuffer,
-        ahead: StageStats { pixels, seconds },
+        ahead_seconds,
     }
 }
 
