@@ -361,12 +361,22 @@ fn square_per_axis(t: Vec2, sigma: f32, pow: impl Fn(f32) -> f32) -> Vec2 {
     t - sigma * k * t
 }
 
-/// `x^n` for an integer `1 ≤ n ≤ Exponent::MAX_INTEGER`, by binary exponentiation over a fixed
-/// number of bits (straight-line code, so loops calling it vectorize).
+/// Hands the squaring of `style` with σ = `sigma` and the power `pow` to `target`.
 #[inline(always)]
-fn int_pow(x: f32, n: i32) -> f32 {
+fn square(target: impl Formula, style: SquareStyle, sigma: f32, pow: impl Fn(f32) -> f32) {
+    match style {
+        SquareStyle::Tangent => target.run(|t| square_tangent(t, sigma, &pow)),
+        SquareStyle::PerAxis => target.run(|t| square_per_axis(t, sigma, &pow)),
+    }
+}
+
+/// `x^n` for an integer `1 ≤ n < 2^BITS`, by binary exponentiation over `BITS` bits
+/// (straight-line code, so loops calling it vectorize). Bits of n above them would only square
+/// the base further, so any `BITS` that holds n gives the same value.
+#[inline(always)]
+fn int_pow<const BITS: u32>(x: f32, n: i32) -> f32 {
     let (mut result, mut base) = (1.0, x);
-    for bit in 0..7 {
+    for bit in 0..BITS {
         if (n >> bit) & 1 == 1 {
             result *= base;
         }
@@ -421,19 +431,15 @@ impl PreparedOp {
             }
             PreparedOp::Scale { axis, delta } => target.run(|t| t - delta * t.dot(axis) * axis),
             PreparedOp::Split(g) => target.run(|t| t - g * Vec2::new(sgn(t.x), sgn(t.y))),
-            PreparedOp::Square { sigma, n, style } => match (style, n) {
-                (SquareStyle::Tangent, Exponent::Integer(k)) => {
-                    target.run(|t| square_tangent(t, sigma, |x| int_pow(x, k)));
+            PreparedOp::Square { sigma, n, style } => match n {
+                // The paper's n = 2, and 1 and 3: two bits.
+                Exponent::Integer(k) if k < 4 => {
+                    square(target, style, sigma, |x| int_pow::<2>(x, k))
                 }
-                (SquareStyle::Tangent, Exponent::Real(r)) => {
-                    target.run(|t| square_tangent(t, sigma, |x| x.powf(r)));
-                }
-                (SquareStyle::PerAxis, Exponent::Integer(k)) => {
-                    target.run(|t| square_per_axis(t, sigma, |x| int_pow(x, k)));
-                }
-                (SquareStyle::PerAxis, Exponent::Real(r)) => {
-                    target.run(|t| square_per_axis(t, sigma, |x| x.powf(r)));
-                }
+                Exponent::Integer(k) => square(target, style, sigma, |x| {
+                    int_pow::<{ Exponent::INTEGER_BITS }>(x, k)
+                }),
+                Exponent::Real(r) => square(target, style, sigma, |x| x.powf(r)),
             },
         }
     }
@@ -465,8 +471,11 @@ pub enum Exponent {
 }
 
 impl Exponent {
-    /// The largest n raised by multiplication (seven bits).
-    pub const MAX_INTEGER: i32 = 127;
+    /// The largest n raised by multiplication.
+    pub const MAX_INTEGER: i32 = (1 << Self::INTEGER_BITS) - 1;
+
+    /// The bits of an integer n.
+    const INTEGER_BITS: u32 = 7;
 
     /// The exponent `n` (> 0), an [`Exponent::Integer`] where it is one.
     #[must_use]
@@ -483,7 +492,7 @@ impl Exponent {
     #[must_use]
     pub fn pow(self, x: f32) -> f32 {
         match self {
-            Exponent::Integer(k) => int_pow(x, k),
+            Exponent::Integer(k) => int_pow::<{ Self::INTEGER_BITS }>(x, k),
             Exponent::Real(r) => x.powf(r),
         }
     }
@@ -606,11 +615,15 @@ mod tests {
                 panic!("{n} not an integer exponent")
             };
             for x in [0.0_f32, 0.3, 0.9, 1.0] {
-                let (got, want) = (int_pow(x, k), x.powf(n));
+                let (got, want) = (int_pow::<{ Exponent::INTEGER_BITS }>(x, k), x.powf(n));
                 assert!(
                     (got - want).abs() <= 1e-6 * want.max(1e-30),
                     "{x}^{n}: {got} vs {want}"
                 );
+                // Over fewer bits that still hold n: the same value, bit for bit.
+                if k < 4 {
+                    assert_eq!(int_pow::<2>(x, k).to_bits(), got.to_bits(), "{x}^{n}");
+                }
             }
         }
         assert_eq!(Exponent::new(2.5), Exponent::Real(2.5));
