@@ -5,6 +5,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
 use super::camera::Camera;
+use super::outline::EdgeSurface;
 use super::raster::{interpolate, VisibilityBuffer};
 use super::settings::FrameMode;
 use super::tessellate::Mesh;
@@ -40,6 +41,9 @@ pub struct GBuffer {
     pub slot: Vec<u32>,
     /// The covered pixels, in pixel order.
     pub texels: Vec<Texel>,
+    /// Per texel, what the outline pass compares: filled when the frame draws outlines, empty
+    /// otherwise.
+    pub(crate) edge_surfaces: Vec<EdgeSurface>,
 }
 
 /// Items per parallel job in the per-pixel passes.
@@ -63,6 +67,9 @@ struct Fill<'a> {
     camera: &'a Camera,
     inverse_view_projection: Mat4,
     mode: FrameMode,
+    /// Whether to fill the edge surfaces, and the line of sight `(eye, forward)` they are seen
+    /// along.
+    edges: Option<(Vec3, Vec3)>,
 }
 
 /// Per-job scratch for evaluating a run of frames on one patch.
@@ -76,8 +83,9 @@ impl GBuffer {
     /// Fills the G-buffer from the visibility buffer of `mesh`, reusing its memory. Frames come
     /// from the mesh's vertex frames, or from the patch itself at the pixel's (u, v)
     /// ([`FrameMode::Exact`]), or at (u, v) moved so the surface point lies on the pixel's ray
-    /// ([`FrameMode::Refined`]). `inverse_view_projection` maps NDC back to the world, for the
-    /// pixel rays. Returns the number of frames evaluated on the patches.
+    /// ([`FrameMode::Refined`]), the pixel's ray cast from `camera`. With `edges`, the edge
+    /// surfaces are filled too, while each texel is at hand.
+    /// Returns the number of frames evaluated on the patches.
     ///
     /// Blocks of pixels are filled in parallel: each block counts its covered pixels, and the
     /// running sum of the counts says where its texels start, so texels stay in pixel order.
@@ -87,8 +95,8 @@ impl GBuffer {
         mesh: &Mesh,
         library: &PatchLibrary,
         camera: &Camera,
-        inverse_view_projection: Mat4,
         mode: FrameMode,
+        edges: bool,
     ) -> u64 {
         (self.width, self.height) = (visibility.width, visibility.height);
         let counts: Vec<usize> = visibility
@@ -96,22 +104,30 @@ impl GBuffer {
             .par_chunks(PIXELS_PER_JOB)
             .map(|block| block.iter().filter(|&&t| t != EMPTY).count())
             .collect();
-        self.texels.resize(counts.iter().sum(), UNFILLED);
+        let covered = counts.iter().sum();
+        self.texels.resize(covered, UNFILLED);
+        self.edge_surfaces
+            .resize(if edges { covered } else { 0 }, EdgeSurface::default());
         self.slot.resize(visibility.triangle.len(), EMPTY);
         let mut blocks = Vec::with_capacity(counts.len());
         let (mut rest, mut first) = (&mut self.texels[..], 0);
+        let mut rest_edges = &mut self.edge_surfaces[..];
         for &count in &counts {
             let (texels, tail) = std::mem::take(&mut rest).split_at_mut(count);
-            blocks.push((first as u32, texels));
-            (rest, first) = (tail, first + count);
+            let (edges, edges_tail) =
+                std::mem::take(&mut rest_edges).split_at_mut(if edges { count } else { 0 });
+            blocks.push((first as u32, texels, edges));
+            (rest, rest_edges, first) = (tail, edges_tail, first + count);
         }
+        let aspect = visibility.width as f32 / visibility.height as f32;
         let fill = Fill {
             visibility,
             mesh,
             library,
             camera,
-            inverse_view_projection,
+            inverse_view_projection: camera.view_projection(aspect).inverse(),
             mode,
+            edges: edges.then(|| (camera.eye, camera.forward())),
         };
         blocks
             .into_par_iter()
@@ -119,8 +135,13 @@ impl GBuffer {
             .enumerate()
             .for_each_init(
                 FrameScratch::default,
-                |scratch, (block, ((first, texels), slots))| {
+                |scratch, (block, ((first, texels, edges), slots))| {
                     fill.block(block * PIXELS_PER_JOB, first, texels, slots, scratch);
+                    if let Some((eye, forward)) = fill.edges {
+                        for (e, t) in edges.iter_mut().zip(texels.iter()) {
+                            *e = EdgeSurface::of(t, eye, forward);
+                        }
+                    }
                 },
             );
         match mode {

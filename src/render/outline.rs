@@ -4,8 +4,7 @@
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::camera::Camera;
-use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
+use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
 use super::scene::Outlines;
 
 /// Relative jump in the second difference of inverse view depth that marks an occlusion edge.
@@ -16,31 +15,42 @@ const DEPTH_JUMP: f32 = 0.02;
 /// Working memory of the outline pass, kept from one frame to the next.
 #[derive(Debug, Default)]
 pub struct OutlineBuffers {
-    /// Per texel, what the edge tests compare.
-    surfaces: Vec<EdgeSurface>,
     /// Per pixel, whether it differs from its right or lower neighbour.
     edges: Vec<bool>,
 }
 
-/// What the edge tests read of a texel.
-#[derive(Clone, Copy, Debug)]
-struct EdgeSurface {
+/// What the edge tests read of a texel, packed: the G-buffer fills one per texel when a frame
+/// draws outlines ([`GBuffer::edge_surfaces`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct EdgeSurface {
     patch: u32,
     normal: Vec3,
     /// `1 / ((P − eye)·forward)`.
     inverse_depth: f32,
 }
 
+impl EdgeSurface {
+    /// The edge surface of texel `t`, seen from `eye` looking along the unit `forward`.
+    #[inline]
+    pub(super) fn of(t: &Texel, eye: Vec3, forward: Vec3) -> Self {
+        Self {
+            patch: t.patch,
+            normal: t.frame.n,
+            inverse_depth: 1.0 / (t.position - eye).dot(forward).max(1e-6),
+        }
+    }
+}
+
 /// Inks lines `outlines.width` pixels wide over `colour` (an image of the G-buffer's size):
 /// every pixel within `(width − 1)/2` of an edge pixel becomes `rgb = outlines.colour`, `α = 1`.
+/// The G-buffer must hold its edge surfaces.
 pub fn draw_outlines(
     gbuffer: &GBuffer,
-    camera: &Camera,
     outlines: &Outlines,
     colour: &mut [Vec4],
     buffers: &mut OutlineBuffers,
 ) {
-    find_edges(gbuffer, camera, outlines, buffers);
+    find_edges(gbuffer, outlines, buffers);
     let edges = &buffers.edges;
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     // The disc of the line around an edge pixel, row by row: (dy, largest |dx|).
@@ -90,25 +100,10 @@ pub fn draw_outlines(
 /// normals turning by more than the crease angle. A covered pixel whose inverse depth has a
 /// jump in its second difference across it, along a row or a column, is marked too: a nearer
 /// surface overlaps a farther one there.
-fn find_edges(
-    gbuffer: &GBuffer,
-    camera: &Camera,
-    outlines: &Outlines,
-    buffers: &mut OutlineBuffers,
-) {
+fn find_edges(gbuffer: &GBuffer, outlines: &Outlines, buffers: &mut OutlineBuffers) {
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
-    let forward = camera.forward();
-    gbuffer
-        .texels
-        .par_iter()
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|t| EdgeSurface {
-            patch: t.patch,
-            normal: t.frame.n,
-            inverse_depth: 1.0 / (t.position - camera.eye).dot(forward).max(1e-6),
-        })
-        .collect_into_vec(&mut buffers.surfaces);
-    let surfaces = &buffers.surfaces;
+    let surfaces = &gbuffer.edge_surfaces;
+    assert_eq!(surfaces.len(), gbuffer.texels.len(), "no edge surfaces");
     let crease_cos = outlines.crease_degrees.to_radians().cos();
     let differs = |a: u32, b: u32| -> bool {
         if b == EMPTY {

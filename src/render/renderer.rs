@@ -201,14 +201,13 @@ impl Stages<'_> {
             }),
             Surfaces::Texels => {
                 let (exact, seconds) = timed(|| {
-                    let inverse = view_projection.inverse();
                     gbuffer.fill(
                         visibility,
                         mesh,
                         library,
                         &scene.camera,
-                        inverse,
                         settings.frames,
+                        plan.outlines,
                     )
                 });
                 stats.gbuffer = StageStats {
@@ -235,7 +234,7 @@ impl Stages<'_> {
                     ..*outlines
                 };
                 let buffers = &mut self.outlining;
-                draw_outlines(gbuffer, &scene.camera, &scaled, &mut shaded.colour, buffers);
+                draw_outlines(gbuffer, &scaled, &mut shaded.colour, buffers);
             });
             stats.outline = StageStats {
                 pixels: u64::from(width) * u64::from(height),

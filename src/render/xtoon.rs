@@ -93,6 +93,7 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
             height: gbuffer.height,
             slot: gbuffer.slot.clone(),
             texels,
+            edge_surfaces: Vec::new(),
         };
         (tones, Some(highlight_gbuffer))
     });
