@@ -138,8 +138,10 @@ impl Abstraction {
                     Abstraction::Sphere => Geometry::Sphere { centre },
                     Abstraction::Ellipsoid => Geometry::Ellipsoid {
                         centre,
-                        axes: b.axes.as_mat3(),
-                        inverse_squared: (b.semi_axes * b.semi_axes).recip().as_vec3(),
+                        gradient: (b.axes
+                            * DMat3::from_diagonal((b.semi_axes * b.semi_axes).recip())
+                            * b.axes.transpose())
+                        .as_mat3(),
                     },
                     _ => Geometry::Cylinder {
                         centre,
@@ -230,10 +232,9 @@ enum Geometry {
     },
     Ellipsoid {
         centre: Vec3,
-        /// Columns: the principal axes.
-        axes: Mat3,
-        /// `1 / a_i²` per principal axis.
-        inverse_squared: Vec3,
+        /// `A = R diag(1/a_i²) Rᵀ`, with R's columns the principal axes and `a_i` the semi-axes:
+        /// the gradient of `(x − c)ᵀ A (x − c)` is `2 A (x − c)`.
+        gradient: Mat3,
     },
     Cylinder {
         centre: Vec3,
@@ -263,11 +264,7 @@ impl AbstractShape {
     fn direction(&self, point: Vec3, patch: usize, uv: Vec2) -> Vec3 {
         match &self.geometry {
             Geometry::Sphere { centre } => point - *centre,
-            Geometry::Ellipsoid {
-                centre,
-                axes,
-                inverse_squared,
-            } => *axes * ((axes.transpose() * (point - *centre)) * *inverse_squared),
+            Geometry::Ellipsoid { centre, gradient } => *gradient * (point - *centre),
             Geometry::Cylinder { centre, axis } => {
                 let d = point - *centre;
                 d - d.dot(*axis) * *axis
