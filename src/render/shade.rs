@@ -189,12 +189,13 @@ fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
     let ((mut lx, mut ly, mut lz), (mut vx, mut vy, mut vz)) = (lanes(), lanes());
     let (lx, ly, lz) = (&mut lx[..n], &mut ly[..n], &mut lz[..n]);
     let (vx, vy, vz) = (&mut vx[..n], &mut vy[..n], &mut vz[..n]);
-    // L: toward the light, per texel for a point light.
+    // The vector from each texel to the point `to`, into lanes.
     let towards = |to: Vec3, x: &mut [f32], y: &mut [f32], z: &mut [f32]| {
         for (k, t) in texels.iter().enumerate() {
             (x[k], y[k], z[k]) = (to - t.position).into();
         }
     };
+    // L: toward the light, per texel for a point light.
     match scene.light {
         Light::Directional { towards: l } => {
             lx.fill(l.x);
