@@ -172,20 +172,42 @@ impl PreparedExpr {
             frames.len() == uvs.len() && uvs.len() == hs.len() && hs.len() == out.len(),
             "slice lengths differ"
         );
-        let mut shapes = [0.0; CHUNK];
-        let mut paints = [self.first_paint(); CHUNK];
-        let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
+        let (mut initial, mut scratch) = (LocalChunk::default(), ChunkScratch::default());
         for (k, o) in out.chunks_mut(CHUNK).enumerate() {
             let r = k * CHUNK..k * CHUNK + o.len();
-            let (s, p) = (&mut shapes[..o.len()], &mut paints[..o.len()]);
             initial.load(&frames[r.clone()], &hs[r.clone()]);
-            self.shape_chunk(&initial, &mut scratch, &uvs[r], width, s, p);
-            for ((o, s), p) in o.iter_mut().zip(s.iter()).zip(p.iter()) {
-                *o = Shade {
-                    coverage: s * p.opacity,
-                    colour: p.colour,
-                };
-            }
+            self.eval_chunk(&initial, &uvs[r], width, &mut scratch, o);
+        }
+    }
+
+    /// [`eval`](Self::eval) at a chunk of initial highlight vectors already in frame
+    /// coordinates, with (u, v) `uvs`, into `out`; `scratch` is working memory a caller keeps
+    /// from one chunk to the next.
+    ///
+    /// # Panics
+    /// If `uvs` or `out` is not as long as the chunk.
+    pub fn eval_chunk(
+        &self,
+        initial: &LocalChunk,
+        uvs: &[Vec2],
+        width: f32,
+        scratch: &mut ChunkScratch,
+        out: &mut [Shade],
+    ) {
+        let n = initial.len();
+        assert!(uvs.len() == n && out.len() == n, "chunk lengths differ");
+        let ChunkScratch {
+            vectors,
+            shapes,
+            paints,
+        } = scratch;
+        let (s, p) = (&mut shapes[..n], &mut paints[..n]);
+        self.shape_chunk(initial, vectors, uvs, width, s, p);
+        for ((o, s), p) in out.iter_mut().zip(s.iter()).zip(p.iter()) {
+            *o = Shade {
+                coverage: s * p.opacity,
+                colour: p.colour,
+            };
         }
     }
 
@@ -232,6 +254,27 @@ impl PreparedExpr {
             PreparedExpr::Combine(op, a, b) => {
                 op.combine(a.shape(frame, uv, h, width), b.shape(frame, uv, h, width))
             }
+        }
+    }
+}
+
+/// Working memory of [`PreparedExpr::eval_chunk`].
+#[derive(Clone, Debug)]
+pub struct ChunkScratch {
+    vectors: LocalChunk,
+    shapes: [f32; CHUNK],
+    paints: [Paint; CHUNK],
+}
+
+impl Default for ChunkScratch {
+    fn default() -> Self {
+        Self {
+            vectors: LocalChunk::default(),
+            shapes: [0.0; CHUNK],
+            paints: [Paint {
+                colour: Vec3::ZERO,
+                opacity: 0.0,
+            }; CHUNK],
         }
     }
 }

@@ -21,7 +21,7 @@ mod ops;
 mod stack;
 
 pub use error::HighlightError;
-pub use expr::{Boolean, Expr, PreparedExpr, Shade};
+pub use expr::{Boolean, ChunkScratch, Expr, PreparedExpr, Shade};
 pub(crate) use frame::normalize_lanes;
 pub use frame::TangentFrame;
 pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View};

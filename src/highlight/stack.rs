@@ -117,12 +117,21 @@ impl LocalChunk {
     /// # Panics
     /// If the slices differ in length or are longer than [`CHUNK`].
     pub fn load(&mut self, frames: &[TangentFrame], hs: &[Vec3]) {
-        let len = frames.len();
-        assert!(hs.len() == len && len <= CHUNK, "bad chunk");
+        assert!(hs.len() == frames.len(), "bad chunk");
+        self.set(frames.len(), |i| frames[i].to_local(hs[i]));
+    }
+
+    /// Replaces the contents by `local(i)` for i < `len`: vectors already in frame coordinates.
+    ///
+    /// # Panics
+    /// If `len` is more than [`CHUNK`].
+    #[inline]
+    pub fn set(&mut self, len: usize, local: impl Fn(usize) -> Vec3) {
+        assert!(len <= CHUNK, "bad chunk");
         self.len = len;
         let (x, y, z) = self.lanes_mut();
-        for (i, (f, h)) in frames.iter().zip(hs).enumerate() {
-            (x[i], y[i], z[i]) = f.to_local(*h).into();
+        for i in 0..len {
+            (x[i], y[i], z[i]) = local(i).into();
         }
     }
 

@@ -11,7 +11,8 @@ use super::stats::StageStats;
 use super::tessellate::Mesh;
 use super::xtoon;
 use crate::highlight::{
-    half_vector, normalize_lanes, Light, PreparedExpr, PreparedLayer, Shade, TangentFrame, CHUNK,
+    half_vector, normalize_lanes, ChunkScratch, Light, LocalChunk, PreparedExpr, PreparedLayer,
+    Shade, CHUNK,
 };
 use crate::toon::NO_SHADE;
 
@@ -250,8 +251,10 @@ struct Out<'a> {
 /// kept by each worker from one run to the next.
 struct RunScratch {
     half_vectors: [Vec3; CHUNK],
-    frames: [TangentFrame; CHUNK],
+    /// The half vectors in the texels' frames.
+    initial: LocalChunk,
     uvs: [Vec2; CHUNK],
+    expr: ChunkScratch,
     shades: [Shade; CHUNK],
 }
 
@@ -259,8 +262,9 @@ impl RunScratch {
     fn new() -> Self {
         Self {
             half_vectors: [Vec3::ZERO; CHUNK],
-            frames: [TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z); CHUNK],
+            initial: LocalChunk::default(),
             uvs: [Vec2::ZERO; CHUNK],
+            expr: ChunkScratch::default(),
             shades: [NO_HIGHLIGHT; CHUNK],
         }
     }
@@ -331,20 +335,23 @@ fn highlight<'s>(
 ) -> Option<&'s [Shade]> {
     let expr = scene.looks[texels[0].patch as usize].highlight.as_ref()?;
     let n = texels.len();
-    initial_half_vectors(scene, texels, &mut scratch.half_vectors[..n]);
-    for (k, t) in texels.iter().enumerate() {
-        scratch.frames[k] = t.frame;
-        scratch.uvs[k] = t.uv;
-    }
-    let (hs, frames, uvs) = (&scratch.half_vectors, &scratch.frames, &scratch.uvs);
+    let hs = &mut scratch.half_vectors[..n];
+    initial_half_vectors(scene, texels, hs);
     let shades = &mut scratch.shades[..n];
     match widths {
         Some(widths) => {
-            for (k, shade) in shades.iter_mut().enumerate() {
-                *shade = expr.eval(&frames[k], uvs[k], hs[k], widths[k]);
+            for (k, (shade, t)) in shades.iter_mut().zip(texels).enumerate() {
+                *shade = expr.eval(&t.frame, t.uv, hs[k], widths[k]);
             }
         }
-        None => expr.eval_many(&frames[..n], &uvs[..n], &hs[..n], 0.0, shades),
+        None => {
+            scratch.initial.set(n, |k| texels[k].frame.to_local(hs[k]));
+            for (uv, t) in scratch.uvs.iter_mut().zip(texels) {
+                *uv = t.uv;
+            }
+            let uvs = &scratch.uvs[..n];
+            expr.eval_chunk(&scratch.initial, uvs, 0.0, &mut scratch.expr, shades);
+        }
     }
     Some(shades)
 }
@@ -433,6 +440,7 @@ fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<f32> {
 mod tests {
     use super::*;
     use crate::geom::PatchLibrary;
+    use crate::highlight::TangentFrame;
     use crate::render::scene::Aovs;
     use crate::render::Camera;
 
