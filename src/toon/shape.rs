@@ -10,8 +10,9 @@ use serde::Deserialize;
 
 use super::error::{XToonError, MAX_ITERATIONS};
 use super::smooth::SmoothedNormals;
-use super::xtoon::SurfacePoint;
+use super::xtoon::{SurfacePoint, RUN};
 use crate::geom::PatchLibrary;
+use crate::highlight::normalize_lanes;
 use crate::param::{check, Range};
 
 /// The abstracted shape whose normals the shading blends toward.
@@ -296,31 +297,57 @@ impl PreparedShape {
     /// normal, or the blend vanishes, `n` is returned.
     #[must_use]
     pub fn shading_normal(&self, n: Vec3, point: Vec3, patch: usize, uv: Vec2) -> Vec3 {
-        self.blend(n, self.shape.direction(point, patch, uv))
+        let mut out = [Vec3::ZERO];
+        let point = SurfacePoint {
+            position: point,
+            normal: n,
+            patch,
+            uv,
+        };
+        self.shading_normals(|_| point, &mut out);
+        out[0]
     }
 
-    /// [`shading_normal`](Self::shading_normal) at `point(i)` into each `out[i]`, in two
-    /// loops: first every abstracted direction, then every blend.
+    /// [`shading_normal`](Self::shading_normal) at `point(i)` into each `out[i]`, for up to
+    /// [`RUN`] points, stage by stage: every abstracted direction, then all of them normalized
+    /// side by side ([`normalize_lanes`]), every blend, and the blends normalized side by side.
+    ///
+    /// # Panics
+    /// If `out` is longer than [`RUN`].
     #[inline(always)]
     pub fn shading_normals(&self, point: impl Fn(usize) -> SurfacePoint, out: &mut [Vec3]) {
-        for (i, o) in out.iter_mut().enumerate() {
+        let n = out.len();
+        let (mut x, mut y, mut z) = ([0.0f32; RUN], [0.0f32; RUN], [0.0f32; RUN]);
+        let (x, y, z) = (&mut x[..n], &mut y[..n], &mut z[..n]);
+        let direction = |i: usize| {
             let p = point(i);
-            *o = self.shape.direction(p.position, p.patch, p.uv);
-        }
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.blend(point(i).normal, *o);
-        }
-    }
-
-    /// The shading normal at unit normal `n` toward the abstracted shape's normal `direction`
-    /// (not normalized).
-    #[inline(always)]
-    fn blend(&self, n: Vec3, direction: Vec3) -> Vec3 {
-        let Some(a) = direction.try_normalize() else {
-            return n;
+            self.shape.direction(p.position, p.patch, p.uv)
         };
-        let a = if a.dot(n) < 0.0 { -a } else { a };
-        n.lerp(a, self.weight).try_normalize().unwrap_or(n)
+        for i in 0..n {
+            (x[i], y[i], z[i]) = direction(i).into();
+        }
+        // n_a, or zero where the shape has no normal.
+        normalize_lanes(x, y, z, |i| {
+            direction(i).try_normalize().unwrap_or(Vec3::ZERO)
+        });
+        let mut no_normal = [false; RUN];
+        for (i, o) in out.iter_mut().enumerate() {
+            let (n, a) = (point(i).normal, Vec3::new(x[i], y[i], z[i]));
+            no_normal[i] = a == Vec3::ZERO;
+            let a = if a.dot(n) < 0.0 { -a } else { a };
+            *o = n.lerp(a, self.weight);
+            (x[i], y[i], z[i]) = (*o).into();
+        }
+        normalize_lanes(x, y, z, |i| {
+            out[i].try_normalize().unwrap_or(point(i).normal)
+        });
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = if no_normal[i] {
+                point(i).normal
+            } else {
+                Vec3::new(x[i], y[i], z[i])
+            };
+        }
     }
 }
 
