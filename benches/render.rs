@@ -1,8 +1,8 @@
 //! The teapot at 1280×720 with a 5-op highlight stack on every patch, outlines on and exact
-//! frames, against variants measured side by side in the same run: highlights off, interpolated
-//! frames, one thread, and an effect-free shot against a flat-colour raster of the same mesh.
-//! Run with `cargo bench --bench render`; the summary at the end prints the ratios and each
-//! variant's frame time by stage.
+//! frames, against variants measured side by side in the same run, frame by frame in turn:
+//! highlights off, interpolated frames, one thread, and an effect-free shot against a
+//! flat-colour raster of the same mesh. Run with `cargo bench --bench render`; it prints each
+//! variant's frame time by stage, then the ratios.
 //!
 //! The effect-free comparison. The effect-free shot has cel tone only — no highlight, no
 //! outline, no AOV — and is rendered with interpolated frames, the preview setting: an exact
@@ -15,12 +15,12 @@
 //! one flat colour per covered pixel written in parallel into a new image. What the ratio
 //! leaves to the effect-free shot is the tone itself and the renderer's bookkeeping.
 
-#[path = "support/stages.rs"]
-mod stages;
-mod support;
+#[path = "support/frames.rs"]
+mod frames;
 #[path = "support/teapot.rs"]
 mod teapot;
 
+use frames::Variant;
 use teapot::{camera, HEIGHT, WIDTH};
 
 /// The allocator the `glint` binary uses.
@@ -29,14 +29,13 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use std::hint::black_box;
 
-use criterion::Criterion;
 use glam::{Vec3, Vec4};
 use glint::formats::load_patches;
 use glint::geom::PatchLibrary;
 use glint::highlight::{Axis, Expr, Layer, Light, Op, SquareStyle};
 use glint::render::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use glint::render::tessellate::{Density, Tessellator};
-use glint::render::{Aovs, FrameMode, Outlines, PatchLook, Renderer, Scene, Settings, Tone};
+use glint::render::{Aovs, FrameMode, Outlines, PatchLook, Scene, Settings, Tone};
 use glint::toon::CelRamp;
 use rayon::prelude::*;
 
@@ -92,41 +91,24 @@ fn scene(library: &PatchLibrary, highlights: bool, outlines: bool) -> Scene<'_> 
     }
 }
 
-fn settings(frames: FrameMode, threads: usize) -> Settings {
-    Settings {
-        density: DENSITY,
-        frames,
-        threads,
-        ..Settings::preview(WIDTH, HEIGHT)
-    }
-}
+/// Rounds of frames measured.
+const ROUNDS: usize = 100;
 
 fn main() {
-    let mut c = Criterion::default().configure_from_args();
     let library = load_patches(std::path::Path::new("patches/teapot.bpt")).unwrap();
     let full = scene(&library, true, true);
     let plain = scene(&library, false, true);
     let effect_free = scene(&library, false, false);
+    let settings = |frames, threads| Settings {
+        density: DENSITY,
+        frames,
+        threads,
+        ..Settings::preview(WIDTH, HEIGHT)
+    };
+    let exact = settings(FrameMode::Exact, 0);
+    let interpolated = settings(FrameMode::Interpolated, 0);
+    let one_thread = settings(FrameMode::Exact, 1);
 
-    let mut group = c.benchmark_group("teapot_1280x720");
-    group.sample_size(20);
-    let variants: [(&str, &Scene, Settings); 5] = [
-        ("full", &full, settings(FrameMode::Exact, 0)),
-        ("no_highlights", &plain, settings(FrameMode::Exact, 0)),
-        ("interpolated", &full, settings(FrameMode::Interpolated, 0)),
-        ("one_thread", &full, settings(FrameMode::Exact, 1)),
-        (
-            "effect_free",
-            &effect_free,
-            settings(FrameMode::Interpolated, 0),
-        ),
-    ];
-    for (name, scene, settings) in &variants {
-        let mut renderer = Renderer::new(&library);
-        group.bench_function(*name, |b| {
-            b.iter(|| black_box(renderer.render(scene, settings).unwrap()))
-        });
-    }
     // The baseline: the same mesh rasterized and filled with one flat colour.
     let mut tessellator = Tessellator::new(&library);
     let view_projection = camera().view_projection(WIDTH as f32 / HEIGHT as f32);
@@ -134,41 +116,43 @@ fn main() {
     let (mut rasterizer, mut visibility) = (Rasterizer::new(), VisibilityBuffer::default());
     let mut clip = Vec::new();
     let flat = Vec4::new(0.4, 0.55, 0.9, 1.0);
-    group.bench_function("flat_raster", |b| {
-        b.iter(|| {
-            mesh.positions
-                .par_iter()
-                .map(|p| view_projection * p.extend(1.0))
-                .collect_into_vec(&mut clip);
-            let viewport = Viewport {
-                width: WIDTH,
-                height: HEIGHT,
-            };
-            let options = RasterOptions::default();
-            rasterizer.rasterize_into(viewport, &clip, &mesh.triangles, &options, &mut visibility);
-            let colour: Vec<Vec4> = visibility
-                .triangle
-                .par_iter()
-                .map(|&t| if t == u32::MAX { Vec4::ZERO } else { flat })
-                .collect();
-            black_box(colour)
-        })
-    });
-    group.finish();
-    c.final_summary();
+    let flat_raster = move || {
+        mesh.positions
+            .par_iter()
+            .map(|p| view_projection * p.extend(1.0))
+            .collect_into_vec(&mut clip);
+        let viewport = Viewport {
+            width: WIDTH,
+            height: HEIGHT,
+        };
+        let options = RasterOptions::default();
+        rasterizer.rasterize_into(viewport, &clip, &mesh.triangles, &options, &mut visibility);
+        let colour: Vec<Vec4> = visibility
+            .triangle
+            .par_iter()
+            .map(|&t| if t == u32::MAX { Vec4::ZERO } else { flat })
+            .collect();
+        black_box(colour);
+        None
+    };
 
-    support::print_ratios(
-        "frame-time ratios (teapot, 1280×720)",
+    let mut variants = [
+        Variant::render("full", &full, &exact),
+        Variant::render("no_highlights", &plain, &exact),
+        Variant::render("interpolated", &full, &interpolated),
+        Variant::render("one_thread", &full, &one_thread),
+        Variant::render("effect_free", &effect_free, &interpolated),
+        Variant::new("flat_raster", flat_raster),
+    ];
+    let measured = frames::measure(&mut variants, ROUNDS);
+    measured.print_frames("teapot, 1280×720: frame time by stage");
+    measured.print_ratios(
+        "frame-time ratios",
         &[
-            ("teapot_1280x720", "full", "no_highlights"),
-            ("teapot_1280x720", "full", "interpolated"),
-            ("teapot_1280x720", "one_thread", "full"),
-            ("teapot_1280x720", "effect_free", "flat_raster"),
+            ("full", "no_highlights"),
+            ("full", "interpolated"),
+            ("one_thread", "full"),
+            ("effect_free", "flat_raster"),
         ],
     );
-    let stage_variants: Vec<(&str, &Scene, &Settings)> = variants
-        .iter()
-        .map(|(name, scene, settings)| (*name, *scene, settings))
-        .collect();
-    stages::print_stages("frame time by stage", &stage_variants);
 }

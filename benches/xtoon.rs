@@ -1,35 +1,35 @@
 //! What X-Toon costs: the teapot at 1280×720 with an X-Toon tone on every patch against the same
-//! frame with a plain cel ramp, measured side by side in the same run — a depth (LOA) map, a
+//! frame with a plain cel ramp, measured side by side in the same run, frame by frame in turn — a depth (LOA) map, a
 //! highlight map, and the depth map with ellipsoid and smoothed shape detail. Exact frames, no
 //! designed highlights, no outlines: the tone is most of the shading work. The paper's GPU
 //! shader ran at 1.19 times the plain toon shader's frame time.
-//! Run with `cargo bench --bench xtoon`; the summary at the end prints the ratios and each
-//! variant's frame time by stage.
+//! Run with `cargo bench --bench xtoon`; it prints each variant's frame time by stage, then the
+//! ratios.
 
-#[path = "support/stages.rs"]
-mod stages;
-mod support;
+#[path = "support/frames.rs"]
+mod frames;
 #[path = "support/teapot.rs"]
 mod teapot;
+
+use frames::Variant;
 
 /// The allocator the `glint` binary uses.
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
-use std::hint::black_box;
 use std::path::Path;
 use std::sync::Arc;
 
-use criterion::Criterion;
 use glam::Vec3;
 use glint::formats::{load_patches, read_toon_texture};
 use glint::geom::PatchLibrary;
 use glint::highlight::Light;
 use glint::render::tessellate::Density;
-use glint::render::{Aovs, FrameMode, PatchLook, Renderer, Scene, Settings, Tone};
+use glint::render::{Aovs, FrameMode, PatchLook, Scene, Settings, Tone};
 use glint::toon::{Abstraction, CelRamp, DetailMap, HighlightFrame, ShapeDetail, XToon};
 
-const GROUP: &str = "xtoon_teapot_1280x720";
+/// Rounds of frames measured.
+const ROUNDS: usize = 100;
 
 fn scene(library: &PatchLibrary, tone: Tone) -> Scene<'_> {
     Scene {
@@ -71,7 +71,6 @@ fn xtoon(
 }
 
 fn main() {
-    let mut c = Criterion::default().configure_from_args();
     let library = load_patches(Path::new("patches/teapot.bpt")).unwrap();
     let depth = DetailMap::Depth { z_min: 9.0, r: 1.3 };
     let shape = |abstraction| {
@@ -127,33 +126,23 @@ fn main() {
         frames: FrameMode::Exact,
         ..Settings::preview(teapot::WIDTH, teapot::HEIGHT)
     };
-    let scenes: Vec<(&str, Scene)> = variants
+    let scenes: Vec<(&'static str, Scene)> = variants
         .iter()
         .map(|(name, tone)| (*name, scene(&library, tone.clone())))
         .collect();
-    let mut group = c.benchmark_group(GROUP);
-    group.sample_size(30);
-    for (name, scene) in &scenes {
-        let mut renderer = Renderer::new(&library);
-        group.bench_function(*name, |b| {
-            b.iter(|| black_box(renderer.render(scene, &settings).unwrap()))
-        });
-    }
-    group.finish();
-    c.final_summary();
-
-    support::print_ratios(
-        "frame-time ratios to the plain cel ramp (teapot, 1280×720)",
+    let mut renders: Vec<Variant> = scenes
+        .iter()
+        .map(|(name, scene)| Variant::render(name, scene, &settings))
+        .collect();
+    let measured = frames::measure(&mut renders, ROUNDS);
+    measured.print_frames("teapot, 1280×720: frame time by stage");
+    measured.print_ratios(
+        "frame-time ratios to the plain cel ramp",
         &[
-            (GROUP, "xtoon_depth", "cel"),
-            (GROUP, "xtoon_highlight", "cel"),
-            (GROUP, "xtoon_ellipsoid", "cel"),
-            (GROUP, "xtoon_smoothed", "cel"),
+            ("xtoon_depth", "cel"),
+            ("xtoon_highlight", "cel"),
+            ("xtoon_ellipsoid", "cel"),
+            ("xtoon_smoothed", "cel"),
         ],
     );
-    let stage_variants: Vec<(&str, &Scene, &Settings)> = scenes
-        .iter()
-        .map(|(name, scene)| (*name, scene, &settings))
-        .collect();
-    stages::print_stages("frame time by stage", &stage_variants);
 }

@@ -334,10 +334,19 @@ impl Formula for Lanes<'_> {
         for ((x, y), z) in self.0.iter_mut().zip(self.1.iter_mut()).zip(self.2) {
             // Selects, so the loop vectorizes.
             let (v, keep) = guarded(Vec2::new(*x, *y), *z, &f);
-            *x = if keep { v.x } else { *x };
-            *y = if keep { v.y } else { *y };
+            *x = select(keep, v.x, *x);
+            *y = select(keep, v.y, *y);
         }
     }
+}
+
+/// `if keep { a } else { b }` by bit masks. Written as a plain `if`, storing it back where `b`
+/// came from becomes a store only where `keep` holds, which SSE2 does lane by lane, each with a
+/// branch.
+#[inline(always)]
+fn select(keep: bool, a: f32, b: f32) -> f32 {
+    let mask = u32::from(keep).wrapping_neg();
+    f32::from_bits((a.to_bits() & mask) | (b.to_bits() & !mask))
 }
 
 /// Tangent squaring of the tangential part t: `t (1 − σ (2ab)^n)` with `2ab = 2|t_u||t_v|/|t|²`

@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::frame::TangentFrame;
+use super::frame::{normalize_lanes, TangentFrame};
 use super::ops::PreparedOp;
 
 /// Points a batch method processes together. The stack is applied op by op to a whole chunk, so
@@ -69,13 +69,7 @@ impl PreparedStack {
         debug_assert_eq!(initial.len, c.len);
         let (x, y, z) = c.lanes_mut();
         let normalize = |x: &mut [f32], y: &mut [f32], z: &mut [f32]| {
-            let (x0, y0, z0) = initial.lanes();
-            let n = x.len();
-            let (y, z, x0, y0, z0) = (&mut y[..n], &mut z[..n], &x0[..n], &y0[..n], &z0[..n]);
-            for i in 0..n {
-                let h = unit_or(Vec3::new(x[i], y[i], z[i]), Vec3::new(x0[i], y0[i], z0[i]));
-                (x[i], y[i], z[i]) = h.into();
-            }
+            normalize_lanes(x, y, z, |i, h| unit_or(h, initial.get(i)));
         };
         for &(op, normalize_first) in &self.steps {
             if normalize_first {
@@ -260,5 +254,14 @@ mod tests {
         ]);
         // H = du: the scaling gives zero and keeps du; the rotation then turns it to −dv.
         assert!((s.apply_local(Vec3::X) + Vec3::Y).length() < 1e-6);
+        // The same in a chunk, beside vectors that scale normally.
+        let hs = [Vec3::X, Vec3::new(0.3, 0.4, 0.866), Vec3::X, Vec3::Z];
+        let mut initial = LocalChunk::default();
+        initial.load(&[TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z); 4], &hs);
+        let mut c = initial;
+        s.apply_chunk(&initial, &mut c);
+        for (i, h) in hs.iter().enumerate() {
+            assert_eq!(c.get(i), s.apply_local(*h), "{i}");
+        }
     }
 }

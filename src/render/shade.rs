@@ -205,7 +205,7 @@ fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
         }
         Light::Point { position } => {
             towards(position, lx, ly, lz);
-            normalize_lanes(lx, ly, lz, |k| {
+            normalize_lanes(lx, ly, lz, |k, _| {
                 scene.light.direction(texels[k].position, texels[k].frame.n)
             });
         }
@@ -214,7 +214,9 @@ fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
     match scene.camera.projection {
         Projection::Perspective { .. } => {
             towards(scene.camera.eye, vx, vy, vz);
-            normalize_lanes(vx, vy, vz, |k| scene.camera.toward_eye(texels[k].position));
+            normalize_lanes(vx, vy, vz, |k, _| {
+                scene.camera.toward_eye(texels[k].position)
+            });
         }
         Projection::Orthographic { .. } => {
             let v = scene.camera.toward_eye(Vec3::ZERO);
@@ -229,7 +231,7 @@ fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
         ly[k] += vy[k];
         lz[k] += vz[k];
     }
-    normalize_lanes(lx, ly, lz, |k| initial_half_vector(scene, &texels[k]));
+    normalize_lanes(lx, ly, lz, |k, _| initial_half_vector(scene, &texels[k]));
     for (k, h) in out.iter_mut().enumerate() {
         *h = Vec3::new(lx[k], ly[k], lz[k]);
     }

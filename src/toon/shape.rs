@@ -327,9 +327,7 @@ impl PreparedShape {
             (x[i], y[i], z[i]) = direction(i).into();
         }
         // n_a, or zero where the shape has no normal.
-        normalize_lanes(x, y, z, |i| {
-            direction(i).try_normalize().unwrap_or(Vec3::ZERO)
-        });
+        normalize_lanes(x, y, z, |_, a| a.try_normalize().unwrap_or(Vec3::ZERO));
         let mut no_normal = [false; RUN];
         for (i, o) in out.iter_mut().enumerate() {
             let (n, a) = (point(i).normal, Vec3::new(x[i], y[i], z[i]));
@@ -338,8 +336,8 @@ impl PreparedShape {
             *o = n.lerp(a, self.weight);
             (x[i], y[i], z[i]) = (*o).into();
         }
-        normalize_lanes(x, y, z, |i| {
-            out[i].try_normalize().unwrap_or(point(i).normal)
+        normalize_lanes(x, y, z, |i, blend| {
+            blend.try_normalize().unwrap_or(point(i).normal)
         });
         for (i, o) in out.iter_mut().enumerate() {
             *o = if no_normal[i] {

@@ -1,0 +1,152 @@
+//! Whole frames measured side by side, for the benchmarks that render them.
+//!
+//! The variants take turns: each round renders one frame of every variant, starting with a
+//! different one each round, so a slow spell of this shared machine falls on all of them alike.
+//! A ratio is the median over rounds of `numerator frame / denominator frame` from the same
+//! round, given with its quartiles. A frame is timed from the call to the drop of what it
+//! returned, as a frame loop pays for it.
+
+use std::time::Instant;
+
+use glint::render::{RenderStats, Renderer, Scene, Settings};
+
+/// One thing to render, frame after frame.
+pub struct Variant<'a> {
+    pub name: &'static str,
+    frame: Box<dyn FnMut() -> Option<RenderStats> + 'a>,
+}
+
+impl<'a> Variant<'a> {
+    /// A variant rendered by `frame`, which gives the frame's statistics when the renderer
+    /// made it (`None` for a baseline built from the stages).
+    pub fn new(name: &'static str, frame: impl FnMut() -> Option<RenderStats> + 'a) -> Self {
+        Self {
+            name,
+            frame: Box::new(frame),
+        }
+    }
+
+    /// `scene` rendered with `settings` by a renderer of its own.
+    pub fn render(name: &'static str, scene: &'a Scene<'a>, settings: &'a Settings) -> Self {
+        let mut renderer = Renderer::new(scene.library);
+        Self::new(name, move || {
+            Some(renderer.render(scene, settings).unwrap().stats)
+        })
+    }
+}
+
+/// Rounds rendered before measuring: the tessellation is cached and the buffers sized.
+const WARM_UP_ROUNDS: usize = 5;
+
+/// What [`measure`] recorded: per variant, per round, the frame's seconds and statistics.
+pub struct Measured {
+    names: Vec<&'static str>,
+    seconds: Vec<Vec<f64>>,
+    stats: Vec<Vec<Option<RenderStats>>>,
+}
+
+/// Renders `rounds` rounds of `variants` after a warm-up.
+pub fn measure(variants: &mut [Variant], rounds: usize) -> Measured {
+    let n = variants.len();
+    let mut measured = Measured {
+        names: variants.iter().map(|v| v.name).collect(),
+        seconds: vec![Vec::with_capacity(rounds); n],
+        stats: vec![Vec::with_capacity(rounds); n],
+    };
+    for round in 0..WARM_UP_ROUNDS + rounds {
+        for k in (0..n).map(|k| (k + round) % n) {
+            (variants[k].frame)();
+            let start = Instant::now();
+            let stats = (variants[k].frame)();
+            let seconds = start.elapsed().as_secs_f64();
+            if round >= WARM_UP_ROUNDS {
+                measured.seconds[k].push(seconds);
+                measured.stats[k].push(stats);
+            }
+        }
+    }
+    measured
+}
+
+/// The median and quartiles of `values`.
+fn quartiles(mut values: Vec<f64>) -> [f64; 3] {
+    values.sort_by(f64::total_cmp);
+    let at = |q: f64| values[((values.len() - 1) as f64 * q).round() as usize];
+    [at(0.25), at(0.5), at(0.75)]
+}
+
+/// Seconds of one stage in a frame's statistics.
+type Stage = fn(&RenderStats) -> f64;
+
+/// The stages of a frame, in the order they run.
+const STAGES: [(&str, Stage); 8] = [
+    ("tessellation", |s| s.tessellation.seconds),
+    ("raster", |s| s.raster.seconds),
+    ("g-buffer", |s| s.gbuffer.seconds),
+    ("detail", |s| s.detail.seconds),
+    ("shade", |s| s.shade.seconds),
+    ("outline", |s| s.outline.seconds),
+    ("aov", |s| s.aov.seconds),
+    ("resolve", |s| s.resolve.seconds),
+];
+
+impl Measured {
+    fn index(&self, name: &str) -> usize {
+        self.names
+            .iter()
+            .position(|&n| n == name)
+            .unwrap_or_else(|| panic!("no variant {name}"))
+    }
+
+    /// Prints each variant's median frame time, and for the renderer's frames the median of
+    /// each stage (the detail pass is part of the shade stage) and the samples covered.
+    pub fn print_frames(&self, title: &str) {
+        let rounds = self.seconds[0].len();
+        println!("\n{title} (median of {rounds} rounds, ms)");
+        print!("{:<14}", "stage");
+        for name in &self.names {
+            print!(" {name:>15}");
+        }
+        println!();
+        for (stage_name, stage) in STAGES {
+            print!("{stage_name:<14}");
+            for frames in &self.stats {
+                match frames.iter().map(|s| s.as_ref().map(stage)).collect() {
+                    Some(seconds) => print!(" {:>15.3}", quartiles(seconds)[1] * 1e3),
+                    None => print!(" {:>15}", "-"),
+                }
+            }
+            println!();
+        }
+        print!("{:<14}", "frame");
+        for seconds in &self.seconds {
+            print!(" {:>15.3}", quartiles(seconds.clone())[1] * 1e3);
+        }
+        println!();
+        print!("{:<14}", "covered");
+        for frames in &self.stats {
+            match &frames[0] {
+                Some(s) => print!(" {:>15}", s.raster.pixels),
+                None => print!(" {:>15}", "-"),
+            }
+        }
+        println!();
+    }
+
+    /// Prints, for each `(numerator, denominator)`, the median over rounds of the ratio of
+    /// their frame times in the same round, with its quartiles.
+    pub fn print_ratios(&self, title: &str, pairs: &[(&str, &str)]) {
+        println!("\n{title} (per round, median and quartiles)");
+        for &(numerator, denominator) in pairs {
+            let (a, b) = (
+                &self.seconds[self.index(numerator)],
+                &self.seconds[self.index(denominator)],
+            );
+            let [q1, median, q3] = quartiles(a.iter().zip(b).map(|(a, b)| a / b).collect());
+            println!(
+                "{:<40} {median:>6.3}   [{q1:.3}, {q3:.3}]",
+                format!("{numerator} / {denominator}")
+            );
+        }
+    }
+}
