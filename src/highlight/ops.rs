@@ -501,6 +501,8 @@ impl Exponent {
     #[must_use]
     pub fn pow(self, x: f32) -> f32 {
         match self {
+            // Up to 15, four bits.
+            Exponent::Integer(k) if k < 16 => int_pow::<4>(x, k),
             Exponent::Integer(k) => int_pow::<{ Self::INTEGER_BITS }>(x, k),
             Exponent::Real(r) => x.powf(r),
         }

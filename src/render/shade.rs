@@ -150,8 +150,8 @@ struct XToonTones<'a, 's> {
     ahead: Option<&'a [Vec3]>,
 }
 
-// A piece of texels on one patch is at most one run of X-Toon tones.
-const _: () = assert!(CHUNK <= crate::toon::RUN);
+// A piece of texels on one patch is one run of X-Toon tones, and view lanes hold either.
+const _: () = assert!(CHUNK == crate::toon::RUN);
 
 /// What the shade pass counted.
 #[derive(Clone, Copy, Debug, Default)]
@@ -181,21 +181,69 @@ fn initial_half_vector(scene: &Scene, t: &Texel) -> Vec3 {
     )
 }
 
+/// The unit vectors V from up to [`CHUNK`] texels toward the eye ([`Camera::toward_eye`]),
+/// one array per coordinate.
+///
+/// [`Camera::toward_eye`]: super::Camera::toward_eye
+pub(super) struct ViewLanes {
+    x: [f32; CHUNK],
+    y: [f32; CHUNK],
+    z: [f32; CHUNK],
+}
+
+impl Default for ViewLanes {
+    fn default() -> Self {
+        Self {
+            x: [0.0; CHUNK],
+            y: [0.0; CHUNK],
+            z: [0.0; CHUNK],
+        }
+    }
+}
+
+impl ViewLanes {
+    /// V at each of `texels`, side by side: under perspective `eye − p` for all, then all
+    /// normalized at once ([`normalize_lanes`]), with the same values as texel by texel.
+    #[inline]
+    pub(super) fn fill(&mut self, scene: &Scene, texels: &[Texel]) {
+        let n = texels.len();
+        let (x, y, z) = (&mut self.x[..n], &mut self.y[..n], &mut self.z[..n]);
+        match scene.camera.projection {
+            Projection::Perspective { .. } => {
+                towards(scene.camera.eye, texels, x, y, z);
+                normalize_lanes(x, y, z, |k, _| scene.camera.toward_eye(texels[k].position));
+            }
+            Projection::Orthographic { .. } => {
+                let v = scene.camera.toward_eye(Vec3::ZERO);
+                x.fill(v.x);
+                y.fill(v.y);
+                z.fill(v.z);
+            }
+        }
+    }
+
+    /// V at the `k`-th texel.
+    #[inline]
+    pub(super) fn get(&self, k: usize) -> Vec3 {
+        Vec3::new(self.x[k], self.y[k], self.z[k])
+    }
+}
+
+/// The vector from each of `texels` to the point `to`, into the lanes `(x, y, z)`.
+#[inline]
+fn towards(to: Vec3, texels: &[Texel], x: &mut [f32], y: &mut [f32], z: &mut [f32]) {
+    for (k, t) in texels.iter().enumerate() {
+        (x[k], y[k], z[k]) = (to - t.position).into();
+    }
+}
+
 /// [`initial_half_vector`] at each of up to [`CHUNK`] `texels` into `out`, side by side: the
-/// light vectors, the view vectors and their normalized sums each in loops over one coordinate
-/// array at a time ([`normalize_lanes`]), with the same values as texel by texel.
+/// light vectors, the view vectors ([`ViewLanes`]) and their normalized sums each in loops over
+/// one coordinate array at a time ([`normalize_lanes`]), with the same values as texel by texel.
 fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
     let n = texels.len();
-    let lanes = || ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
-    let ((mut lx, mut ly, mut lz), (mut vx, mut vy, mut vz)) = (lanes(), lanes());
+    let (mut lx, mut ly, mut lz) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
     let (lx, ly, lz) = (&mut lx[..n], &mut ly[..n], &mut lz[..n]);
-    let (vx, vy, vz) = (&mut vx[..n], &mut vy[..n], &mut vz[..n]);
-    // The vector from each texel to the point `to`, into lanes.
-    let towards = |to: Vec3, x: &mut [f32], y: &mut [f32], z: &mut [f32]| {
-        for (k, t) in texels.iter().enumerate() {
-            (x[k], y[k], z[k]) = (to - t.position).into();
-        }
-    };
     // L: toward the light, per texel for a point light.
     match scene.light {
         Light::Directional { towards: l } => {
@@ -204,32 +252,19 @@ fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
             lz.fill(l.z);
         }
         Light::Point { position } => {
-            towards(position, lx, ly, lz);
+            towards(position, texels, lx, ly, lz);
             normalize_lanes(lx, ly, lz, |k, _| {
                 scene.light.direction(texels[k].position, texels[k].frame.n)
             });
         }
     }
-    // V: toward the eye, per texel under perspective.
-    match scene.camera.projection {
-        Projection::Perspective { .. } => {
-            towards(scene.camera.eye, vx, vy, vz);
-            normalize_lanes(vx, vy, vz, |k, _| {
-                scene.camera.toward_eye(texels[k].position)
-            });
-        }
-        Projection::Orthographic { .. } => {
-            let v = scene.camera.toward_eye(Vec3::ZERO);
-            vx.fill(v.x);
-            vy.fill(v.y);
-            vz.fill(v.z);
-        }
-    }
+    let mut view = ViewLanes::default();
+    view.fill(scene, texels);
     // H = normalize(L + V).
     for k in 0..n {
-        lx[k] += vx[k];
-        ly[k] += vy[k];
-        lz[k] += vz[k];
+        lx[k] += view.x[k];
+        ly[k] += view.y[k];
+        lz[k] += view.z[k];
     }
     normalize_lanes(lx, ly, lz, |k, _| initial_half_vector(scene, &texels[k]));
     for (k, h) in out.iter_mut().enumerate() {

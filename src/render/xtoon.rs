@@ -11,6 +11,7 @@ use rayon::prelude::*;
 
 use super::gbuffer::{facing_frame, GBuffer, Texel, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
+use super::shade::ViewLanes;
 use super::stats::timed;
 use crate::toon::{SurfacePoint, ViewXToon, XToonShade, NO_SHADE, RUN};
 
@@ -106,7 +107,8 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
 }
 
 /// The X-Toon tones of up to [`RUN`] `texels` of one patch, whose tone is `view`, into `out`:
-/// seen from the scene's camera and lit by its light.
+/// seen from the scene's camera (the view vectors side by side, when the tone reads them) and
+/// lit by its light.
 #[inline(always)]
 pub(super) fn shade_texels(
     view: &ViewXToon,
@@ -123,10 +125,14 @@ pub(super) fn shade_texels(
             uv: t.uv,
         }
     };
+    let mut lanes = ViewLanes::default();
+    if view.uses_view() {
+        lanes.fill(scene, texels);
+    }
     view.shade_run(
         texels.len(),
         point,
-        |position| scene.camera.toward_eye(position),
+        |i| lanes.get(i),
         |position, n| scene.light.direction(position, n),
         out,
     );

@@ -123,6 +123,8 @@ impl DetailMap<f32> {
         self.validate()?;
         let map = match *self {
             DetailMap::Depth { z_min, r } => Prepared::Depth {
+                z_min,
+                z_max: r * z_min,
                 ln_z_min: z_min.ln(),
                 inverse_ln_r: r.ln().recip(),
             },
@@ -151,10 +153,23 @@ pub struct PreparedDetail {
 
 #[derive(Clone, Debug, PartialEq)]
 enum Prepared {
-    Depth { ln_z_min: f32, inverse_ln_r: f32 },
-    DepthOfField { focus: Vec3, z_min: f32, r: f32 },
-    NearSilhouette { r: Exponent },
-    Highlight { s: Exponent },
+    Depth {
+        z_min: f32,
+        z_max: f32,
+        ln_z_min: f32,
+        inverse_ln_r: f32,
+    },
+    DepthOfField {
+        focus: Vec3,
+        z_min: f32,
+        r: f32,
+    },
+    NearSilhouette {
+        r: Exponent,
+    },
+    Highlight {
+        s: Exponent,
+    },
 }
 
 /// A detail map seen from one eye: what [`ViewDetail::value`] needs per point.
@@ -189,9 +204,12 @@ impl Ramp {
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum InView {
+    /// D = 1 up to `z_min` and 0 from `z_max = r·z_min` on.
     Depth {
         eye: Vec3,
         forward: Vec3,
+        z_min: f32,
+        z_max: f32,
         ln_z_min: f32,
         inverse_ln_r: f32,
     },
@@ -216,11 +234,15 @@ impl PreparedDetail {
     pub fn in_view(&self, eye: Vec3, forward: Vec3) -> ViewDetail {
         let map = match self.map {
             Prepared::Depth {
+                z_min,
+                z_max,
                 ln_z_min,
                 inverse_ln_r,
             } => InView::Depth {
                 eye,
                 forward,
+                z_min,
+                z_max,
                 ln_z_min,
                 inverse_ln_r,
             },
@@ -277,11 +299,16 @@ impl ViewDetail {
             InView::Depth {
                 eye,
                 forward,
+                z_min,
+                z_max,
                 ln_z_min,
                 inverse_ln_r,
             } => {
+                // The logarithm only inside the band where D falls from 1 to 0 (NaN gives 1).
                 let z = (point - eye).dot(forward);
-                if z > 0.0 {
+                if z >= z_max {
+                    0.0
+                } else if z > z_min {
                     1.0 - (z.ln() - ln_z_min) * inverse_ln_r
                 } else {
                     1.0

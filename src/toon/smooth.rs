@@ -23,6 +23,9 @@ struct NormalGrid {
     /// Domain start and `(samples − 1) / length` per direction.
     origin: Vec2,
     scale: Vec2,
+    /// The last sample's grid coordinates, `samples − 1` per direction.
+    last: Vec2,
+    /// Samples per direction, at least 2.
     samples_u: usize,
     samples_v: usize,
     /// Row-major: entry `i * samples_v + j` at the i-th u and j-th v sample.
@@ -95,7 +98,10 @@ impl SmoothedNormals {
     #[inline(always)]
     #[must_use]
     pub fn at(&self, patch: usize, uv: Vec2) -> Vec3 {
-        self.patches.get(patch).map_or(Vec3::ZERO, |g| g.at(uv))
+        match self.patches.get(patch) {
+            Some(grid) => grid.at(uv),
+            None => Vec3::ZERO,
+        }
     }
 }
 
@@ -122,26 +128,31 @@ impl NormalGrid {
                 (samples_u - 1) as f32 / length(domain.u),
                 (samples_v - 1) as f32 / length(domain.v),
             ),
+            last: Vec2::new((samples_u - 1) as f32, (samples_v - 1) as f32),
             samples_u,
             samples_v,
             normals,
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn at(&self, uv: Vec2) -> Vec3 {
-        let s = (uv - self.origin) * self.scale;
-        let cell = |x: f32, n: usize| {
-            let x = x.max(0.0).min((n - 1) as f32);
-            let i = (x as usize).min(n.saturating_sub(2));
-            (i, (i + 1).min(n - 1), x - i as f32)
+        // `max` then `min` clamps, and takes NaN to 0.
+        let s = ((uv - self.origin) * self.scale)
+            .max(Vec2::ZERO)
+            .min(self.last);
+        // The cell's first sample, at most the one before last; through u32, which converts to
+        // and from f32 in one instruction each (usize does not).
+        let cell = |x: f32, last: usize| {
+            let i = (x as u32).min(last as u32 - 1);
+            (i as usize, x - i as f32)
         };
-        let (i0, i1, fu) = cell(s.x, self.samples_u);
-        let (j0, j1, fv) = cell(s.y, self.samples_v);
+        let (i, fu) = cell(s.x, self.samples_u - 1);
+        let (j, fv) = cell(s.y, self.samples_v - 1);
         let n = |i: usize, j: usize| self.normals[i * self.samples_v + j];
-        n(i0, j0)
-            .lerp(n(i0, j1), fv)
-            .lerp(n(i1, j0).lerp(n(i1, j1), fv), fu)
+        n(i, j)
+            .lerp(n(i, j + 1), fv)
+            .lerp(n(i + 1, j).lerp(n(i + 1, j + 1), fv), fu)
     }
 }
 

@@ -14,7 +14,9 @@ use super::error::XToonError;
 pub struct ToonTexture {
     width: usize,
     height: usize,
-    /// Rows from the top (D = 1), each `width` texels from `n·l = −1`.
+    /// Rows from the top (D = 1), each `width` texels from `n·l = −1` and a copy of its last
+    /// texel, and a copy of the last row at the bottom: a lookup's four texels are then always
+    /// at `k`, `k + 1`, `k + width + 1` and `k + width + 2`.
     texels: Vec<Vec3A>,
     /// The lookup's affine maps: `s = n·l · width/2 + (width − 1)/2`,
     /// `t = (height − ½) − D · height`, and their upper clamps.
@@ -60,7 +62,7 @@ impl ToonTexture {
         Ok(Self {
             width,
             height,
-            texels: texels.into_iter().map(Vec3A::from).collect(),
+            texels: padded(&texels, width),
             half_width: 0.5 * width as f32,
             s_offset: 0.5 * (width as f32 - 1.0),
             height_f: height as f32,
@@ -85,7 +87,7 @@ impl ToonTexture {
     /// The texel in column `x` (from `n·l = −1`) of row `y` (from D = 1), clamped to the edge.
     #[must_use]
     pub fn texel(&self, x: usize, y: usize) -> Vec3 {
-        self.texels[y.min(self.height - 1) * self.width + x.min(self.width - 1)].into()
+        self.texels[y.min(self.height - 1) * (self.width + 1) + x.min(self.width - 1)].into()
     }
 
     /// The colour at tone `n_dot_l` and detail `detail`: bilinear between the texel centres
@@ -101,16 +103,28 @@ impl ToonTexture {
         let t = (self.t_offset - detail * self.height_f)
             .max(0.0)
             .min(self.last_t);
-        let (x, y) = (s as usize, t as usize);
+        // Through u32, which converts to and from f32 in one instruction each (usize does not).
+        let (x, y) = (s as u32, t as u32);
         let (fx, fy) = (s - x as f32, t - y as f32);
-        // The next column and row, or the same at the last one (its weight is then 0).
-        let right = usize::from(x + 1 < self.width);
-        let down = if y + 1 < self.height { self.width } else { 0 };
-        let k = y * self.width + x;
-        let top = self.texels[k].lerp(self.texels[k + right], fx);
-        let bottom = self.texels[k + down].lerp(self.texels[k + down + right], fx);
+        // The next column and row are the padding copies at the last ones (their weight is 0).
+        let stride = self.width + 1;
+        let k = y as usize * stride + x as usize;
+        let (top, bottom) = (
+            &self.texels[k..k + 2],
+            &self.texels[k + stride..k + stride + 2],
+        );
+        let top = top[0].lerp(top[1], fx);
+        let bottom = bottom[0].lerp(bottom[1], fx);
         top.lerp(bottom, fy).into()
     }
+}
+
+/// `texels`, rows of `width`, with the last texel of each row repeated after it and the last
+/// row so extended repeated below.
+fn padded(texels: &[Vec3], width: usize) -> Vec<Vec3A> {
+    let rows = texels.chunks(width).chain(texels.rchunks(width).take(1));
+    rows.flat_map(|row| row.iter().chain(row.last()).map(|&c| Vec3A::from(c)))
+        .collect()
 }
 
 #[cfg(test)]

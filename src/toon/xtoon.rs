@@ -139,6 +139,13 @@ pub struct SurfacePoint {
 pub const RUN: usize = 64;
 
 impl ViewXToon<'_> {
+    /// Whether the tone reads the view vector: the orientation maps do, the depth maps do not.
+    #[inline]
+    #[must_use]
+    pub fn uses_view(&self) -> bool {
+        self.detail.uses_view()
+    }
+
     /// The tone at `point`, seen along the unit vector `view(position)` (toward the eye; asked
     /// for only by the orientation maps) and lit from the unit `light(position, normal)`: n' the
     /// shading normal ([`PreparedShape::shading_normal`], or n), D from the detail map (the
@@ -152,12 +159,13 @@ impl ViewXToon<'_> {
         light: impl Fn(Vec3, Vec3) -> Vec3,
     ) -> XToonShade {
         let mut out = [NO_SHADE];
-        self.shade_run(1, |_| *point, view, light, &mut out);
+        self.shade_run(1, |_| *point, |_| view(point.position), light, &mut out);
         out[0]
     }
 
-    /// [`shade`](Self::shade) at `point(i)` for i < `n` ≤ [`RUN`] into `out[i]`: first every
-    /// shading normal, then per point its detail and texture lookup. The points' independent
+    /// [`shade`](Self::shade) at `point(i)` for i < `n` ≤ [`RUN`] into `out[i]`, seen along the
+    /// unit `view(i)` (asked for only when [`uses_view`](Self::uses_view)): first every shading
+    /// normal, then per point its detail and texture lookup. The points' independent
     /// chains of square roots and divisions overlap in the processor, and each loop, inlined
     /// whole, is specialized to the tone's kinds of detail map and shape detail.
     ///
@@ -168,7 +176,7 @@ impl ViewXToon<'_> {
         &self,
         n: usize,
         point: impl Fn(usize) -> SurfacePoint,
-        view: impl Fn(Vec3) -> Vec3,
+        view: impl Fn(usize) -> Vec3,
         light: impl Fn(Vec3, Vec3) -> Vec3,
         out: &mut [XToonShade],
     ) {
@@ -184,16 +192,11 @@ impl ViewXToon<'_> {
             }
         }
         let abstracted = self.tone.abstracts_highlights();
-        // The depth maps do not read the view vector.
-        let uses_view = self.detail.uses_view();
+        let uses_view = self.uses_view();
         for (i, (o, &shading)) in out[..n].iter_mut().zip(&*shading).enumerate() {
             let p = point(i);
             let light = light(p.position, p.normal);
-            let view = if uses_view {
-                view(p.position)
-            } else {
-                Vec3::ZERO
-            };
+            let view = if uses_view { view(i) } else { Vec3::ZERO };
             let highlight = if abstracted { shading } else { p.normal };
             let d = self
                 .detail
