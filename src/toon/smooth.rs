@@ -1,9 +1,10 @@
 //! The smoothed shape of a NURBS model: its control net Laplacian-smoothed as one net across
 //! patches, and a grid of the smoothed patches' normals to look up per point.
 
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3, Vec3A};
 
 use super::error::XToonError;
+use super::texture::padded;
 use crate::geom::{GridEvaluator, NurbsSurface, PatchLibrary};
 
 /// How far each smoothing iteration moves a control point toward its neighbours' mean.
@@ -25,11 +26,12 @@ struct NormalGrid {
     scale: Vec2,
     /// The last sample's grid coordinates, `samples − 1` per direction.
     last: Vec2,
-    /// Samples per direction, at least 2.
-    samples_u: usize,
-    samples_v: usize,
-    /// Row-major: entry `i * samples_v + j` at the i-th u and j-th v sample.
-    normals: Vec<Vec3>,
+    /// Entries per row: the samples along v and a copy of the last.
+    stride: usize,
+    /// Row-major: entry `i * stride + j` at the i-th u and j-th v sample, each row ending with
+    /// a copy of its last sample, and a copy of the last row at the end ([`padded`]): a
+    /// lookup's four samples are then always at `k`, `k + 1`, `k + stride` and `k + stride + 1`.
+    normals: Vec<Vec3A>,
 }
 
 impl SmoothedNormals {
@@ -114,7 +116,7 @@ impl NormalGrid {
             samples(spans(surface.knots_v().knots())),
         );
         let grid = GridEvaluator::uniform(surface, samples_u, samples_v);
-        let normals = (0..samples_u)
+        let normals: Vec<Vec3> = (0..samples_u)
             .flat_map(|i| {
                 grid.row_frames(i)
                     .map(|f| f.normal.as_vec3())
@@ -129,9 +131,8 @@ impl NormalGrid {
                 (samples_v - 1) as f32 / length(domain.v),
             ),
             last: Vec2::new((samples_u - 1) as f32, (samples_v - 1) as f32),
-            samples_u,
-            samples_v,
-            normals,
+            stride: samples_v + 1,
+            normals: padded(&normals, samples_v),
         }
     }
 
@@ -141,18 +142,19 @@ impl NormalGrid {
         let s = ((uv - self.origin) * self.scale)
             .max(Vec2::ZERO)
             .min(self.last);
-        // The cell's first sample, at most the one before last; through u32, which converts to
-        // and from f32 in one instruction each (usize does not).
-        let cell = |x: f32, last: usize| {
-            let i = (x as u32).min(last as u32 - 1);
-            (i as usize, x - i as f32)
-        };
-        let (i, fu) = cell(s.x, self.samples_u - 1);
-        let (j, fv) = cell(s.y, self.samples_v - 1);
-        let n = |i: usize, j: usize| self.normals[i * self.samples_v + j];
-        n(i, j)
-            .lerp(n(i, j + 1), fv)
-            .lerp(n(i + 1, j).lerp(n(i + 1, j + 1), fv), fu)
+        // Through u32, which converts to and from f32 in one instruction each (usize does not).
+        let (i, j) = (s.x as u32, s.y as u32);
+        let (fu, fv) = (s.x - i as f32, s.y - j as f32);
+        // At the last sample, the next is its padding copy (with weight 0).
+        let k = i as usize * self.stride + j as usize;
+        let (row, next) = (
+            &self.normals[k..k + 2],
+            &self.normals[k + self.stride..k + self.stride + 2],
+        );
+        row[0]
+            .lerp(row[1], fv)
+            .lerp(next[0].lerp(next[1], fv), fu)
+            .into()
     }
 }
 

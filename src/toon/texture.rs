@@ -119,10 +119,11 @@ impl ToonTexture {
     }
 }
 
-/// `texels`, rows of `width`, with the last texel of each row repeated after it and the last
-/// row so extended repeated below.
-fn padded(texels: &[Vec3], width: usize) -> Vec<Vec3A> {
-    let rows = texels.chunks(width).chain(texels.rchunks(width).take(1));
+/// A grid of `values` in rows of `width`, with the last value of each row repeated after it
+/// and the last row so extended repeated below: a bilinear lookup clamped to the grid then
+/// always reads the entries `k`, `k + 1`, `k + width + 1` and `k + width + 2`.
+pub(super) fn padded(values: &[Vec3], width: usize) -> Vec<Vec3A> {
+    let rows = values.chunks(width).chain(values.rchunks(width).take(1));
     rows.flat_map(|row| row.iter().chain(row.last()).map(|&c| Vec3A::from(c)))
         .collect()
 }
