@@ -16,6 +16,7 @@ mod settings;
 mod shade;
 mod stats;
 pub mod tessellate;
+mod visibility_shade;
 mod xtoon;
 
 pub use camera::{Camera, Projection};

@@ -13,9 +13,10 @@ use super::plan::{Plan, Surfaces};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
 use super::settings::{Antialias, Settings};
-use super::shade::{shade, shade_visibility, ShadeBuffers, Shaded};
+use super::shade::{shade, ShadeBuffers, Shaded};
 use super::stats::{timed, RenderStats, StageStats};
 use super::tessellate::Tessellator;
+use super::visibility_shade::shade_visibility;
 use super::RenderError;
 use crate::geom::PatchLibrary;
 

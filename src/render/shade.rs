@@ -4,11 +4,9 @@ use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::camera::Projection;
-use super::gbuffer::{facing_normal, GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
-use super::raster::{interpolate, VisibilityBuffer};
+use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
 use super::stats::StageStats;
-use super::tessellate::Mesh;
 use super::xtoon;
 use crate::highlight::{
     half_vector, normalize_lanes, ChunkScratch, Light, LocalChunk, PreparedExpr, PreparedLayer,
@@ -107,35 +105,10 @@ pub fn shade(
     }
 }
 
-/// Shades straight from the visibility buffer, for a plan that builds no G-buffer
-/// ([`Surfaces::Visibility`](super::plan::Surfaces::Visibility)): at each covered pixel the tone
-/// of the vertex normal interpolated there and turned toward the viewer — the normal and the
-/// colour a texel with interpolated frames gets. Returns the colour image.
-pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scene) -> Vec<Vec4> {
-    visibility
-        .triangle
-        .par_iter()
-        .zip(&visibility.barycentric)
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|(&triangle, &b)| {
-            if triangle == EMPTY {
-                return Vec4::ZERO;
-            }
-            let [i0, i1, i2] = mesh.triangles[triangle as usize].map(|k| k as usize);
-            let p = &mesh.positions;
-            let position = interpolate(b, p[i0], p[i1], p[i2]);
-            let n = interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]);
-            let normal = facing_normal(n, scene.camera.eye_direction(position));
-            let patch = mesh.triangle_patch[triangle as usize];
-            cel_tone(scene, patch, position, normal).extend(1.0)
-        })
-        .collect()
-}
-
 /// The cel tone `ramp(N·L)` at a point of `patch` with unit normal `n` (black on an X-Toon
 /// patch, whose tone comes from [`XToonTones`]).
 #[inline]
-fn cel_tone(scene: &Scene, patch: u32, position: Vec3, n: Vec3) -> Vec3 {
+pub(super) fn cel_tone(scene: &Scene, patch: u32, position: Vec3, n: Vec3) -> Vec3 {
     match &scene.looks[patch as usize].tone {
         Tone::Cel(ramp) => ramp.shade(n.dot(scene.light.direction(position, n))),
         Tone::XToon(_) => Vec3::ZERO,

@@ -72,6 +72,18 @@ impl CelRamp {
             .last()
             .map_or(self.base, |(_, colour)| *colour)
     }
+
+    /// The colour of every `n·l` in `[low, high]` when they all fall in one band, else `None`.
+    #[must_use]
+    pub fn uniform_between(&self, low: f32, high: f32) -> Option<Vec3> {
+        let band = |n_dot_l: f32| {
+            self.bands
+                .iter()
+                .take_while(|(threshold, _)| n_dot_l >= *threshold)
+                .count()
+        };
+        (low <= high && band(low) == band(high)).then(|| self.shade(low))
+    }
 }
 
 #[cfg(test)]
@@ -90,6 +102,11 @@ mod tests {
         assert_eq!(ramp.shade(0.49), Vec3::splat(0.4));
         assert_eq!(ramp.shade(0.5), Vec3::splat(0.9));
         assert_eq!(ramp.shade(f32::NAN), Vec3::splat(0.1));
+        assert_eq!(ramp.uniform_between(-0.2, 0.49), Some(Vec3::splat(0.4)));
+        assert_eq!(ramp.uniform_between(0.5, 1.0), Some(Vec3::splat(0.9)));
+        assert_eq!(ramp.uniform_between(-0.21, 0.0), None);
+        assert_eq!(ramp.uniform_between(0.4, 0.5), None);
+        assert_eq!(ramp.uniform_between(f32::NAN, 0.0), None);
     }
 
     #[test]
