@@ -181,20 +181,17 @@ impl ViewXToon<'_> {
         out: &mut [XToonShade],
     ) {
         assert!(n <= RUN && out.len() >= n, "bad run");
-        let mut shading = [Vec3::ZERO; RUN];
-        let shading = &mut shading[..n];
-        match &self.tone.shape {
-            Some(shape) => shape.shading_normals(&point, shading),
-            None => {
-                for (i, s) in shading.iter_mut().enumerate() {
-                    *s = point(i).normal;
-                }
-            }
-        }
+        // The shading normals, when a shape abstracts them.
+        let mut abstracted_normals = [Vec3::ZERO; RUN];
+        let shaped = self.tone.shape.as_ref().map(|shape| {
+            shape.shading_normals(&point, &mut abstracted_normals[..n]);
+            &abstracted_normals[..n]
+        });
         let abstracted = self.tone.abstracts_highlights();
         let uses_view = self.uses_view();
-        for (i, (o, &shading)) in out[..n].iter_mut().zip(&*shading).enumerate() {
+        for (i, o) in out[..n].iter_mut().enumerate() {
             let p = point(i);
+            let shading = shaped.map_or(p.normal, |normals| normals[i]);
             let light = light(p.position, p.normal);
             let view = if uses_view { view(i) } else { Vec3::ZERO };
             let highlight = if abstracted { shading } else { p.normal };
