@@ -1,5 +1,6 @@
-//! 2D toon textures: lookup orientation and clamping on a hand-built 2×2 texture, reading from
-//! PNG, and the shipped textures against the generator that makes them.
+//! 2D toon textures: lookup orientation and clamping on a hand-built 2×2 texture, bilinear
+//! lookups over a wider and taller one, reading from PNG, and the shipped textures against the
+//! generator that makes them.
 
 use std::path::Path;
 
@@ -45,6 +46,36 @@ fn the_top_row_is_full_detail_and_the_left_column_dark() {
         "{}",
         t.sample(-0.25, 0.625)
     );
+}
+
+#[test]
+fn texel_centres_read_their_texel_and_midpoints_the_mean_in_a_5_by_3_texture() {
+    let (width, height) = (5, 3);
+    let colour = |x: usize, y: usize| Vec3::new(x as f32, y as f32, (10 * x + y) as f32);
+    let texels = (0..height)
+        .flat_map(|y| (0..width).map(move |x| colour(x, y)))
+        .collect();
+    let t = ToonTexture::new(width, height, texels).unwrap();
+    // Where the lookup puts the centre of column x and of row y.
+    let n_dot_l = |x: f32| (x + 0.5) / width as f32 * 2.0 - 1.0;
+    let detail = |y: f32| 1.0 - (y + 0.5) / height as f32;
+    for y in 0..height {
+        for x in 0..width {
+            assert_eq!(t.texel(x, y), colour(x, y));
+            let (fx, fy) = (x as f32, y as f32);
+            assert!(
+                close(t.sample(n_dot_l(fx), detail(fy)), colour(x, y)),
+                "({x}, {y})"
+            );
+            if x + 1 < width && y + 1 < height {
+                let mean =
+                    (colour(x, y) + colour(x + 1, y) + colour(x, y + 1) + colour(x + 1, y + 1))
+                        / 4.0;
+                let got = t.sample(n_dot_l(fx + 0.5), detail(fy + 0.5));
+                assert!(close(got, mean), "({x}, {y}): {got} vs {mean}");
+            }
+        }
+    }
 }
 
 #[test]

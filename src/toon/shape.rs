@@ -330,10 +330,10 @@ impl PreparedShape {
         normalize_lanes(x, y, z, |_, a| a.try_normalize().unwrap_or(Vec3::ZERO));
         let mut no_normal = [false; RUN];
         for i in 0..n {
-            let (n, a) = (point(i).normal, Vec3::new(x[i], y[i], z[i]));
+            let (normal, a) = (point(i).normal, Vec3::new(x[i], y[i], z[i]));
             no_normal[i] = a == Vec3::ZERO;
-            let a = if a.dot(n) < 0.0 { -a } else { a };
-            (x[i], y[i], z[i]) = n.lerp(a, self.weight).into();
+            let a = if a.dot(normal) < 0.0 { -a } else { a };
+            (x[i], y[i], z[i]) = normal.lerp(a, self.weight).into();
         }
         normalize_lanes(x, y, z, |i, blend| {
             blend.try_normalize().unwrap_or(point(i).normal)
