@@ -1,10 +1,11 @@
 //! Whole frames measured side by side, for the benchmarks that render them.
 //!
-//! The variants take turns: each round renders one frame of every variant, starting with a
-//! different one each round, so a slow spell of this shared machine falls on all of them alike.
-//! A ratio is the median over rounds of `numerator frame / denominator frame` from the same
-//! round, given with its quartiles. A frame is timed from the call to the drop of what it
-//! returned, as a frame loop pays for it.
+//! The variants take turns: each round gives every variant a turn, starting with a different
+//! one each round, so a slow spell of this shared machine falls on all of them alike. A turn
+//! renders two frames and times the second, which finds the caches and memory as the frame
+//! before it left them, as in a frame loop. A ratio is the median over rounds of
+//! `numerator frame / denominator frame` from the same round, given with its quartiles. A frame
+//! is timed from the call to the drop of what it returned, as a frame loop pays for it.
 
 use std::time::Instant;
 
@@ -55,6 +56,7 @@ pub fn measure(variants: &mut [Variant], rounds: usize) -> Measured {
     };
     for round in 0..WARM_UP_ROUNDS + rounds {
         for k in (0..n).map(|k| (k + round) % n) {
+            // Untimed: leaves the memory as this variant's frames do.
             (variants[k].frame)();
             let start = Instant::now();
             let stats = (variants[k].frame)();
