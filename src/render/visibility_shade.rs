@@ -21,11 +21,12 @@ use crate::highlight::Light;
 /// ([`pixel_tone`]), taken once per triangle where it is the same over the whole triangle.
 /// Returns the colour image (alpha 1 on surfaces, 0 on the background).
 pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scene) -> Vec<Vec4> {
+    let to_eye = vertex_to_eye(mesh, scene);
     // Alpha 0: the tone varies over the triangle.
     let uniform: Vec<Vec4> = (0..mesh.triangles.len())
         .into_par_iter()
         .with_min_len(PIXELS_PER_JOB)
-        .map(|t| uniform_tone(mesh, scene, t).map_or(Vec4::ZERO, |c| c.extend(1.0)))
+        .map(|t| uniform_tone(mesh, &to_eye, scene, t).map_or(Vec4::ZERO, |c| c.extend(1.0)))
         .collect();
     visibility
         .triangle
@@ -43,6 +44,15 @@ pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scen
                 pixel_tone(visibility, mesh, scene, i).extend(1.0)
             }
         })
+        .collect()
+}
+
+/// The unit direction from each vertex of `mesh` toward the eye (zero at the eye).
+fn vertex_to_eye(mesh: &Mesh, scene: &Scene) -> Vec<Vec3> {
+    mesh.positions
+        .par_iter()
+        .with_min_len(PIXELS_PER_JOB)
+        .map(|&p| scene.camera.eye_direction(p).normalize_or_zero())
         .collect()
 }
 
@@ -65,7 +75,8 @@ fn pixel_tone(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scene, i: usiz
 /// the eye from any corner. Rounding moves the per-pixel values far less.
 const MARGIN: f32 = 1e-4;
 
-/// The cel tone of triangle `t` when it is the same at every point of it, else `None`.
+/// The cel tone of triangle `t` when it is the same at every point of it, else `None`;
+/// `to_eye[k]` is the unit direction from vertex k toward the eye.
 ///
 /// At barycentrics `b`, the pixel's normal is `m = Σ b_i n_i`, normalized and turned toward the
 /// viewer, with `n_i` the unit corner normals. Its side is the sign of
@@ -78,7 +89,7 @@ const MARGIN: f32 = 1e-4;
 ///
 /// `None` for a point light (L varies over the triangle), an X-Toon patch, a corner normal not
 /// unit, corner normals 90° or more apart, or a side not clear of the eye by [`MARGIN`].
-fn uniform_tone(mesh: &Mesh, scene: &Scene, t: usize) -> Option<Vec3> {
+fn uniform_tone(mesh: &Mesh, to_eye: &[Vec3], scene: &Scene, t: usize) -> Option<Vec3> {
     let Light::Directional { towards } = scene.light else {
         return None;
     };
@@ -91,29 +102,17 @@ fn uniform_tone(mesh: &Mesh, scene: &Scene, t: usize) -> Option<Vec3> {
     if !n.iter().all(|n| (n.length_squared() - 1.0).abs() <= 1e-5) {
         return None;
     }
-    let to_eye = corners.map(|k| {
-        scene
-            .camera
-            .eye_direction(mesh.positions[k])
-            .normalize_or_zero()
-    });
-    let mut side = 0.0;
-    for normal in n {
-        for v in to_eye {
-            let cosine = normal.dot(v);
-            let s = if cosine > MARGIN {
-                1.0
-            } else if cosine < -MARGIN {
-                -1.0
-            } else {
-                return None;
-            };
-            if side != 0.0 && s != side {
-                return None;
-            }
-            side = s;
-        }
-    }
+    let v = corners.map(|k| to_eye[k]);
+    let cosines = n.map(|n| Vec3::new(n.dot(v[0]), n.dot(v[1]), n.dot(v[2])));
+    let least_cosine = cosines[0].min(cosines[1]).min(cosines[2]).min_element();
+    let most_cosine = cosines[0].max(cosines[1]).max(cosines[2]).max_element();
+    let side = if least_cosine > MARGIN {
+        1.0
+    } else if most_cosine < -MARGIN {
+        -1.0
+    } else {
+        return None;
+    };
     let c = n[0].dot(n[1]).min(n[1].dot(n[2])).min(n[2].dot(n[0]));
     if c <= MARGIN {
         return None;
@@ -213,6 +212,7 @@ mod tests {
             };
             for mesh in [mesh, &reversed] {
                 let colour = shade_visibility(&visibility, mesh, &scene);
+                let to_eye = vertex_to_eye(mesh, &scene);
                 for (i, &triangle) in visibility.triangle.iter().enumerate() {
                     if triangle == EMPTY {
                         assert_eq!(colour[i], Vec4::ZERO);
@@ -220,7 +220,7 @@ mod tests {
                     }
                     let want = pixel_tone(&visibility, mesh, &scene, i).extend(1.0);
                     assert_eq!(colour[i], want, "pixel {i}");
-                    match uniform_tone(mesh, &scene, triangle as usize) {
+                    match uniform_tone(mesh, &to_eye, &scene, triangle as usize) {
                         Some(_) => per_triangle += 1,
                         None => per_pixel += 1,
                     }
