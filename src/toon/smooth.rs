@@ -236,6 +236,24 @@ mod tests {
     use crate::geom::{shapes, NamedPatch};
 
     #[test]
+    fn grid_lookups_at_the_samples_give_the_surface_normals_there() {
+        // A curved patch whose normal differs everywhere: any misread sample shows.
+        let sphere = shapes::sphere(DVec3::ZERO, 1.0).unwrap();
+        let grid = NormalGrid::new(&sphere);
+        let domain = sphere.domain();
+        let last = grid.last.as_uvec2();
+        let at = |k: u32, n: u32, (a, b): (f64, f64)| a + (b - a) * f64::from(k) / f64::from(n);
+        for i in 0..=last.x {
+            for j in 0..=last.y {
+                let (u, v) = (at(i, last.x, domain.u), at(j, last.y, domain.v));
+                let want = sphere.frame(u, v).normal.as_vec3();
+                let got = grid.at(Vec2::new(u as f32, v as f32));
+                assert!((got - want).length() < 1e-4, "({i}, {j}): {got} vs {want}");
+            }
+        }
+    }
+
+    #[test]
     fn welding_joins_shared_points_only() {
         let points = [
             DVec3::ZERO,
