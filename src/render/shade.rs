@@ -12,7 +12,7 @@ use crate::highlight::{
     half_vector, normalize_lanes, ChunkScratch, Light, LocalChunk, PreparedExpr, PreparedLayer,
     Shade, CHUNK,
 };
-use crate::toon::NO_SHADE;
+use crate::toon::{ViewXToon, NO_SHADE};
 
 /// The shaded image and what the pass did.
 #[derive(Clone, Debug, PartialEq)]
@@ -210,10 +210,10 @@ fn towards(to: Vec3, texels: &[Texel], x: &mut [f32], y: &mut [f32], z: &mut [f3
     }
 }
 
-/// [`initial_half_vector`] at each of up to [`CHUNK`] `texels` into `out`, side by side: the
-/// light vectors, the view vectors ([`ViewLanes`]) and their normalized sums each in loops over
+/// [`initial_half_vector`] at each of up to [`CHUNK`] `texels` into `out`, given their view
+/// vectors `view`, side by side: the light vectors and the normalized sums each in loops over
 /// one coordinate array at a time ([`normalize_lanes`]), with the same values as texel by texel.
-fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
+fn initial_half_vectors(scene: &Scene, texels: &[Texel], view: &ViewLanes, out: &mut [Vec3]) {
     let n = texels.len();
     let (mut lx, mut ly, mut lz) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
     let (lx, ly, lz) = (&mut lx[..n], &mut ly[..n], &mut lz[..n]);
@@ -231,8 +231,6 @@ fn initial_half_vectors(scene: &Scene, texels: &[Texel], out: &mut [Vec3]) {
             });
         }
     }
-    let mut view = ViewLanes::default();
-    view.fill(scene, texels);
     // H = normalize(L + V).
     for k in 0..n {
         lx[k] += view.x[k];
@@ -260,6 +258,8 @@ struct Out<'a> {
 /// The inputs and results of the highlight expression for up to [`CHUNK`] texels of one patch,
 /// kept by each worker from one run to the next.
 struct RunScratch {
+    /// The view vectors of the run, filled when its tone or highlight reads them.
+    view: ViewLanes,
     half_vectors: [Vec3; CHUNK],
     /// The half vectors in the texels' frames.
     initial: LocalChunk,
@@ -271,6 +271,7 @@ struct RunScratch {
 impl RunScratch {
     fn new() -> Self {
         Self {
+            view: ViewLanes::default(),
             half_vectors: [Vec3::ZERO; CHUNK],
             initial: LocalChunk::default(),
             uvs: [Vec2::ZERO; CHUNK],
@@ -296,17 +297,18 @@ fn shade_texels(
     let mut counts = Counts::default();
     let mut start = 0;
     for run in texels.chunk_by(|a, b| a.patch == b.patch) {
-        let view = xtoon
-            .views
-            .get(run[0].patch as usize)
-            .and_then(Option::as_ref);
+        let patch = run[0].patch as usize;
+        let view = xtoon.views.get(patch).and_then(Option::as_ref);
+        // The view vectors are computed once for the tone and the highlight, if either reads
+        // them.
+        let reads_view = scene.looks[patch].highlight.is_some()
+            || (xtoon.ahead.is_none() && view.is_some_and(ViewXToon::uses_view));
         for piece in run.chunks(CHUNK) {
             let range = start..start + piece.len();
             let widths = widths.map(|w| &w[range.clone()]);
-            let shades = highlight(scene, piece, widths, scratch);
-            let len = piece.len() as u64;
-            counts.highlighted += if shades.is_some() { len } else { 0 };
-            counts.xtoon += if view.is_some() { len } else { 0 };
+            if reads_view {
+                scratch.view.fill(scene, piece);
+            }
             let mut tones = [Vec3::ZERO; CHUNK];
             let tones = &mut tones[..piece.len()];
             match (view, xtoon.ahead) {
@@ -318,12 +320,16 @@ fn shade_texels(
                 (Some(_), Some(ahead)) => tones.copy_from_slice(&ahead[range.clone()]),
                 (Some(view), None) => {
                     let mut shades = [NO_SHADE; CHUNK];
-                    xtoon::shade_texels(view, scene, piece, &mut shades);
+                    xtoon::shade_texels(view, scene, piece, &scratch.view, &mut shades);
                     for (tone, s) in tones.iter_mut().zip(&shades) {
                         *tone = s.colour;
                     }
                 }
             }
+            let shades = highlight(scene, piece, widths, scratch);
+            let len = piece.len() as u64;
+            counts.highlighted += if shades.is_some() { len } else { 0 };
+            counts.xtoon += if view.is_some() { len } else { 0 };
             for (k, &tone) in tones.iter().enumerate() {
                 let shade = shades.map_or(NO_HIGHLIGHT, |s| s[k]);
                 out.colour[start + k] = tone.lerp(shade.colour, shade.coverage).extend(1.0);
@@ -346,7 +352,7 @@ fn highlight<'s>(
     let expr = scene.looks[texels[0].patch as usize].highlight.as_ref()?;
     let n = texels.len();
     let hs = &mut scratch.half_vectors[..n];
-    initial_half_vectors(scene, texels, hs);
+    initial_half_vectors(scene, texels, &scratch.view, hs);
     let shades = &mut scratch.shades[..n];
     match widths {
         Some(widths) => {
@@ -516,7 +522,9 @@ mod tests {
                     aovs: Aovs::default(),
                 };
                 let mut side_by_side = [Vec3::ZERO; CHUNK];
-                initial_half_vectors(&scene, &texels, &mut side_by_side);
+                let mut view = ViewLanes::default();
+                view.fill(&scene, &texels);
+                initial_half_vectors(&scene, &texels, &view, &mut side_by_side);
                 for (t, h) in texels.iter().zip(side_by_side) {
                     let one = initial_half_vector(&scene, t);
                     assert!(h.is_finite(), "{light:?} {projection:?}: {h}");

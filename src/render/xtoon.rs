@@ -70,6 +70,7 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
             .zip(tones.par_chunks_mut(PIXELS_PER_JOB))
             .for_each(|(texels, tones)| {
                 let mut shades = [NO_SHADE; RUN];
+                let mut lanes = ViewLanes::default();
                 let mut start = 0;
                 for run in texels.chunk_by_mut(|a, b| a.patch == b.patch) {
                     let patch = run[0].patch as usize;
@@ -79,7 +80,10 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
                         continue;
                     };
                     for (piece, tones) in run.chunks_mut(RUN).zip(tones[range].chunks_mut(RUN)) {
-                        shade_texels(view, scene, piece, &mut shades);
+                        if view.uses_view() {
+                            lanes.fill(scene, piece);
+                        }
+                        shade_texels(view, scene, piece, &lanes, &mut shades);
                         for ((t, tone), s) in piece.iter_mut().zip(tones).zip(&shades) {
                             *tone = s.colour;
                             if abstract_highlights[patch] {
@@ -107,13 +111,14 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
 }
 
 /// The X-Toon tones of up to [`RUN`] `texels` of one patch, whose tone is `view`, into `out`:
-/// seen from the scene's camera (the view vectors side by side, when the tone reads them) and
-/// lit by its light.
+/// seen along their view vectors `views` (read only when the tone
+/// [uses them](ViewXToon::uses_view)) and lit by the scene's light.
 #[inline(always)]
 pub(super) fn shade_texels(
     view: &ViewXToon,
     scene: &Scene,
     texels: &[Texel],
+    views: &ViewLanes,
     out: &mut [XToonShade],
 ) {
     let point = |i: usize| {
@@ -125,14 +130,10 @@ pub(super) fn shade_texels(
             uv: t.uv,
         }
     };
-    let mut lanes = ViewLanes::default();
-    if view.uses_view() {
-        lanes.fill(scene, texels);
-    }
     view.shade_run(
         texels.len(),
         point,
-        |i| lanes.get(i),
+        |i| views.get(i),
         |position, n| scene.light.direction(position, n),
         out,
     );
