@@ -284,8 +284,7 @@ impl RunScratch {
 /// Shades `texels` (in pixel order) into `out`, given their edge widths for analytic edges.
 /// Runs of texels on one patch go through the highlight expression together, [`CHUNK`] at a
 /// time; with per-pixel widths, one by one. Their tones are computed first, in a loop of their
-/// own: with the X-Toon tone inlined whole into it, the loop decides the kinds of detail map
-/// and shape detail once rather than at every texel.
+/// own with the X-Toon tone inlined whole into it, rather than called texel by texel.
 fn shade_texels(
     scene: &Scene,
     texels: &[Texel],

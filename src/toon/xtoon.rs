@@ -166,8 +166,8 @@ impl ViewXToon<'_> {
     /// [`shade`](Self::shade) at `point(i)` for i < `n` ≤ [`RUN`] into `out[i]`, seen along the
     /// unit `view(i)` (asked for only when [`uses_view`](Self::uses_view)): first every shading
     /// normal, then per point its detail and texture lookup. The points' independent
-    /// chains of square roots and divisions overlap in the processor, and each loop, inlined
-    /// whole, is specialized to the tone's kinds of detail map and shape detail.
+    /// chains of square roots and divisions overlap in the processor, and the loops are inlined
+    /// whole into the caller's.
     ///
     /// # Panics
     /// If `n` is more than [`RUN`] or than there are outputs.
