@@ -621,7 +621,7 @@ mod tests {
 
     #[test]
     fn integer_exponent_matches_powf() {
-        for n in [1.0_f32, 2.0, 3.0, 7.0, 64.0, 127.0] {
+        for n in [1.0_f32, 2.0, 3.0, 7.0, 12.0, 64.0, 127.0] {
             let Exponent::Integer(k) = Exponent::new(n) else {
                 panic!("{n} not an integer exponent")
             };
@@ -634,6 +634,9 @@ mod tests {
                 // Over fewer bits that still hold n: the same value, bit for bit.
                 if k < 4 {
                     assert_eq!(int_pow::<2>(x, k).to_bits(), got.to_bits(), "{x}^{n}");
+                }
+                if k < 16 {
+                    assert_eq!(int_pow::<4>(x, k).to_bits(), got.to_bits(), "{x}^{n}");
                 }
             }
         }
