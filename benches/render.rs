@@ -8,7 +8,8 @@
 //! outline, no AOV — and is rendered with interpolated frames, the preview setting: an exact
 //! frame per pixel is an accuracy choice a flat raster does not make, and with exact frames the
 //! shot would (rightly) evaluate them. Its plan then shades straight from the visibility buffer:
-//! per covered pixel the vertex normal interpolated there, `N·L` and the ramp. The flat raster
+//! the ramp's colour once per triangle that lies in one band, and on the others, per covered
+//! pixel, the vertex normal interpolated there, `N·L` and the ramp. The flat raster
 //! is the least any renderer of that mesh does per frame, written the way the renderer's own
 //! stages are: the same cached mesh, its vertices transformed to clip space, rasterized at the
 //! same size in the same thread pool by a rasterizer that keeps its memory between frames, and
