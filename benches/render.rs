@@ -1,6 +1,6 @@
 //! The teapot at 1280×720 with a 5-op highlight stack on every patch, outlines on and exact
 //! frames, against variants measured side by side in the same run, frame by frame in turn:
-//! highlights off, interpolated frames, one thread, and an effect-free shot against a
+//! highlights off, interpolated frames, one thread, and two effect-free shots against a
 //! flat-colour raster of the same mesh. Run with `cargo bench --bench render`; it prints each
 //! variant's frame time by stage, then the ratios.
 //!
@@ -15,6 +15,10 @@
 //! same size in the same thread pool by a rasterizer that keeps its memory between frames, and
 //! one flat colour per covered pixel written in parallel into a new image. What the ratio
 //! leaves to the effect-free shot is the tone itself and the renderer's bookkeeping.
+//!
+//! The second effect-free shot, `flat_colours`, gives every patch a ramp of one colour (the
+//! flat fill of ink and paint) — the flat raster's own picture, made by the renderer. No tone
+//! depends on `N·L` there, so what its ratio leaves is the renderer's bookkeeping alone.
 
 #[path = "support/frames.rs"]
 mod frames;
@@ -42,7 +46,12 @@ use rayon::prelude::*;
 
 const DENSITY: Density = Density::PerSpan { u: 12, v: 12 };
 
-fn scene(library: &PatchLibrary, highlights: bool, outlines: bool) -> Scene<'_> {
+fn scene<'a>(
+    library: &'a PatchLibrary,
+    tone: &CelRamp,
+    highlights: bool,
+    outlines: bool,
+) -> Scene<'a> {
     let stack = vec![
         Op::Translate {
             alpha: 0.1,
@@ -70,11 +79,7 @@ fn scene(library: &PatchLibrary, highlights: bool, outlines: bool) -> Scene<'_> 
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
-                tone: Tone::Cel(CelRamp::two_tone(
-                    Vec3::new(0.2, 0.25, 0.5),
-                    Vec3::new(0.4, 0.55, 0.9),
-                    0.1,
-                )),
+                tone: Tone::Cel(tone.clone()),
                 highlight: highlights.then(|| expr.clone()),
             })
             .collect(),
@@ -97,9 +102,15 @@ const ROUNDS: usize = 100;
 
 fn main() {
     let library = load_patches(std::path::Path::new("patches/teapot.bpt")).unwrap();
-    let full = scene(&library, true, true);
-    let plain = scene(&library, false, true);
-    let effect_free = scene(&library, false, false);
+    let two_tone = CelRamp::two_tone(Vec3::new(0.2, 0.25, 0.5), Vec3::new(0.4, 0.55, 0.9), 0.1);
+    let full = scene(&library, &two_tone, true, true);
+    let plain = scene(&library, &two_tone, false, true);
+    let effect_free = scene(&library, &two_tone, false, false);
+    let one_colour = CelRamp {
+        base: Vec3::new(0.4, 0.55, 0.9),
+        bands: Vec::new(),
+    };
+    let flat_colours = scene(&library, &one_colour, false, false);
     let settings = |frames, threads| Settings {
         density: DENSITY,
         frames,
@@ -143,6 +154,7 @@ fn main() {
         Variant::render("interpolated", &full, &interpolated),
         Variant::render("one_thread", &full, &one_thread),
         Variant::render("effect_free", &effect_free, &interpolated),
+        Variant::render("flat_colours", &flat_colours, &interpolated),
         Variant::new("flat_raster", flat_raster),
     ];
     let measured = frames::measure(&mut variants, ROUNDS);
@@ -154,6 +166,7 @@ fn main() {
             ("full", "interpolated"),
             ("one_thread", "full"),
             ("effect_free", "flat_raster"),
+            ("flat_colours", "flat_raster"),
         ],
     );
 }

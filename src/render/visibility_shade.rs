@@ -21,7 +21,11 @@ use crate::highlight::Light;
 /// ([`pixel_tone`]), taken once per triangle where it is the same over the whole triangle.
 /// Returns the colour image (alpha 1 on surfaces, 0 on the background).
 pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scene) -> Vec<Vec4> {
-    let to_eye = vertex_to_eye(mesh, scene);
+    let to_eye = if any_ramp_with_bands(scene) {
+        vertex_to_eye(mesh, scene)
+    } else {
+        Vec::new()
+    };
     // Alpha 0: the tone varies over the triangle.
     let uniform: Vec<Vec4> = (0..mesh.triangles.len())
         .into_par_iter()
@@ -45,6 +49,14 @@ pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scen
             }
         })
         .collect()
+}
+
+/// Whether some patch has a cel ramp of more than one colour, whose tone depends on `N·L`.
+fn any_ramp_with_bands(scene: &Scene) -> bool {
+    scene
+        .looks
+        .iter()
+        .any(|look| matches!(&look.tone, Tone::Cel(ramp) if !ramp.bands.is_empty()))
 }
 
 /// The unit direction from each vertex of `mesh` toward the eye (zero at the eye).
@@ -76,7 +88,8 @@ fn pixel_tone(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scene, i: usiz
 const MARGIN: f32 = 1e-4;
 
 /// The cel tone of triangle `t` when it is the same at every point of it, else `None`;
-/// `to_eye[k]` is the unit direction from vertex k toward the eye.
+/// `to_eye[k]` is the unit direction from vertex k toward the eye, needed only when the ramp
+/// has bands: a ramp of one colour is uniform under any light.
 ///
 /// At barycentrics `b`, the pixel's normal is `m = Σ b_i n_i`, normalized and turned toward the
 /// viewer, with `n_i` the unit corner normals. Its side is the sign of
@@ -87,13 +100,17 @@ const MARGIN: f32 = 1e-4;
 /// by `√c` when negative; `hi` the largest, divided by `√c` when positive. The tone is uniform
 /// when `[lo − MARGIN, hi + MARGIN]` lies in one band of the patch's ramp.
 ///
-/// `None` for a point light (L varies over the triangle), an X-Toon patch, a corner normal not
-/// unit, corner normals 90° or more apart, or a side not clear of the eye by [`MARGIN`].
+/// `None` for an X-Toon patch and, on a ramp with bands, for a point light (L varies over the
+/// triangle), a corner normal not unit, corner normals 90° or more apart, or a side not clear
+/// of the eye by [`MARGIN`].
 fn uniform_tone(mesh: &Mesh, to_eye: &[Vec3], scene: &Scene, t: usize) -> Option<Vec3> {
-    let Light::Directional { towards } = scene.light else {
+    let Tone::Cel(ramp) = &scene.looks[mesh.triangle_patch[t] as usize].tone else {
         return None;
     };
-    let Tone::Cel(ramp) = &scene.looks[mesh.triangle_patch[t] as usize].tone else {
+    if ramp.bands.is_empty() {
+        return Some(ramp.base);
+    }
+    let Light::Directional { towards } = scene.light else {
         return None;
     };
     let corners = mesh.triangles[t].map(|k| k as usize);
@@ -137,7 +154,8 @@ mod tests {
 
     /// Per triangle and per pixel give the same colours, byte for byte, on the teapot from
     /// several sides, with its normals as tessellated and reversed (every triangle seen from
-    /// its back), under both projections; and both ways are taken.
+    /// its back), under both projections, and with one-colour ramps on half the patches under
+    /// a point light; and both ways are taken.
     #[test]
     fn triangles_of_one_tone_shade_as_their_pixels_do() {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("patches/teapot.bpt");
@@ -152,7 +170,8 @@ mod tests {
         };
         let (width, height) = (160, 120);
         let mut tessellator = Tessellator::new(&library);
-        let (mut per_triangle, mut per_pixel) = (0, 0);
+        // Pixels shaded by triangle and by pixel, under the directional and the point light.
+        let (mut per_triangle, mut per_pixel) = ([0, 0], [0, 0]);
         for (k, eye) in [
             Vec3::new(5.5, -7.0, 4.5),
             Vec3::new(-6.0, 2.0, 1.0),
@@ -195,17 +214,33 @@ mod tests {
             let viewport = Viewport { width, height };
             let (visibility, _) =
                 rasterize(viewport, &clip, &mesh.triangles, &RasterOptions::default());
+            // The last view: a point light, and the even patches in one colour.
+            let last = k == 2;
+            let flat = CelRamp {
+                base: Vec3::new(0.6, 0.2, 0.1),
+                bands: Vec::new(),
+            };
             let scene = Scene {
                 library: &library,
                 looks: (0..library.patches.len())
-                    .map(|_| PatchLook {
-                        tone: Tone::Cel(ramp.clone()),
+                    .map(|patch| PatchLook {
+                        tone: Tone::Cel(if last && patch % 2 == 0 {
+                            flat.clone()
+                        } else {
+                            ramp.clone()
+                        }),
                         highlight: None,
                     })
                     .collect(),
                 camera,
-                light: Light::Directional {
-                    towards: Vec3::new(0.3, -0.6, 0.75).normalize(),
+                light: if last {
+                    Light::Point {
+                        position: Vec3::new(4.0, -3.0, 6.0),
+                    }
+                } else {
+                    Light::Directional {
+                        towards: Vec3::new(0.3, -0.6, 0.75).normalize(),
+                    }
                 },
                 outlines: None,
                 aovs: Aovs::default(),
@@ -221,15 +256,23 @@ mod tests {
                     let want = pixel_tone(&visibility, mesh, &scene, i).extend(1.0);
                     assert_eq!(colour[i], want, "pixel {i}");
                     match uniform_tone(mesh, &to_eye, &scene, triangle as usize) {
-                        Some(_) => per_triangle += 1,
-                        None => per_pixel += 1,
+                        Some(_) => per_triangle[usize::from(last)] += 1,
+                        None => per_pixel[usize::from(last)] += 1,
                     }
                 }
             }
         }
         assert!(
-            per_triangle > per_pixel && per_pixel > 0,
-            "{per_triangle} pixels by triangle, {per_pixel} by pixel"
+            per_triangle[0] > per_pixel[0] && per_pixel[0] > 0,
+            "directional light: {} pixels by triangle, {} by pixel",
+            per_triangle[0],
+            per_pixel[0]
+        );
+        assert!(
+            per_triangle[1] > 0 && per_pixel[1] > 0,
+            "point light: {} pixels by triangle, {} by pixel",
+            per_triangle[1],
+            per_pixel[1]
         );
     }
 }
