@@ -21,7 +21,7 @@ use crate::highlight::Light;
 /// ([`pixel_tone`]), taken once per triangle where it is the same over the whole triangle.
 /// Returns the colour image (alpha 1 on surfaces, 0 on the background).
 pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scene) -> Vec<Vec4> {
-    let to_eye = if any_ramp_with_bands(scene) {
+    let to_eye = if bounds_tones(scene) {
         vertex_to_eye(mesh, scene)
     } else {
         Vec::new()
@@ -51,12 +51,14 @@ pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scen
         .collect()
 }
 
-/// Whether some patch has a cel ramp of more than one colour, whose tone depends on `N·L`.
-fn any_ramp_with_bands(scene: &Scene) -> bool {
-    scene
-        .looks
-        .iter()
-        .any(|look| matches!(&look.tone, Tone::Cel(ramp) if !ramp.bands.is_empty()))
+/// Whether [`uniform_tone`] bounds `N·L` over triangles, and so needs the directions to the
+/// eye: under a directional light, when some patch has a cel ramp with bands.
+fn bounds_tones(scene: &Scene) -> bool {
+    matches!(scene.light, Light::Directional { .. })
+        && scene
+            .looks
+            .iter()
+            .any(|look| matches!(&look.tone, Tone::Cel(ramp) if !ramp.bands.is_empty()))
 }
 
 /// The unit direction from each vertex of `mesh` toward the eye (zero at the eye).
