@@ -21,16 +21,14 @@ use crate::highlight::Light;
 /// ([`pixel_tone`]), taken once per triangle where it is the same over the whole triangle.
 /// Returns the colour image (alpha 1 on surfaces, 0 on the background).
 pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scene) -> Vec<Vec4> {
-    let to_eye = if bounds_tones(scene) {
-        vertex_to_eye(mesh, scene)
-    } else {
-        Vec::new()
-    };
+    let to_eye = bounds_tones(scene).then(|| vertex_to_eye(mesh, scene));
     // Alpha 0: the tone varies over the triangle.
     let uniform: Vec<Vec4> = (0..mesh.triangles.len())
         .into_par_iter()
         .with_min_len(PIXELS_PER_JOB)
-        .map(|t| uniform_tone(mesh, &to_eye, scene, t).map_or(Vec4::ZERO, |c| c.extend(1.0)))
+        .map(|t| {
+            uniform_tone(mesh, to_eye.as_deref(), scene, t).map_or(Vec4::ZERO, |c| c.extend(1.0))
+        })
         .collect();
     visibility
         .triangle
@@ -91,7 +89,8 @@ const MARGIN: f32 = 1e-4;
 
 /// The cel tone of triangle `t` when it is the same at every point of it, else `None`;
 /// `to_eye[k]` is the unit direction from vertex k toward the eye, needed only when the ramp
-/// has bands: a ramp of one colour is uniform under any light.
+/// has bands (a ramp of one colour is uniform under any light); without it, such a triangle
+/// is shaded per pixel.
 ///
 /// At barycentrics `b`, the pixel's normal is `m = Σ b_i n_i`, normalized and turned toward the
 /// viewer, with `n_i` the unit corner normals. Its side is the sign of
@@ -105,14 +104,14 @@ const MARGIN: f32 = 1e-4;
 /// `None` for an X-Toon patch and, on a ramp with bands, for a point light (L varies over the
 /// triangle), a corner normal not unit, corner normals 90° or more apart, or a side not clear
 /// of the eye by [`MARGIN`].
-fn uniform_tone(mesh: &Mesh, to_eye: &[Vec3], scene: &Scene, t: usize) -> Option<Vec3> {
+fn uniform_tone(mesh: &Mesh, to_eye: Option<&[Vec3]>, scene: &Scene, t: usize) -> Option<Vec3> {
     let Tone::Cel(ramp) = &scene.looks[mesh.triangle_patch[t] as usize].tone else {
         return None;
     };
     if ramp.bands.is_empty() {
         return Some(ramp.base);
     }
-    let Light::Directional { towards } = scene.light else {
+    let (Light::Directional { towards }, Some(to_eye)) = (scene.light, to_eye) else {
         return None;
     };
     let corners = mesh.triangles[t].map(|k| k as usize);
@@ -170,6 +169,10 @@ mod tests {
                 (0.7, Vec3::new(0.9, 0.9, 1.0)),
             ],
         };
+        let flat = CelRamp {
+            base: Vec3::new(0.6, 0.2, 0.1),
+            bands: Vec::new(),
+        };
         let (width, height) = (160, 120);
         let mut tessellator = Tessellator::new(&library);
         // Pixels shaded by triangle and by pixel, under the directional and the point light.
@@ -218,10 +221,6 @@ mod tests {
                 rasterize(viewport, &clip, &mesh.triangles, &RasterOptions::default());
             // The last view: a point light, and the even patches in one colour.
             let last = k == 2;
-            let flat = CelRamp {
-                base: Vec3::new(0.6, 0.2, 0.1),
-                bands: Vec::new(),
-            };
             let scene = Scene {
                 library: &library,
                 looks: (0..library.patches.len())
@@ -257,7 +256,7 @@ mod tests {
                     }
                     let want = pixel_tone(&visibility, mesh, &scene, i).extend(1.0);
                     assert_eq!(colour[i], want, "pixel {i}");
-                    match uniform_tone(mesh, &to_eye, &scene, triangle as usize) {
+                    match uniform_tone(mesh, Some(&to_eye), &scene, triangle as usize) {
                         Some(_) => per_triangle[usize::from(last)] += 1,
                         None => per_pixel[usize::from(last)] += 1,
                     }
