@@ -1,4 +1,4 @@
-//! Exact shapes as NURBS surfaces, each on the parameter domain [0,1]².
+//! Exact shapes as NURBS surfaces, each on the parameter domain \[0, 1\]².
 //!
 //! Quadrics and the torus are built from the rational quadratic circle: nine control points on
 //! the square around the unit circle, weights `1, √2/2, 1, …`, knots `0,0,0,¼,¼,½,½,¾,¾,1,1,1`.

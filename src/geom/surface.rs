@@ -254,10 +254,10 @@ impl NurbsSurface {
 
     /// The point and derivatives up to `order` from precomputed basis values: the homogeneous
     /// derivatives `A^(k,l) = Σ_j N^(l)_j(v) Σ_i N^(k)_i(u) (w_ij (P_ij − O), w_ij)` (A3.6),
-    /// then the quotient rule (A4.4, [`Homogeneous::rational`]).
+    /// then the quotient rule (A4.4).
     ///
     /// The origin O is the corner of the span's control net nearest the parameter
-    /// ([`NurbsSurface::local_origin`]). The quotient rule is translation invariant, and
+    /// (`local_origin`). The quotient rule is translation invariant, and
     /// measuring from a nearby control point keeps the sums free of cancellation: derivatives do
     /// not lose digits when a model sits far from the world origin, and beside a collapsed edge
     /// (a pole) the collapsed row contributes exact zeros.

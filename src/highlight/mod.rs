@@ -22,8 +22,7 @@ mod stack;
 
 pub use error::HighlightError;
 pub use expr::{Boolean, ChunkScratch, Expr, PreparedExpr, Shade};
-pub(crate) use frame::normalize_lanes;
-pub use frame::TangentFrame;
+pub use frame::{Lanes, TangentFrame, LANES};
 pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View};
 pub use inside::{coverage_from_signed, inside, signed_inside};
 pub use layer::{Layer, Mask, Paint, PreparedLayer};

@@ -500,11 +500,22 @@ impl Exponent {
     #[inline(always)]
     #[must_use]
     pub fn pow(self, x: f32) -> f32 {
+        let mut x = [x];
+        self.pow_each(&mut x);
+        x[0]
+    }
+
+    /// Each `x` raised to n, as [`pow`](Self::pow) does, with the kind of n matched once: the
+    /// loop over `xs` for an integer n vectorizes.
+    #[inline(always)]
+    pub fn pow_each(self, xs: &mut [f32]) {
         match self {
             // Up to 15, four bits.
-            Exponent::Integer(k) if k < 16 => int_pow::<4>(x, k),
-            Exponent::Integer(k) => int_pow::<{ Self::INTEGER_BITS }>(x, k),
-            Exponent::Real(r) => x.powf(r),
+            Exponent::Integer(k) if k < 16 => xs.iter_mut().for_each(|x| *x = int_pow::<4>(*x, k)),
+            Exponent::Integer(k) => xs
+                .iter_mut()
+                .for_each(|x| *x = int_pow::<{ Self::INTEGER_BITS }>(*x, k)),
+            Exponent::Real(r) => xs.iter_mut().for_each(|x| *x = x.powf(r)),
         }
     }
 }

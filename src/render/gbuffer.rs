@@ -37,7 +37,7 @@ pub struct Texel {
 pub struct GBuffer {
     pub width: u32,
     pub height: u32,
-    /// Per pixel (rows from the top): its index in `texels`, or [`EMPTY`].
+    /// Per pixel (rows from the top): its index in `texels`, or `EMPTY` (`u32::MAX`).
     pub slot: Vec<u32>,
     /// The covered pixels, in pixel order.
     pub texels: Vec<Texel>,

@@ -9,10 +9,9 @@ use super::scene::{Scene, Tone};
 use super::stats::StageStats;
 use super::xtoon;
 use crate::highlight::{
-    half_vector, normalize_lanes, ChunkScratch, Light, LocalChunk, PreparedExpr, PreparedLayer,
-    Shade, CHUNK,
+    half_vector, ChunkScratch, Lanes, Light, LocalChunk, PreparedExpr, PreparedLayer, Shade, CHUNK,
 };
-use crate::toon::{ViewXToon, NO_SHADE};
+use crate::toon::ViewXToon;
 
 /// The shaded image and what the pass did.
 #[derive(Clone, Debug, PartialEq)]
@@ -154,92 +153,62 @@ fn initial_half_vector(scene: &Scene, t: &Texel) -> Vec3 {
     )
 }
 
-/// The unit vectors V from up to [`CHUNK`] texels toward the eye ([`Camera::toward_eye`]),
-/// one array per coordinate.
+/// The unit vectors V from each of up to [`CHUNK`] `texels` toward the eye
+/// ([`Camera::toward_eye`]) into `out`, side by side: under perspective `eye − p` for all, then
+/// all normalized at once ([`Lanes::normalize`]), with the same values as texel by texel.
 ///
 /// [`Camera::toward_eye`]: super::Camera::toward_eye
-pub(super) struct ViewLanes {
-    x: [f32; CHUNK],
-    y: [f32; CHUNK],
-    z: [f32; CHUNK],
-}
-
-impl Default for ViewLanes {
-    fn default() -> Self {
-        Self {
-            x: [0.0; CHUNK],
-            y: [0.0; CHUNK],
-            z: [0.0; CHUNK],
-        }
-    }
-}
-
-impl ViewLanes {
-    /// V at each of `texels`, side by side: under perspective `eye − p` for all, then all
-    /// normalized at once ([`normalize_lanes`]), with the same values as texel by texel.
-    #[inline]
-    pub(super) fn fill(&mut self, scene: &Scene, texels: &[Texel]) {
-        let n = texels.len();
-        let (x, y, z) = (&mut self.x[..n], &mut self.y[..n], &mut self.z[..n]);
-        match scene.camera.projection {
-            Projection::Perspective { .. } => {
-                towards(scene.camera.eye, texels, x, y, z);
-                normalize_lanes(x, y, z, |k, _| scene.camera.toward_eye(texels[k].position));
-            }
-            Projection::Orthographic { .. } => {
-                let v = scene.camera.toward_eye(Vec3::ZERO);
-                x.fill(v.x);
-                y.fill(v.y);
-                z.fill(v.z);
-            }
-        }
-    }
-
-    /// V at the `k`-th texel.
-    #[inline]
-    pub(super) fn get(&self, k: usize) -> Vec3 {
-        Vec3::new(self.x[k], self.y[k], self.z[k])
-    }
-}
-
-/// The vector from each of `texels` to the point `to`, into the lanes `(x, y, z)`.
 #[inline]
-fn towards(to: Vec3, texels: &[Texel], x: &mut [f32], y: &mut [f32], z: &mut [f32]) {
-    for (k, t) in texels.iter().enumerate() {
-        (x[k], y[k], z[k]) = (to - t.position).into();
+pub(super) fn view_lanes(scene: &Scene, texels: &[Texel], out: &mut Lanes) {
+    let n = texels.len();
+    match scene.camera.projection {
+        Projection::Perspective { .. } => {
+            towards(scene.camera.eye, texels, out);
+            out.normalize(n, |k, _| scene.camera.toward_eye(texels[k].position));
+        }
+        Projection::Orthographic { .. } => out.fill(n, scene.camera.toward_eye(Vec3::ZERO)),
     }
 }
 
-/// [`initial_half_vector`] at each of up to [`CHUNK`] `texels` into `out`, given their view
-/// vectors `view`, side by side: the light vectors and the normalized sums each in loops over
-/// one coordinate array at a time ([`normalize_lanes`]), with the same values as texel by texel.
-fn initial_half_vectors(scene: &Scene, texels: &[Texel], view: &ViewLanes, out: &mut [Vec3]) {
+/// The unit vectors L from each of up to [`CHUNK`] `texels` toward the light
+/// ([`Light::direction`]) into `out`, side by side as [`view_lanes`] does, with the same
+/// values as texel by texel.
+#[inline]
+pub(super) fn light_lanes(scene: &Scene, texels: &[Texel], out: &mut Lanes) {
     let n = texels.len();
-    let (mut lx, mut ly, mut lz) = ([0.0f32; CHUNK], [0.0f32; CHUNK], [0.0f32; CHUNK]);
-    let (lx, ly, lz) = (&mut lx[..n], &mut ly[..n], &mut lz[..n]);
-    // L: toward the light, per texel for a point light.
     match scene.light {
-        Light::Directional { towards: l } => {
-            lx.fill(l.x);
-            ly.fill(l.y);
-            lz.fill(l.z);
-        }
+        Light::Directional { towards: l } => out.fill(n, l),
         Light::Point { position } => {
-            towards(position, texels, lx, ly, lz);
-            normalize_lanes(lx, ly, lz, |k, _| {
+            towards(position, texels, out);
+            out.normalize(n, |k, _| {
                 scene.light.direction(texels[k].position, texels[k].frame.n)
             });
         }
     }
+}
+
+/// The vector from each of `texels` to the point `to`, into `out`.
+#[inline]
+fn towards(to: Vec3, texels: &[Texel], out: &mut Lanes) {
+    for (k, t) in texels.iter().enumerate() {
+        out.set(k, to - t.position);
+    }
+}
+
+/// [`initial_half_vector`] at each of up to [`CHUNK`] `texels` into `out`, given their view
+/// vectors `view`, side by side: the light vectors ([`light_lanes`]) and the normalized sums
+/// each in loops over one coordinate array at a time, with the same values as texel by texel.
+fn initial_half_vectors(scene: &Scene, texels: &[Texel], view: &Lanes, out: &mut [Vec3]) {
+    let n = texels.len();
+    let mut sum = Lanes::default();
+    light_lanes(scene, texels, &mut sum);
     // H = normalize(L + V).
     for k in 0..n {
-        lx[k] += view.x[k];
-        ly[k] += view.y[k];
-        lz[k] += view.z[k];
+        sum.set(k, sum.get(k) + view.get(k));
     }
-    normalize_lanes(lx, ly, lz, |k, _| initial_half_vector(scene, &texels[k]));
+    sum.normalize(n, |k, _| initial_half_vector(scene, &texels[k]));
     for (k, h) in out.iter_mut().enumerate() {
-        *h = Vec3::new(lx[k], ly[k], lz[k]);
+        *h = sum.get(k);
     }
 }
 
@@ -255,11 +224,12 @@ struct Out<'a> {
     coverage: &'a mut [f32],
 }
 
-/// The inputs and results of the highlight expression for up to [`CHUNK`] texels of one patch,
-/// kept by each worker from one run to the next.
+/// The inputs and results of the tone and the highlight expression for up to [`CHUNK`] texels
+/// of one patch, kept by each worker from one run to the next.
 struct RunScratch {
     /// The view vectors of the run, filled when its tone or highlight reads them.
-    view: ViewLanes,
+    view: Lanes,
+    tone: xtoon::ToneScratch,
     half_vectors: [Vec3; CHUNK],
     /// The half vectors in the texels' frames.
     initial: LocalChunk,
@@ -271,7 +241,8 @@ struct RunScratch {
 impl RunScratch {
     fn new() -> Self {
         Self {
-            view: ViewLanes::default(),
+            view: Lanes::default(),
+            tone: xtoon::ToneScratch::default(),
             half_vectors: [Vec3::ZERO; CHUNK],
             initial: LocalChunk::default(),
             uvs: [Vec2::ZERO; CHUNK],
@@ -306,7 +277,7 @@ fn shade_texels(
             let range = start..start + piece.len();
             let widths = widths.map(|w| &w[range.clone()]);
             if reads_view {
-                scratch.view.fill(scene, piece);
+                view_lanes(scene, piece, &mut scratch.view);
             }
             let mut tones = [Vec3::ZERO; CHUNK];
             let tones = &mut tones[..piece.len()];
@@ -318,11 +289,14 @@ fn shade_texels(
                 }
                 (Some(_), Some(ahead)) => tones.copy_from_slice(&ahead[range.clone()]),
                 (Some(view), None) => {
-                    let mut shades = [NO_SHADE; CHUNK];
-                    xtoon::shade_texels(view, scene, piece, &scratch.view, &mut shades);
-                    for (tone, s) in tones.iter_mut().zip(&shades) {
-                        *tone = s.colour;
-                    }
+                    xtoon::shade_texels(
+                        view,
+                        scene,
+                        piece,
+                        &scratch.view,
+                        &mut scratch.tone,
+                        tones,
+                    );
                 }
             }
             let shades = highlight(scene, piece, widths, scratch);
@@ -521,8 +495,8 @@ mod tests {
                     aovs: Aovs::default(),
                 };
                 let mut side_by_side = [Vec3::ZERO; CHUNK];
-                let mut view = ViewLanes::default();
-                view.fill(&scene, &texels);
+                let mut view = Lanes::default();
+                view_lanes(&scene, &texels, &mut view);
                 initial_half_vectors(&scene, &texels, &view, &mut side_by_side);
                 for (t, h) in texels.iter().zip(side_by_side) {
                     let one = initial_half_vector(&scene, t);

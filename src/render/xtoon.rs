@@ -11,9 +11,10 @@ use rayon::prelude::*;
 
 use super::gbuffer::{facing_frame, GBuffer, Texel, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
-use super::shade::ViewLanes;
+use super::shade::{light_lanes, view_lanes};
 use super::stats::timed;
-use crate::toon::{SurfacePoint, ViewXToon, XToonShade, NO_SHADE, RUN};
+use crate::highlight::Lanes;
+use crate::toon::{PointRun, ViewXToon, RUN};
 
 /// Each patch's X-Toon tone placed in a frame's view: `None` on cel patches, empty when no
 /// patch has an X-Toon tone.
@@ -69,8 +70,8 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
             .par_chunks_mut(PIXELS_PER_JOB)
             .zip(tones.par_chunks_mut(PIXELS_PER_JOB))
             .for_each(|(texels, tones)| {
-                let mut shades = [NO_SHADE; RUN];
-                let mut lanes = ViewLanes::default();
+                let mut scratch = ToneScratch::default();
+                let mut view_vectors = Lanes::default();
                 let mut start = 0;
                 for run in texels.chunk_by_mut(|a, b| a.patch == b.patch) {
                     let patch = run[0].patch as usize;
@@ -81,13 +82,14 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
                     };
                     for (piece, tones) in run.chunks_mut(RUN).zip(tones[range].chunks_mut(RUN)) {
                         if view.uses_view() {
-                            lanes.fill(scene, piece);
+                            view_lanes(scene, piece, &mut view_vectors);
                         }
-                        shade_texels(view, scene, piece, &lanes, &mut shades);
-                        for ((t, tone), s) in piece.iter_mut().zip(tones).zip(&shades) {
-                            *tone = s.colour;
-                            if abstract_highlights[patch] {
-                                t.frame = facing_frame(s.normal, t.frame.du, s.normal);
+                        let shading =
+                            shade_texels(view, scene, piece, &view_vectors, &mut scratch, tones);
+                        if abstract_highlights[patch] {
+                            for (k, t) in piece.iter_mut().enumerate() {
+                                let n = shading.get(k);
+                                t.frame = facing_frame(n, t.frame.du, n);
                             }
                         }
                     }
@@ -110,31 +112,38 @@ pub(super) fn detail<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> Detail<'s> {
     }
 }
 
-/// The X-Toon tones of up to [`RUN`] `texels` of one patch, whose tone is `view`, into `out`:
-/// seen along their view vectors `views` (read only when the tone
-/// [uses them](ViewXToon::uses_view)) and lit by the scene's light.
+/// What [`shade_texels`] works in, kept by each worker from one run to the next.
+#[derive(Debug, Default)]
+pub(super) struct ToneScratch {
+    points: PointRun,
+    light: Lanes,
+    abstracted: Lanes,
+}
+
+/// The X-Toon tones of up to [`RUN`] `texels` of one patch, whose tone is `view`, into
+/// `colour`: seen along their view vectors `views` (read only when the tone
+/// [uses them](ViewXToon::uses_view)) and lit by the scene's light. Returns their shading
+/// normals.
 #[inline(always)]
-pub(super) fn shade_texels(
+pub(super) fn shade_texels<'a>(
     view: &ViewXToon,
     scene: &Scene,
     texels: &[Texel],
-    views: &ViewLanes,
-    out: &mut [XToonShade],
-) {
-    let point = |i: usize| {
-        let t = &texels[i];
-        SurfacePoint {
-            position: t.position,
-            normal: t.frame.n,
-            patch: t.patch as usize,
-            uv: t.uv,
-        }
-    };
+    views: &Lanes,
+    scratch: &'a mut ToneScratch,
+    colour: &mut [Vec3],
+) -> &'a Lanes {
+    let points = &mut scratch.points;
+    (points.len, points.patch) = (texels.len(), texels[0].patch as usize);
+    for (k, t) in texels.iter().enumerate() {
+        points.set(k, t.position, t.frame.n, t.uv);
+    }
+    light_lanes(scene, texels, &mut scratch.light);
     view.shade_run(
-        texels.len(),
-        point,
-        |i| views.get(i),
-        |position, n| scene.light.direction(position, n),
-        out,
-    );
+        &scratch.points,
+        views,
+        &scratch.light,
+        &mut scratch.abstracted,
+        colour,
+    )
 }

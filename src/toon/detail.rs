@@ -1,11 +1,12 @@
 //! Detail maps of X-Toon (Barla et al. 2006, §3.1–3.2): the detail D ∈ [0, 1] of a surface
 //! point from its depth or its orientation to the viewer and the light.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use serde::Deserialize;
 
 use super::error::XToonError;
-use crate::highlight::Exponent;
+use super::xtoon::PointRun;
+use crate::highlight::{Exponent, Lanes};
 use crate::param::{check, Range};
 
 /// Where the detail D of a point comes from. Every number is a parameter of type `P` (a number,
@@ -285,7 +286,6 @@ impl ViewDetail {
     /// surface's unit normal (near-silhouette) and `highlight_normal` the unit normal the
     /// highlight map reflects the light about. Clamped to [0, 1] (NaN gives 0), then `1 − D`
     /// when inverted.
-    #[inline(always)]
     #[must_use]
     pub fn value(
         &self,
@@ -295,7 +295,42 @@ impl ViewDetail {
         normal: Vec3,
         highlight_normal: Vec3,
     ) -> f32 {
-        let d = match self.map {
+        let lane = |v: Vec3| {
+            let mut lanes = Lanes::default();
+            lanes.set(0, v);
+            lanes
+        };
+        let mut d = [0.0];
+        self.values(
+            &PointRun::one(point, normal, 0, Vec2::ZERO),
+            &lane(view),
+            &lane(light),
+            &lane(highlight_normal),
+            &mut d,
+        );
+        d[0]
+    }
+
+    /// [`value`](Self::value) at each of `points` into `out[k]`, seen along `view[k]`, lit from
+    /// `light[k]` and reflecting about `highlight_normal[k]` (`view` read only when the map
+    /// [uses it](Self::uses_view)): the map's formula in a loop over the points, then the
+    /// clamp and inversion in another.
+    ///
+    /// # Panics
+    /// If `out` is not `points.len` long.
+    #[inline(always)]
+    pub fn values(
+        &self,
+        points: &PointRun,
+        view: &Lanes,
+        light: &Lanes,
+        highlight_normal: &Lanes,
+        out: &mut [f32],
+    ) {
+        let n = points.len;
+        assert_eq!(out.len(), n, "one value per point");
+        let p = &points.position;
+        match self.map {
             InView::Depth {
                 eye,
                 forward,
@@ -304,14 +339,19 @@ impl ViewDetail {
                 ln_z_min,
                 inverse_ln_r,
             } => {
+                for (k, d) in out.iter_mut().enumerate() {
+                    *d = (p.get(k) - eye).dot(forward);
+                }
                 // The logarithm only inside the band where D falls from 1 to 0 (NaN gives 1).
-                let z = (point - eye).dot(forward);
-                if z >= z_max {
-                    0.0
-                } else if z > z_min {
-                    1.0 - (z.ln() - ln_z_min) * inverse_ln_r
-                } else {
-                    1.0
+                for d in out.iter_mut() {
+                    let z = *d;
+                    *d = if z >= z_max {
+                        0.0
+                    } else if z > z_min {
+                        1.0 - (z.ln() - ln_z_min) * inverse_ln_r
+                    } else {
+                        1.0
+                    };
                 }
             }
             InView::DepthOfField {
@@ -320,24 +360,36 @@ impl ViewDetail {
                 near,
                 far,
             } => {
-                let z = point.distance(eye);
-                if z > z_c {
-                    far.at(z)
-                } else {
-                    near.map_or(1.0, |ramp| ramp.at(z))
+                for (k, d) in out.iter_mut().enumerate() {
+                    *d = p.get(k).distance(eye);
+                }
+                for d in out.iter_mut() {
+                    let z = *d;
+                    *d = if z > z_c {
+                        far.at(z)
+                    } else {
+                        near.map_or(1.0, |ramp| ramp.at(z))
+                    };
                 }
             }
-            InView::NearSilhouette { r } => r.pow(normal.dot(view).abs()),
-            InView::Highlight { s } => {
-                let reflected = 2.0 * highlight_normal.dot(light) * highlight_normal - light;
-                s.pow(view.dot(reflected).abs())
+            InView::NearSilhouette { r } => {
+                for (k, d) in out.iter_mut().enumerate() {
+                    *d = points.normal.get(k).dot(view.get(k)).abs();
+                }
+                r.pow_each(out);
             }
-        };
-        let d = clamp_unit(d);
-        if self.invert {
-            1.0 - d
-        } else {
-            d
+            InView::Highlight { s } => {
+                for (k, d) in out.iter_mut().enumerate() {
+                    let (h, l) = (highlight_normal.get(k), light.get(k));
+                    let reflected = 2.0 * h.dot(l) * h - l;
+                    *d = view.get(k).dot(reflected).abs();
+                }
+                s.pow_each(out);
+            }
+        }
+        for d in out.iter_mut() {
+            let clamped = clamp_unit(*d);
+            *d = if self.invert { 1.0 - clamped } else { clamped };
         }
     }
 }

@@ -13,6 +13,7 @@
 mod cel;
 mod detail;
 mod error;
+mod grid;
 mod shape;
 mod smooth;
 mod texture;
@@ -27,4 +28,4 @@ pub use shape::{
 };
 pub use smooth::SmoothedNormals;
 pub use texture::{ToonTexture, MAX_TEXTURE_SIDE};
-pub use xtoon::{PreparedXToon, SurfacePoint, ViewXToon, XToon, XToonShade, NO_SHADE, RUN};
+pub use xtoon::{PointRun, PreparedXToon, ViewXToon, XToon, RUN};

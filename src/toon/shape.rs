@@ -10,9 +10,9 @@ use serde::Deserialize;
 
 use super::error::{XToonError, MAX_ITERATIONS};
 use super::smooth::SmoothedNormals;
-use super::xtoon::{SurfacePoint, RUN};
+use super::xtoon::{PointRun, RUN};
 use crate::geom::PatchLibrary;
-use crate::highlight::normalize_lanes;
+use crate::highlight::Lanes;
 use crate::param::{check, Range};
 
 /// The abstracted shape whose normals the shading blends toward.
@@ -256,21 +256,37 @@ impl AbstractShape {
     /// of the sphere or ellipsoid, the axis of the cylinder).
     #[must_use]
     pub fn normal(&self, point: Vec3, patch: usize, uv: Vec2) -> Option<Vec3> {
-        self.direction(point, patch, uv).try_normalize()
+        let mut direction = Lanes::default();
+        self.directions(&PointRun::one(point, Vec3::ZERO, patch, uv), &mut direction);
+        direction.get(0).try_normalize()
     }
 
-    /// The abstracted shape's normal direction at a surface point, not normalized (zero where
-    /// it has none).
+    /// The abstracted shape's normal direction at each of `points` into `out`, not normalized
+    /// (zero where it has none), in a loop over the points for the shape's kind.
     #[inline(always)]
-    fn direction(&self, point: Vec3, patch: usize, uv: Vec2) -> Vec3 {
-        match &self.geometry {
-            Geometry::Sphere { centre } => point - *centre,
-            Geometry::Ellipsoid { centre, gradient } => *gradient * (point - *centre),
-            Geometry::Cylinder { centre, axis } => {
-                let d = point - *centre;
-                d - d.dot(*axis) * *axis
+    fn directions(&self, points: &PointRun, out: &mut Lanes) {
+        let p = &points.position;
+        let offsets = |centre: Vec3, out: &mut Lanes| {
+            for k in 0..points.len {
+                out.set(k, p.get(k) - centre);
             }
-            Geometry::Smoothed(normals) => normals.at(patch, uv),
+        };
+        match &self.geometry {
+            Geometry::Sphere { centre } => offsets(*centre, out),
+            Geometry::Ellipsoid { centre, gradient } => {
+                offsets(*centre, out);
+                for k in 0..points.len {
+                    out.set(k, *gradient * out.get(k));
+                }
+            }
+            Geometry::Cylinder { centre, axis } => {
+                offsets(*centre, out);
+                for k in 0..points.len {
+                    let d = out.get(k);
+                    out.set(k, d - d.dot(*axis) * *axis);
+                }
+            }
+            Geometry::Smoothed(normals) => normals.at_run(points, out),
         }
     }
 }
@@ -297,53 +313,31 @@ impl PreparedShape {
     /// normal, or the blend vanishes, `n` is returned.
     #[must_use]
     pub fn shading_normal(&self, n: Vec3, point: Vec3, patch: usize, uv: Vec2) -> Vec3 {
-        let mut out = [Vec3::ZERO];
-        let point = SurfacePoint {
-            position: point,
-            normal: n,
-            patch,
-            uv,
-        };
-        self.shading_normals(|_| point, &mut out);
-        out[0]
+        let mut out = Lanes::default();
+        self.shading_normals(&PointRun::one(point, n, patch, uv), &mut out);
+        out.get(0)
     }
 
-    /// [`shading_normal`](Self::shading_normal) at `point(i)` into each `out[i]`, for up to
-    /// [`RUN`] points, stage by stage: every abstracted direction, then all of them normalized
-    /// side by side ([`normalize_lanes`]), every blend, and the blends normalized side by side.
-    ///
-    /// # Panics
-    /// If `out` is longer than [`RUN`].
+    /// [`shading_normal`](Self::shading_normal) at each of `points` into `out`, stage by stage
+    /// in loops over the points: every abstracted direction, all of them normalized
+    /// ([`Lanes::normalize`]), every blend, and the blends normalized.
     #[inline(always)]
-    pub fn shading_normals(&self, point: impl Fn(usize) -> SurfacePoint, out: &mut [Vec3]) {
-        let n = out.len();
-        let (mut x, mut y, mut z) = ([0.0f32; RUN], [0.0f32; RUN], [0.0f32; RUN]);
-        let (x, y, z) = (&mut x[..n], &mut y[..n], &mut z[..n]);
-        let direction = |i: usize| {
-            let p = point(i);
-            self.shape.direction(p.position, p.patch, p.uv)
-        };
-        for i in 0..n {
-            (x[i], y[i], z[i]) = direction(i).into();
-        }
+    pub fn shading_normals(&self, points: &PointRun, out: &mut Lanes) {
+        let (n, normal) = (points.len, &points.normal);
+        self.shape.directions(points, out);
         // n_a, or zero where the shape has no normal.
-        normalize_lanes(x, y, z, |_, a| a.try_normalize().unwrap_or(Vec3::ZERO));
+        out.normalize(n, |_, a| a.try_normalize().unwrap_or(Vec3::ZERO));
         let mut no_normal = [false; RUN];
-        for i in 0..n {
-            let (normal, a) = (point(i).normal, Vec3::new(x[i], y[i], z[i]));
-            no_normal[i] = a == Vec3::ZERO;
+        for (k, none) in no_normal[..n].iter_mut().enumerate() {
+            let (normal, a) = (normal.get(k), out.get(k));
+            *none = a == Vec3::ZERO;
             let a = if a.dot(normal) < 0.0 { -a } else { a };
-            (x[i], y[i], z[i]) = normal.lerp(a, self.weight).into();
+            out.set(k, normal.lerp(a, self.weight));
         }
-        normalize_lanes(x, y, z, |i, blend| {
-            blend.try_normalize().unwrap_or(point(i).normal)
-        });
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = if no_normal[i] {
-                point(i).normal
-            } else {
-                Vec3::new(x[i], y[i], z[i])
-            };
+        out.normalize(n, |k, _| normal.get(k));
+        for (k, &none) in no_normal[..n].iter().enumerate() {
+            let blend = out.get(k);
+            out.set(k, if none { normal.get(k) } else { blend });
         }
     }
 }

@@ -1,11 +1,13 @@
 //! The smoothed shape of a NURBS model: its control net Laplacian-smoothed as one net across
 //! patches, and a grid of the smoothed patches' normals to look up per point.
 
-use glam::{DVec3, Vec2, Vec3, Vec3A};
+use glam::{DVec3, Vec2, Vec3};
 
 use super::error::XToonError;
-use super::texture::padded;
+use super::grid::Grid;
+use super::xtoon::PointRun;
 use crate::geom::{GridEvaluator, NurbsSurface, PatchLibrary};
+use crate::highlight::Lanes;
 
 /// How far each smoothing iteration moves a control point toward its neighbours' mean.
 const LAMBDA: f64 = 0.5;
@@ -21,17 +23,11 @@ pub struct SmoothedNormals {
 
 #[derive(Clone, Debug, PartialEq)]
 struct NormalGrid {
-    /// Domain start and `(samples − 1) / length` per direction.
+    /// Domain start and `(samples − 1) / length` per direction: `(uv − origin) · scale` are
+    /// the grid coordinates (row along u, column along v).
     origin: Vec2,
     scale: Vec2,
-    /// The last sample's grid coordinates, `samples − 1` per direction.
-    last: Vec2,
-    /// Entries per row: the samples along v and a copy of the last.
-    stride: usize,
-    /// Row-major: entry `i * stride + j` at the i-th u and j-th v sample, each row ending with
-    /// a copy of its last sample, and a copy of the last row at the end ([`padded`]): a
-    /// lookup's four samples are then always at `k`, `k + 1`, `k + stride` and `k + stride + 1`.
-    normals: Vec<Vec3A>,
+    normals: Grid,
 }
 
 impl SmoothedNormals {
@@ -95,14 +91,20 @@ impl SmoothedNormals {
         Ok(Self { patches })
     }
 
-    /// The smoothed normal of patch `patch` at `uv`: bilinear between the grid normals around
-    /// it (not normalized; zero for a patch index out of range).
+    /// The smoothed normal of patch `points.patch` at each of the points' `(u, v)` into `out`:
+    /// bilinear between the grid normals around it (not normalized; zero for a patch index out
+    /// of range).
     #[inline(always)]
-    #[must_use]
-    pub fn at(&self, patch: usize, uv: Vec2) -> Vec3 {
-        match self.patches.get(patch) {
-            Some(grid) => grid.at(uv),
-            None => Vec3::ZERO,
+    pub(super) fn at_run(&self, points: &PointRun, out: &mut Lanes) {
+        let n = points.len;
+        match self.patches.get(points.patch) {
+            Some(grid) => grid.normals.bilinear(
+                n,
+                |k| (points.u[k] - grid.origin.x) * grid.scale.x,
+                |k| (points.v[k] - grid.origin.y) * grid.scale.y,
+                |k, normal| out.set(k, normal),
+            ),
+            None => out.fill(n, Vec3::ZERO),
         }
     }
 }
@@ -130,31 +132,8 @@ impl NormalGrid {
                 (samples_u - 1) as f32 / length(domain.u),
                 (samples_v - 1) as f32 / length(domain.v),
             ),
-            last: Vec2::new((samples_u - 1) as f32, (samples_v - 1) as f32),
-            stride: samples_v + 1,
-            normals: padded(&normals, samples_v),
+            normals: Grid::new(&normals, samples_v),
         }
-    }
-
-    #[inline(always)]
-    fn at(&self, uv: Vec2) -> Vec3 {
-        // `max` then `min` clamps, and takes NaN to 0.
-        let s = ((uv - self.origin) * self.scale)
-            .max(Vec2::ZERO)
-            .min(self.last);
-        // Through u32, which converts to and from f32 in one instruction each (usize does not).
-        let (i, j) = (s.x as u32, s.y as u32);
-        let (fu, fv) = (s.x - i as f32, s.y - j as f32);
-        // At the last sample, the next is its padding copy (with weight 0).
-        let k = i as usize * self.stride + j as usize;
-        let (row, next) = (
-            &self.normals[k..k + 2],
-            &self.normals[k + self.stride..k + self.stride + 2],
-        );
-        row[0]
-            .lerp(row[1], fv)
-            .lerp(next[0].lerp(next[1], fv), fu)
-            .into()
     }
 }
 
@@ -235,19 +214,36 @@ mod tests {
     use super::*;
     use crate::geom::{shapes, NamedPatch};
 
+    /// The smoothed normal of `patch` at `uv`.
+    fn at(smoothed: &SmoothedNormals, patch: usize, uv: Vec2) -> Vec3 {
+        let mut normal = Lanes::default();
+        smoothed.at_run(&PointRun::one(Vec3::ZERO, Vec3::Z, patch, uv), &mut normal);
+        normal.get(0)
+    }
+
     #[test]
     fn grid_lookups_at_the_samples_give_the_surface_normals_there() {
         // A curved patch whose normal differs everywhere: any misread sample shows.
         let sphere = shapes::sphere(DVec3::ZERO, 1.0).unwrap();
-        let grid = NormalGrid::new(&sphere);
+        let smoothed = SmoothedNormals {
+            patches: vec![NormalGrid::new(&sphere)],
+        };
         let domain = sphere.domain();
-        let last = grid.last.as_uvec2();
-        let at = |k: u32, n: u32, (a, b): (f64, f64)| a + (b - a) * f64::from(k) / f64::from(n);
-        for i in 0..=last.x {
-            for j in 0..=last.y {
-                let (u, v) = (at(i, last.x, domain.u), at(j, last.y, domain.v));
+        let last = |knots: &[f64]| (SAMPLES_PER_SPAN * spans(knots)) as u32;
+        let (last_u, last_v) = (
+            last(sphere.knots_u().knots()),
+            last(sphere.knots_v().knots()),
+        );
+        let at_sample =
+            |k: u32, n: u32, (a, b): (f64, f64)| a + (b - a) * f64::from(k) / f64::from(n);
+        for i in 0..=last_u {
+            for j in 0..=last_v {
+                let (u, v) = (
+                    at_sample(i, last_u, domain.u),
+                    at_sample(j, last_v, domain.v),
+                );
                 let want = sphere.frame(u, v).normal.as_vec3();
-                let got = grid.at(Vec2::new(u as f32, v as f32));
+                let got = at(&smoothed, 0, Vec2::new(u as f32, v as f32));
                 assert!((got - want).length() < 1e-4, "({i}, {j}): {got} vs {want}");
             }
         }
@@ -282,8 +278,8 @@ mod tests {
             Vec2::ONE,
             Vec2::splat(-4.0),
         ] {
-            assert!((smoothed.at(0, uv).normalize() - Vec3::Z).length() < 1e-6);
+            assert!((at(&smoothed, 0, uv).normalize() - Vec3::Z).length() < 1e-6);
         }
-        assert_eq!(smoothed.at(1, Vec2::ZERO), Vec3::ZERO);
+        assert_eq!(at(&smoothed, 1, Vec2::ZERO), Vec3::ZERO);
     }
 }

@@ -1,9 +1,10 @@
 //! The 2D toon texture of X-Toon (Barla et al. 2006, §3): a stack of 1D toon textures, one per
 //! detail level.
 
-use glam::{Vec3, Vec3A};
+use glam::Vec3;
 
 use super::error::XToonError;
+use super::grid::Grid;
 
 /// A 2D toon texture in linear RGB, indexed by tone (`n·l`, across) and detail D (down).
 ///
@@ -14,18 +15,14 @@ use super::error::XToonError;
 pub struct ToonTexture {
     width: usize,
     height: usize,
-    /// Rows from the top (D = 1), each `width` texels from `n·l = −1` and a copy of its last
-    /// texel, and a copy of the last row at the bottom: a lookup's four texels are then always
-    /// at `k`, `k + 1`, `k + width + 1` and `k + width + 2`.
-    texels: Vec<Vec3A>,
-    /// The lookup's affine maps: `s = n·l · width/2 + (width − 1)/2`,
-    /// `t = (height − ½) − D · height`, and their upper clamps.
+    /// Rows from the top (D = 1), each from `n·l = −1`.
+    texels: Grid,
+    /// The lookup's affine maps to grid coordinates: column `n·l · width/2 + (width − 1)/2`,
+    /// row `(height − ½) − D · height`.
     half_width: f32,
-    s_offset: f32,
+    column_offset: f32,
     height_f: f32,
-    t_offset: f32,
-    last_s: f32,
-    last_t: f32,
+    row_offset: f32,
 }
 
 /// The largest texture side accepted.
@@ -62,13 +59,11 @@ impl ToonTexture {
         Ok(Self {
             width,
             height,
-            texels: padded(&texels, width),
+            texels: Grid::new(&texels, width),
             half_width: 0.5 * width as f32,
-            s_offset: 0.5 * (width as f32 - 1.0),
+            column_offset: 0.5 * (width as f32 - 1.0),
             height_f: height as f32,
-            t_offset: height as f32 - 0.5,
-            last_s: (width - 1) as f32,
-            last_t: (height - 1) as f32,
+            row_offset: height as f32 - 0.5,
         })
     }
 
@@ -87,45 +82,35 @@ impl ToonTexture {
     /// The texel in column `x` (from `n·l = −1`) of row `y` (from D = 1), clamped to the edge.
     #[must_use]
     pub fn texel(&self, x: usize, y: usize) -> Vec3 {
-        self.texels[y.min(self.height - 1) * (self.width + 1) + x.min(self.width - 1)].into()
+        self.texels.sample(y, x)
     }
 
     /// The colour at tone `n_dot_l` and detail `detail`: bilinear between the texel centres
     /// around `s = (n·l + 1)/2 · width − ½` and `t = (1 − D) · height − ½`, both clamped to the
     /// edge texels. NaN coordinates read the first column or the top row, never NaN.
-    #[inline(always)]
     #[must_use]
     pub fn sample(&self, n_dot_l: f32, detail: f32) -> Vec3 {
-        // `max` then `min` clamps, and takes NaN to 0.
-        let s = (n_dot_l * self.half_width + self.s_offset)
-            .max(0.0)
-            .min(self.last_s);
-        let t = (self.t_offset - detail * self.height_f)
-            .max(0.0)
-            .min(self.last_t);
-        // Through u32, which converts to and from f32 in one instruction each (usize does not).
-        let (x, y) = (s as u32, t as u32);
-        let (fx, fy) = (s - x as f32, t - y as f32);
-        // The next column and row are the padding copies at the last ones (their weight is 0).
-        let stride = self.width + 1;
-        let k = y as usize * stride + x as usize;
-        let (top, bottom) = (
-            &self.texels[k..k + 2],
-            &self.texels[k + stride..k + stride + 2],
-        );
-        let top = top[0].lerp(top[1], fx);
-        let bottom = bottom[0].lerp(bottom[1], fx);
-        top.lerp(bottom, fy).into()
+        let mut colour = [Vec3::ZERO];
+        self.sample_run(&[n_dot_l], &[detail], &mut colour);
+        colour[0]
     }
-}
 
-/// A grid of `values` in rows of `width`, with the last value of each row repeated after it
-/// and the last row so extended repeated below: a bilinear lookup clamped to the grid then
-/// always reads the entries `k`, `k + 1`, `k + width + 1` and `k + width + 2`.
-pub(super) fn padded(values: &[Vec3], width: usize) -> Vec<Vec3A> {
-    let rows = values.chunks(width).chain(values.rchunks(width).take(1));
-    rows.flat_map(|row| row.iter().chain(row.last()).map(|&c| Vec3A::from(c)))
-        .collect()
+    /// [`sample`](Self::sample) at each `(n_dot_l[k], detail[k])` into `out[k]`, for up to
+    /// [`RUN`](super::RUN) lookups side by side.
+    ///
+    /// # Panics
+    /// If the three slices differ in length or are longer than [`RUN`](super::RUN).
+    #[inline(always)]
+    pub fn sample_run(&self, n_dot_l: &[f32], detail: &[f32], out: &mut [Vec3]) {
+        let n = out.len();
+        assert!(n_dot_l.len() == n && detail.len() == n, "bad run");
+        self.texels.bilinear(
+            n,
+            |k| self.row_offset - detail[k] * self.height_f,
+            |k| n_dot_l[k] * self.half_width + self.column_offset,
+            |k, colour| out[k] = colour,
+        );
+    }
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ use super::detail::{DetailMap, PreparedDetail, ViewDetail};
 use super::error::XToonError;
 use super::shape::{AbstractShape, HighlightFrame, PreparedShape, ShapeDetail};
 use super::texture::ToonTexture;
+use crate::highlight::{Lanes, LANES};
 
 /// The parameters of an X-Toon tone; the texture is given beside them, as an image.
 ///
@@ -89,15 +90,6 @@ pub struct PreparedXToon {
     shape: Option<PreparedShape>,
 }
 
-/// What the tone gives at one point.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct XToonShade {
-    /// Linear RGB from the texture.
-    pub colour: Vec3,
-    /// The shading normal n' the tone used.
-    pub normal: Vec3,
-}
-
 impl PreparedXToon {
     /// Whether highlights on this patch use the abstracted frame (shape detail with w > 0 and
     /// [`HighlightFrame::Abstracted`]).
@@ -125,18 +117,61 @@ pub struct ViewXToon<'a> {
     detail: ViewDetail,
 }
 
-/// A surface point as the tone sees it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SurfacePoint {
-    pub position: Vec3,
-    /// The unit normal, facing the viewer.
-    pub normal: Vec3,
+/// The most points [`ViewXToon::shade_run`] takes at once.
+pub const RUN: usize = LANES;
+
+/// Up to [`RUN`] points of one patch side by side, one array per coordinate, as
+/// [`ViewXToon::shade_run`] reads them.
+#[derive(Clone, Debug)]
+pub struct PointRun {
+    /// How many points: the first `len` of each array.
+    pub len: usize,
+    /// The patch they lie on.
     pub patch: usize,
-    pub uv: Vec2,
+    pub position: Lanes,
+    /// Unit normals, facing the viewer.
+    pub normal: Lanes,
+    /// Patch parameters.
+    pub u: [f32; RUN],
+    pub v: [f32; RUN],
 }
 
-/// The most points [`ViewXToon::shade_run`] takes at once.
-pub const RUN: usize = 64;
+impl Default for PointRun {
+    /// No points.
+    fn default() -> Self {
+        Self {
+            len: 0,
+            patch: 0,
+            position: Lanes::default(),
+            normal: Lanes::default(),
+            u: [0.0; RUN],
+            v: [0.0; RUN],
+        }
+    }
+}
+
+impl PointRun {
+    /// The run of the one point at `position` with unit normal `normal`, on patch `patch` at
+    /// `uv`.
+    #[must_use]
+    pub fn one(position: Vec3, normal: Vec3, patch: usize, uv: Vec2) -> Self {
+        let mut run = Self {
+            len: 1,
+            patch,
+            ..Self::default()
+        };
+        run.set(0, position, normal, uv);
+        run
+    }
+
+    /// Sets the `k`-th point.
+    #[inline(always)]
+    pub fn set(&mut self, k: usize, position: Vec3, normal: Vec3, uv: Vec2) {
+        self.position.set(k, position);
+        self.normal.set(k, normal);
+        (self.u[k], self.v[k]) = uv.into();
+    }
+}
 
 impl ViewXToon<'_> {
     /// Whether the tone reads the view vector: the orientation maps do, the depth maps do not.
@@ -146,68 +181,150 @@ impl ViewXToon<'_> {
         self.detail.uses_view()
     }
 
-    /// The tone at `point`, seen along the unit vector `view(position)` (toward the eye; asked
-    /// for only by the orientation maps) and lit from the unit `light(position, normal)`: n' the
-    /// shading normal ([`PreparedShape::shading_normal`], or n), D from the detail map (the
-    /// highlight map reflects about n' or n, as the shape detail's [`HighlightFrame`] says;
-    /// near-silhouette uses n), and the texture at `(n'·l, D)`.
-    #[must_use]
-    pub fn shade(
-        &self,
-        point: &SurfacePoint,
-        view: impl Fn(Vec3) -> Vec3,
-        light: impl Fn(Vec3, Vec3) -> Vec3,
-    ) -> XToonShade {
-        let mut out = [NO_SHADE];
-        self.shade_run(1, |_| *point, |_| view(point.position), light, &mut out);
-        out[0]
-    }
-
-    /// [`shade`](Self::shade) at `point(i)` for i < `n` ≤ [`RUN`] into `out[i]`, seen along the
-    /// unit `view(i)` (asked for only when [`uses_view`](Self::uses_view)): first every shading
-    /// normal, then per point its detail and texture lookup. The points' independent
-    /// chains of square roots and divisions overlap in the processor, and the loops are inlined
-    /// whole into the caller's.
+    /// The tone at each of `points` into `colour[k]`, seen along the unit `view[k]` (toward the
+    /// eye; read only when the tone [uses it](Self::uses_view)) and lit from the unit
+    /// `light[k]`: n' the shading normal ([`PreparedShape::shading_normals`], computed into
+    /// `abstracted`, or n), D from the detail map (the highlight map reflects about n' or n, as
+    /// the shape detail's [`HighlightFrame`] says; near-silhouette uses n), and the texture at
+    /// `(n'·l, D)`. Returns the shading normals.
+    ///
+    /// Each stage is a loop over the points of its own, so that the points' independent
+    /// chains of arithmetic run side by side.
     ///
     /// # Panics
-    /// If `n` is more than [`RUN`] or than there are outputs.
+    /// If `colour` is not `points.len` long.
     #[inline(always)]
-    pub fn shade_run(
+    pub fn shade_run<'a>(
         &self,
-        n: usize,
-        point: impl Fn(usize) -> SurfacePoint,
-        view: impl Fn(usize) -> Vec3,
-        light: impl Fn(Vec3, Vec3) -> Vec3,
-        out: &mut [XToonShade],
-    ) {
-        assert!(n <= RUN && out.len() >= n, "bad run");
-        // The shading normals, when a shape abstracts them.
-        let mut abstracted_normals = [Vec3::ZERO; RUN];
-        let shaped = self.tone.shape.as_ref().map(|shape| {
-            shape.shading_normals(&point, &mut abstracted_normals[..n]);
-            &abstracted_normals[..n]
-        });
-        let abstracted = self.tone.abstracts_highlights();
-        let uses_view = self.uses_view();
-        for (i, o) in out[..n].iter_mut().enumerate() {
-            let p = point(i);
-            let shading = shaped.map_or(p.normal, |normals| normals[i]);
-            let light = light(p.position, p.normal);
-            let view = if uses_view { view(i) } else { Vec3::ZERO };
-            let highlight = if abstracted { shading } else { p.normal };
-            let d = self
-                .detail
-                .value(p.position, view, light, p.normal, highlight);
-            *o = XToonShade {
-                colour: self.tone.texture.sample(shading.dot(light), d),
-                normal: shading,
-            };
+        points: &'a PointRun,
+        view: &Lanes,
+        light: &Lanes,
+        abstracted: &'a mut Lanes,
+        colour: &mut [Vec3],
+    ) -> &'a Lanes {
+        let n = points.len;
+        assert_eq!(colour.len(), n, "one colour per point");
+        let shading = match &self.tone.shape {
+            Some(shape) => {
+                shape.shading_normals(points, abstracted);
+                abstracted
+            }
+            None => &points.normal,
+        };
+        let mut n_dot_l = [0.0; RUN];
+        for (k, nl) in n_dot_l[..n].iter_mut().enumerate() {
+            *nl = shading.get(k).dot(light.get(k));
         }
+        let highlight = if self.tone.abstracts_highlights() {
+            shading
+        } else {
+            &points.normal
+        };
+        let mut detail = [0.0; RUN];
+        self.detail
+            .values(points, view, light, highlight, &mut detail[..n]);
+        self.tone
+            .texture
+            .sample_run(&n_dot_l[..n], &detail[..n], colour);
+        shading
     }
 }
 
-/// A shade to fill output arrays with before they are written.
-pub const NO_SHADE: XToonShade = XToonShade {
-    colour: Vec3::ZERO,
-    normal: Vec3::Z,
-};
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{shapes, NamedPatch, PatchLibrary};
+    use crate::toon::Abstraction;
+    use glam::DVec3;
+
+    /// A unit vector that turns with `k`.
+    fn direction(k: usize, turn: f32) -> Vec3 {
+        let a = k as f32 * turn;
+        Vec3::new(a.cos(), a.sin(), 0.3 * (2.0 * a).sin()).normalize()
+    }
+
+    #[test]
+    fn a_run_shades_each_point_as_it_would_alone() {
+        let library = PatchLibrary {
+            patches: vec![NamedPatch {
+                name: "sphere".into(),
+                surface: shapes::sphere(DVec3::ZERO, 2.0).unwrap(),
+            }],
+        };
+        let texels: Vec<Vec3> = (0..8 * 4)
+            .map(|k| Vec3::new((k % 8) as f32 / 7.0, (k / 8) as f32 / 3.0, 0.5))
+            .collect();
+        let texture = Arc::new(ToonTexture::new(8, 4, texels).unwrap());
+        // A full run and a short one, of points of every kind of lane on a sphere.
+        let mut run = PointRun {
+            len: RUN,
+            ..PointRun::default()
+        };
+        let (mut view, mut light) = (Lanes::default(), Lanes::default());
+        for k in 0..RUN {
+            let n = direction(k, 0.7);
+            let uv = Vec2::new(k as f32 / 9.0 - 1.0, (k % 5) as f32 * 0.9);
+            run.set(k, 2.0 * n, n, uv);
+            view.set(k, direction(k, 1.3));
+            light.set(k, direction(k + 3, 0.4));
+        }
+        let details = [
+            DetailMap::Depth { z_min: 1.0, r: 3.0 },
+            DetailMap::DepthOfField {
+                focus: [0.0, 1.0, 0.0],
+                z_min: 0.5,
+                r: 2.0,
+            },
+            DetailMap::NearSilhouette { r: 2.5 },
+            DetailMap::Highlight { s: 7.0 },
+        ];
+        let shapes = [
+            None,
+            Some(Abstraction::Ellipsoid),
+            Some(Abstraction::Smoothed { iterations: 2 }),
+        ];
+        for (detail, abstraction) in details.iter().flat_map(|d| shapes.map(|s| (d, s))) {
+            let built = abstraction.map(|a| a.build(&library).unwrap());
+            let tone = XToon {
+                detail: detail.clone(),
+                invert: true,
+                shape: abstraction.map(|abstraction| ShapeDetail {
+                    abstraction,
+                    weight: 0.6,
+                    highlight_frame: HighlightFrame::Abstracted,
+                }),
+            }
+            .prepare(Arc::clone(&texture), built.as_ref())
+            .unwrap();
+            let tone = tone.in_view(Vec3::new(0.0, -6.0, 0.0), Vec3::Y);
+            for len in [RUN, 7] {
+                let run = PointRun { len, ..run.clone() };
+                let (mut abstracted, mut colour) = (Lanes::default(), [Vec3::NAN; RUN]);
+                let normals =
+                    *tone.shade_run(&run, &view, &light, &mut abstracted, &mut colour[..len]);
+                for (k, &colour) in colour[..len].iter().enumerate() {
+                    let one = PointRun::one(
+                        run.position.get(k),
+                        run.normal.get(k),
+                        0,
+                        Vec2::new(run.u[k], run.v[k]),
+                    );
+                    let lane = |v: Vec3| {
+                        let mut lanes = Lanes::default();
+                        lanes.set(0, v);
+                        lanes
+                    };
+                    let (view, light) = (lane(view.get(k)), lane(light.get(k)));
+                    let mut alone = [Vec3::NAN];
+                    let normal = tone
+                        .shade_run(&one, &view, &light, &mut Lanes::default(), &mut alone)
+                        .get(0);
+                    let case = format!("{detail:?}, {abstraction:?}, point {k} of {len}");
+                    assert!(colour.is_finite(), "{case}");
+                    assert_eq!(colour, alone[0], "{case}");
+                    assert_eq!(normals.get(k), normal, "{case}");
+                }
+            }
+        }
+    }
+}

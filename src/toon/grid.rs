@@ -1,0 +1,154 @@
+//! A grid of vectors read bilinearly between its samples and clamped to its edges: the 2D toon
+//! texture and the smoothed shape's normals are each one.
+
+use glam::{Vec3, Vec3A};
+
+use super::xtoon::RUN;
+
+/// `rows × columns` vectors, read at continuous coordinates `(row, column)` with the samples at
+/// whole numbers.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Grid {
+    /// Row by row, each row ending in a copy of its last value, and a copy of the last row so
+    /// extended at the bottom: the four values around a point are then always at `k`, `k + 1`,
+    /// `k + stride` and `k + stride + 1`, the copies taking weight 0 at the last row or column.
+    values: Vec<Vec3A>,
+    /// Entries per padded row: `columns + 1`.
+    stride: usize,
+    rows: usize,
+    /// The last row's and the last column's coordinate.
+    last_row: f32,
+    last_column: f32,
+}
+
+impl Grid {
+    /// The grid of `values` given row by row in rows of `columns`; `values` holds at least one
+    /// row, and whole rows, and fewer than 2²² of each.
+    ///
+    /// # Panics
+    /// If it does not.
+    pub fn new(values: &[Vec3], columns: usize) -> Self {
+        assert!(
+            columns > 0 && !values.is_empty() && values.len() % columns == 0,
+            "a grid of whole rows"
+        );
+        let rows = values.len() / columns;
+        assert!(
+            rows < MAX_SIDE && columns < MAX_SIDE,
+            "a grid of at most 2²² per side"
+        );
+        let padded_rows = values
+            .chunks(columns)
+            .chain(values.rchunks(columns).take(1));
+        Self {
+            values: padded_rows
+                .flat_map(|row| row.iter().chain(row.last()).map(|&v| Vec3A::from(v)))
+                .collect(),
+            stride: columns + 1,
+            rows,
+            last_row: (rows - 1) as f32,
+            last_column: (columns - 1) as f32,
+        }
+    }
+
+    /// The sample in `row` and `column`, each clamped to the grid.
+    #[must_use]
+    pub fn sample(&self, row: usize, column: usize) -> Vec3 {
+        let (row, column) = (row.min(self.rows - 1), column.min(self.stride - 2));
+        self.values[row * self.stride + column].into()
+    }
+
+    /// For k < `n` ≤ [`RUN`], the value at `(row(k), column(k))` into `put(k, value)`: with each
+    /// coordinate clamped to the grid (NaN reads 0), `r = ⌊row⌋`, `c = ⌊column⌋` and
+    /// `(a, b) = (row − r, column − c)`,
+    /// `lerp(lerp(g[r][c], g[r][c+1], b), lerp(g[r+1][c], g[r+1][c+1], b), a)`.
+    ///
+    /// The cells and weights of all n points come first, in a loop of their own that
+    /// vectorizes; then the reads.
+    ///
+    /// # Panics
+    /// If `n` is more than [`RUN`].
+    #[inline(always)]
+    pub fn bilinear(
+        &self,
+        n: usize,
+        row: impl Fn(usize) -> f32,
+        column: impl Fn(usize) -> f32,
+        mut put: impl FnMut(usize, Vec3),
+    ) {
+        assert!(n <= RUN, "bad run");
+        let (mut cell_row, mut cell_column) = ([0i32; RUN], [0i32; RUN]);
+        let (mut a, mut b) = ([0.0f32; RUN], [0.0f32; RUN]);
+        for k in 0..n {
+            // `max` then `min` clamps, and takes NaN to 0.
+            let r = row(k).max(0.0).min(self.last_row);
+            let c = column(k).max(0.0).min(self.last_column);
+            (cell_row[k], cell_column[k]) = (floor(r), floor(c));
+            (a[k], b[k]) = (r - cell_row[k] as f32, c - cell_column[k] as f32);
+        }
+        for k in 0..n {
+            let at = cell_row[k] as usize * self.stride + cell_column[k] as usize;
+            // One bounds check for the four values.
+            let around = &self.values[at..at + self.stride + 2];
+            let (this, next) = (&around[..2], &around[self.stride..]);
+            let value = this[0]
+                .lerp(this[1], b[k])
+                .lerp(next[0].lerp(next[1], b[k]), a[k]);
+            put(k, value.into());
+        }
+    }
+}
+
+/// The most rows or columns a grid may have: its coordinates stay where [`floor`] holds.
+const MAX_SIDE: usize = 1 << 22;
+
+/// `⌊x⌋` for `0 ≤ x < 2²²`: `x + 2²³` is rounded to a whole number, which then sits in the low
+/// bits of its representation (`0x4B00_0000` is that of 2²³), and one less is taken where
+/// that rounded up. Unlike `x as i32`, which must saturate, the steps vectorize.
+#[inline(always)]
+fn floor(x: f32) -> i32 {
+    const TWO_TO_23: f32 = 8_388_608.0;
+    let rounded = (x + TWO_TO_23).to_bits() as i32 - TWO_TO_23.to_bits() as i32;
+    rounded - i32::from(rounded as f32 > x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bilinear_weights_and_clamping() {
+        // 2 rows × 3 columns, value (row, column, 0).
+        let values: Vec<Vec3> = (0..2)
+            .flat_map(|r| (0..3).map(move |c| Vec3::new(r as f32, c as f32, 0.0)))
+            .collect();
+        let grid = Grid::new(&values, 3);
+        let points = [
+            (0.25, 1.5, Vec3::new(0.25, 1.5, 0.0)),
+            (1.0, 2.0, Vec3::new(1.0, 2.0, 0.0)),
+            (-3.0, 7.0, Vec3::new(0.0, 2.0, 0.0)),
+            (f32::NAN, f32::INFINITY, Vec3::new(0.0, 2.0, 0.0)),
+        ];
+        let mut got = [Vec3::NAN; 4];
+        grid.bilinear(4, |k| points[k].0, |k| points[k].1, |k, v| got[k] = v);
+        for (g, (.., want)) in got.iter().zip(points) {
+            assert!((*g - want).length() < 1e-6, "{g} against {want}");
+        }
+        assert_eq!(grid.sample(5, 1), Vec3::new(1.0, 1.0, 0.0));
+    }
+
+    #[test]
+    fn floor_of_the_coordinates() {
+        let below = |x: f32| f32::from_bits(x.to_bits() - 1);
+        for x in [
+            0.0, 0.25, 0.5, 1.0, 1.5, 2.5, 7.999, 4095.0, 4095.5, 65_536.75,
+        ] {
+            assert_eq!(floor(x), x.floor() as i32, "{x}");
+            if x >= 1.0 {
+                assert_eq!(floor(below(x)), below(x).floor() as i32, "below {x}");
+            }
+        }
+        let largest = below(MAX_SIDE as f32);
+        assert_eq!(floor(largest), largest.floor() as i32);
+    }
+}
