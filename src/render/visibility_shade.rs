@@ -30,24 +30,39 @@ pub fn shade_visibility(visibility: &VisibilityBuffer, mesh: &Mesh, scene: &Scen
             uniform_tone(mesh, to_eye.as_deref(), scene, t).map_or(Vec4::ZERO, |c| c.extend(1.0))
         })
         .collect();
-    visibility
+    let pixel = |i: usize, triangle: u32| {
+        if triangle == EMPTY {
+            return Vec4::ZERO;
+        }
+        let colour = uniform[triangle as usize];
+        if colour.w > 0.0 {
+            colour
+        } else {
+            pixel_tone(visibility, mesh, scene, i).extend(1.0)
+        }
+    };
+    // A few pixels per item, so that the work of each is inlined into a loop of its own.
+    let mut colour = visibility
         .triangle
-        .par_iter()
+        .par_chunks(PIXELS_PER_ITEM)
         .enumerate()
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|(i, &triangle)| {
-            if triangle == EMPTY {
-                return Vec4::ZERO;
-            }
-            let colour = uniform[triangle as usize];
-            if colour.w > 0.0 {
-                colour
-            } else {
-                pixel_tone(visibility, mesh, scene, i).extend(1.0)
-            }
+        .with_min_len(PIXELS_PER_JOB / PIXELS_PER_ITEM)
+        .map(|(item, triangles)| {
+            let start = item * PIXELS_PER_ITEM;
+            std::array::from_fn(|k| {
+                triangles
+                    .get(k)
+                    .map_or(Vec4::ZERO, |&triangle| pixel(start + k, triangle))
+            })
         })
-        .collect()
+        .collect::<Vec<[Vec4; PIXELS_PER_ITEM]>>()
+        .into_flattened();
+    colour.truncate(visibility.triangle.len());
+    colour
 }
+
+/// Pixels shaded together by [`shade_visibility`].
+const PIXELS_PER_ITEM: usize = 8;
 
 /// Whether [`uniform_tone`] bounds `N·L` over triangles, and so needs the directions to the
 /// eye: under a directional light, when some patch has a cel ramp with bands.
@@ -173,7 +188,8 @@ mod tests {
             base: Vec3::new(0.6, 0.2, 0.1),
             bands: Vec::new(),
         };
-        let (width, height) = (160, 120);
+        // Not a whole number of items of pixels.
+        let (width, height) = (161, 119);
         let mut tessellator = Tessellator::new(&library);
         // Pixels shaded by triangle and by pixel, under the directional and the point light.
         let (mut per_triangle, mut per_pixel) = ([0, 0], [0, 0]);
@@ -248,6 +264,7 @@ mod tests {
             };
             for mesh in [mesh, &reversed] {
                 let colour = shade_visibility(&visibility, mesh, &scene);
+                assert_eq!(colour.len(), visibility.triangle.len());
                 let to_eye = vertex_to_eye(mesh, &scene);
                 for (i, &triangle) in visibility.triangle.iter().enumerate() {
                     if triangle == EMPTY {

@@ -10,7 +10,7 @@ use serde::Deserialize;
 
 use super::error::{XToonError, MAX_ITERATIONS};
 use super::smooth::SmoothedNormals;
-use super::xtoon::{PointRun, RUN};
+use super::xtoon::PointRun;
 use crate::geom::PatchLibrary;
 use crate::highlight::Lanes;
 use crate::param::{check, Range};
@@ -320,25 +320,21 @@ impl PreparedShape {
 
     /// [`shading_normal`](Self::shading_normal) at each of `points` into `out`, stage by stage
     /// in loops over the points: every abstracted direction, all of them normalized
-    /// ([`Lanes::normalize`]), every blend, and the blends normalized.
+    /// ([`Lanes::normalize`]), every blend, and the blends normalized (a zero blend to n).
     #[inline(always)]
     pub fn shading_normals(&self, points: &PointRun, out: &mut Lanes) {
         let (n, normal) = (points.len, &points.normal);
         self.shape.directions(points, out);
         // n_a, or zero where the shape has no normal.
         out.normalize(n, |_, a| a.try_normalize().unwrap_or(Vec3::ZERO));
-        let mut no_normal = [false; RUN];
-        for (k, none) in no_normal[..n].iter_mut().enumerate() {
+        for k in 0..n {
             let (normal, a) = (normal.get(k), out.get(k));
-            *none = a == Vec3::ZERO;
             let a = if a.dot(normal) < 0.0 { -a } else { a };
-            out.set(k, normal.lerp(a, self.weight));
+            // Without n_a the blend is left zero, which normalizes to n below.
+            let blend = normal.lerp(a, self.weight);
+            out.set(k, if a == Vec3::ZERO { Vec3::ZERO } else { blend });
         }
         out.normalize(n, |k, _| normal.get(k));
-        for (k, &none) in no_normal[..n].iter().enumerate() {
-            let blend = out.get(k);
-            out.set(k, if none { normal.get(k) } else { blend });
-        }
     }
 }
 
