@@ -23,7 +23,8 @@ pub(super) struct Grid {
 
 impl Grid {
     /// The grid of `values` given row by row in rows of `columns`; `values` holds at least one
-    /// row, and whole rows, and fewer than 2²² of each.
+    /// row, and whole rows, fewer than 2²² of them and of columns, and a `u32` counts the
+    /// padded grid's entries.
     ///
     /// # Panics
     /// If it does not.
@@ -34,8 +35,10 @@ impl Grid {
         );
         let rows = values.len() / columns;
         assert!(
-            rows < MAX_SIDE && columns < MAX_SIDE,
-            "a grid of at most 2²² per side"
+            rows < MAX_SIDE
+                && columns < MAX_SIDE
+                && (rows + 1) * (columns + 1) <= u32::MAX as usize,
+            "a grid of less than 2²² per side, whose entries a u32 counts"
         );
         let padded_rows = values
             .chunks(columns)
@@ -63,8 +66,8 @@ impl Grid {
     /// `(a, b) = (row − r, column − c)`,
     /// `lerp(lerp(g[r][c], g[r][c+1], b), lerp(g[r+1][c], g[r+1][c+1], b), a)`.
     ///
-    /// The cells and weights of all n points come first, in a loop of their own that
-    /// vectorizes; then the reads.
+    /// The cells (as the index of their first value) and weights of all n points come first,
+    /// in a loop of their own that vectorizes; then the reads.
     ///
     /// # Panics
     /// If `n` is more than [`RUN`].
@@ -77,26 +80,36 @@ impl Grid {
         mut put: impl FnMut(usize, Vec3),
     ) {
         assert!(n <= RUN, "bad run");
-        let (mut cell_row, mut cell_column) = ([0i32; RUN], [0i32; RUN]);
+        let mut at = [0u32; RUN];
         let (mut a, mut b) = ([0.0f32; RUN], [0.0f32; RUN]);
+        let stride = self.stride as u32;
         for k in 0..n {
             // `max` then `min` clamps, and takes NaN to 0.
             let r = row(k).max(0.0).min(self.last_row);
             let c = column(k).max(0.0).min(self.last_column);
-            (cell_row[k], cell_column[k]) = (floor(r), floor(c));
-            (a[k], b[k]) = (r - cell_row[k] as f32, c - cell_column[k] as f32);
+            let (cell_row, cell_column) = (floor(r), floor(c));
+            (a[k], b[k]) = (r - cell_row as f32, c - cell_column as f32);
+            at[k] = cell_row as u32 * stride + cell_column as u32;
         }
         for k in 0..n {
-            let at = cell_row[k] as usize * self.stride + cell_column[k] as usize;
+            let at = at[k] as usize;
             // One bounds check for the four values.
             let around = &self.values[at..at + self.stride + 2];
             let (this, next) = (&around[..2], &around[self.stride..]);
-            let value = this[0]
-                .lerp(this[1], b[k])
-                .lerp(next[0].lerp(next[1], b[k]), a[k]);
+            let value = lerp(
+                lerp(this[0], this[1], b[k]),
+                lerp(next[0], next[1], b[k]),
+                a[k],
+            );
             put(k, value.into());
         }
     }
+}
+
+/// `p + (q − p) s`: `p` itself at `s = 0`, with fewer operations than glam's `lerp`.
+#[inline(always)]
+fn lerp(p: Vec3A, q: Vec3A, s: f32) -> Vec3A {
+    p + (q - p) * s
 }
 
 /// The most rows or columns a grid may have: its coordinates stay where [`floor`] holds.
