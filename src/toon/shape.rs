@@ -319,22 +319,24 @@ impl PreparedShape {
     }
 
     /// [`shading_normal`](Self::shading_normal) at each of `points` into `out`, stage by stage
-    /// in loops over the points: every abstracted direction, all of them normalized
-    /// ([`Lanes::normalize`]), every blend, and the blends normalized (a zero blend to n).
+    /// in loops over the points: every abstracted direction a, every blend, and the blends
+    /// normalized ([`Lanes::normalize`]).
+    ///
+    /// With `n_a = a/‖a‖`, the blend `(1 − w) n + w n_a` points along
+    /// `(1 − w) ‖a‖ n + w a`, which needs no division: one normalization per point rather than
+    /// two. Where a is zero or not finite the blend is not finite or zero, and the
+    /// normalization's fallback returns n.
     #[inline(always)]
     pub fn shading_normals(&self, points: &PointRun, out: &mut Lanes) {
         let (n, normal) = (points.len, &points.normal);
         self.shape.directions(points, out);
-        // n_a, or zero where the shape has no normal.
-        out.normalize(n, |_, a| a.try_normalize().unwrap_or(Vec3::ZERO));
+        let w = self.weight;
         for k in 0..n {
             let (normal, a) = (normal.get(k), out.get(k));
             let a = if a.dot(normal) < 0.0 { -a } else { a };
-            // Without n_a the blend is left zero, which normalizes to n below.
-            let blend = normal.lerp(a, self.weight);
-            out.set(k, if a == Vec3::ZERO { Vec3::ZERO } else { blend });
+            out.set(k, normal * ((1.0 - w) * a.length()) + a * w);
         }
-        out.normalize(n, |k, _| normal.get(k));
+        out.normalize(n, |k, blend| blend.try_normalize().unwrap_or(normal.get(k)));
     }
 }
 
