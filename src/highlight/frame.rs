@@ -147,6 +147,14 @@ impl Default for Lanes {
 }
 
 impl Lanes {
+    /// Lanes holding `v` first, and zero vectors after it.
+    #[must_use]
+    pub fn first(v: Vec3) -> Self {
+        let mut lanes = Self::default();
+        lanes.set(0, v);
+        lanes
+    }
+
     /// The `k`-th vector.
     #[inline(always)]
     #[must_use]

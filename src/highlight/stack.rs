@@ -2,13 +2,13 @@
 
 use glam::Vec3;
 
-use super::frame::{normalize_lanes, TangentFrame};
+use super::frame::{normalize_lanes, Lanes, TangentFrame, LANES};
 use super::ops::PreparedOp;
 
 /// Points a batch method processes together. The stack is applied op by op to a whole chunk, so
 /// the points' independent dependency chains (square roots and divisions) overlap in the
 /// processor instead of running one after another.
-pub const CHUNK: usize = 64;
+pub const CHUNK: usize = LANES;
 
 /// Validated operations in order, with a normalization plan.
 ///
@@ -85,24 +85,10 @@ impl PreparedStack {
 
 /// Frame coordinates of up to [`CHUNK`] vectors, one array per coordinate, so that loops over
 /// them vectorize.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct LocalChunk {
-    x: [f32; CHUNK],
-    y: [f32; CHUNK],
-    z: [f32; CHUNK],
+    vectors: Lanes,
     len: usize,
-}
-
-impl Default for LocalChunk {
-    /// An empty chunk.
-    fn default() -> Self {
-        Self {
-            x: [0.0; CHUNK],
-            y: [0.0; CHUNK],
-            z: [0.0; CHUNK],
-            len: 0,
-        }
-    }
 }
 
 impl LocalChunk {
@@ -145,21 +131,21 @@ impl LocalChunk {
     #[inline]
     #[must_use]
     pub fn get(&self, i: usize) -> Vec3 {
-        Vec3::new(self.x[i], self.y[i], self.z[i])
+        self.vectors.get(i)
     }
 
     /// The coordinate arrays `(t_u, t_v, h_n)`, each of length [`len`](Self::len).
     #[inline]
     #[must_use]
     pub fn lanes(&self) -> (&[f32], &[f32], &[f32]) {
-        let n = self.len;
-        (&self.x[..n], &self.y[..n], &self.z[..n])
+        let (n, v) = (self.len, &self.vectors);
+        (&v.x[..n], &v.y[..n], &v.z[..n])
     }
 
     #[inline]
     fn lanes_mut(&mut self) -> (&mut [f32], &mut [f32], &mut [f32]) {
-        let n = self.len;
-        (&mut self.x[..n], &mut self.y[..n], &mut self.z[..n])
+        let (n, v) = (self.len, &mut self.vectors);
+        (&mut v.x[..n], &mut v.y[..n], &mut v.z[..n])
     }
 }
 

@@ -295,17 +295,12 @@ impl ViewDetail {
         normal: Vec3,
         highlight_normal: Vec3,
     ) -> f32 {
-        let lane = |v: Vec3| {
-            let mut lanes = Lanes::default();
-            lanes.set(0, v);
-            lanes
-        };
         let mut d = [0.0];
         self.values(
             &PointRun::one(point, normal, 0, Vec2::ZERO),
-            &lane(view),
-            &lane(light),
-            &lane(highlight_normal),
+            &Lanes::first(view),
+            &Lanes::first(light),
+            &Lanes::first(highlight_normal),
             &mut d,
         );
         d[0]

@@ -128,6 +128,7 @@ pub struct PointRun {
     pub len: usize,
     /// The patch they lie on.
     pub patch: usize,
+    /// World positions.
     pub position: Lanes,
     /// Unit normals, facing the viewer.
     pub normal: Lanes,
@@ -188,8 +189,8 @@ impl ViewXToon<'_> {
     /// the shape detail's [`HighlightFrame`] says; near-silhouette uses n), and the texture at
     /// `(n'·l, D)`. Returns the shading normals.
     ///
-    /// Each stage is a loop over the points of its own, so that the points' independent
-    /// chains of arithmetic run side by side.
+    /// Each stage is a loop of its own over the points, held one array per coordinate, so that
+    /// it vectorizes.
     ///
     /// # Panics
     /// If `colour` is not `points.len` long.
@@ -309,12 +310,7 @@ mod tests {
                         0,
                         Vec2::new(run.u[k], run.v[k]),
                     );
-                    let lane = |v: Vec3| {
-                        let mut lanes = Lanes::default();
-                        lanes.set(0, v);
-                        lanes
-                    };
-                    let (view, light) = (lane(view.get(k)), lane(light.get(k)));
+                    let (view, light) = (Lanes::first(view.get(k)), Lanes::first(light.get(k)));
                     let mut alone = [Vec3::NAN];
                     let normal = tone
                         .shade_run(&one, &view, &light, &mut Lanes::default(), &mut alone)
