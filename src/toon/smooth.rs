@@ -15,6 +15,16 @@ const LAMBDA: f64 = 0.5;
 /// Normal grid samples per knot span, in each direction.
 const SAMPLES_PER_SPAN: usize = 16;
 
+/// Normal grid intervals per direction at the most: a patch of more than 64 spans in a
+/// direction is sampled more coarsely than [`SAMPLES_PER_SPAN`], and its grid stays within
+/// 1025 × 1025 normals.
+const MAX_INTERVALS: usize = 1024;
+
+/// The intervals of a patch's normal grid along a direction of `spans` knot spans.
+fn intervals(spans: usize) -> usize {
+    (SAMPLES_PER_SPAN * spans.max(1)).min(MAX_INTERVALS)
+}
+
 /// Per patch, the normals of the smoothed patch on a uniform grid over its domain.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SmoothedNormals {
@@ -112,7 +122,7 @@ impl SmoothedNormals {
 impl NormalGrid {
     fn new(surface: &NurbsSurface) -> Self {
         let domain = surface.domain();
-        let samples = |spans: usize| SAMPLES_PER_SPAN * spans.max(1) + 1;
+        let samples = |spans: usize| intervals(spans) + 1;
         let (samples_u, samples_v) = (
             samples(spans(surface.knots_u().knots())),
             samples(spans(surface.knots_v().knots())),
@@ -229,7 +239,7 @@ mod tests {
             patches: vec![NormalGrid::new(&sphere)],
         };
         let domain = sphere.domain();
-        let last = |knots: &[f64]| (SAMPLES_PER_SPAN * spans(knots)) as u32;
+        let last = |knots: &[f64]| intervals(spans(knots)) as u32;
         let (last_u, last_v) = (
             last(sphere.knots_u().knots()),
             last(sphere.knots_v().knots()),
