@@ -66,23 +66,26 @@ impl CelRamp {
     /// The colour at `n_dot_l`.
     #[must_use]
     pub fn shade(&self, n_dot_l: f32) -> Vec3 {
-        self.bands
-            .iter()
-            .take_while(|(threshold, _)| n_dot_l >= *threshold)
-            .last()
-            .map_or(self.base, |(_, colour)| *colour)
+        match self.band(n_dot_l) {
+            0 => self.base,
+            k => self.bands[k - 1].1,
+        }
     }
 
     /// The colour of every `n·l` in `[low, high]` when they all fall in one band, else `None`.
     #[must_use]
     pub fn uniform_between(&self, low: f32, high: f32) -> Option<Vec3> {
-        let band = |n_dot_l: f32| {
-            self.bands
-                .iter()
-                .take_while(|(threshold, _)| n_dot_l >= *threshold)
-                .count()
-        };
-        (low <= high && band(low) == band(high)).then(|| self.shade(low))
+        (low <= high && self.band(low) == self.band(high)).then(|| self.shade(low))
+    }
+
+    /// How many thresholds `n_dot_l` reaches: 0 below the first (the base colour) or for NaN,
+    /// k in the k-th band.
+    #[inline]
+    fn band(&self, n_dot_l: f32) -> usize {
+        self.bands
+            .iter()
+            .take_while(|(threshold, _)| n_dot_l >= *threshold)
+            .count()
     }
 }
 
