@@ -54,10 +54,22 @@ impl Grid {
         }
     }
 
+    /// The number of rows.
+    #[must_use]
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// The number of columns.
+    #[must_use]
+    pub fn columns(&self) -> usize {
+        self.stride - 1
+    }
+
     /// The sample in `row` and `column`, each clamped to the grid.
     #[must_use]
     pub fn sample(&self, row: usize, column: usize) -> Vec3 {
-        let (row, column) = (row.min(self.rows - 1), column.min(self.stride - 2));
+        let (row, column) = (row.min(self.rows - 1), column.min(self.columns() - 1));
         self.values[row * self.stride + column].into()
     }
 

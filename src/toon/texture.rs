@@ -13,8 +13,6 @@ use super::grid::Grid;
 /// `(j + ½) / height` of the axes; lookups are bilinear between them and clamp to the edge.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ToonTexture {
-    width: usize,
-    height: usize,
     /// Rows from the top (D = 1), each from `n·l = −1`.
     texels: Grid,
     /// The lookup's affine maps to grid coordinates: column `n·l · width/2 + (width − 1)/2`,
@@ -57,8 +55,6 @@ impl ToonTexture {
             ));
         }
         Ok(Self {
-            width,
-            height,
             texels: Grid::new(&texels, width),
             half_width: 0.5 * width as f32,
             column_offset: 0.5 * (width as f32 - 1.0),
@@ -70,13 +66,13 @@ impl ToonTexture {
     /// Width in texels (the tone axis).
     #[must_use]
     pub fn width(&self) -> usize {
-        self.width
+        self.texels.columns()
     }
 
     /// Height in texels (the detail axis).
     #[must_use]
     pub fn height(&self) -> usize {
-        self.height
+        self.texels.rows()
     }
 
     /// The texel in column `x` (from `n·l = −1`) of row `y` (from D = 1), clamped to the edge.
