@@ -33,6 +33,7 @@ use teapot::{camera, HEIGHT, WIDTH};
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use std::hint::black_box;
+use std::sync::Arc;
 
 use glam::{Vec3, Vec4};
 use glint::formats::load_patches;
@@ -101,7 +102,7 @@ fn scene<'a>(
 const ROUNDS: usize = 100;
 
 fn main() {
-    let library = load_patches(std::path::Path::new("patches/teapot.bpt")).unwrap();
+    let library = Arc::new(load_patches(std::path::Path::new("patches/teapot.bpt")).unwrap());
     let two_tone = CelRamp::two_tone(Vec3::new(0.2, 0.25, 0.5), Vec3::new(0.4, 0.55, 0.9), 0.1);
     let full = scene(&library, &two_tone, true, true);
     let plain = scene(&library, &two_tone, false, true);
@@ -122,7 +123,7 @@ fn main() {
     let one_thread = settings(FrameMode::Exact, 1);
 
     // The baseline: the same mesh rasterized and filled with one flat colour.
-    let mut tessellator = Tessellator::new(&library);
+    let mut tessellator = Tessellator::new(Arc::clone(&library));
     let view_projection = camera().view_projection(WIDTH as f32 / HEIGHT as f32);
     let (mesh, _) = tessellator.mesh(DENSITY, view_projection, WIDTH, HEIGHT);
     let (mut rasterizer, mut visibility) = (Rasterizer::new(), VisibilityBuffer::default());
@@ -149,12 +150,12 @@ fn main() {
     };
 
     let mut variants = [
-        Variant::render("full", &full, &exact),
-        Variant::render("no_highlights", &plain, &exact),
-        Variant::render("interpolated", &full, &interpolated),
-        Variant::render("one_thread", &full, &one_thread),
-        Variant::render("effect_free", &effect_free, &interpolated),
-        Variant::render("flat_colours", &flat_colours, &interpolated),
+        Variant::render("full", &library, &full, &exact),
+        Variant::render("no_highlights", &library, &plain, &exact),
+        Variant::render("interpolated", &library, &full, &interpolated),
+        Variant::render("one_thread", &library, &full, &one_thread),
+        Variant::render("effect_free", &library, &effect_free, &interpolated),
+        Variant::render("flat_colours", &library, &flat_colours, &interpolated),
         Variant::new("flat_raster", flat_raster),
     ];
     let measured = frames::measure(&mut variants, ROUNDS);

@@ -71,7 +71,7 @@ fn xtoon(
 }
 
 fn main() {
-    let library = load_patches(Path::new("patches/teapot.bpt")).unwrap();
+    let library = Arc::new(load_patches(Path::new("patches/teapot.bpt")).unwrap());
     let depth = DetailMap::Depth { z_min: 9.0, r: 1.3 };
     let shape = |abstraction| {
         Some(ShapeDetail {
@@ -132,7 +132,7 @@ fn main() {
         .collect();
     let mut renders: Vec<Variant> = scenes
         .iter()
-        .map(|(name, scene)| Variant::render(name, scene, &settings))
+        .map(|(name, scene)| Variant::render(name, &library, scene, &settings))
         .collect();
     let measured = frames::measure(&mut renders, ROUNDS);
     measured.print_frames("teapot, 1280×720: frame time by stage");

@@ -7,8 +7,8 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use glint::formats::load_patches;
+use glint::formats::{write_frame_exr, write_pngs};
 use glint::highlight::{Expr, Layer, Light, Op, SquareStyle};
-use glint::render::output::{write_frame_exr, write_pngs};
 use glint::render::{
     Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Scene, Settings, Tone,
 };
@@ -25,7 +25,7 @@ fn main() -> anyhow::Result<()> {
             .unwrap_or_else(|| "out/teapot".into()),
     );
     std::fs::create_dir_all(&out)?;
-    let library = load_patches(std::path::Path::new("patches/teapot.bpt"))?;
+    let library = std::sync::Arc::new(load_patches(std::path::Path::new("patches/teapot.bpt"))?);
 
     // A squared highlight stretched along the body, with a shifted copy cut out of it.
     let body = Expr::Subtract(
@@ -92,7 +92,7 @@ fn main() -> anyhow::Result<()> {
             ..Aovs::default()
         },
     };
-    let mut renderer = Renderer::new(&library);
+    let mut renderer = Renderer::new(std::sync::Arc::clone(&library));
     let frame = renderer.render(&scene, &Settings::final_quality(960, 640))?;
     for path in write_pngs(&frame, &out.join("teapot.png"))? {
         println!("wrote {}", path.display());

@@ -15,11 +15,11 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::{Vec3, Vec4};
+use glint::formats::image_encoding::colour_rgba8;
 use glint::formats::png::{write_png, PngLayout};
 use glint::formats::{load_patches, read_toon_texture};
 use glint::geom::PatchLibrary;
 use glint::highlight::Light;
-use glint::render::output::colour_rgba8;
 use glint::render::{
     Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Scene, Settings, Tone,
 };
@@ -30,7 +30,7 @@ const PANEL: (u32, u32) = (360, 270);
 /// A model and how to look at it.
 struct Model {
     name: &'static str,
-    library: PatchLibrary,
+    library: Arc<PatchLibrary>,
     target: Vec3,
     /// Unit direction from the target to the eye.
     toward_eye: Vec3,
@@ -94,7 +94,7 @@ fn render(model: &Model, texture: &Arc<ToonTexture>, panel: &Panel) -> anyhow::R
         aovs: Aovs::default(),
     };
     let settings = Settings::final_quality(PANEL.0, PANEL.1);
-    Ok(Renderer::new(&model.library)
+    Ok(Renderer::new(Arc::clone(&model.library))
         .render(&scene, &settings)?
         .colour)
 }
@@ -147,7 +147,7 @@ fn main() -> anyhow::Result<()> {
     let models = [
         Model {
             name: "teapot",
-            library: load_patches(Path::new("patches/teapot.bpt"))?,
+            library: Arc::new(load_patches(Path::new("patches/teapot.bpt"))?),
             target: Vec3::new(0.2, 0.0, 1.5),
             toward_eye: Vec3::new(5.5, -7.0, 4.5).normalize(),
             distances: [10.0, 20.0, 36.0],
@@ -156,7 +156,7 @@ fn main() -> anyhow::Result<()> {
         },
         Model {
             name: "torus",
-            library: load_patches(Path::new("patches/torus.ron"))?,
+            library: Arc::new(load_patches(Path::new("patches/torus.ron"))?),
             target: Vec3::ZERO,
             toward_eye: Vec3::new(0.3, -1.0, 0.8).normalize(),
             distances: [4.0, 8.0, 15.0],

@@ -2,19 +2,7 @@
 //! bad option, a bad model or an output directory that cannot be made, with one line naming
 //! the problem.
 
-use std::process::{Command, Output};
-
-fn glint(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_glint"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+use crate::common::{glint_with as glint, stderr};
 
 #[test]
 fn a_resolution_out_of_range_is_a_usage_error() {

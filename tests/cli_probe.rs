@@ -2,17 +2,10 @@
 //! kind of bad input.
 
 use std::path::Path;
-use std::process::{Command, Output};
+
+use crate::common::glint_with as glint;
 
 use serde_json::Value;
-
-fn glint(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_glint"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap()
-}
 
 fn vector(v: &Value) -> [f64; 3] {
     let a = v.as_array().unwrap();

@@ -5,9 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn glint() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_glint"))
-}
+use crate::common::glint;
 
 /// A small shot of the sphere with a keyed highlight, in a fresh folder.
 fn shot(size: (u32, u32), preset: &str) -> (tempfile::TempDir, PathBuf) {

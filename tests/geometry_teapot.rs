@@ -2,13 +2,9 @@
 //! normal at its collapsed edges, and agreement between neighbouring patches.
 
 use glam::DVec3;
-use glint::formats::load_patches;
-use glint::geom::{GridEvaluator, NurbsSurface, PatchLibrary};
+use glint::geom::{GridEvaluator, NurbsSurface};
 
-fn teapot() -> PatchLibrary {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/patches/teapot.bpt");
-    load_patches(std::path::Path::new(path)).unwrap()
-}
+use crate::common::teapot;
 
 /// The parameters of an edge of [0,1]²: 0 = (t, 0), 1 = (1, t), 2 = (t, 1), 3 = (0, t).
 fn edge_uv(edge: usize, t: f64) -> (f64, f64) {

@@ -1,6 +1,8 @@
 //! Every model shipped in `patches/` loads and evaluates, and the hand-made car panels keep the
 //! properties they are there to exercise.
 
+use std::sync::Arc;
+
 use std::path::{Path, PathBuf};
 
 use glint::formats::load_patches;
@@ -141,7 +143,7 @@ fn every_shipped_model_renders() {
         .prepare()
         .unwrap();
     for file in patch_files() {
-        let library = load_patches(&file).unwrap();
+        let library = Arc::new(load_patches(&file).unwrap());
         let scene = Scene {
             library: &library,
             looks: library
@@ -166,7 +168,7 @@ fn every_shipped_model_renders() {
                 ..Aovs::default()
             },
         };
-        let frame = Renderer::new(&library)
+        let frame = Renderer::new(Arc::clone(&library))
             .render(&scene, &Settings::preview(96, 96))
             .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
         let covered = frame.colour.iter().filter(|c| c.w > 0.0).count();

@@ -3,6 +3,8 @@
 //! ray-casting the analytic sphere and running the same operations on its analytic frame
 //! (`glint::accuracy::AnalyticSphere`, shared with `glint bench accuracy`).
 
+use std::sync::Arc;
+
 use glint::accuracy::sweep::Stack;
 use glint::accuracy::{metrics, AnalyticSphere};
 use glint::highlight::{Expr, Layer, Op, PreparedExpr};
@@ -25,7 +27,9 @@ fn rendered_matte(expr: &PreparedExpr, sphere: &AnalyticSphere, settings: &Setti
         ..Aovs::default()
     };
     let scene = sphere.scene(&library, expr, aovs);
-    let frame = Renderer::new(&library).render(&scene, settings).unwrap();
+    let frame = Renderer::new(Arc::clone(&library))
+        .render(&scene, settings)
+        .unwrap();
     frame.aovs.matte.unwrap()
 }
 

@@ -1,21 +1,19 @@
 //! The teapot through the whole renderer: no cracks from any side, finite G-buffer channels,
 //! stages that run only when used, and output independent of the thread count.
 
+use std::sync::Arc;
+
 use glam::Vec3;
-use glint::formats::load_patches;
+use glint::formats::image_encoding::colour_rgba8;
 use glint::geom::PatchLibrary;
 use glint::highlight::{Expr, Layer, Light, Op};
-use glint::render::output::colour_rgba8;
 use glint::render::tessellate::Density;
 use glint::render::{
-    Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Scene, Settings, Tone,
+    Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Scene, Settings, Stage, Tone,
 };
 use glint::toon::CelRamp;
 
-fn teapot() -> PatchLibrary {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/patches/teapot.bpt");
-    load_patches(std::path::Path::new(path)).unwrap()
-}
+use crate::common::teapot;
 
 fn camera_at(azimuth_degrees: f32, elevation_degrees: f32) -> Camera {
     let (a, e) = (azimuth_degrees.to_radians(), elevation_degrees.to_radians());
@@ -81,7 +79,7 @@ fn settings(size: u32) -> Settings {
 #[test]
 fn no_cracks_and_finite_channels_from_twelve_angles() {
     let library = teapot();
-    let mut renderer = Renderer::new(&library);
+    let mut renderer = Renderer::new(Arc::clone(&library));
     let all = Aovs {
         matte: true,
         patch_id: true,
@@ -144,7 +142,7 @@ fn no_cracks_and_finite_channels_from_twelve_angles() {
 #[test]
 fn unused_stages_do_no_work_and_used_ones_do() {
     let library = teapot();
-    let mut renderer = Renderer::new(&library);
+    let mut renderer = Renderer::new(Arc::clone(&library));
     let camera = camera_at(20.0, 25.0);
     let plain = renderer
         .render(
@@ -153,16 +151,24 @@ fn unused_stages_do_no_work_and_used_ones_do() {
         )
         .unwrap()
         .stats;
-    assert!(plain.shade.pixels > 0 && plain.raster.pixels > 0);
-    assert_eq!(plain.shade.pixels, plain.raster.pixels);
-    assert_eq!(
-        plain.gbuffer.pixels, 0,
+    assert!(plain[Stage::Shade].pixels > 0 && plain[Stage::Rasterize].pixels > 0);
+    assert_eq!(plain[Stage::Shade].pixels, plain[Stage::Rasterize].pixels);
+    assert!(
+        !plain.ran(Stage::GBuffer),
         "the tone alone is shaded straight from the visibility buffer"
     );
+    assert_eq!(plain[Stage::GBuffer].pixels, 0);
     assert_eq!(plain.highlight_pixels, 0);
-    assert_eq!(plain.outline.pixels, 0);
-    assert_eq!(plain.aov.pixels, 0);
-    assert_eq!(plain.resolve.pixels, 0);
+    for stage in [
+        Stage::Detail,
+        Stage::EdgeWidths,
+        Stage::Outline,
+        Stage::Aov,
+        Stage::Resolve,
+    ] {
+        assert!(!plain.ran(stage), "{stage}");
+        assert_eq!(plain[stage].pixels, 0, "{stage}");
+    }
     assert_eq!(plain.exact_frames, 0, "preview interpolates frames");
 
     let aovs = Aovs {
@@ -173,10 +179,10 @@ fn unused_stages_do_no_work_and_used_ones_do() {
         .render(&scene(&library, camera, true, true, aovs), &settings(128))
         .unwrap()
         .stats;
-    assert_eq!(full.gbuffer.pixels, full.raster.pixels);
-    assert_eq!(full.highlight_pixels, full.shade.pixels);
-    assert!(full.outline.pixels > 0);
-    assert_eq!(full.aov.pixels, 128 * 128);
+    assert_eq!(full[Stage::GBuffer].pixels, full[Stage::Rasterize].pixels);
+    assert_eq!(full.highlight_pixels, full[Stage::Shade].pixels);
+    assert!(full[Stage::Outline].pixels > 0);
+    assert_eq!(full[Stage::Aov].pixels, 128 * 128);
     assert!(
         !full.tessellation_rebuilt,
         "same camera and density: the cached mesh serves"
@@ -186,7 +192,7 @@ fn unused_stages_do_no_work_and_used_ones_do() {
 #[test]
 fn shading_straight_from_the_visibility_buffer_gives_the_g_buffer_image() {
     let library = teapot();
-    let mut renderer = Renderer::new(&library);
+    let mut renderer = Renderer::new(Arc::clone(&library));
     for (k, camera) in [camera_at(20.0, 25.0), camera_at(200.0, -30.0)]
         .into_iter()
         .enumerate()
@@ -200,9 +206,13 @@ fn shading_straight_from_the_visibility_buffer_gives_the_g_buffer_image() {
         let through_texels = scene(&library, camera, false, false, depth);
         let a = renderer.render(&direct, &settings(160)).unwrap();
         let b = renderer.render(&through_texels, &settings(160)).unwrap();
-        assert_eq!(a.stats.gbuffer.pixels, 0, "view {k}");
-        assert!(b.stats.gbuffer.pixels > 2000, "view {k}");
-        assert_eq!(a.stats.shade.pixels, b.stats.shade.pixels, "view {k}");
+        assert!(!a.stats.ran(Stage::GBuffer), "view {k}");
+        assert!(b.stats[Stage::GBuffer].pixels > 2000, "view {k}");
+        assert_eq!(
+            a.stats[Stage::Shade].pixels,
+            b.stats[Stage::Shade].pixels,
+            "view {k}"
+        );
         assert!(a.colour == b.colour, "view {k}: the two paths shade alike");
     }
 }
@@ -220,7 +230,7 @@ fn thread_count_does_not_change_the_output_bytes() {
                 ..Settings::final_quality(160, 120)
             };
             colour_rgba8(
-                &Renderer::new(&library)
+                &Renderer::new(Arc::clone(&library))
                     .render(&scene, &settings)
                     .unwrap()
                     .colour,

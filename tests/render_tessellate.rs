@@ -3,14 +3,10 @@
 use std::collections::HashMap;
 
 use glam::{DVec3, Mat4, Vec3};
-use glint::formats::load_patches;
 use glint::geom::{shapes, NamedPatch, PatchLibrary};
 use glint::render::tessellate::{Density, Tessellator};
 
-fn teapot() -> PatchLibrary {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/patches/teapot.bpt");
-    load_patches(std::path::Path::new(path)).unwrap()
-}
+use crate::common::teapot;
 
 fn view() -> Mat4 {
     Mat4::perspective_rh(0.6, 1.5, 0.1, 100.0)
@@ -25,7 +21,7 @@ fn sphere_vertices_lie_on_the_sphere_with_its_frames() {
             surface: shapes::sphere(DVec3::ZERO, 2.0).unwrap(),
         }],
     };
-    let mut t = Tessellator::new(&library);
+    let mut t = Tessellator::new(library.clone());
     let (mesh, _) = t.mesh(Density::PerSpan { u: 4, v: 6 }, view(), 640, 480);
     // 4 spans in u, 2 in v: (16 + 1) × (12 + 1) vertices, 16 × 12 × 2 triangles.
     assert_eq!(mesh.positions.len(), 17 * 13);
@@ -85,7 +81,7 @@ fn open_patch_edges(library: &PatchLibrary) -> Vec<(usize, usize)> {
 #[test]
 fn teapot_seams_are_closed_edge_for_edge() {
     let library = teapot();
-    let mut t = Tessellator::new(&library);
+    let mut t = Tessellator::new(library.clone());
     // Adaptive density wants different counts on different patches; shared edges must still be
     // cut alike.
     let density = Density::ScreenTolerance { pixels: 0.25 };
@@ -124,7 +120,7 @@ fn teapot_seams_are_closed_edge_for_edge() {
 #[test]
 fn the_mesh_is_cached_while_its_segment_counts_stay() {
     let library = teapot();
-    let mut t = Tessellator::new(&library);
+    let mut t = Tessellator::new(library.clone());
     let density = Density::ScreenTolerance { pixels: 0.5 };
     assert!(t.mesh(density, view(), 640, 480).1);
     assert!(!t.mesh(density, view(), 640, 480).1);

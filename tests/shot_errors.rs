@@ -2,7 +2,8 @@
 //! mistake is written and a sentence a person can act on; exit code 2; nothing written.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+
+use crate::common::glint;
 
 const TEMPLATE: &str = r#"Shot(
     resolution: (64, 48),
@@ -249,10 +250,6 @@ const CASES: &[Case] = &[
         says: &["image size 0×48"],
     },
 ];
-
-fn glint() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_glint"))
-}
 
 /// The 1-based line and column of the first `needle` in `text`.
 fn location(text: &str, needle: &str) -> (usize, usize) {

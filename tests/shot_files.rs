@@ -1,7 +1,9 @@
 //! Every shot in `shots/` loads, and renders at a small size.
 
+use std::sync::Arc;
+
 use glint::render::Renderer;
-use glint::scene::load_shot;
+use glint::shot::load_shot;
 
 #[test]
 fn every_shot_loads_and_renders_small() {
@@ -16,7 +18,7 @@ fn every_shot_loads_and_renders_small() {
         let mut settings = shot.settings;
         settings.width = 64;
         settings.height = 48;
-        let mut renderer = Renderer::new(&shot.library);
+        let mut renderer = Renderer::new(Arc::clone(&shot.library));
         for frame in [
             shot.frames.0,
             (shot.frames.0 + shot.frames.1) / 2,
@@ -37,7 +39,7 @@ fn every_shot_loads_and_renders_small() {
                 .unwrap()
                 .to_string_lossy()
                 .starts_with("xtoon_");
-            assert_eq!(image.stats.detail.pixels > 0, xtoon, "{}", path.display());
+            assert_eq!(image.stats.xtoon_pixels > 0, xtoon, "{}", path.display());
         }
     }
     assert!(count >= 4, "only {count} shots");
@@ -80,7 +82,7 @@ fn the_documented_example_and_look_library_load_and_render() {
     let mut settings = shot.settings_with(None, Some((64, 36)));
     settings.antialias = glint::render::Antialias::None;
     let scene = shot.at(24.5).scene(&shot).unwrap();
-    let image = Renderer::new(&shot.library)
+    let image = Renderer::new(Arc::clone(&shot.library))
         .render(&scene, &settings)
         .unwrap();
     assert!(image.aovs.matte.unwrap().iter().any(|&m| m > 0.5));

@@ -2,11 +2,13 @@
 //! bounded amount from one frame to the next — no pops — while a key that steps on purpose is
 //! caught by the same measure.
 
+use std::sync::Arc;
+
 use std::path::Path;
 
 use glam::Vec2;
 use glint::render::{Antialias, FrameMode, Renderer};
-use glint::scene::{load_shot, Aov, Shot};
+use glint::shot::{load_shot, Aov, Shot};
 
 const SIZE: u32 = 96;
 
@@ -16,7 +18,7 @@ fn matte_track(shot: &mut Shot) -> Vec<(f32, Vec2)> {
     let mut settings = shot.settings_with(None, Some((SIZE, SIZE)));
     settings.frames = FrameMode::Exact;
     settings.antialias = Antialias::None;
-    let mut renderer = Renderer::new(&shot.library);
+    let mut renderer = Renderer::new(Arc::clone(&shot.library));
     (shot.frames.0..=shot.frames.1)
         .map(|frame| {
             let scene = shot.at(frame as f64).scene(shot).unwrap();

@@ -5,23 +5,19 @@
 use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
-use glint::formats::load_patches;
+use glint::formats::image_encoding::colour_rgba8;
 use glint::geom::{shapes, NamedPatch, PatchLibrary};
 use glint::highlight::{Expr, Layer, Light, Op, PreparedExpr};
-use glint::render::output::colour_rgba8;
 use glint::render::tessellate::Density;
 use glint::render::{
     Aovs, Camera, FrameMode, PatchLook, Projection, RenderedFrame, Renderer, Scene, Settings,
-    StageStats, Tone,
+    Stage, StageStats, Tone,
 };
 use glint::toon::{
     Abstraction, CelRamp, DetailMap, HighlightFrame, ShapeDetail, ToonTexture, XToon,
 };
 
-fn teapot() -> PatchLibrary {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/patches/teapot.bpt");
-    load_patches(std::path::Path::new(path)).unwrap()
-}
+use crate::common::teapot;
 
 /// A texture whose colour is its own coordinates: red the tone coordinate `(n·l + 1)/2`, green
 /// the detail D, at every texel centre. Bilinear lookups between the centres return the
@@ -66,7 +62,7 @@ fn light() -> Light {
     }
 }
 
-fn render(library: &PatchLibrary, looks: Vec<PatchLook>, camera: Camera) -> RenderedFrame {
+fn render(library: &Arc<PatchLibrary>, looks: Vec<PatchLook>, camera: Camera) -> RenderedFrame {
     let scene = Scene {
         library,
         looks,
@@ -84,7 +80,9 @@ fn render(library: &PatchLibrary, looks: Vec<PatchLook>, camera: Camera) -> Rend
         frames: FrameMode::Exact,
         ..Settings::preview(200, 150)
     };
-    let frame = Renderer::new(library).render(&scene, &settings).unwrap();
+    let frame = Renderer::new(Arc::clone(library))
+        .render(&scene, &settings)
+        .unwrap();
     assert!(
         frame.colour.iter().all(|c| c.is_finite()),
         "a NaN or infinite pixel"
@@ -125,12 +123,12 @@ fn cel_looks(library: &PatchLibrary) -> Vec<PatchLook> {
 fn xtoon_on_the_exact_sphere_matches_the_analytic_sphere() {
     const SIZE: u32 = 96;
     const TEXELS: usize = 32;
-    let library = PatchLibrary {
+    let library = Arc::new(PatchLibrary {
         patches: vec![NamedPatch {
             name: "sphere".into(),
             surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
         }],
-    };
+    });
     let (z_min, r) = (4.1_f32, 1.2_f32);
     let tone = XToon {
         detail: DetailMap::Depth { z_min, r },
@@ -167,7 +165,9 @@ fn xtoon_on_the_exact_sphere_matches_the_analytic_sphere() {
         frames: FrameMode::Refined,
         ..Settings::preview(SIZE, SIZE)
     };
-    let frame = Renderer::new(&library).render(&scene, &settings).unwrap();
+    let frame = Renderer::new(Arc::clone(&library))
+        .render(&scene, &settings)
+        .unwrap();
     let edge = 0.5 / TEXELS as f32;
     let mut checked = 0;
     for y in 0..SIZE {
@@ -194,15 +194,17 @@ fn xtoon_on_the_exact_sphere_matches_the_analytic_sphere() {
         }
     }
     assert!(checked > 4000, "{checked}");
-    assert_eq!(frame.stats.detail.pixels, frame.stats.shade.pixels);
+    assert_eq!(frame.stats.xtoon_pixels, frame.stats[Stage::Shade].pixels);
 }
 
 #[test]
 fn a_scene_without_xtoon_does_no_detail_work() {
     let library = teapot();
     let frame = render(&library, cel_looks(&library), teapot_camera());
-    assert_eq!(frame.stats.detail, StageStats::default());
-    assert!(frame.stats.shade.pixels > 0);
+    assert_eq!(frame.stats.xtoon_pixels, 0);
+    assert!(!frame.stats.ran(Stage::Detail));
+    assert_eq!(frame.stats[Stage::Detail], StageStats::default());
+    assert!(frame.stats[Stage::Shade].pixels > 0);
 }
 
 #[test]
@@ -216,10 +218,11 @@ fn the_detail_stage_counts_the_pixels_of_xtoon_patches() {
     let ids = frame.aovs.patch_id.as_ref().unwrap();
     let on_body = ids.iter().filter(|&&p| (4..12).contains(&p)).count() as u64;
     assert!(on_body > 1000);
-    assert_eq!(frame.stats.detail.pixels, on_body);
-    // No highlight uses an abstracted frame: the tone is computed within the shade pass, with
-    // no pass of its own.
-    assert_eq!(frame.stats.detail.seconds, 0.0);
+    assert_eq!(frame.stats.xtoon_pixels, on_body);
+    // No highlight uses an abstracted frame: the tone is computed within the shade stage, with
+    // no stage of its own.
+    assert!(!frame.stats.ran(Stage::Detail));
+    assert_eq!(frame.stats[Stage::Detail].pixels, 0);
 }
 
 #[test]
@@ -297,12 +300,13 @@ fn shape_detail_moves_no_silhouette_and_the_highlight_frame_is_a_choice() {
     assert!(moved > 50, "{moved}");
     // The abstracted highlight frames need the tone to run ahead of the shade pass; outside
     // the highlights it gives the tone the shade pass computes as it goes.
-    assert!(abstracted.stats.detail.seconds > 0.0);
-    assert_eq!(true_frame.stats.detail.seconds, 0.0);
+    assert!(abstracted.stats.ran(Stage::Detail));
+    assert!(!true_frame.stats.ran(Stage::Detail));
     assert_eq!(
-        abstracted.stats.detail.pixels,
-        true_frame.stats.detail.pixels
+        abstracted.stats[Stage::Detail].pixels,
+        abstracted.stats.xtoon_pixels
     );
+    assert_eq!(abstracted.stats.xtoon_pixels, true_frame.stats.xtoon_pixels);
     let mattes = abstracted.aovs.matte.as_ref().unwrap().iter();
     let unlit = mattes
         .zip(true_frame.aovs.matte.as_ref().unwrap())

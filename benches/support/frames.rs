@@ -7,9 +7,11 @@
 //! `numerator frame / denominator frame` from the same round, given with its quartiles. A frame
 //! is timed from the call to the drop of what it returned, as a frame loop pays for it.
 
+use std::sync::Arc;
 use std::time::Instant;
 
-use glint::render::{RenderStats, Renderer, Scene, Settings};
+use glint::geom::PatchLibrary;
+use glint::render::{RenderStats, Renderer, Scene, Settings, Stage};
 
 /// One thing to render, frame after frame.
 pub struct Variant<'a> {
@@ -27,9 +29,14 @@ impl<'a> Variant<'a> {
         }
     }
 
-    /// `scene` rendered with `settings` by a renderer of its own.
-    pub fn render(name: &'static str, scene: &'a Scene<'a>, settings: &'a Settings) -> Self {
-        let mut renderer = Renderer::new(scene.library);
+    /// `scene`, which shows `library`, rendered with `settings` by a renderer of its own.
+    pub fn render(
+        name: &'static str,
+        library: &Arc<PatchLibrary>,
+        scene: &'a Scene<'a>,
+        settings: &'a Settings,
+    ) -> Self {
+        let mut renderer = Renderer::new(Arc::clone(library));
         Self::new(name, move || {
             Some(renderer.render(scene, settings).unwrap().stats)
         })
@@ -77,21 +84,6 @@ fn quartiles(mut values: Vec<f64>) -> [f64; 3] {
     [at(0.25), at(0.5), at(0.75)]
 }
 
-/// Seconds of one stage in a frame's statistics.
-type Stage = fn(&RenderStats) -> f64;
-
-/// The stages of a frame, in the order they run.
-const STAGES: [(&str, Stage); 8] = [
-    ("tessellation", |s| s.tessellation.seconds),
-    ("raster", |s| s.raster.seconds),
-    ("g-buffer", |s| s.gbuffer.seconds),
-    ("detail", |s| s.detail.seconds),
-    ("shade", |s| s.shade.seconds),
-    ("outline", |s| s.outline.seconds),
-    ("aov", |s| s.aov.seconds),
-    ("resolve", |s| s.resolve.seconds),
-];
-
 impl Measured {
     fn index(&self, name: &str) -> usize {
         self.names
@@ -101,7 +93,7 @@ impl Measured {
     }
 
     /// Prints each variant's median frame time, and for the renderer's frames the median of
-    /// each stage (the detail pass is part of the shade stage) and the samples covered.
+    /// each stage and the samples covered.
     pub fn print_frames(&self, title: &str) {
         let rounds = self.seconds[0].len();
         println!("\n{title} (median of {rounds} rounds, ms)");
@@ -110,10 +102,11 @@ impl Measured {
             print!(" {name:>15}");
         }
         println!();
-        for (stage_name, stage) in STAGES {
-            print!("{stage_name:<14}");
+        for stage in Stage::ALL {
+            print!("{:<14}", stage.name());
             for frames in &self.stats {
-                match frames.iter().map(|s| s.as_ref().map(stage)).collect() {
+                let seconds = |s: &RenderStats| s[stage].seconds;
+                match frames.iter().map(|s| s.as_ref().map(seconds)).collect() {
                     Some(seconds) => print!(" {:>15.3}", quartiles(seconds)[1] * 1e3),
                     None => print!(" {:>15}", "-"),
                 }
@@ -128,7 +121,7 @@ impl Measured {
         print!("{:<14}", "covered");
         for frames in &self.stats {
             match &frames[0] {
-                Some(s) => print!(" {:>15}", s.raster.pixels),
+                Some(s) => print!(" {:>15}", s[Stage::Rasterize].pixels),
                 None => print!(" {:>15}", "-"),
             }
         }

@@ -1,13 +1,15 @@
 //! Geometry alone: how far the tessellated unit sphere is from the analytic one at each density,
 //! what the tessellation costs, and what evaluating exact frames per pixel costs.
 
+use std::sync::Arc;
+
 use std::hint::black_box;
 use std::time::Instant;
 
 use glam::{Mat4, Vec3};
 
 use crate::render::tessellate::{Density, Tessellator};
-use crate::render::{Aovs, FrameMode, Projection, RenderError, Renderer, Settings};
+use crate::render::{Aovs, FrameMode, Projection, RenderError, Renderer, Settings, Stage};
 
 use super::reference::AnalyticSphere;
 use super::sweep::Stack;
@@ -44,13 +46,13 @@ pub fn mesh_errors(segments: &[u32], repeats: usize) -> Vec<MeshError> {
             let density = Density::PerSpan { u: n, v: n };
             let mut times: Vec<f64> = (0..repeats.max(1))
                 .map(|_| {
-                    let mut tessellator = Tessellator::new(&library);
+                    let mut tessellator = Tessellator::new(Arc::clone(&library));
                     let start = Instant::now();
                     black_box(tessellator.mesh(density, Mat4::IDENTITY, 1, 1));
                     start.elapsed().as_secs_f64()
                 })
                 .collect();
-            let mut tessellator = Tessellator::new(&library);
+            let mut tessellator = Tessellator::new(Arc::clone(&library));
             let (mesh, _) = tessellator.mesh(density, Mat4::IDENTITY, 1, 1);
             let (mut position, mut normal) = (0.0f64, 0.0f64);
             let surface = &library.patches[0].surface;
@@ -109,7 +111,7 @@ pub fn frame_costs(
     let library = AnalyticSphere::library();
     let highlight = Stack::Identity.expression();
     let scene = sphere.scene(&library, &highlight, Aovs::default());
-    let mut renderer = Renderer::new(&library);
+    let mut renderer = Renderer::new(Arc::clone(&library));
     [
         FrameMode::Interpolated,
         FrameMode::Exact,
@@ -127,7 +129,8 @@ pub fn frame_costs(
         let (mut gbuffer, mut total) = (Vec::new(), Vec::new());
         for _ in 0..repeats.max(1) {
             let stats = renderer.render(&scene, &settings)?.stats;
-            gbuffer.push(stats.gbuffer.seconds / stats.gbuffer.pixels.max(1) as f64);
+            gbuffer
+                .push(stats[Stage::GBuffer].seconds / stats[Stage::GBuffer].pixels.max(1) as f64);
             total.push(stats.total_seconds);
         }
         Ok(FrameCost {

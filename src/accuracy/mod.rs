@@ -1,4 +1,4 @@
-//! The accuracy ladder measured (DESIGN §7): each rung — tessellation density, interpolated,
+//! The accuracy ladder measured (docs/accuracy.md): each rung — tessellation density, interpolated,
 //! exact or refined frames, edge anti-aliasing — rendered on the exact NURBS sphere and compared
 //! with the analytic sphere ray-cast per pixel, with its time per frame; the geometry's own
 //! error and cost; and how frame time scales with resolution, patches and threads.

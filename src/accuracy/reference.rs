@@ -2,6 +2,8 @@
 //! the highlight operations run on its analytic frame (east, north, outward). The NURBS sphere
 //! renders of the same view are measured against it.
 
+use std::sync::Arc;
+
 use glam::{DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
@@ -49,14 +51,14 @@ impl AnalyticSphere {
     }
 
     /// The exact NURBS unit sphere, one patch named `sphere`.
-    pub fn library() -> PatchLibrary {
-        PatchLibrary {
+    pub fn library() -> Arc<PatchLibrary> {
+        Arc::new(PatchLibrary {
             patches: vec![NamedPatch {
                 name: "sphere".into(),
                 surface: shapes::sphere(DVec3::ZERO, 1.0)
                     .expect("the unit sphere has a positive radius"),
             }],
-        }
+        })
     }
 
     /// The scene rendering `library` (from [`Self::library`]) with `highlight` in this view: a

@@ -1,6 +1,8 @@
 //! Scaling: frame time against resolution, against the number of patches (copies of a model,
 //! such as the teapot) and against the number of threads, with the fitted growth.
 
+use std::sync::Arc;
+
 use glam::{DVec3, Vec3};
 
 use crate::geom::{NamedPatch, PatchLibrary};
@@ -125,12 +127,12 @@ fn scene(library: &PatchLibrary) -> Scene<'_> {
 
 /// The median time of `repeats` frames after one untimed frame, and the triangle count.
 fn time_frames(
-    library: &PatchLibrary,
+    library: &Arc<PatchLibrary>,
     settings: &Settings,
     repeats: usize,
 ) -> Result<(f64, usize), RenderError> {
     let scene = scene(library);
-    let mut renderer = Renderer::new(library);
+    let mut renderer = Renderer::new(Arc::clone(library));
     let triangles = renderer.render(&scene, settings)?.stats.triangles;
     let mut times = Vec::with_capacity(repeats);
     for _ in 0..repeats.max(1) {
@@ -167,7 +169,7 @@ impl Scaling {
     /// and copies of it under `preview` with a fixed density; calls `done` after each point.
     pub fn run(
         &self,
-        model: &PatchLibrary,
+        model: &Arc<PatchLibrary>,
         mut done: impl FnMut(&ScalingPoint),
     ) -> Result<Vec<ScalingPoint>, RenderError> {
         type Preset = fn(u32, u32) -> Settings;
@@ -197,7 +199,7 @@ impl Scaling {
             }
         }
         for &count in &self.copies {
-            let library = copies(model, count, 7.0);
+            let library = Arc::new(copies(model, count, 7.0));
             let settings = Settings {
                 density: Density::PerSpan { u: 8, v: 8 },
                 threads: self.workers,

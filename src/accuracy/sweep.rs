@@ -2,6 +2,8 @@
 //! anti-aliasing) on the analytic sphere, for several highlight stacks and resolutions, with its
 //! error against the analytic reference and its time per frame.
 
+use std::sync::Arc;
+
 use std::fmt;
 
 use crate::highlight::{Expr, Layer, Op, PreparedExpr, SquareStyle};
@@ -346,7 +348,7 @@ impl Sweep {
             fov_y_degrees: 30.0,
         });
         let library = AnalyticSphere::library();
-        let mut renderer = Renderer::new(&library);
+        let mut renderer = Renderer::new(Arc::clone(&library));
         let mut measurements = Vec::with_capacity(self.len());
         for &size in &self.sizes {
             for &stack in &self.stacks {

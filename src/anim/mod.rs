@@ -1,5 +1,6 @@
 //! Animation tracks: a value that is either constant or keyed at frames, linear between keys and
-//! held before the first and after the last (DESIGN §6). Knows nothing of what it animates.
+//! held before the first and after the last (docs/shot-format.md). Knows nothing of what it
+//! animates.
 
 mod track;
 

@@ -34,9 +34,10 @@ enum Bench {
 /// frame mode (interpolated, exact, refined) and anti-aliasing (none, analytic, 2×2 to 4×4
 /// supersampling), plus the preview and final presets, renders the exact NURBS unit sphere with
 /// five highlight stacks (identity, translate+scale, split, square, a Boolean crescent) at each
-/// --resolution; then the presets run side by side at --target-resolution. Each render is compared with the analytic sphere ray-cast through 8×8 samples per
-/// pixel: 1 − IoU of the highlight matte, mean boundary displacement in pixels, and the largest
-/// normal error in degrees; its time is the median of --repeats frames.
+/// --resolution; then the presets run side by side at --target-resolution. Each render is compared
+/// with the analytic sphere ray-cast through 8×8 samples per pixel: 1 − IoU of the highlight matte,
+/// mean boundary displacement in pixels, and the largest normal error in degrees; its time is the
+/// median of --repeats frames.
 ///
 /// Then the geometry alone (tessellation density against position and normal error and
 /// tessellation time; the G-buffer cost of exact and refined frames) and the scaling of frame
@@ -102,7 +103,8 @@ fn bar(length: usize, what: &str) -> ProgressBar {
 }
 
 fn accuracy(args: &AccuracyArgs) -> Result<(), CliError> {
-    let model = load_patches(&args.teapot).map_err(|e| CliError::BadInput(e.into()))?;
+    let model =
+        std::sync::Arc::new(load_patches(&args.teapot).map_err(|e| CliError::BadInput(e.into()))?);
     // Before the long measurements: an output directory that cannot be made fails at once.
     fs::create_dir_all(&args.out)
         .map_err(|e| CliError::BadInput(anyhow!("cannot create {}: {e}", args.out.display())))?;

@@ -11,7 +11,7 @@ use serde::Serialize;
 use super::CliError;
 use crate::highlight::{Expr, Light};
 use crate::render::Projection;
-use crate::scene::{load_shot, MaterialState, Shot};
+use crate::shot::{load_shot, MaterialState, Shot};
 
 /// Print the value of every track of a shot at one frame.
 ///
@@ -49,7 +49,7 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
     let state = shot.at(frame);
     let patches: Vec<usize> = (0..shot.library.patches.len())
         .filter(|&i| {
-            patch.is_none_or(|p| crate::scene::matches_patch(p, &shot.library.patches[i].name))
+            patch.is_none_or(|p| crate::shot::matches_patch(p, &shot.library.patches[i].name))
         })
         .collect();
     if patches.is_empty() {

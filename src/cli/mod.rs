@@ -2,7 +2,6 @@
 //! usage, 1 a failure while working).
 
 mod bench;
-mod frames;
 mod inspect;
 mod probe;
 mod render;

@@ -2,19 +2,16 @@
 //! render farm task.
 
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::anyhow;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::frames::parse_frames;
 use super::CliError;
-use crate::formats::atomic::remove_stale_temporaries;
-use crate::render::output::{write_frame_exr, write_pngs};
-use crate::render::{RenderStats, Renderer, StageStats};
-use crate::scene::{load_shot, resolve_path, Aov, Preset, Shot};
+use crate::job::{parse_frames, JobError, Overrides, RenderJob};
+use crate::render::{RenderStats, Stage};
+use crate::shot::{Aov, Preset};
 
 /// Render the frames of a shot to PNG files.
 ///
@@ -104,66 +101,41 @@ fn parse_aovs(text: &str) -> Result<AovList, String> {
 }
 
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
-    let bad = |e: anyhow::Error| CliError::BadInput(e);
-    let mut shot = load_shot(&args.shot).map_err(|e| bad(e.into()))?;
-    let preset = args.preset.map(|p| match p {
-        PresetArg::Preview => Preset::Preview,
-        PresetArg::Final => Preset::Final,
-    });
-    let mut settings = shot.settings_with(preset, args.size);
-    if let Some(threads) = args.threads {
-        settings.threads = threads;
-    }
-    settings
-        .validate()
-        .map_err(|e| bad(anyhow!("{}: {e}", args.shot.display())))?;
-    if let Some(aovs) = &args.aov {
-        shot.aovs.clone_from(&aovs.0);
-    }
-    if let Some(out) = &args.out {
-        shot.output = resolve_path(args.shot.parent().unwrap_or(Path::new("")), out);
-    }
-    let frames = match &args.frames {
-        Some(frames) => frames.0.clone(),
-        None => (shot.frames.0..=shot.frames.1).collect(),
+    let overrides = Overrides {
+        frames: args.frames.as_ref().map(|f| f.0.clone()),
+        size: args.size,
+        preset: args.preset.map(|p| match p {
+            PresetArg::Preview => Preset::Preview,
+            PresetArg::Final => Preset::Final,
+        }),
+        aovs: args.aov.as_ref().map(|a| a.0.clone()),
+        threads: args.threads,
+        output: args.out.clone(),
     };
-    let (first, last) = shot.frames;
-    if let Some(outside) = frames.iter().find(|f| !(first..=last).contains(*f)) {
-        return Err(bad(anyhow!(
-            "frame {outside} is outside the shot's frame range {first}-{last} ({})",
-            args.shot.display()
-        )));
-    }
-    if frames.len() > 1 && shot.frame_path(frames[0]) == shot.frame_path(frames[1]) {
-        return Err(bad(anyhow!(
-            "the output pattern {} has no # for the frame number, so every frame would overwrite the same file",
-            shot.output.display()
-        )));
-    }
-    for frame in &frames {
-        check_writable(&shot.frame_path(*frame)).map_err(bad)?;
-    }
+    let failed = |e: JobError| {
+        if e.is_bad_input() {
+            CliError::BadInput(e.into())
+        } else {
+            CliError::Failed(e.into())
+        }
+    };
+    let mut job = RenderJob::load(&args.shot, &overrides).map_err(failed)?;
+    job.check_writable().map_err(failed)?;
 
+    let frames = job.frames().to_vec();
     let log = Log::new(args.quiet, frames.len());
-    let mut renderer = Renderer::new(&shot.library);
     let (mut written, mut skipped) = (0usize, 0usize);
     let started = Instant::now();
-    for &frame in &frames {
-        let path = shot.frame_path(frame);
+    for frame in frames {
+        let path = job.frame_path(frame);
         if args.skip_existing && path.exists() {
             skipped += 1;
             log.frame(format!("frame {frame}: {} exists, skipped", path.display()));
             continue;
         }
         let frame_started = Instant::now();
-        let scene = shot
-            .at(frame as f64)
-            .scene(&shot)
-            .map_err(|e| CliError::Failed(e.into()))?;
-        let image = renderer
-            .render(&scene, &settings)
-            .map_err(|e| CliError::Failed(anyhow!("frame {frame}: {e}")))?;
-        write_frame(&shot, &image, &path).map_err(CliError::Failed)?;
+        let image = job.render_frame(frame as f64).map_err(failed)?;
+        job.write_frame(frame, &image).map_err(failed)?;
         written += 1;
         let seconds = frame_started.elapsed().as_secs_f64();
         log.frame(format!(
@@ -190,57 +162,9 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Writes the frame: stale temporaries of earlier, killed runs removed; the EXR (when there
-/// are AOVs) and the AOV PNGs first, the colour PNG last.
-fn write_frame(
-    shot: &Shot,
-    image: &crate::render::RenderedFrame,
-    path: &Path,
-) -> anyhow::Result<()> {
-    let exr = path.with_extension("exr");
-    for target in [path, exr.as_path()] {
-        remove_stale_temporaries(target).map_err(|e| {
-            anyhow!(
-                "cannot clear old temporary files beside {}: {e}",
-                target.display()
-            )
-        })?;
-    }
-    if !shot.aovs.is_empty() {
-        write_frame_exr(image, &exr)?;
-    }
-    write_pngs(image, path)?;
-    Ok(())
-}
-
-/// Makes the folder of `path` and checks that a file can be created in it.
-fn check_writable(path: &Path) -> anyhow::Result<()> {
-    let folder = match path.parent() {
-        Some(f) if !f.as_os_str().is_empty() => f.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    std::fs::create_dir_all(&folder)
-        .map_err(|e| anyhow!("cannot create the output folder {}: {e}", folder.display()))?;
-    let probe = folder.join(format!(".glint-write-check.{}.tmp", std::process::id()));
-    std::fs::write(&probe, b"").map_err(|e| {
-        anyhow!(
-            "cannot write in the output folder {}: {e}",
-            folder.display()
-        )
-    })?;
-    let _ = std::fs::remove_file(&probe);
-    Ok(())
-}
-
-/// One stage line per stage that ran, for `--stats`.
+/// One line per stage, in pipeline order, for `--stats`: what it processed and its time, or
+/// that the plan skipped it.
 fn stats_report(frame: i64, s: &RenderStats) -> String {
-    let stage = |name: &str, st: &StageStats| {
-        format!(
-            "\n  {name:<12} {:>10} px {:>8.2} ms",
-            st.pixels,
-            st.seconds * 1e3
-        )
-    };
     let mut out = format!(
         "frame {frame} stats: {:.2} ms total, {} triangles (tessellation {})",
         s.total_seconds * 1e3,
@@ -251,21 +175,27 @@ fn stats_report(frame: i64, s: &RenderStats) -> String {
             "cached"
         }
     );
-    for (name, st) in [
-        ("tessellation", &s.tessellation),
-        ("raster", &s.raster),
-        ("gbuffer", &s.gbuffer),
-        ("detail", &s.detail),
-        ("shade", &s.shade),
-        ("outline", &s.outline),
-        ("aov", &s.aov),
-        ("resolve", &s.resolve),
-    ] {
-        out.push_str(&stage(name, st));
+    for stage in Stage::ALL {
+        let name = stage.name();
+        if s.ran(stage) {
+            let st = s[stage];
+            let unit = if stage == Stage::Tessellate {
+                "tri"
+            } else {
+                "px"
+            };
+            out.push_str(&format!(
+                "\n  {name:<12} {:>10} {unit:<3} {:>8.2} ms",
+                st.pixels,
+                st.seconds * 1e3
+            ));
+        } else {
+            out.push_str(&format!("\n  {name:<12} {:>10}", "skipped"));
+        }
     }
     out.push_str(&format!(
-        "\n  exact frames {}, highlighted samples {}",
-        s.exact_frames, s.highlight_pixels
+        "\n  exact frames {}, highlighted samples {}, X-Toon samples {}",
+        s.exact_frames, s.highlight_pixels, s.xtoon_pixels
     ));
     out
 }

@@ -1,12 +1,15 @@
-//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, PNG and EXR images,
-//! 2D toon textures.
+//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, 2D toon textures,
+//! and the PNG and EXR files of rendered frames.
 
 pub mod atomic;
 mod bpt;
 pub mod exr;
+mod frame_files;
+pub mod image_encoding;
 mod patch_ron;
 pub mod png;
 pub mod ron_location;
+mod srgb;
 mod texture;
 
 use std::path::Path;
@@ -16,8 +19,10 @@ use thiserror::Error;
 use crate::geom::PatchLibrary;
 
 pub use bpt::parse_bpt;
+pub use frame_files::{beside, write_frame_exr, write_pngs};
 pub use patch_ron::parse_patch_ron;
-pub use texture::{read_toon_texture, srgb_to_linear, toon_texture_from_srgb8};
+pub use srgb::{linear_to_srgb, srgb_to_linear};
+pub use texture::{read_toon_texture, toon_texture_from_srgb8};
 
 /// A file that could not be read, with where in it the problem is.
 #[derive(Debug, Error)]

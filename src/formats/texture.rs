@@ -3,6 +3,8 @@
 use std::path::Path;
 
 use glam::Vec3;
+
+use super::srgb::srgb_to_linear;
 use image::ImageFormat;
 
 use super::FormatError;
@@ -46,31 +48,9 @@ pub fn toon_texture_from_srgb8(
     ToonTexture::new(width, height, texels)
 }
 
-/// The inverse sRGB transfer function of an encoded value in [0, 1]:
-/// `c / 12.92` up to 0.04045, `((c + 0.055) / 1.055)^2.4` above.
-#[must_use]
-pub fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.040_45 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn srgb_decoding_matches_its_reference_points() {
-        assert_eq!(srgb_to_linear(0.0), 0.0);
-        assert!((srgb_to_linear(1.0) - 1.0).abs() < 1e-6);
-        // sRGB 128/255 is linear 0.2159.
-        assert!((srgb_to_linear(128.0 / 255.0) - 0.2159).abs() < 1e-4);
-        // Both branches meet at the threshold.
-        let t = 0.040_45;
-        assert!((t / 12.92 - ((t + 0.055) / 1.055_f32).powf(2.4)).abs() < 1e-6);
-    }
 
     #[test]
     fn unreadable_files_name_the_path() {

@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::surface::{Domain, NurbsSurface, SurfaceDerivs};
 
-/// The frame `(du, dv, N)` at a surface point (DESIGN §3).
+/// The frame `(du, dv, N)` at a surface point (docs/geometry.md).
 ///
 /// `N = normalize(Su × Sv)`, `du = normalize(Su)`, `dv = N × du`; the three are orthonormal and
 /// right-handed (`du × dv = N`). At a degenerate point (a collapsed row of control points, where

@@ -1,6 +1,6 @@
 //! Grid evaluation: basis values computed once per u sample and once per v sample, and the net
 //! contracted along u once per u sample and v-span, so each grid point costs one short
-//! contraction along v (DESIGN §3). Tessellation evaluates this way.
+//! contraction along v (docs/geometry.md). Tessellation evaluates this way.
 
 use super::knots::BasisDerivs;
 use super::surface::{ContractedRows, LocalOrigin};

@@ -7,6 +7,7 @@ mod frame;
 mod grid;
 pub mod knots;
 mod library;
+mod on_ray;
 pub mod shapes;
 mod surface;
 
@@ -15,4 +16,5 @@ pub use frame::Frame;
 pub use grid::GridEvaluator;
 pub use knots::KnotVector;
 pub use library::{NamedPatch, PatchLibrary, PatchNotFound};
+pub use on_ray::REFINE_STEPS;
 pub use surface::{Domain, NurbsSurface, SurfaceDerivs};

@@ -6,10 +6,12 @@ use serde::{Deserialize, Serialize};
 use super::error::HighlightError;
 use super::frame::TangentFrame;
 use super::layer::{Layer, Paint, PreparedLayer};
-use super::stack::{LocalChunk, CHUNK};
+use super::stack::LocalChunk;
+use crate::math::LANES;
 
-/// A Boolean expression over highlight layers, on soft coverage `a, b ∈ [0, 1]` (DESIGN §4):
-/// union `max(a, b)`, subtraction `A \ B = min(a, 1 − b)`, intersection `min(a, b)`.
+/// A Boolean expression over highlight layers, on soft coverage `a, b ∈ [0, 1]`
+/// (docs/highlights.md): union `max(a, b)`, subtraction `A \ B = min(a, 1 − b)`, intersection
+/// `min(a, b)`.
 ///
 /// Colour rule: the Booleans combine *shape* coverage; each result carries one operand's paint
 /// (colour and opacity). Union takes the paint of the operand with the larger coverage (the left
@@ -173,8 +175,8 @@ impl PreparedExpr {
             "slice lengths differ"
         );
         let (mut initial, mut scratch) = (LocalChunk::default(), ChunkScratch::default());
-        for (k, o) in out.chunks_mut(CHUNK).enumerate() {
-            let r = k * CHUNK..k * CHUNK + o.len();
+        for (k, o) in out.chunks_mut(LANES).enumerate() {
+            let r = k * LANES..k * LANES + o.len();
             initial.load(&frames[r.clone()], &hs[r.clone()]);
             self.eval_chunk(&initial, &uvs[r], width, &mut scratch, o);
         }
@@ -186,7 +188,7 @@ impl PreparedExpr {
     ///
     /// # Panics
     /// If `uvs` or `out` is not as long as the chunk.
-    pub fn eval_chunk(
+    pub(crate) fn eval_chunk(
         &self,
         initial: &LocalChunk,
         uvs: &[Vec2],
@@ -208,6 +210,24 @@ impl PreparedExpr {
                 coverage: s * p.opacity,
                 colour: p.colour,
             };
+        }
+    }
+
+    /// The layers of the expression, left to right.
+    #[must_use]
+    pub fn layers(&self) -> Vec<&PreparedLayer> {
+        let mut layers = Vec::new();
+        self.push_layers(&mut layers);
+        layers
+    }
+
+    fn push_layers<'a>(&'a self, layers: &mut Vec<&'a PreparedLayer>) {
+        match self {
+            PreparedExpr::Layer(layer) => layers.push(layer),
+            PreparedExpr::Combine(_, a, b) => {
+                a.push_layers(layers);
+                b.push_layers(layers);
+            }
         }
     }
 
@@ -236,8 +256,8 @@ impl PreparedExpr {
             }
             PreparedExpr::Combine(op, a, b) => {
                 a.shape_chunk(initial, scratch, uvs, width, shapes, paints);
-                let mut b_shapes = [0.0; CHUNK];
-                let mut b_paints = [b.first_paint(); CHUNK];
+                let mut b_shapes = [0.0; LANES];
+                let mut b_paints = [b.first_paint(); LANES];
                 let n = shapes.len();
                 let (bs, bp) = (&mut b_shapes[..n], &mut b_paints[..n]);
                 b.shape_chunk(initial, scratch, uvs, width, bs, bp);
@@ -262,19 +282,19 @@ impl PreparedExpr {
 #[derive(Clone, Debug)]
 pub struct ChunkScratch {
     vectors: LocalChunk,
-    shapes: [f32; CHUNK],
-    paints: [Paint; CHUNK],
+    shapes: [f32; LANES],
+    paints: [Paint; LANES],
 }
 
 impl Default for ChunkScratch {
     fn default() -> Self {
         Self {
             vectors: LocalChunk::default(),
-            shapes: [0.0; CHUNK],
+            shapes: [0.0; LANES],
             paints: [Paint {
                 colour: Vec3::ZERO,
                 opacity: 0.0,
-            }; CHUNK],
+            }; LANES],
         }
     }
 }
@@ -339,7 +359,7 @@ mod tests {
         )
         .prepare()
         .unwrap();
-        let count = CHUNK + 13;
+        let count = LANES + 13;
         let frames = vec![frame; count];
         let uvs = vec![Vec2::ZERO; count];
         let hs: Vec<Vec3> = (0..count)

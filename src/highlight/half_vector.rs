@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::frame::normalize_or;
+use crate::math::normalize_or;
 
 /// A light, seen from a surface point.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-/// The signed inside value `s = ε − ‖N − H‖² / 2` (DESIGN §4).
+/// The signed inside value `s = ε − ‖N − H‖² / 2` (docs/highlights.md).
 ///
 /// For unit vectors `‖N − H‖² / 2 = 1 − (N, H)`, so `s > 0` is the paper's Eq. 3,
 /// `(N, H) > 1 − ε`. Written as a squared distance it keeps its precision in f32 for the tiny ε of

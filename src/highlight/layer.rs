@@ -8,7 +8,8 @@ use super::error::HighlightError;
 use super::frame::TangentFrame;
 use super::inside::{coverage_from_signed, signed_inside};
 use super::ops::Op;
-use super::stack::{LocalChunk, PreparedStack, CHUNK};
+use super::stack::{LocalChunk, PreparedStack};
+use crate::math::LANES;
 use crate::param::{check, Range};
 
 /// One highlight: the region `{ ‖N − H'‖² / 2 < ε }` of the vector `H'` that the op stack makes
@@ -230,7 +231,7 @@ impl PreparedLayer {
     }
 
     /// [`signed`](Self::signed) at many points: `out[i]` for `frames[i]` and `hs[i]`. Faster per
-    /// point than single calls (see [`CHUNK`]).
+    /// point than single calls (see [`LANES`]).
     ///
     /// # Panics
     /// If the slices differ in length.
@@ -241,9 +242,9 @@ impl PreparedLayer {
         );
         let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
         for ((f, h), o) in frames
-            .chunks(CHUNK)
-            .zip(hs.chunks(CHUNK))
-            .zip(out.chunks_mut(CHUNK))
+            .chunks(LANES)
+            .zip(hs.chunks(LANES))
+            .zip(out.chunks_mut(LANES))
         {
             initial.load(f, h);
             self.signed_chunk(&initial, &mut scratch, o);
@@ -313,8 +314,8 @@ impl PreparedLayer {
             "slice lengths differ"
         );
         let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
-        for (k, o) in out.chunks_mut(CHUNK).enumerate() {
-            let r = k * CHUNK..k * CHUNK + o.len();
+        for (k, o) in out.chunks_mut(LANES).enumerate() {
+            let r = k * LANES..k * LANES + o.len();
             initial.load(&frames[r.clone()], &hs[r.clone()]);
             self.shape_chunk(&initial, &mut scratch, &uvs[r], width, o);
         }
@@ -373,7 +374,7 @@ mod tests {
             feather: 0.1,
         });
         let p = l.prepare().unwrap();
-        let count = 2 * CHUNK + 7;
+        let count = 2 * LANES + 7;
         let frames = vec![FRAME; count];
         let hs: Vec<Vec3> = (0..count)
             .map(|i| Vec3::new(0.3 * (i as f32 * 0.1).sin(), 0.2, 1.0).normalize())

@@ -1,12 +1,12 @@
-//! Stylized highlights (Anjyo & Hiramitsu 2003; DESIGN §4): operations on the highlight vector H
-//! in a tangent frame, layers, and Boolean post-operations.
+//! Stylized highlights (Anjyo & Hiramitsu 2003; docs/highlights.md): operations on the highlight
+//! vector H in a tangent frame, layers, and Boolean post-operations.
 //!
 //! Pure math over a frame and a few vectors, in f32. A description ([`Op`], [`Layer`], [`Expr`])
 //! is generic over its parameter type so that later every number can be an animation track;
 //! resolved to `f32` it is validated once by `prepare` into a form evaluated per point
 //! ([`PreparedOp`], [`PreparedLayer`], [`PreparedExpr`]). Those evaluate one point per call or,
 //! faster, many points per call (`signed_many`, `shape_many`, `eval_many`), applying each op to
-//! a chunk of [`CHUNK`] points held as one array per coordinate.
+//! a chunk of [`LANES`](crate::math::LANES) points held as one array per coordinate.
 //!
 //! A point is inside a highlight iff `‖N − H'‖² / 2 < ε`, where H' is the op stack applied to the
 //! initial H, Blinn's half vector ([`half_vector`]).
@@ -21,10 +21,12 @@ mod ops;
 mod stack;
 
 pub use error::HighlightError;
-pub use expr::{Boolean, ChunkScratch, Expr, PreparedExpr, Shade};
-pub use frame::{Lanes, TangentFrame, LANES};
+pub(crate) use expr::ChunkScratch;
+pub use expr::{Boolean, Expr, PreparedExpr, Shade};
+pub use frame::TangentFrame;
 pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View};
 pub use inside::{coverage_from_signed, inside, signed_inside};
 pub use layer::{Layer, Mask, Paint, PreparedLayer};
-pub use ops::{Axis, Exponent, Op, PreparedOp, SquareStyle};
-pub use stack::{LocalChunk, PreparedStack, CHUNK};
+pub use ops::{Axis, Op, PreparedOp, SquareStyle};
+pub(crate) use stack::LocalChunk;
+pub use stack::PreparedStack;

@@ -1,5 +1,5 @@
 //! The basic operations on a highlight vector (Anjyo & Hiramitsu 2003, "Highlight vector field
-//! for cel animation"; DESIGN §4).
+//! for cel animation"; docs/highlights.md).
 //!
 //! An [`Op`] is a description with parameters of any type `P` (a number, or later an animation
 //! track); [`Op::prepare`] validates an `Op<f32>` and precomputes what the per-point
@@ -12,7 +12,8 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::error::HighlightError;
-use super::frame::{normalize_or, TangentFrame};
+use super::frame::TangentFrame;
+use crate::math::{int_pow, normalize_or, Exponent};
 use crate::param::{check, Range};
 
 /// One operation on the highlight vector H at a surface point.
@@ -72,14 +73,15 @@ pub enum Op<P = f32> {
     /// Squaring. Paper: `θ = min(acos(H, du), acos(H, dv))`, `sqrnorm = sin(2θ)^n`,
     /// `H^ = H − σ sqrnorm ((H, du) du + (H, dv) dv)`, σ ∈ [0, 1], integer n.
     ///
-    /// Departure ([`SquareStyle::Tangent`], DESIGN §4): θ is measured in the tangent plane. With
-    /// `t = (t_u, t_v)`, `a = |t_u| / |t|`, `b = |t_v| / |t|`, θ is the angle from the nearest axis
-    /// and `sin 2θ = 2ab` exactly, so `H^ = H − σ (2ab)^n (t_u du + t_v dv)`. Taken literally with
-    /// the raw unit H, θ ≈ π/2 near the highlight and the op barely acts; this reading needs no
-    /// `acos`, is symmetric in all four quadrants, accepts any real n > 0, and leaves H unchanged
-    /// at t = 0. The diagonals are pulled toward N, so the highlight grows into its corners. The
-    /// ratio of area to bounding square rises with σ up to about 0.2–0.25 (n = 1…4); beyond, the
-    /// corners overshoot the square and the highlight becomes a four-pointed star.
+    /// Departure ([`SquareStyle::Tangent`], docs/highlights.md): θ is measured in the tangent
+    /// plane. With `t = (t_u, t_v)`, `a = |t_u| / |t|`, `b = |t_v| / |t|`, θ is the angle from the
+    /// nearest axis and `sin 2θ = 2ab` exactly, so `H^ = H − σ (2ab)^n (t_u du + t_v dv)`. Taken
+    /// literally with the raw unit H, θ ≈ π/2 near the highlight and the op barely acts; this
+    /// reading needs no `acos`, is symmetric in all four quadrants, accepts any real n > 0, and
+    /// leaves H unchanged at t = 0. The diagonals are pulled toward N, so the highlight grows into
+    /// its corners. The ratio of area to bounding square rises with σ up to about 0.2–0.25 (n =
+    /// 1…4); beyond, the corners overshoot the square and the highlight becomes a four-pointed
+    /// star.
     Square {
         /// σ ∈ [0, 1], how strongly the corners are filled.
         sigma: P,
@@ -113,7 +115,7 @@ impl<P> Default for Axis<P> {
 /// How [`Op::Square`] measures the angle θ.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum SquareStyle {
-    /// θ of the tangent-plane direction of H: one factor `(2ab)^n` (DESIGN §4).
+    /// θ of the tangent-plane direction of H: one factor `(2ab)^n` (docs/highlights.md).
     #[default]
     Tangent,
     /// A published port's per-axis form with its `sin(pow(2θ, n))` corrected: each tangent
@@ -326,9 +328,9 @@ impl Formula for One<'_> {
 }
 
 /// Many vectors, one array per coordinate.
-struct Lanes<'a>(&'a mut [f32], &'a mut [f32], &'a [f32]);
+struct Columns<'a>(&'a mut [f32], &'a mut [f32], &'a [f32]);
 
-impl Formula for Lanes<'_> {
+impl Formula for Columns<'_> {
     #[inline(always)]
     fn run(self, f: impl Fn(Vec2) -> Vec2) {
         for ((x, y), z) in self.0.iter_mut().zip(self.1.iter_mut()).zip(self.2) {
@@ -379,21 +381,6 @@ fn square(target: impl Formula, style: SquareStyle, sigma: f32, pow: impl Fn(f32
     }
 }
 
-/// `x^n` for an integer `1 ≤ n < 2^BITS`, by binary exponentiation over `BITS` bits
-/// (straight-line code, so loops calling it vectorize). Bits of n above them would only square
-/// the base further, so any `BITS` that holds n gives the same value.
-#[inline(always)]
-fn int_pow<const BITS: u32>(x: f32, n: i32) -> f32 {
-    let (mut result, mut base) = (1.0, x);
-    for bit in 0..BITS {
-        if (n >> bit) & 1 == 1 {
-            result *= base;
-        }
-        base *= base;
-    }
-    result
-}
-
 impl PreparedOp {
     /// Whether the formula needs a unit H: translation and split add fixed amounts, the per-axis
     /// square reads the unit H's components. The others are homogeneous (`op(cH) = c op(H)`
@@ -401,15 +388,14 @@ impl PreparedOp {
     #[inline]
     #[must_use]
     pub fn needs_unit_input(&self) -> bool {
-        matches!(
-            self,
-            PreparedOp::Translate(_)
-                | PreparedOp::Split(_)
-                | PreparedOp::Square {
-                    style: SquareStyle::PerAxis,
-                    ..
-                }
-        )
+        match self {
+            PreparedOp::Translate(_) | PreparedOp::Split(_) => true,
+            PreparedOp::Square { style, .. } => match style {
+                SquareStyle::PerAxis => true,
+                SquareStyle::Tangent => false,
+            },
+            PreparedOp::Rotate { .. } | PreparedOp::Scale { .. } => false,
+        }
     }
 
     /// The operation's formula without the final normalization, on H in frame coordinates
@@ -427,7 +413,7 @@ impl PreparedOp {
     /// so the loop is straight-line arithmetic the compiler can vectorize.
     #[inline]
     pub fn step_all(&self, x: &mut [f32], y: &mut [f32], z: &[f32]) {
-        self.run(Lanes(x, y, z));
+        self.run(Columns(x, y, z));
     }
 
     /// Hands the operation's tangential formula (see [`Op`]) to `target`.
@@ -467,56 +453,6 @@ impl PreparedOp {
     #[must_use]
     pub fn apply(&self, frame: &TangentFrame, h: Vec3) -> Vec3 {
         frame.to_world(self.apply_local(frame.to_local(h)))
-    }
-}
-
-/// The squaring exponent n, with integers (the paper's case) raised by multiplication.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Exponent {
-    /// An integer n from 1 to [`Exponent::MAX_INTEGER`].
-    Integer(i32),
-    /// Any other n > 0.
-    Real(f32),
-}
-
-impl Exponent {
-    /// The largest n raised by multiplication.
-    pub const MAX_INTEGER: i32 = (1 << Self::INTEGER_BITS) - 1;
-
-    /// The bits of an integer n.
-    const INTEGER_BITS: u32 = 7;
-
-    /// The exponent `n` (> 0), an [`Exponent::Integer`] where it is one.
-    #[must_use]
-    pub fn new(n: f32) -> Self {
-        if n.fract() == 0.0 && (1.0..=Self::MAX_INTEGER as f32).contains(&n) {
-            Exponent::Integer(n as i32)
-        } else {
-            Exponent::Real(n)
-        }
-    }
-
-    /// `x^n`: by multiplication for an integer n, else `powf`.
-    #[inline(always)]
-    #[must_use]
-    pub fn pow(self, x: f32) -> f32 {
-        let mut x = [x];
-        self.pow_each(&mut x);
-        x[0]
-    }
-
-    /// Each `x` raised to n, as [`pow`](Self::pow) does, with the kind of n matched once: the
-    /// loop over `xs` for an integer n vectorizes.
-    #[inline(always)]
-    pub fn pow_each(self, xs: &mut [f32]) {
-        match self {
-            // Up to 15, four bits.
-            Exponent::Integer(k) if k < 16 => xs.iter_mut().for_each(|x| *x = int_pow::<4>(*x, k)),
-            Exponent::Integer(k) => xs
-                .iter_mut()
-                .for_each(|x| *x = int_pow::<{ Self::INTEGER_BITS }>(*x, k)),
-            Exponent::Real(r) => xs.iter_mut().for_each(|x| *x = x.powf(r)),
-        }
     }
 }
 
@@ -628,31 +564,6 @@ mod tests {
             l.z,
         );
         assert!((op.apply_local(l) - want.normalize()).length() < 1e-6);
-    }
-
-    #[test]
-    fn integer_exponent_matches_powf() {
-        for n in [1.0_f32, 2.0, 3.0, 7.0, 12.0, 64.0, 127.0] {
-            let Exponent::Integer(k) = Exponent::new(n) else {
-                panic!("{n} not an integer exponent")
-            };
-            for x in [0.0_f32, 0.3, 0.9, 1.0] {
-                let (got, want) = (int_pow::<{ Exponent::INTEGER_BITS }>(x, k), x.powf(n));
-                assert!(
-                    (got - want).abs() <= 1e-6 * want.max(1e-30),
-                    "{x}^{n}: {got} vs {want}"
-                );
-                // Over fewer bits that still hold n: the same value, bit for bit.
-                if k < 4 {
-                    assert_eq!(int_pow::<2>(x, k).to_bits(), got.to_bits(), "{x}^{n}");
-                }
-                if k < 16 {
-                    assert_eq!(int_pow::<4>(x, k).to_bits(), got.to_bits(), "{x}^{n}");
-                }
-            }
-        }
-        assert_eq!(Exponent::new(2.5), Exponent::Real(2.5));
-        assert_eq!(Exponent::new(128.0), Exponent::Real(128.0));
     }
 
     #[test]

@@ -2,13 +2,9 @@
 
 use glam::Vec3;
 
-use super::frame::{normalize_lanes, Lanes, TangentFrame, LANES};
+use super::frame::TangentFrame;
 use super::ops::PreparedOp;
-
-/// Points a batch method processes together. The stack is applied op by op to a whole chunk, so
-/// the points' independent dependency chains (square roots and divisions) overlap in the
-/// processor instead of running one after another.
-pub const CHUNK: usize = LANES;
+use crate::math::{normalize_lanes, Lanes, LANES};
 
 /// Validated operations in order, with a normalization plan.
 ///
@@ -65,7 +61,7 @@ impl PreparedStack {
 
     /// [`apply_local`](Self::apply_local) on a chunk of vectors, op by op: `c` holds a copy of
     /// `initial` on entry and the results on return.
-    pub fn apply_chunk(&self, initial: &LocalChunk, c: &mut LocalChunk) {
+    pub(crate) fn apply_chunk(&self, initial: &LocalChunk, c: &mut LocalChunk) {
         debug_assert_eq!(initial.len, c.len);
         let (x, y, z) = c.lanes_mut();
         let normalize = |x: &mut [f32], y: &mut [f32], z: &mut [f32]| {
@@ -83,7 +79,7 @@ impl PreparedStack {
     }
 }
 
-/// Frame coordinates of up to [`CHUNK`] vectors, one array per coordinate, so that loops over
+/// Frame coordinates of up to [`LANES`] vectors, one array per coordinate, so that loops over
 /// them vectorize.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct LocalChunk {
@@ -95,7 +91,7 @@ impl LocalChunk {
     /// Replaces the contents by the coordinates of `hs[i]` in `frames[i]`.
     ///
     /// # Panics
-    /// If the slices differ in length or are longer than [`CHUNK`].
+    /// If the slices differ in length or are longer than [`LANES`].
     pub fn load(&mut self, frames: &[TangentFrame], hs: &[Vec3]) {
         assert!(hs.len() == frames.len(), "bad chunk");
         self.set(frames.len(), |i| frames[i].to_local(hs[i]));
@@ -104,10 +100,10 @@ impl LocalChunk {
     /// Replaces the contents by `local(i)` for i < `len`: vectors already in frame coordinates.
     ///
     /// # Panics
-    /// If `len` is more than [`CHUNK`].
+    /// If `len` is more than [`LANES`].
     #[inline]
     pub fn set(&mut self, len: usize, local: impl Fn(usize) -> Vec3) {
-        assert!(len <= CHUNK, "bad chunk");
+        assert!(len <= LANES, "bad chunk");
         self.len = len;
         let (x, y, z) = self.lanes_mut();
         for i in 0..len {
@@ -119,12 +115,6 @@ impl LocalChunk {
     #[must_use]
     pub fn len(&self) -> usize {
         self.len
-    }
-
-    /// Whether there are none.
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
     }
 
     /// Vector `i`.

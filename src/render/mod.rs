@@ -1,29 +1,37 @@
-//! Rendering: camera, tessellation, rasterization, the G-buffer, shading and output.
+//! Rendering: a [`Scene`] to a [`RenderedFrame`], stage by stage as the [`Plan`] decides.
 //!
-//! A frame runs tessellate (cached) ▸ rasterize ▸ G-buffer ▸ shade (X-Toon detail ▸ tone ▸
-//! highlight) ▸ outlines ▸ resolve; a stage the scene does not use does not run, and
-//! [`RenderStats`] shows it.
+//! ```text
+//! Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ Shade ▸ Outline ▸ Aov ▸ Resolve
+//! ```
+//!
+//! A stage the scene does not use does not run, and [`RenderStats`] shows it. Writing the
+//! images to files is not rendering: see [`crate::formats`].
 
 pub mod camera;
+mod directions;
+mod edge_width;
+mod facing;
 mod gbuffer;
 mod outline;
-pub mod output;
 mod plan;
 pub mod raster;
 mod renderer;
 mod scene;
 mod settings;
 mod shade;
+mod stage;
 mod stats;
 pub mod tessellate;
 mod visibility_shade;
-mod xtoon;
+mod xtoon_tone;
 
 pub use camera::{Camera, Projection};
-pub use gbuffer::{facing_frame, GBuffer, Texel};
+pub use facing::facing_frame;
+pub use plan::{Plan, Surfaces};
 pub use renderer::{AovImages, RenderedFrame, Renderer};
 pub use scene::{Aovs, Outlines, PatchLook, Scene, Tone};
-pub use settings::{Antialias, FrameMode, Settings};
+pub use settings::{Antialias, FrameMode, Settings, MAX_SIDE};
+pub use stage::Stage;
 pub use stats::{RenderStats, StageStats};
 
 use thiserror::Error;
@@ -31,10 +39,19 @@ use thiserror::Error;
 /// A scene or setting the renderer cannot use.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum RenderError {
+    /// The camera defines no view.
     #[error("camera: {0}")]
     Camera(String),
+    /// An image size, sampling or tessellation setting out of range.
     #[error("settings: {0}")]
     Settings(String),
-    #[error("scene: {0}")]
-    Scene(String),
+    /// The worker threads could not be started.
+    #[error("settings: cannot start {threads} threads: {reason}")]
+    Threads { threads: usize, reason: String },
+    /// The scene shows another model than the renderer was made for.
+    #[error("scene: the scene shows another model than this renderer was made for")]
+    OtherModel,
+    /// The scene's looks do not match the model's patches one to one.
+    #[error("scene: the scene must give one look for each of the model's {patches} patches, got {looks}")]
+    LooksPerPatch { patches: usize, looks: usize },
 }

@@ -12,15 +12,17 @@ use super::scene::Outlines;
 /// smooth surfaces and is large where a nearer surface overlaps a farther one.
 const DEPTH_JUMP: f32 = 0.02;
 
-/// Working memory of the outline pass, kept from one frame to the next.
+/// The data and working memory of the outline pass, kept from one frame to the next.
 #[derive(Debug, Default)]
-pub struct OutlineBuffers {
+pub(super) struct OutlineBuffers {
+    /// Per texel of the G-buffer, what the edge tests compare: filled with the G-buffer
+    /// ([`GBuffer::fill`]) when the frame draws outlines.
+    pub surfaces: Vec<EdgeSurface>,
     /// Per pixel, whether it differs from its right or lower neighbour.
     edges: Vec<bool>,
 }
 
-/// What the edge tests read of a texel, packed: the G-buffer fills one per texel when a frame
-/// draws outlines ([`GBuffer::edge_surfaces`]).
+/// What the edge tests read of a texel, packed.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct EdgeSurface {
     patch: u32,
@@ -43,8 +45,8 @@ impl EdgeSurface {
 
 /// Inks lines `outlines.width` pixels wide over `colour` (an image of the G-buffer's size):
 /// every pixel within `(width − 1)/2` of an edge pixel becomes `rgb = outlines.colour`, `α = 1`.
-/// The G-buffer must hold its edge surfaces.
-pub fn draw_outlines(
+/// `buffers` must hold the edge surfaces of the G-buffer's texels.
+pub(super) fn draw_outlines(
     gbuffer: &GBuffer,
     outlines: &Outlines,
     colour: &mut [Vec4],
@@ -102,7 +104,7 @@ pub fn draw_outlines(
 /// surface overlaps a farther one there.
 fn find_edges(gbuffer: &GBuffer, outlines: &Outlines, buffers: &mut OutlineBuffers) {
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
-    let surfaces = &gbuffer.edge_surfaces;
+    let surfaces = &buffers.surfaces;
     assert_eq!(surfaces.len(), gbuffer.texels.len(), "no edge surfaces");
     let crease_cos = outlines.crease_degrees.to_radians().cos();
     let differs = |a: u32, b: u32| -> bool {

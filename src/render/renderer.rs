@@ -1,22 +1,26 @@
-//! One frame, stage by stage: tessellate (cached), rasterize, fill the G-buffer, shade, outline,
-//! resolve. Stages the scene does not use do not run.
+//! One frame, stage by stage, as the plan decides: tessellate (cached) ▸ rasterize ▸ G-buffer ▸
+//! detail ▸ edge widths ▸ shade ▸ outline ▸ AOVs ▸ resolve ([`Stage`]).
 
 use std::ops::{Add, Mul};
+use std::sync::Arc;
 
-use glam::{Vec2, Vec3, Vec4};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
+use super::edge_width::edge_widths;
 use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
 use super::outline::{draw_outlines, OutlineBuffers};
 use super::plan::{Plan, Surfaces};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
-use super::settings::{Antialias, Settings};
+use super::settings::Settings;
 use super::shade::{shade, ShadeBuffers, Shaded};
-use super::stats::{timed, RenderStats, StageStats};
-use super::tessellate::Tessellator;
+use super::stage::Stage;
+use super::stats::{timed, RenderStats};
+use super::tessellate::{Mesh, Tessellator};
 use super::visibility_shade::shade_visibility;
+use super::xtoon_tone::{self, Ahead};
 use super::RenderError;
 use crate::geom::PatchLibrary;
 
@@ -46,18 +50,36 @@ pub struct AovImages {
     pub n_dot_h: Option<Vec<f32>>,
 }
 
+impl AovImages {
+    /// How many AOV images there are.
+    #[must_use]
+    pub fn count(&self) -> usize {
+        [
+            self.matte.is_some(),
+            self.patch_id.is_some(),
+            self.depth.is_some(),
+            self.normal.is_some(),
+            self.uv.is_some(),
+            self.n_dot_h.is_some(),
+        ]
+        .iter()
+        .filter(|&&on| on)
+        .count()
+    }
+}
+
 /// Renders frames of one model, keeping its tessellation, working memory and worker threads
 /// between frames.
-pub struct Renderer<'a> {
-    library: &'a PatchLibrary,
-    stages: Stages<'a>,
+pub struct Renderer {
+    library: Arc<PatchLibrary>,
+    stages: Stages,
     pool: Option<(usize, ThreadPool)>,
 }
 
 /// What the stages keep from one frame to the next: the mesh, and every buffer whose size
 /// depends only on the image and the mesh, so that a frame allocates just the images it returns.
-struct Stages<'a> {
-    tessellator: Tessellator<'a>,
+struct Stages {
+    tessellator: Tessellator,
     /// The mesh's vertices in clip space.
     clip: Vec<Vec4>,
     rasterizer: Rasterizer,
@@ -67,12 +89,13 @@ struct Stages<'a> {
     outlining: OutlineBuffers,
 }
 
-impl<'a> Renderer<'a> {
-    pub fn new(library: &'a PatchLibrary) -> Self {
+impl Renderer {
+    /// A renderer of `library`'s patches.
+    pub fn new(library: impl Into<Arc<PatchLibrary>>) -> Self {
+        let library = library.into();
         Self {
-            library,
             stages: Stages {
-                tessellator: Tessellator::new(library),
+                tessellator: Tessellator::new(Arc::clone(&library)),
                 clip: Vec::new(),
                 rasterizer: Rasterizer::new(),
                 visibility: VisibilityBuffer::default(),
@@ -80,8 +103,15 @@ impl<'a> Renderer<'a> {
                 shading: ShadeBuffers::default(),
                 outlining: OutlineBuffers::default(),
             },
+            library,
             pool: None,
         }
+    }
+
+    /// The model this renderer draws.
+    #[must_use]
+    pub fn library(&self) -> &Arc<PatchLibrary> {
+        &self.library
     }
 
     /// Renders `scene` with `settings`; the scene must show this renderer's model.
@@ -92,19 +122,16 @@ impl<'a> Renderer<'a> {
     ) -> Result<RenderedFrame, RenderError> {
         settings.validate()?;
         scene.camera.validate()?;
-        if !std::ptr::eq(scene.library, self.library) {
-            return Err(RenderError::Scene(
-                "the scene shows another model than this renderer was made for".into(),
-            ));
+        if !std::ptr::eq(scene.library, &*self.library) {
+            return Err(RenderError::OtherModel);
         }
         if scene.looks.len() != self.library.patches.len() {
-            return Err(RenderError::Scene(format!(
-                "the scene must give one look for each of the model's {} patches, got {}",
-                self.library.patches.len(),
-                scene.looks.len()
-            )));
+            return Err(RenderError::LooksPerPatch {
+                patches: self.library.patches.len(),
+                looks: scene.looks.len(),
+            });
         }
-        let (stages, library) = (&mut self.stages, self.library);
+        let (stages, library) = (&mut self.stages, &*self.library);
         if settings.threads == 0 {
             return Ok(stages.render(library, scene, settings));
         }
@@ -116,8 +143,9 @@ impl<'a> Renderer<'a> {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(settings.threads)
                 .build()
-                .map_err(|e| {
-                    RenderError::Settings(format!("cannot start {} threads: {e}", settings.threads))
+                .map_err(|e| RenderError::Threads {
+                    threads: settings.threads,
+                    reason: e.to_string(),
                 })?;
             self.pool = Some((settings.threads, pool));
         }
@@ -126,23 +154,29 @@ impl<'a> Renderer<'a> {
     }
 }
 
-impl Stages<'_> {
+/// What a frame is drawn at: its image in samples and the scene's view.
+#[derive(Clone, Copy)]
+struct Frame {
+    /// Samples per pixel side.
+    k: u32,
+    /// The image in samples.
+    samples: Viewport,
+    view_projection: Mat4,
+}
+
+impl Stages {
     fn render(
         &mut self,
         library: &PatchLibrary,
         scene: &Scene,
         settings: &Settings,
     ) -> RenderedFrame {
-        let (frame, total) = timed(|| self.stages(library, scene, settings));
-        RenderedFrame {
-            stats: RenderStats {
-                total_seconds: total,
-                ..frame.stats
-            },
-            ..frame
-        }
+        let (mut frame, total) = timed(|| self.stages(library, scene, settings));
+        frame.stats.total_seconds = total;
+        frame
     }
 
+    /// The stages the plan calls for, in order.
     fn stages(
         &mut self,
         library: &PatchLibrary,
@@ -150,130 +184,82 @@ impl Stages<'_> {
         settings: &Settings,
     ) -> RenderedFrame {
         let plan = Plan::new(scene, settings);
-        let mut stats = RenderStats::default();
+        let mut stats = RenderStats::new(plan);
         let k = settings.samples_per_side();
-        let (width, height) = (settings.width * k, settings.height * k);
-        let view_projection = scene
-            .camera
-            .view_projection(settings.width as f32 / settings.height as f32);
-
-        let ((mesh, rebuilt), seconds) = timed(|| {
-            self.tessellator.mesh(
-                settings.density,
-                view_projection,
-                settings.width,
-                settings.height,
-            )
-        });
-        stats.tessellation_rebuilt = rebuilt;
-        stats.triangles = mesh.triangles.len();
-        stats.tessellation.seconds = seconds;
-
-        let (visibility, clip) = (&mut self.visibility, &mut self.clip);
-        let rasterizer = &mut self.rasterizer;
-        let (raster, seconds) = timed(|| {
-            mesh.positions
-                .par_iter()
-                .with_min_len(PIXELS_PER_JOB)
-                .map(|p| view_projection * p.extend(1.0))
-                .collect_into_vec(clip);
-            let options = RasterOptions {
-                threads: 0,
-                ..RasterOptions::default()
-            };
-            let viewport = Viewport { width, height };
-            rasterizer.rasterize_into(viewport, clip, &mesh.triangles, &options, visibility)
-        });
-        let visibility = &*visibility;
-        stats.raster = StageStats {
-            pixels: raster.pixels_covered,
-            seconds,
+        let frame = Frame {
+            k,
+            samples: Viewport {
+                width: settings.width * k,
+                height: settings.height * k,
+            },
+            view_projection: scene
+                .camera
+                .view_projection(settings.width as f32 / settings.height as f32),
         };
+        let Stages {
+            tessellator,
+            clip,
+            rasterizer,
+            visibility,
+            gbuffer,
+            shading,
+            outlining,
+        } = self;
 
-        let (gbuffer, shading) = (&mut self.gbuffer, &mut self.shading);
-        let (mut shaded, seconds) = match plan.surfaces {
-            Surfaces::Visibility => timed(|| Shaded {
-                colour: shade_visibility(visibility, mesh, scene),
-                matte: None,
-                n_dot_h: None,
-                shaded: raster.pixels_covered,
-                highlighted: 0,
-                detail: StageStats::default(),
-            }),
+        let mesh = tessellate(tessellator, settings, &frame, &mut stats);
+        rasterize(rasterizer, mesh, &frame, clip, visibility, &mut stats);
+        let mut shaded = match plan.surfaces {
+            Surfaces::Visibility => shade_from_visibility(visibility, mesh, scene, &mut stats),
             Surfaces::Texels => {
-                let (exact, seconds) = timed(|| {
-                    gbuffer.fill(
-                        visibility,
-                        mesh,
-                        library,
-                        &scene.camera,
-                        settings.frames,
-                        plan.outlines,
+                let edges = plan.runs(Stage::Outline).then_some(&mut outlining.surfaces);
+                fill_gbuffer(
+                    gbuffer, visibility, mesh, library, scene, settings, edges, &mut stats,
+                );
+                let views = xtoon_tone::views(scene);
+                let ahead = plan
+                    .runs(Stage::Detail)
+                    .then(|| detail(gbuffer, scene, &views, &mut stats));
+                // Highlights see the abstracted frames of the X-Toon patches that ask for them.
+                let highlight_gbuffer = ahead.as_ref().map_or(&*gbuffer, |a| &a.gbuffer);
+                let widths = plan
+                    .runs(Stage::EdgeWidths)
+                    .then(|| widths(highlight_gbuffer, scene, &mut stats));
+                let tones = ahead.as_ref().map(|a| a.tones.as_slice());
+                let (shaded, seconds) = timed(|| {
+                    shade(
+                        highlight_gbuffer,
+                        scene,
+                        &views,
+                        tones,
+                        widths.as_deref(),
+                        shading,
                     )
                 });
-                stats.gbuffer = StageStats {
-                    pixels: raster.pixels_covered,
-                    seconds,
-                };
-                stats.exact_frames = exact;
-                let analytic = settings.antialias == Antialias::Analytic;
-                timed(|| shade(gbuffer, scene, analytic, shading))
+                stats.record(Stage::Shade, shaded.shaded, seconds);
+                stats.highlight_pixels = shaded.highlighted;
+                stats.xtoon_pixels = shaded.xtoon;
+                shaded
             }
         };
-        stats.shade = StageStats {
-            pixels: shaded.shaded,
-            seconds,
-        };
-        stats.highlight_pixels = shaded.highlighted;
-        stats.detail = shaded.detail;
-        let gbuffer = &*gbuffer;
-
-        if let (true, Some(outlines)) = (plan.outlines, &scene.outlines) {
-            let (_, seconds) = timed(|| {
-                let scaled = Outlines {
-                    width: outlines.width * k as f32,
-                    ..*outlines
-                };
-                let buffers = &mut self.outlining;
-                draw_outlines(gbuffer, &scaled, &mut shaded.colour, buffers);
-            });
-            stats.outline = StageStats {
-                pixels: u64::from(width) * u64::from(height),
-                seconds,
-            };
+        if let (true, Some(outlines)) = (plan.runs(Stage::Outline), &scene.outlines) {
+            outline(
+                gbuffer,
+                outlines,
+                &frame,
+                &mut shaded,
+                outlining,
+                &mut stats,
+            );
         }
-
-        let mut aovs = AovImages::default();
-        if plan.aovs {
-            let (images, seconds) = timed(|| collect_aovs(scene, gbuffer, &mut shaded, k));
-            let count = [
-                images.matte.is_some(),
-                images.patch_id.is_some(),
-                images.depth.is_some(),
-                images.normal.is_some(),
-                images.uv.is_some(),
-                images.n_dot_h.is_some(),
-            ]
-            .iter()
-            .filter(|&&on| on)
-            .count() as u64;
-            stats.aov = StageStats {
-                pixels: count * u64::from(settings.width) * u64::from(settings.height),
-                seconds,
-            };
-            aovs = images;
-        }
-
-        let colour = if k == 1 {
-            shaded.colour
+        let aovs = if plan.runs(Stage::Aov) {
+            aov(scene, gbuffer, &mut shaded, settings, &frame, &mut stats)
         } else {
-            let (colour, seconds) =
-                timed(|| resolve(&shaded.colour, settings.width, settings.height, k));
-            stats.resolve = StageStats {
-                pixels: u64::from(settings.width) * u64::from(settings.height),
-                seconds,
-            };
-            colour
+            AovImages::default()
+        };
+        let colour = if plan.runs(Stage::Resolve) {
+            resolve_stage(&shaded.colour, settings, &frame, &mut stats)
+        } else {
+            shaded.colour
         };
         RenderedFrame {
             width: settings.width,
@@ -283,6 +269,172 @@ impl Stages<'_> {
             stats,
         }
     }
+}
+
+/// [`Stage::Tessellate`]: the mesh for this view, rebuilt only when its segment counts change.
+fn tessellate<'t>(
+    tessellator: &'t mut Tessellator,
+    settings: &Settings,
+    frame: &Frame,
+    stats: &mut RenderStats,
+) -> &'t Mesh {
+    let ((mesh, rebuilt), seconds) = timed(|| {
+        tessellator.mesh(
+            settings.density,
+            frame.view_projection,
+            settings.width,
+            settings.height,
+        )
+    });
+    stats.tessellation_rebuilt = rebuilt;
+    stats.triangles = mesh.triangles.len();
+    stats.record(Stage::Tessellate, mesh.triangles.len() as u64, seconds);
+    mesh
+}
+
+/// [`Stage::Rasterize`]: the mesh's vertices to clip space, then its triangles into the
+/// visibility buffer at the sample resolution.
+fn rasterize(
+    rasterizer: &mut Rasterizer,
+    mesh: &Mesh,
+    frame: &Frame,
+    clip: &mut Vec<Vec4>,
+    visibility: &mut VisibilityBuffer,
+    stats: &mut RenderStats,
+) {
+    let (raster, seconds) = timed(|| {
+        mesh.positions
+            .par_iter()
+            .with_min_len(PIXELS_PER_JOB)
+            .map(|p| frame.view_projection * p.extend(1.0))
+            .collect_into_vec(clip);
+        let options = RasterOptions {
+            threads: 0,
+            ..RasterOptions::default()
+        };
+        rasterizer.rasterize_into(frame.samples, clip, &mesh.triangles, &options, visibility)
+    });
+    stats.record(Stage::Rasterize, raster.pixels_covered, seconds);
+}
+
+/// [`Stage::Shade`] straight from the visibility buffer (the plan's
+/// [`Surfaces::Visibility`]).
+fn shade_from_visibility(
+    visibility: &VisibilityBuffer,
+    mesh: &Mesh,
+    scene: &Scene,
+    stats: &mut RenderStats,
+) -> Shaded {
+    let (colour, seconds) = timed(|| shade_visibility(visibility, mesh, scene));
+    let covered = stats[Stage::Rasterize].pixels;
+    stats.record(Stage::Shade, covered, seconds);
+    Shaded {
+        colour,
+        matte: None,
+        n_dot_h: None,
+        shaded: covered,
+        highlighted: 0,
+        xtoon: 0,
+    }
+}
+
+/// [`Stage::GBuffer`]: the texels of the covered samples, with the outline pass's edge
+/// surfaces into `edges` when it runs.
+#[allow(clippy::too_many_arguments)]
+fn fill_gbuffer(
+    gbuffer: &mut GBuffer,
+    visibility: &VisibilityBuffer,
+    mesh: &Mesh,
+    library: &PatchLibrary,
+    scene: &Scene,
+    settings: &Settings,
+    edges: Option<&mut Vec<super::outline::EdgeSurface>>,
+    stats: &mut RenderStats,
+) {
+    let (exact, seconds) = timed(|| {
+        gbuffer.fill(
+            visibility,
+            mesh,
+            library,
+            &scene.camera,
+            settings.frames,
+            edges,
+        )
+    });
+    stats.exact_frames = exact;
+    stats.record(Stage::GBuffer, gbuffer.texels.len() as u64, seconds);
+}
+
+/// [`Stage::Detail`]: the X-Toon tones and abstracted frames ahead of shading.
+fn detail(
+    gbuffer: &GBuffer,
+    scene: &Scene,
+    views: &xtoon_tone::Views,
+    stats: &mut RenderStats,
+) -> Ahead {
+    let (ahead, seconds) = timed(|| xtoon_tone::run_ahead(gbuffer, scene, views));
+    let on_xtoon = gbuffer
+        .texels
+        .iter()
+        .filter(|t| views.get(t.patch as usize).is_some_and(Option::is_some))
+        .count();
+    stats.record(Stage::Detail, on_xtoon as u64, seconds);
+    ahead
+}
+
+/// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint.
+fn widths(gbuffer: &GBuffer, scene: &Scene, stats: &mut RenderStats) -> Vec<f32> {
+    let (widths, seconds) = timed(|| edge_widths(gbuffer, scene));
+    stats.record(Stage::EdgeWidths, widths.len() as u64, seconds);
+    widths
+}
+
+/// [`Stage::Outline`]: lines over the shaded samples, their width scaled to samples.
+fn outline(
+    gbuffer: &GBuffer,
+    outlines: &Outlines,
+    frame: &Frame,
+    shaded: &mut Shaded,
+    buffers: &mut OutlineBuffers,
+    stats: &mut RenderStats,
+) {
+    let (_, seconds) = timed(|| {
+        let scaled = Outlines {
+            width: outlines.width * frame.k as f32,
+            ..*outlines
+        };
+        draw_outlines(gbuffer, &scaled, &mut shaded.colour, buffers);
+    });
+    let samples = u64::from(frame.samples.width) * u64::from(frame.samples.height);
+    stats.record(Stage::Outline, samples, seconds);
+}
+
+/// [`Stage::Aov`]: the AOVs the scene asked for, at output resolution.
+fn aov(
+    scene: &Scene,
+    gbuffer: &GBuffer,
+    shaded: &mut Shaded,
+    settings: &Settings,
+    frame: &Frame,
+    stats: &mut RenderStats,
+) -> AovImages {
+    let (images, seconds) = timed(|| collect_aovs(scene, gbuffer, shaded, frame.k));
+    let pixels = u64::from(settings.width) * u64::from(settings.height);
+    stats.record(Stage::Aov, images.count() as u64 * pixels, seconds);
+    images
+}
+
+/// [`Stage::Resolve`]: the samples averaged into pixels.
+fn resolve_stage(
+    samples: &[Vec4],
+    settings: &Settings,
+    frame: &Frame,
+    stats: &mut RenderStats,
+) -> Vec<Vec4> {
+    let (colour, seconds) = timed(|| resolve(samples, settings.width, settings.height, frame.k));
+    let pixels = u64::from(settings.width) * u64::from(settings.height);
+    stats.record(Stage::Resolve, pixels, seconds);
+    colour
 }
 
 /// Resolves `k × k` samples per pixel by averaging premultiplied colour:

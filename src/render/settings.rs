@@ -1,4 +1,4 @@
-//! Accuracy and output settings, with the `preview` and `final` presets (DESIGN §7).
+//! Accuracy and output settings, with the `preview` and `final` presets (docs/accuracy.md).
 
 use serde::Deserialize;
 

@@ -1,21 +1,19 @@
-//! The shade pass: cel tone, then each patch's designed highlight, composited per pixel.
+//! The shade stage: each texel's tone, then its patch's designed highlight, composited.
 
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::camera::Projection;
-use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
+use super::directions::{initial_half_vector, initial_half_vectors, view_lanes};
+use super::gbuffer::{GBuffer, Texel, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
-use super::stats::StageStats;
-use super::xtoon;
-use crate::highlight::{
-    half_vector, ChunkScratch, Lanes, Light, LocalChunk, PreparedExpr, PreparedLayer, Shade, CHUNK,
-};
+use super::xtoon_tone::{self, Views};
+use crate::highlight::{ChunkScratch, LocalChunk, Shade};
+use crate::math::{Lanes, LANES};
 use crate::toon::ViewXToon;
 
-/// The shaded image and what the pass did.
+/// The shaded image and what the stage did.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Shaded {
+pub(super) struct Shaded {
     /// Linear RGB with straight alpha (1 on surfaces, 0 on the background).
     pub colour: Vec<Vec4>,
     /// Final highlight coverage per pixel, when the scene asked for the matte.
@@ -26,36 +24,34 @@ pub struct Shaded {
     pub shaded: u64,
     /// Pixels on highlighted patches: the only ones a half vector was built for.
     pub highlighted: u64,
-    /// The X-Toon detail pass: pixels on X-Toon patches (0 without X-Toon) and its time.
-    pub detail: StageStats,
+    /// Pixels on X-Toon patches (0 without X-Toon).
+    pub xtoon: u64,
 }
 
-/// Per-texel results of the shade pass, kept from one frame to the next so that shading
+/// Per-texel results of the shade stage, kept from one frame to the next so that shading
 /// allocates only the images it returns.
 #[derive(Debug, Default)]
-pub struct ShadeBuffers {
+pub(super) struct ShadeBuffers {
     colour: Vec<Vec4>,
     coverage: Vec<f32>,
 }
 
-/// Shades every covered pixel: `tone = ramp(N·L)`, or the X-Toon tone ([`xtoon`]),
-/// then on a patch with a highlight `H = normalize(L + V)`, the highlight expression's coverage
-/// c and colour h, and `colour = (1 − c) tone + c h`.
+/// Shades every texel of `gbuffer`: `tone = ramp(N·L)`, or the X-Toon tone of its patch's
+/// tone placed in the view (`views`), read from `ahead` when the detail stage computed it ahead
+/// of shading; then on a patch with a highlight `H = normalize(L + V)`, the highlight
+/// expression's coverage c and colour h, and `colour = (1 − c) tone + c h`.
 ///
-/// With `analytic_edges`, each highlight edge is smoothed over the pixel's footprint of the
-/// signed inside value `s = ε − ‖N − H'‖²/2`: the width is `fwidth(s) = |∂s/∂x| + |∂s/∂y|`
-/// from differences with the neighbouring pixels of the same patch, the largest over the
-/// expression's layers. Without it, edges are hard (the paper's look).
-pub fn shade(
+/// With edge `widths` (analytic anti-aliasing, [`edge_widths`](super::edge_width::edge_widths)),
+/// each highlight edge is smoothed over the pixel's footprint of the signed inside value
+/// `s = ε − ‖N − H'‖²/2`. Without them, edges are hard (the paper's look).
+pub(super) fn shade(
     gbuffer: &GBuffer,
     scene: &Scene,
-    analytic_edges: bool,
+    views: &Views,
+    ahead: Option<&[Vec3]>,
+    widths: Option<&[f32]>,
     buffers: &mut ShadeBuffers,
 ) -> Shaded {
-    let detail = xtoon::detail(gbuffer, scene);
-    // Highlights see the abstracted frames of X-Toon patches that ask for them.
-    let gbuffer = detail.highlight_gbuffer.as_ref().unwrap_or(gbuffer);
-    let widths = analytic_edges.then(|| edge_widths(gbuffer, scene));
     let texels = gbuffer.texels.len();
     buffers.colour.resize(texels, Vec4::ZERO);
     buffers.coverage.resize(texels, 0.0);
@@ -69,10 +65,10 @@ pub fn shade(
             RunScratch::new,
             |scratch, (chunk, ((texels, colour), coverage))| {
                 let range = chunk * PIXELS_PER_JOB..chunk * PIXELS_PER_JOB + texels.len();
-                let widths = widths.as_ref().map(|w| &w[range.clone()]);
+                let widths = widths.map(|w| &w[range.clone()]);
                 let xtoon = XToonTones {
-                    views: &detail.views,
-                    ahead: (!detail.tones.is_empty()).then(|| &detail.tones[range]),
+                    views,
+                    ahead: ahead.map(|tones| &tones[range]),
                 };
                 let out = Out { colour, coverage };
                 shade_texels(scene, texels, widths, &xtoon, out, scratch)
@@ -97,10 +93,7 @@ pub fn shade(
         n_dot_h,
         shaded: texels as u64,
         highlighted: counts.highlighted,
-        detail: StageStats {
-            pixels: counts.xtoon,
-            seconds: detail.ahead_seconds,
-        },
+        xtoon: counts.xtoon,
     }
 }
 
@@ -117,13 +110,10 @@ pub(super) fn cel_tone(scene: &Scene, patch: u32, position: Vec3, n: Vec3) -> Ve
 /// Where the X-Toon tones of a run of texels come from: computed per texel from its patch's
 /// tone placed in the view, or read from the pass that ran ahead of shading.
 struct XToonTones<'a, 's> {
-    views: &'a xtoon::Views<'s>,
+    views: &'a Views<'s>,
     /// The tones of the run's texels, when they ran ahead.
     ahead: Option<&'a [Vec3]>,
 }
-
-// A piece of texels on one patch is one run of X-Toon tones, and view lanes hold either.
-const _: () = assert!(CHUNK == crate::toon::RUN);
 
 /// What the shade pass counted.
 #[derive(Clone, Copy, Debug, Default)]
@@ -143,75 +133,6 @@ impl Counts {
     }
 }
 
-/// Blinn's half vector `normalize(L + V)` at a texel: the highlight vector before any operation.
-fn initial_half_vector(scene: &Scene, t: &Texel) -> Vec3 {
-    let n = t.frame.n;
-    half_vector(
-        scene.light.direction(t.position, n),
-        scene.camera.toward_eye(t.position),
-        n,
-    )
-}
-
-/// The unit vectors V from each of up to [`CHUNK`] `texels` toward the eye
-/// ([`Camera::toward_eye`]) into `out`, side by side: under perspective `eye − p` for all, then
-/// all normalized at once ([`Lanes::normalize`]), with the same values as texel by texel.
-///
-/// [`Camera::toward_eye`]: super::Camera::toward_eye
-#[inline]
-pub(super) fn view_lanes(scene: &Scene, texels: &[Texel], out: &mut Lanes) {
-    let n = texels.len();
-    match scene.camera.projection {
-        Projection::Perspective { .. } => {
-            towards(scene.camera.eye, texels, out);
-            out.normalize(n, |k, _| scene.camera.toward_eye(texels[k].position));
-        }
-        Projection::Orthographic { .. } => out.fill(n, scene.camera.toward_eye(Vec3::ZERO)),
-    }
-}
-
-/// The unit vectors L from each of up to [`CHUNK`] `texels` toward the light
-/// ([`Light::direction`]) into `out`, side by side as [`view_lanes`] does, with the same
-/// values as texel by texel.
-#[inline]
-pub(super) fn light_lanes(scene: &Scene, texels: &[Texel], out: &mut Lanes) {
-    let n = texels.len();
-    match scene.light {
-        Light::Directional { towards: l } => out.fill(n, l),
-        Light::Point { position } => {
-            towards(position, texels, out);
-            out.normalize(n, |k, _| {
-                scene.light.direction(texels[k].position, texels[k].frame.n)
-            });
-        }
-    }
-}
-
-/// The vector from each of `texels` to the point `to`, into `out`.
-#[inline]
-fn towards(to: Vec3, texels: &[Texel], out: &mut Lanes) {
-    for (k, t) in texels.iter().enumerate() {
-        out.set(k, to - t.position);
-    }
-}
-
-/// [`initial_half_vector`] at each of up to [`CHUNK`] `texels` into `out`, given their view
-/// vectors `view`, side by side: the light vectors ([`light_lanes`]) and the normalized sums
-/// each in loops over one coordinate array at a time, with the same values as texel by texel.
-fn initial_half_vectors(scene: &Scene, texels: &[Texel], view: &Lanes, out: &mut [Vec3]) {
-    let n = texels.len();
-    let mut sum = Lanes::default();
-    light_lanes(scene, texels, &mut sum);
-    // H = normalize(L + V).
-    for k in 0..n {
-        sum.set(k, sum.get(k) + view.get(k));
-    }
-    sum.normalize(n, |k, _| initial_half_vector(scene, &texels[k]));
-    for (k, h) in out.iter_mut().enumerate() {
-        *h = sum.get(k);
-    }
-}
-
 /// No highlight: nothing to composite.
 const NO_HIGHLIGHT: Shade = Shade {
     coverage: 0.0,
@@ -224,36 +145,36 @@ struct Out<'a> {
     coverage: &'a mut [f32],
 }
 
-/// The inputs and results of the tone and the highlight expression for up to [`CHUNK`] texels
+/// The inputs and results of the tone and the highlight expression for up to [`LANES`] texels
 /// of one patch, kept by each worker from one run to the next.
 struct RunScratch {
     /// The view vectors of the run, filled when its tone or highlight reads them.
     view: Lanes,
-    tone: xtoon::ToneScratch,
-    half_vectors: [Vec3; CHUNK],
+    tone: xtoon_tone::ToneScratch,
+    half_vectors: [Vec3; LANES],
     /// The half vectors in the texels' frames.
     initial: LocalChunk,
-    uvs: [Vec2; CHUNK],
+    uvs: [Vec2; LANES],
     expr: ChunkScratch,
-    shades: [Shade; CHUNK],
+    shades: [Shade; LANES],
 }
 
 impl RunScratch {
     fn new() -> Self {
         Self {
             view: Lanes::default(),
-            tone: xtoon::ToneScratch::default(),
-            half_vectors: [Vec3::ZERO; CHUNK],
+            tone: xtoon_tone::ToneScratch::default(),
+            half_vectors: [Vec3::ZERO; LANES],
             initial: LocalChunk::default(),
-            uvs: [Vec2::ZERO; CHUNK],
+            uvs: [Vec2::ZERO; LANES],
             expr: ChunkScratch::default(),
-            shades: [NO_HIGHLIGHT; CHUNK],
+            shades: [NO_HIGHLIGHT; LANES],
         }
     }
 }
 
 /// Shades `texels` (in pixel order) into `out`, given their edge widths for analytic edges.
-/// Runs of texels on one patch go through the highlight expression together, [`CHUNK`] at a
+/// Runs of texels on one patch go through the highlight expression together, [`LANES`] at a
 /// time; with per-pixel widths, one by one. Their tones are computed first, in a loop of their
 /// own with the X-Toon tone inlined whole into it, rather than called texel by texel.
 fn shade_texels(
@@ -273,13 +194,13 @@ fn shade_texels(
         // them.
         let reads_view = scene.looks[patch].highlight.is_some()
             || (xtoon.ahead.is_none() && view.is_some_and(ViewXToon::uses_view));
-        for piece in run.chunks(CHUNK) {
+        for piece in run.chunks(LANES) {
             let range = start..start + piece.len();
             let widths = widths.map(|w| &w[range.clone()]);
             if reads_view {
                 view_lanes(scene, piece, &mut scratch.view);
             }
-            let mut tones = [Vec3::ZERO; CHUNK];
+            let mut tones = [Vec3::ZERO; LANES];
             let tones = &mut tones[..piece.len()];
             match (view, xtoon.ahead) {
                 (None, _) => {
@@ -289,7 +210,7 @@ fn shade_texels(
                 }
                 (Some(_), Some(ahead)) => tones.copy_from_slice(&ahead[range.clone()]),
                 (Some(view), None) => {
-                    xtoon::shade_texels(
+                    xtoon_tone::shade_texels(
                         view,
                         scene,
                         piece,
@@ -314,7 +235,7 @@ fn shade_texels(
     counts
 }
 
-/// The highlight shades of up to [`CHUNK`] texels on one patch, or `None` when the patch has no
+/// The highlight shades of up to [`LANES`] texels on one patch, or `None` when the patch has no
 /// highlight (no half vector is built then).
 fn highlight<'s>(
     scene: &Scene,
@@ -343,170 +264,4 @@ fn highlight<'s>(
         }
     }
     Some(shades)
-}
-
-/// The layers of an expression, left to right.
-fn layers(expr: &PreparedExpr) -> Vec<&PreparedLayer> {
-    match expr {
-        PreparedExpr::Layer(layer) => vec![layer],
-        PreparedExpr::Combine(_, a, b) => {
-            let mut all = layers(a);
-            all.extend(layers(b));
-            all
-        }
-    }
-}
-
-/// Per texel, the largest `fwidth(s)` over the layers of its patch's highlight (0 without one).
-/// Differences are taken forward, or backward at the edge of the patch or image.
-fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<f32> {
-    let half_vectors: Vec<Option<Vec3>> = gbuffer
-        .texels
-        .par_iter()
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|t| {
-            scene.looks[t.patch as usize]
-                .highlight
-                .as_ref()
-                .map(|_| initial_half_vector(scene, t))
-        })
-        .collect();
-    let layer_lists: Vec<Vec<&PreparedLayer>> = scene
-        .looks
-        .iter()
-        .map(|look| look.highlight.as_ref().map_or_else(Vec::new, layers))
-        .collect();
-    let most = layer_lists.iter().map(Vec::len).max().unwrap_or(0);
-    // signed[k * most + j]: layer j's signed value at texel k.
-    let signed: Vec<f32> = gbuffer
-        .texels
-        .par_iter()
-        .zip(&half_vectors)
-        .with_min_len(PIXELS_PER_JOB)
-        .flat_map_iter(|(t, h)| {
-            let layers = &layer_lists[t.patch as usize];
-            (0..most).map(move |j| match (h, layers.get(j)) {
-                (Some(h), Some(layer)) => layer.signed(&t.frame, *h),
-                _ => 0.0,
-            })
-        })
-        .collect();
-    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
-    gbuffer
-        .texels
-        .par_iter()
-        .with_min_len(PIXELS_PER_JOB)
-        .enumerate()
-        .map(|(k, t)| {
-            if half_vectors[k].is_none() {
-                return 0.0;
-            }
-            let i = t.pixel as usize;
-            let (x, y) = (i % w, i / w);
-            // The texel of a neighbour on the same patch: forward if possible, else backward.
-            let same_patch = |pixel: Option<usize>| {
-                let slot = gbuffer.slot[pixel?];
-                (slot != EMPTY && gbuffer.texels[slot as usize].patch == t.patch)
-                    .then_some(slot as usize)
-            };
-            let nx = same_patch((x + 1 < w).then(|| i + 1))
-                .or_else(|| same_patch((x > 0).then(|| i - 1)));
-            let ny = same_patch((y + 1 < h).then(|| i + w))
-                .or_else(|| same_patch((y > 0).then(|| i - w)));
-            (0..layer_lists[t.patch as usize].len())
-                .map(|j| {
-                    let s = signed[k * most + j];
-                    let dx = nx.map_or(0.0, |n| (signed[n * most + j] - s).abs());
-                    let dy = ny.map_or(0.0, |n| (signed[n * most + j] - s).abs());
-                    dx + dy
-                })
-                .fold(0.0, f32::max)
-        })
-        .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geom::PatchLibrary;
-    use crate::highlight::TangentFrame;
-    use crate::render::scene::Aovs;
-    use crate::render::Camera;
-
-    /// Texels at scattered points, one of them on the eye and one on the point light.
-    fn texels(eye: Vec3, light: Vec3) -> Vec<Texel> {
-        (0..CHUNK)
-            .map(|k| {
-                let a = k as f32 * 0.7;
-                let position = match k {
-                    3 => eye,
-                    5 => light,
-                    _ => Vec3::new(a.cos(), a.sin(), 0.1 * a) * (1.0 + 0.3 * a),
-                };
-                let n = Vec3::new(a.sin(), 0.3, a.cos()).normalize();
-                let du = n.any_orthonormal_vector();
-                Texel {
-                    pixel: k as u32,
-                    depth: 0.5,
-                    patch: 0,
-                    uv: Vec2::ZERO,
-                    position,
-                    frame: TangentFrame::new(du, n.cross(du), n),
-                }
-            })
-            .collect()
-    }
-
-    #[test]
-    fn half_vectors_side_by_side_equal_those_texel_by_texel() {
-        let library = PatchLibrary::default();
-        let eye = Vec3::new(0.5, -6.0, 2.0);
-        let light_at = Vec3::new(-3.0, 2.0, 5.0);
-        let lights = [
-            Light::Directional {
-                towards: Vec3::new(0.3, -0.6, 0.75).normalize(),
-            },
-            Light::Point { position: light_at },
-            // Straight behind every point seen by the orthographic camera: L + V vanishes.
-            Light::Directional { towards: Vec3::Y },
-        ];
-        let projections = [
-            Projection::Perspective {
-                fov_y_degrees: 40.0,
-            },
-            Projection::Orthographic { height: 4.0 },
-        ];
-        let texels = texels(eye, light_at);
-        for light in lights {
-            for projection in projections {
-                let scene = Scene {
-                    library: &library,
-                    looks: Vec::new(),
-                    camera: Camera {
-                        eye,
-                        target: eye + Vec3::Y,
-                        up: Vec3::Z,
-                        projection,
-                        near: 0.1,
-                        far: 100.0,
-                    },
-                    light,
-                    outlines: None,
-                    aovs: Aovs::default(),
-                };
-                let mut side_by_side = [Vec3::ZERO; CHUNK];
-                let mut view = Lanes::default();
-                view_lanes(&scene, &texels, &mut view);
-                initial_half_vectors(&scene, &texels, &view, &mut side_by_side);
-                for (t, h) in texels.iter().zip(side_by_side) {
-                    let one = initial_half_vector(&scene, t);
-                    assert!(h.is_finite(), "{light:?} {projection:?}: {h}");
-                    assert_eq!(
-                        h.to_array().map(f32::to_bits),
-                        one.to_array().map(f32::to_bits)
-                    );
-                }
-            }
-        }
-    }
 }

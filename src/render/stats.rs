@@ -1,54 +1,114 @@
-//! Render statistics: what each stage did and how long it took. A stage the scene does not use
-//! reports zero pixels.
+//! Render statistics: what each stage of a frame did and how long it took. A stage the plan
+//! leaves out reports that it did not run.
 
+use std::ops::Index;
 use std::time::Instant;
 
-use serde::Serialize;
+use serde::ser::{Serialize, SerializeMap, SerializeStruct, Serializer};
+
+use super::plan::Plan;
+use super::stage::Stage;
 
 /// One stage's work.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct StageStats {
-    /// Pixels (or samples, under supersampling) the stage processed.
+    /// Pixels (or samples, under supersampling) the stage processed; for
+    /// [`Stage::Tessellate`], the triangles of the mesh.
     pub pixels: u64,
     /// Wall-clock time in seconds.
     pub seconds: f64,
 }
 
 /// Per-stage statistics of one rendered frame.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RenderStats {
+    /// The stages the frame ran.
+    pub plan: Plan,
+    /// Per stage, in [`Stage::ALL`] order; zero for a stage that did not run.
+    stages: [StageStats; Stage::COUNT],
     /// Whether the mesh had to be rebuilt (false when the cached one served).
     pub tessellation_rebuilt: bool,
     pub triangles: usize,
-    pub tessellation: StageStats,
-    /// Pixels: samples covered by a surface.
-    pub raster: StageStats,
-    /// Pixels: covered samples filled (0 when the frame's only effect is the cel tone over
-    /// interpolated frames, which is shaded straight from the visibility buffer).
-    pub gbuffer: StageStats,
     /// NURBS frames evaluated per pixel (exact and refined frames).
     pub exact_frames: u64,
-    /// Pixels: samples on X-Toon patches, whose shading normal, detail and texture colour were
-    /// computed (0 without X-Toon). Seconds: the pass that runs them ahead of shading when a
-    /// designed highlight uses the abstracted frame, and is part of `shade`'s time; 0 when the
-    /// shade pass computes them as it goes.
-    pub detail: StageStats,
-    /// Pixels: samples shaded (tone, and highlights where a patch has them).
-    pub shade: StageStats,
     /// Samples on highlighted patches: the only ones a half vector was built for.
     pub highlight_pixels: u64,
-    /// Pixels: samples the outline pass examined (0 without outlines).
-    pub outline: StageStats,
-    /// Pixels: AOV values filled (0 without AOVs).
-    pub aov: StageStats,
-    /// Pixels: output pixels resolved from samples (0 without supersampling).
-    pub resolve: StageStats,
+    /// Samples on X-Toon patches, whose shading normal, detail and texture colour were computed
+    /// (0 without X-Toon): by the shade stage, or ahead of it by [`Stage::Detail`].
+    pub xtoon_pixels: u64,
     /// The whole frame.
     pub total_seconds: f64,
 }
 
+impl RenderStats {
+    /// Empty statistics of a frame that runs `plan`.
+    #[must_use]
+    pub fn new(plan: Plan) -> Self {
+        Self {
+            plan,
+            stages: [StageStats::default(); Stage::COUNT],
+            tessellation_rebuilt: false,
+            triangles: 0,
+            exact_frames: 0,
+            highlight_pixels: 0,
+            xtoon_pixels: 0,
+            total_seconds: 0.0,
+        }
+    }
+
+    /// Whether `stage` ran.
+    #[must_use]
+    pub fn ran(&self, stage: Stage) -> bool {
+        self.plan.runs(stage)
+    }
+
+    /// The stages that ran, in pipeline order, with what each did.
+    pub fn ran_stages(&self) -> impl Iterator<Item = (Stage, StageStats)> + '_ {
+        self.plan.stages().map(|stage| (stage, self[stage]))
+    }
+
+    /// Records what `stage` did.
+    pub(crate) fn record(&mut self, stage: Stage, pixels: u64, seconds: f64) {
+        self.stages[stage.index()] = StageStats { pixels, seconds };
+    }
+}
+
+impl Index<Stage> for RenderStats {
+    type Output = StageStats;
+
+    fn index(&self, stage: Stage) -> &StageStats {
+        &self.stages[stage.index()]
+    }
+}
+
+/// As JSON: `stages` maps the name of each stage that ran to its work, in pipeline order; the
+/// counts follow.
+impl Serialize for RenderStats {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        struct Stages<'a>(&'a RenderStats);
+        impl Serialize for Stages<'_> {
+            fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                let mut map = serializer.serialize_map(None)?;
+                for (stage, stats) in self.0.ran_stages() {
+                    map.serialize_entry(stage.name(), &stats)?;
+                }
+                map.end()
+            }
+        }
+        let mut s = serializer.serialize_struct("RenderStats", 7)?;
+        s.serialize_field("stages", &Stages(self))?;
+        s.serialize_field("tessellation_rebuilt", &self.tessellation_rebuilt)?;
+        s.serialize_field("triangles", &self.triangles)?;
+        s.serialize_field("exact_frames", &self.exact_frames)?;
+        s.serialize_field("highlight_pixels", &self.highlight_pixels)?;
+        s.serialize_field("xtoon_pixels", &self.xtoon_pixels)?;
+        s.serialize_field("total_seconds", &self.total_seconds)?;
+        s.end()
+    }
+}
+
 /// Runs `work` and returns its result with the seconds it took.
-pub fn timed<T>(work: impl FnOnce() -> T) -> (T, f64) {
+pub(crate) fn timed<T>(work: impl FnOnce() -> T) -> (T, f64) {
     let start = Instant::now();
     let value = work();
     (value, start.elapsed().as_secs_f64())

@@ -3,6 +3,7 @@
 //! edge vertices welded to the same coordinates, so the mesh is watertight.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use glam::{DVec3, Mat4, Vec2, Vec3};
 use serde::Deserialize;
@@ -42,19 +43,20 @@ pub type Segments = (u32, u32);
 
 /// Tessellates a library, keeping the last mesh while the segment counts stay the same.
 #[derive(Debug)]
-pub struct Tessellator<'a> {
-    library: &'a PatchLibrary,
+pub struct Tessellator {
+    library: Arc<PatchLibrary>,
     /// Classes of (patch, direction) that must be cut alike: `class[2 p + d]`, d = 0 for u.
     class: Vec<usize>,
     cached: Option<(Vec<Segments>, Mesh)>,
 }
 
-impl<'a> Tessellator<'a> {
+impl Tessellator {
     /// Finds the edges the library's patches share (once) and starts with an empty cache.
-    pub fn new(library: &'a PatchLibrary) -> Self {
+    pub fn new(library: impl Into<Arc<PatchLibrary>>) -> Self {
+        let library = library.into();
         Self {
+            class: direction_classes(&library),
             library,
-            class: direction_classes(library),
             cached: None,
         }
     }
@@ -71,7 +73,7 @@ impl<'a> Tessellator<'a> {
         let segments = self.segments(density, view_projection, width, height);
         let rebuilt = !matches!(&self.cached, Some((s, _)) if *s == segments);
         if rebuilt {
-            let mesh = build_mesh(self.library, &segments);
+            let mesh = build_mesh(&self.library, &segments);
             self.cached = Some((segments, mesh));
         }
         let (_, mesh) = self.cached.as_ref().expect("the cache was just filled");

@@ -10,7 +10,8 @@
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::gbuffer::{facing_normal, EMPTY, PIXELS_PER_JOB};
+use super::facing::facing_normal;
+use super::gbuffer::{EMPTY, PIXELS_PER_JOB};
 use super::raster::{interpolate, VisibilityBuffer};
 use super::scene::{Scene, Tone};
 use super::shade::cel_tone;
@@ -190,7 +191,7 @@ mod tests {
         };
         // Not a whole number of items of pixels.
         let (width, height) = (161, 119);
-        let mut tessellator = Tessellator::new(&library);
+        let mut tessellator = Tessellator::new(library.clone());
         // Pixels shaded by triangle and by pixel, under the directional and the point light.
         let (mut per_triangle, mut per_pixel) = ([0, 0], [0, 0]);
         for (k, eye) in [

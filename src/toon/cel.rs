@@ -1,4 +1,4 @@
-//! Cel ramps: a few flat bands of colour over `n·l` (DESIGN §5).
+//! Cel ramps: a few flat bands of colour over `n·l` (docs/xtoon.md).
 
 use glam::Vec3;
 use serde::Deserialize;

@@ -6,7 +6,7 @@ use serde::Deserialize;
 
 use super::error::XToonError;
 use super::xtoon::PointRun;
-use crate::highlight::{Exponent, Lanes};
+use crate::math::{Exponent, Lanes};
 use crate::param::{check, Range};
 
 /// Where the detail D of a point comes from. Every number is a parameter of type `P` (a number,

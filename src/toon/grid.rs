@@ -3,7 +3,7 @@
 
 use glam::{Vec3, Vec3A};
 
-use super::xtoon::RUN;
+use crate::math::LANES;
 
 /// `rows × columns` vectors, read at continuous coordinates `(row, column)` with the samples at
 /// whole numbers.
@@ -73,7 +73,7 @@ impl Grid {
         self.values[row * self.stride + column].into()
     }
 
-    /// For k < `n` ≤ [`RUN`], the value at `(row(k), column(k))` into `put(k, value)`: with each
+    /// For k < `n` ≤ [`LANES`], the value at `(row(k), column(k))` into `put(k, value)`: with each
     /// coordinate clamped to the grid (NaN reads 0), `r = ⌊row⌋`, `c = ⌊column⌋` and
     /// `(a, b) = (row − r, column − c)`,
     /// `lerp(lerp(g[r][c], g[r][c+1], b), lerp(g[r+1][c], g[r+1][c+1], b), a)`.
@@ -82,7 +82,7 @@ impl Grid {
     /// in a loop of their own that vectorizes; then the reads.
     ///
     /// # Panics
-    /// If `n` is more than [`RUN`].
+    /// If `n` is more than [`LANES`].
     #[inline(always)]
     pub fn bilinear(
         &self,
@@ -91,9 +91,9 @@ impl Grid {
         column: impl Fn(usize) -> f32,
         mut put: impl FnMut(usize, Vec3),
     ) {
-        assert!(n <= RUN, "bad run");
-        let mut at = [0u32; RUN];
-        let (mut a, mut b) = ([0.0f32; RUN], [0.0f32; RUN]);
+        assert!(n <= LANES, "bad run");
+        let mut at = [0u32; LANES];
+        let (mut a, mut b) = ([0.0f32; LANES], [0.0f32; LANES]);
         let stride = self.stride as u32;
         for k in 0..n {
             // `max` then `min` clamps, and takes NaN to 0.

@@ -1,4 +1,4 @@
-//! Tone (DESIGN §5): how bright and in which colour a surface is drawn — cel bands over `n·l`,
+//! Tone (docs/xtoon.md): how bright and in which colour a surface is drawn — cel bands over `n·l`,
 //! or X-Toon (Barla, Thollot & Markosian 2006): a 2D toon texture over `(n·l, D)` with the
 //! detail D from a detail map, and shape detail that blends the shading normal toward an
 //! abstracted shape.
@@ -28,4 +28,5 @@ pub use shape::{
 };
 pub use smooth::SmoothedNormals;
 pub use texture::{ToonTexture, MAX_TEXTURE_SIDE};
-pub use xtoon::{PointRun, PreparedXToon, ViewXToon, XToon, RUN};
+pub(crate) use xtoon::PointRun;
+pub use xtoon::{PreparedXToon, ViewXToon, XToon};

@@ -12,7 +12,7 @@ use super::error::{XToonError, MAX_ITERATIONS};
 use super::smooth::SmoothedNormals;
 use super::xtoon::PointRun;
 use crate::geom::PatchLibrary;
-use crate::highlight::Lanes;
+use crate::math::Lanes;
 use crate::param::{check, Range};
 
 /// The abstracted shape whose normals the shading blends toward.
@@ -327,7 +327,7 @@ impl PreparedShape {
     /// two. Where a is zero or not finite the blend is not finite or zero, and the
     /// normalization's fallback returns n.
     #[inline(always)]
-    pub fn shading_normals(&self, points: &PointRun, out: &mut Lanes) {
+    pub(crate) fn shading_normals(&self, points: &PointRun, out: &mut Lanes) {
         let (n, normal) = (points.len, &points.normal);
         self.shape.directions(points, out);
         let w = self.weight;

@@ -7,7 +7,7 @@ use super::error::XToonError;
 use super::grid::Grid;
 use super::xtoon::PointRun;
 use crate::geom::{GridEvaluator, NurbsSurface, PatchLibrary};
-use crate::highlight::Lanes;
+use crate::math::Lanes;
 
 /// How far each smoothing iteration moves a control point toward its neighbours' mean.
 const LAMBDA: f64 = 0.5;

@@ -92,10 +92,10 @@ impl ToonTexture {
     }
 
     /// [`sample`](Self::sample) at each `(n_dot_l[k], detail[k])` into `out[k]`, for up to
-    /// [`RUN`](super::RUN) lookups side by side.
+    /// [`LANES`](crate::math::LANES) lookups side by side.
     ///
     /// # Panics
-    /// If the three slices differ in length or are longer than [`RUN`](super::RUN).
+    /// If the three slices differ in length or are longer than [`LANES`](crate::math::LANES).
     #[inline(always)]
     pub fn sample_run(&self, n_dot_l: &[f32], detail: &[f32], out: &mut [Vec3]) {
         let n = out.len();

@@ -10,7 +10,7 @@ use super::detail::{DetailMap, PreparedDetail, ViewDetail};
 use super::error::XToonError;
 use super::shape::{AbstractShape, HighlightFrame, PreparedShape, ShapeDetail};
 use super::texture::ToonTexture;
-use crate::highlight::{Lanes, LANES};
+use crate::math::{Lanes, LANES};
 
 /// The parameters of an X-Toon tone; the texture is given beside them, as an image.
 ///
@@ -117,10 +117,7 @@ pub struct ViewXToon<'a> {
     detail: ViewDetail,
 }
 
-/// The most points [`ViewXToon::shade_run`] takes at once.
-pub const RUN: usize = LANES;
-
-/// Up to [`RUN`] points of one patch side by side, one array per coordinate, as
+/// Up to [`LANES`] points of one patch side by side, one array per coordinate, as
 /// [`ViewXToon::shade_run`] reads them.
 #[derive(Clone, Debug)]
 pub struct PointRun {
@@ -133,8 +130,8 @@ pub struct PointRun {
     /// Unit normals, facing the viewer.
     pub normal: Lanes,
     /// Patch parameters.
-    pub u: [f32; RUN],
-    pub v: [f32; RUN],
+    pub u: [f32; LANES],
+    pub v: [f32; LANES],
 }
 
 impl Default for PointRun {
@@ -145,8 +142,8 @@ impl Default for PointRun {
             patch: 0,
             position: Lanes::default(),
             normal: Lanes::default(),
-            u: [0.0; RUN],
-            v: [0.0; RUN],
+            u: [0.0; LANES],
+            v: [0.0; LANES],
         }
     }
 }
@@ -195,7 +192,7 @@ impl ViewXToon<'_> {
     /// # Panics
     /// If `colour` is not `points.len` long.
     #[inline(always)]
-    pub fn shade_run<'a>(
+    pub(crate) fn shade_run<'a>(
         &self,
         points: &'a PointRun,
         view: &Lanes,
@@ -212,7 +209,7 @@ impl ViewXToon<'_> {
             }
             None => &points.normal,
         };
-        let mut n_dot_l = [0.0; RUN];
+        let mut n_dot_l = [0.0; LANES];
         for (k, nl) in n_dot_l[..n].iter_mut().enumerate() {
             *nl = shading.get(k).dot(light.get(k));
         }
@@ -221,7 +218,7 @@ impl ViewXToon<'_> {
         } else {
             &points.normal
         };
-        let mut detail = [0.0; RUN];
+        let mut detail = [0.0; LANES];
         self.detail
             .values(points, view, light, highlight, &mut detail[..n]);
         self.tone
@@ -258,11 +255,11 @@ mod tests {
         let texture = Arc::new(ToonTexture::new(8, 4, texels).unwrap());
         // A full run and a short one, of points of every kind of lane on a sphere.
         let mut run = PointRun {
-            len: RUN,
+            len: LANES,
             ..PointRun::default()
         };
         let (mut view, mut light) = (Lanes::default(), Lanes::default());
-        for k in 0..RUN {
+        for k in 0..LANES {
             let n = direction(k, 0.7);
             let uv = Vec2::new(k as f32 / 9.0 - 1.0, (k % 5) as f32 * 0.9);
             run.set(k, 2.0 * n, n, uv);
@@ -298,9 +295,9 @@ mod tests {
             .prepare(Arc::clone(&texture), built.as_ref())
             .unwrap();
             let tone = tone.in_view(Vec3::new(0.0, -6.0, 0.0), Vec3::Y);
-            for len in [RUN, 7] {
+            for len in [LANES, 7] {
                 let run = PointRun { len, ..run.clone() };
-                let (mut abstracted, mut colour) = (Lanes::default(), [Vec3::NAN; RUN]);
+                let (mut abstracted, mut colour) = (Lanes::default(), [Vec3::NAN; LANES]);
                 let normals =
                     *tone.shade_run(&run, &view, &light, &mut abstracted, &mut colour[..len]);
                 for (k, &colour) in colour[..len].iter().enumerate() {

@@ -1,15 +1,23 @@
-//! The shot file (DESIGN §6): serde types, loading with includes, validation with
-//! file:line:col errors, and [`Shot::at`], the pure evaluation of every track at a frame.
+//! The shot file, described field by field in `docs/shot-format.md`: serde types, loading with
+//! includes, validation with file:line:col errors, and [`Shot::at`], the pure evaluation of
+//! every track at a frame.
 
 mod file;
+mod frame_state;
 mod glob;
 mod load;
-mod shot;
+mod output;
+mod validated;
 
 pub use file::{Aov, Preset, Selector};
+pub use frame_state::FrameState;
 pub use glob::matches as matches_patch;
 pub use load::load_shot;
-pub use shot::{resolve_path, FrameState, Instance, MaterialState, Shot};
+pub use output::{check_numbered, frame_path, resolve_path};
+pub use validated::{Instance, MaterialState, Shot};
+
+/// The longest frame range a shot may have, and the most frames one frame list may name.
+pub const MAX_FRAMES: i64 = 1_000_000;
 
 use thiserror::Error;
 

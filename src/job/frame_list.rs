@@ -1,6 +1,8 @@
 //! Frame lists as render farms pass them: `12`, `1-48`, `1-48x2` (every second frame),
 //! `1,5,9-12`, and negative frames such as `-5--1`.
 
+use crate::shot::MAX_FRAMES;
+
 /// The frames of `spec` in the order written, without repeats.
 pub fn parse_frames(spec: &str) -> Result<Vec<i64>, String> {
     let mut frames = Vec::new();
@@ -13,9 +15,6 @@ pub fn parse_frames(spec: &str) -> Result<Vec<i64>, String> {
     }
     Ok(frames)
 }
-
-/// The most frames one spec may list.
-const MAX_FRAMES: i64 = 1_000_000;
 
 fn parse_part(part: &str) -> Result<Vec<i64>, String> {
     let bad = || {

@@ -245,7 +245,7 @@ pub struct RenderSpec {
     pub aovs: Vec<Aov>,
 }
 
-/// The accuracy presets of DESIGN §7.
+/// The accuracy presets of docs/accuracy.md.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 pub enum Preset {
     /// Fast feedback: coarse tessellation, interpolated frames, no anti-aliasing.

@@ -10,24 +10,20 @@ use serde::de::DeserializeOwned;
 
 use super::file::{HighlightSpec, LightSpec, LooksFile, MaterialSpec, ProjectionSpec, ShotFile};
 use super::glob;
-use super::shot::{
-    frame_path, placement, resolve_path, Accuracy, FrameState, Instance, Material, MaterialState,
-    Shot,
-};
-use super::ShotError;
+use super::output::{check_numbered, resolve_path};
+use super::validated::{placement, Accuracy, Instance, Material, MaterialState, Shot};
+use super::{FrameState, ShotError, MAX_FRAMES};
 use crate::formats::ron_location::{closest_name, explain, position_of, start_of_value_closed_at};
 use crate::formats::{load_patches, read_toon_texture};
 use crate::geom::{NamedPatch, PatchLibrary};
 use crate::toon::{AbstractShape, Abstraction, ToonTexture, XToon};
 
-/// The longest frame range a shot may have.
-const MAX_FRAMES: i64 = 1_000_000;
-
 /// The most files an include chain may nest.
 const MAX_INCLUDE_DEPTH: usize = 16;
 
-/// A file read for the shot: its name as shown in messages, its folder and its text.
+/// A file read for the shot: its path, its name as shown in messages, its folder and its text.
 struct Source {
+    path: PathBuf,
     shown: String,
     folder: PathBuf,
     text: String,
@@ -41,6 +37,7 @@ impl Source {
             message: format!("cannot read the file: {e}"),
         })?;
         Ok(Self {
+            path: path.to_path_buf(),
             shown,
             folder: path.parent().map(Path::to_path_buf).unwrap_or_default(),
             text,
@@ -137,6 +134,7 @@ struct Looks {
 /// Reads, checks and prepares the shot at `path`.
 pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
     let mut sources = vec![Source::read(path)?];
+    let mut inputs = Inputs::default();
     let file: ShotFile = sources[0].parse()?;
     let mut looks = Looks::default();
     let mut chain = vec![canonical(path)];
@@ -172,13 +170,9 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
         ));
     }
     let output = resolve_path(&shot_source.folder, Path::new(&file.output));
-    if first != last && frame_path(&output, first) == frame_path(&output, last) {
-        return Err(shot_source.error_at_string(
-            "output",
-            &file.output,
-            "the output pattern has no `#` for the frame number, so every frame would overwrite the same file; write e.g. \"out/shot.####.png\"",
-        ));
-    }
+    let frame_count = usize::try_from(last - first).map_or(usize::MAX, |n| n + 1);
+    check_numbered(&output, frame_count)
+        .map_err(|message| shot_source.error_at_string("output", &file.output, message))?;
 
     // Instances and the model.
     let mut models: HashMap<PathBuf, PatchLibrary> = HashMap::new();
@@ -245,6 +239,7 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
                 };
                 shot_source.error_at_string("file", &spec.file, message)
             })?;
+            inputs.add(&model_path);
             models.insert(key.clone(), model);
         }
         let place = placement(translate, axis, t.degrees, t.scale);
@@ -316,17 +311,20 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
     let mut materials = Vec::with_capacity(looks.materials.len());
     let mut material_origins = Vec::with_capacity(looks.materials.len());
     for (name, spec, origin) in looks.materials {
-        let material = assets.material(spec, &name, &sources[origin], &library)?;
+        let material = assets.material(spec, &name, &sources[origin], &library, &mut inputs)?;
         materials.push((name, material));
         material_origins.push(origin);
     }
     let (highlights, highlight_origins): (Vec<_>, Vec<_>) = looks.highlights.into_iter().unzip();
+    let mut files = sources.iter().map(|s| s.path.clone()).collect::<Vec<_>>();
+    files.extend(inputs.0);
     let shot = Shot {
         path: path.to_path_buf(),
+        inputs: files,
         frames: file.frames,
         fps: file.fps,
         output,
-        library,
+        library: Arc::new(library),
         instances,
         settings,
         accuracy,
@@ -358,6 +356,7 @@ impl Assets {
         name: &str,
         source: &Source,
         library: &PatchLibrary,
+        inputs: &mut Inputs,
     ) -> Result<Material, ShotError> {
         let (texture_name, detail, invert, shape) = match spec {
             MaterialSpec::Cel { base, bands } => return Ok(Material::Cel { base, bands }),
@@ -379,6 +378,7 @@ impl Assets {
                         format!("cannot use the toon texture: {e}"),
                     )
                 })?);
+                inputs.add(&path);
                 self.textures.insert(canonical(&path), Arc::clone(&texture));
                 texture
             }
@@ -607,6 +607,19 @@ fn unknown(kind: &str, name: &str, names: &[&str]) -> String {
                 .collect::<Vec<_>>()
                 .join(", ")
         ),
+    }
+}
+
+/// The files a shot reads besides its own and its includes: patch files and toon textures,
+/// each once.
+#[derive(Default)]
+struct Inputs(Vec<PathBuf>);
+
+impl Inputs {
+    fn add(&mut self, path: &Path) {
+        if !self.0.iter().any(|p| canonical(p) == canonical(path)) {
+            self.0.push(path.to_path_buf());
+        }
     }
 }
 

@@ -1,0 +1,116 @@
+//! The files of a rendered frame: the colour as an 8-bit sRGB RGBA PNG, each AOV as a PNG
+//! beside it, and all of them as channels of one EXR for compositing.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec4;
+
+use super::atomic::WriteError;
+use super::exr::write_exr;
+use super::image_encoding::{
+    colour_rgba8, depth16, grey8, heat_rgba8, normal_rgba8, patch_colours_rgba8, patch_ids16,
+    uv_rgba8, HEAT_RANGE,
+};
+use super::png::{write_png, PngLayout};
+use crate::render::RenderedFrame;
+
+/// The file beside the frame file `path` that holds its AOV `name`: `shot.0001.png` gives
+/// `shot.0001.NAME.png`.
+#[must_use]
+pub fn beside(path: &Path, name: &str) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or_else(Default::default, |s| s.to_string_lossy().into_owned());
+    path.with_file_name(format!("{stem}.{name}.png"))
+}
+
+/// Writes the colour to `path` (PNG) and each AOV the frame holds beside it, named after it:
+/// `shot.0001.png` gives `shot.0001.matte.png`, `.patch_id.png` (16-bit indices),
+/// `.patches.png` (flat colours, the paper's Figure 9 view), `.depth.png` (16-bit),
+/// `.normal.png`, `.uv.png` and `.n_dot_h.png` (heat map). The colour is written last, so once
+/// it exists the whole frame does. Returns the paths written.
+pub fn write_pngs(frame: &RenderedFrame, path: &Path) -> Result<Vec<PathBuf>, WriteError> {
+    let (w, h) = (frame.width, frame.height);
+    let aov_file = |name: &str| beside(path, name);
+    let a = &frame.aovs;
+    let mut images: Vec<(PathBuf, PngLayout, Vec<u8>)> = Vec::new();
+    if let Some(matte) = &a.matte {
+        images.push((aov_file("matte"), PngLayout::Gray8, grey8(matte)));
+    }
+    if let Some(ids) = &a.patch_id {
+        images.push((aov_file("patch_id"), PngLayout::Gray16, patch_ids16(ids)));
+        images.push((
+            aov_file("patches"),
+            PngLayout::Rgba8,
+            patch_colours_rgba8(ids),
+        ));
+    }
+    if let Some(depth) = &a.depth {
+        images.push((aov_file("depth"), PngLayout::Gray16, depth16(depth)));
+    }
+    if let Some(normal) = &a.normal {
+        images.push((aov_file("normal"), PngLayout::Rgba8, normal_rgba8(normal)));
+    }
+    if let Some(uv) = &a.uv {
+        images.push((aov_file("uv"), PngLayout::Rgba8, uv_rgba8(uv)));
+    }
+    if let Some(nh) = &a.n_dot_h {
+        let alpha: Vec<f32> = frame.colour.iter().map(|c| c.w).collect();
+        images.push((
+            aov_file("n_dot_h"),
+            PngLayout::Rgba8,
+            heat_rgba8(nh, &alpha, HEAT_RANGE),
+        ));
+    }
+    images.push((
+        path.to_path_buf(),
+        PngLayout::Rgba8,
+        colour_rgba8(&frame.colour),
+    ));
+    let mut written = Vec::with_capacity(images.len());
+    for (file, layout, pixels) in images {
+        write_png(&file, w, h, layout, &pixels)?;
+        written.push(file);
+    }
+    Ok(written)
+}
+
+/// Writes the frame as one EXR: linear `R G B A` and the AOVs as `matte.Y`, `patch_id.Y`
+/// (−1 on the background), `depth.Z` (NDC, +∞ on the background), `normal.X/Y/Z`, `uv.U/V` and
+/// `n_dot_h.Y`.
+pub fn write_frame_exr(frame: &RenderedFrame, path: &Path) -> Result<(), WriteError> {
+    let plane = |f: &dyn Fn(&Vec4) -> f32| frame.colour.iter().map(f).collect::<Vec<f32>>();
+    let mut channels = vec![
+        ("R".to_string(), plane(&|c| c.x)),
+        ("G".to_string(), plane(&|c| c.y)),
+        ("B".to_string(), plane(&|c| c.z)),
+        ("A".to_string(), plane(&|c| c.w)),
+    ];
+    let a = &frame.aovs;
+    if let Some(matte) = &a.matte {
+        channels.push(("matte.Y".into(), matte.clone()));
+    }
+    if let Some(ids) = &a.patch_id {
+        let ids = ids
+            .iter()
+            .map(|&i| if i == u32::MAX { -1.0 } else { i as f32 })
+            .collect();
+        channels.push(("patch_id.Y".into(), ids));
+    }
+    if let Some(depth) = &a.depth {
+        channels.push(("depth.Z".into(), depth.clone()));
+    }
+    if let Some(normal) = &a.normal {
+        channels.push(("normal.X".into(), normal.iter().map(|n| n.x).collect()));
+        channels.push(("normal.Y".into(), normal.iter().map(|n| n.y).collect()));
+        channels.push(("normal.Z".into(), normal.iter().map(|n| n.z).collect()));
+    }
+    if let Some(uv) = &a.uv {
+        channels.push(("uv.U".into(), uv.iter().map(|t| t.x).collect()));
+        channels.push(("uv.V".into(), uv.iter().map(|t| t.y).collect()));
+    }
+    if let Some(nh) = &a.n_dot_h {
+        channels.push(("n_dot_h.Y".into(), nh.clone()));
+    }
+    write_exr(path, frame.width, frame.height, channels)
+}

@@ -1,0 +1,199 @@
+//! A render job: a loaded shot with the overrides a user gave (size, preset, AOVs, threads,
+//! output), the frames to render and every file the shot depends on. It renders a frame to
+//! images and statistics; writing them to files is a separate, atomic step.
+//!
+//! `glint render` is a loop over a job; anything else that renders shots (a watcher, a farm
+//! task, a test) uses the same API:
+//!
+//! ```no_run
+//! use glint::job::{Overrides, RenderJob};
+//!
+//! let mut job = RenderJob::load("shots/teapot_turntable.ron".as_ref(), &Overrides::default())?;
+//! job.check_writable()?;
+//! for frame in job.frames().to_vec() {
+//!     let image = job.render_frame(frame as f64)?;
+//!     job.write_frame(frame, &image)?;
+//! }
+//! # Ok::<(), glint::job::JobError>(())
+//! ```
+
+mod frame_list;
+mod write;
+
+use std::path::{Path, PathBuf};
+
+use thiserror::Error;
+
+pub use frame_list::parse_frames;
+
+use crate::formats::atomic::WriteError;
+use crate::render::{RenderError, RenderedFrame, Renderer, Scene, Settings};
+use crate::shot::{check_numbered, load_shot, resolve_path, Aov, Preset, Shot, ShotError};
+
+/// What a user asks for instead of what the shot says. `None` keeps the shot's own.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Overrides {
+    /// The frames to render, in order [default: the shot's whole range].
+    pub frames: Option<Vec<i64>>,
+    /// Image size `(width, height)` instead of the shot's resolution.
+    pub size: Option<(u32, u32)>,
+    /// Accuracy preset instead of the shot's; the shot's explicit settings still refine it.
+    pub preset: Option<Preset>,
+    /// The AOVs instead of the shot's list.
+    pub aovs: Option<Vec<Aov>>,
+    /// Worker threads (0: one per core) instead of one per core.
+    pub threads: Option<usize>,
+    /// Output pattern, relative to the shot file's folder unless absolute.
+    pub output: Option<PathBuf>,
+}
+
+/// Why a job cannot be made or a frame of it rendered or written.
+#[derive(Debug, Error)]
+pub enum JobError {
+    /// The shot cannot be used.
+    #[error(transparent)]
+    Shot(#[from] ShotError),
+    /// The overrides ask for something the shot cannot be rendered with.
+    #[error("{shot}: {message}")]
+    Overrides { shot: String, message: String },
+    /// An output folder cannot be made or written in.
+    #[error("{0}")]
+    Output(String),
+    /// A frame could not be rendered.
+    #[error("frame {frame}: {source}")]
+    Render { frame: f64, source: RenderError },
+    /// A frame's files could not be written.
+    #[error(transparent)]
+    Write(#[from] WriteError),
+}
+
+impl JobError {
+    /// Whether the input is at fault (a shot, an option, an output folder): exit code 2 on the
+    /// command line; otherwise the work failed (exit code 1).
+    #[must_use]
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            JobError::Shot(_) | JobError::Overrides { .. } | JobError::Output(_) => true,
+            JobError::Render { .. } | JobError::Write(_) => false,
+        }
+    }
+}
+
+/// A shot ready to render: its settings, frames and output with the overrides applied, and a
+/// renderer that keeps the model's tessellation and working memory from frame to frame.
+pub struct RenderJob {
+    shot: Shot,
+    settings: Settings,
+    frames: Vec<i64>,
+    renderer: Renderer,
+}
+
+impl RenderJob {
+    /// Loads the shot at `path` and applies `overrides` ([`RenderJob::new`]).
+    pub fn load(path: &Path, overrides: &Overrides) -> Result<Self, JobError> {
+        Self::new(load_shot(path)?, overrides)
+    }
+
+    /// The job of rendering `shot` as `overrides` ask: every frame must lie in the shot's
+    /// range, the settings must be valid, and an output pattern for more than one frame must
+    /// number them.
+    pub fn new(mut shot: Shot, overrides: &Overrides) -> Result<Self, JobError> {
+        let refuse = |message: String| JobError::Overrides {
+            shot: shot.path.display().to_string(),
+            message,
+        };
+        let mut settings = shot.settings_with(overrides.preset, overrides.size);
+        if let Some(threads) = overrides.threads {
+            settings.threads = threads;
+        }
+        settings.validate().map_err(|e| refuse(e.to_string()))?;
+        let (first, last) = shot.frames;
+        let frames = match &overrides.frames {
+            Some(frames) => frames.clone(),
+            None => (first..=last).collect(),
+        };
+        if let Some(outside) = frames.iter().find(|f| !(first..=last).contains(*f)) {
+            return Err(refuse(format!(
+                "frame {outside} is outside the shot's frame range {first}-{last}"
+            )));
+        }
+        if let Some(aovs) = &overrides.aovs {
+            shot.aovs.clone_from(aovs);
+        }
+        if let Some(out) = &overrides.output {
+            let folder = shot.path.parent().unwrap_or(Path::new(""));
+            shot.output = resolve_path(folder, out);
+        }
+        check_numbered(&shot.output, frames.len()).map_err(refuse)?;
+        let renderer = Renderer::new(std::sync::Arc::clone(&shot.library));
+        Ok(Self {
+            shot,
+            settings,
+            frames,
+            renderer,
+        })
+    }
+
+    /// The shot, with the overridden AOVs and output.
+    #[must_use]
+    pub fn shot(&self) -> &Shot {
+        &self.shot
+    }
+
+    /// The settings every frame is rendered with.
+    #[must_use]
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The frames to render, in order.
+    #[must_use]
+    pub fn frames(&self) -> &[i64] {
+        &self.frames
+    }
+
+    /// Every file the shot depends on: the shot file, its includes, patch files and toon
+    /// textures. A change to any of them can change a frame.
+    #[must_use]
+    pub fn inputs(&self) -> &[PathBuf] {
+        &self.shot.inputs
+    }
+
+    /// The file frame `frame`'s colour is written to (its AOVs go beside it).
+    #[must_use]
+    pub fn frame_path(&self, frame: i64) -> PathBuf {
+        self.shot.frame_path(frame)
+    }
+
+    /// The scene the shot shows at `frame` (fractional frames allowed).
+    pub fn scene(&self, frame: f64) -> Result<Scene<'_>, JobError> {
+        Ok(self.shot.at(frame).scene(&self.shot)?)
+    }
+
+    /// Renders `frame` (fractional frames allowed): its colour, AOVs and statistics. Nothing
+    /// is written.
+    pub fn render_frame(&mut self, frame: f64) -> Result<RenderedFrame, JobError> {
+        let scene = self.shot.at(frame).scene(&self.shot)?;
+        self.renderer
+            .render(&scene, &self.settings)
+            .map_err(|source| JobError::Render { frame, source })
+    }
+
+    /// Makes the output folders of every frame of the job and checks that files can be
+    /// created in them, before anything is rendered.
+    pub fn check_writable(&self) -> Result<(), JobError> {
+        for &frame in &self.frames {
+            write::check_writable(&self.frame_path(frame)).map_err(JobError::Output)?;
+        }
+        Ok(())
+    }
+
+    /// Writes `image`, rendered for `frame`, to its files: stale temporaries of earlier, killed
+    /// runs cleared, each file written atomically, the EXR (when there are AOVs) and the AOV
+    /// PNGs first and the colour PNG last, so that once the colour exists the whole frame does.
+    /// Returns the paths written.
+    pub fn write_frame(&self, frame: i64, image: &RenderedFrame) -> Result<Vec<PathBuf>, JobError> {
+        let exr = !self.shot.aovs.is_empty();
+        Ok(write::write_frame(image, &self.frame_path(frame), exr)?)
+    }
+}

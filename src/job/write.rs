@@ -1,0 +1,51 @@
+//! Writing a frame's files so that a farm can retry anywhere: stale temporaries of killed runs
+//! cleared, every file written atomically, the colour last.
+
+use std::path::{Path, PathBuf};
+
+use crate::formats::atomic::{remove_stale_temporaries, WriteError};
+use crate::formats::{write_frame_exr, write_pngs};
+use crate::render::RenderedFrame;
+
+/// Writes `image` to `path` and its AOVs beside it: stale temporaries of earlier, killed runs
+/// removed; the EXR (with `exr`, when there are AOVs) and the AOV PNGs first, the colour PNG
+/// last, so that once the colour exists the whole frame does. Returns the paths written.
+pub(super) fn write_frame(
+    image: &RenderedFrame,
+    path: &Path,
+    exr: bool,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let exr_path = path.with_extension("exr");
+    for target in [path, exr_path.as_path()] {
+        remove_stale_temporaries(target).map_err(|e| WriteError {
+            path: target.display().to_string(),
+            reason: format!("cannot clear old temporary files beside it: {e}"),
+        })?;
+    }
+    let mut written = Vec::new();
+    if exr {
+        write_frame_exr(image, &exr_path)?;
+        written.push(exr_path);
+    }
+    written.extend(write_pngs(image, path)?);
+    Ok(written)
+}
+
+/// Makes the folder of `path` and checks that a file can be created in it.
+pub(super) fn check_writable(path: &Path) -> Result<(), String> {
+    let folder = match path.parent() {
+        Some(f) if !f.as_os_str().is_empty() => f.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&folder)
+        .map_err(|e| format!("cannot create the output folder {}: {e}", folder.display()))?;
+    let probe = folder.join(format!(".glint-write-check.{}.tmp", std::process::id()));
+    std::fs::write(&probe, b"").map_err(|e| {
+        format!(
+            "cannot write in the output folder {}: {e}",
+            folder.display()
+        )
+    })?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}

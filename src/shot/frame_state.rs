@@ -1,0 +1,122 @@
+//! A shot's state at one frame: every track read there, and the scene the renderer draws.
+
+use std::sync::Arc;
+
+use super::file::{LightSpec, ProjectionSpec};
+use super::validated::{Material, MaterialState, Shot};
+use super::ShotError;
+use crate::highlight::{Expr, Light};
+use crate::render::{Camera, PatchLook, Projection, Scene, Tone};
+use crate::toon::CelRamp;
+
+/// Every track of a shot read at one frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameState {
+    pub frame: f64,
+    pub camera: Camera,
+    pub light: Light,
+    /// Each material, in the order of [`Shot::material_names`].
+    pub materials: Vec<MaterialState>,
+    /// Each highlight entry's expression, in the order they are written (includes first).
+    pub highlights: Vec<Expr>,
+}
+
+impl Shot {
+    /// Every track read at `frame` (fractional frames allowed). Pure: the same frame always
+    /// gives the same state, and nothing is read from or written to disk.
+    #[must_use]
+    pub fn at(&self, frame: f64) -> FrameState {
+        let camera = &self.camera;
+        let projection = match &camera.projection {
+            ProjectionSpec::Perspective { fov_y_degrees } => Projection::Perspective {
+                fov_y_degrees: fov_y_degrees.at(frame),
+            },
+            ProjectionSpec::Orthographic { height } => Projection::Orthographic {
+                height: height.at(frame),
+            },
+        };
+        FrameState {
+            frame,
+            camera: Camera {
+                eye: camera.eye.at(frame),
+                target: camera.target.at(frame),
+                up: camera.up.at(frame),
+                projection,
+                near: camera.near,
+                far: camera.far,
+            },
+            light: match &self.light {
+                LightSpec::Directional { towards } => Light::Directional {
+                    towards: towards.at(frame).0,
+                },
+                LightSpec::Point { position } => Light::Point {
+                    position: position.at(frame),
+                },
+            },
+            materials: self
+                .materials
+                .iter()
+                .map(|(_, m)| match m {
+                    Material::Cel { base, bands } => MaterialState::Cel(CelRamp {
+                        base: base.at(frame),
+                        bands: bands
+                            .iter()
+                            .map(|(threshold, colour)| (threshold.at(frame), colour.at(frame)))
+                            .collect(),
+                    }),
+                    Material::XToon { tone, .. } => MaterialState::XToon(tone.map(|t| t.at(frame))),
+                })
+                .collect(),
+            highlights: self
+                .highlights
+                .iter()
+                .map(|h| h.expr.map(|t| t.at(frame)))
+                .collect(),
+        }
+    }
+}
+
+impl FrameState {
+    /// The scene the renderer draws for this state of `shot`.
+    pub fn scene<'a>(&self, shot: &'a Shot) -> Result<Scene<'a>, ShotError> {
+        let invalid = |message: String| ShotError::File {
+            path: shot.path.display().to_string(),
+            message: format!("at frame {}: {message}", self.frame),
+        };
+        let prepared = self
+            .highlights
+            .iter()
+            .map(Expr::prepare)
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| invalid(e.to_string()))?;
+        let tones = self
+            .materials
+            .iter()
+            .zip(&shot.materials)
+            .map(|(state, (name, material))| match (state, material) {
+                (MaterialState::Cel(ramp), _) => Ok(Tone::Cel(ramp.clone())),
+                (MaterialState::XToon(tone), Material::XToon { texture, shape, .. }) => tone
+                    .prepare(Arc::clone(texture), shape.as_ref())
+                    .map(Tone::XToon)
+                    .map_err(|e| invalid(format!("material \"{name}\": {e}"))),
+                (MaterialState::XToon(_), Material::Cel { .. }) => Err(invalid(format!(
+                    "material \"{name}\" is not the shot's material of that name"
+                ))),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let looks = (0..shot.library.patches.len())
+            .map(|patch| PatchLook {
+                tone: tones[shot.material_of(patch)].clone(),
+                highlight: shot.highlight_of(patch).map(|h| prepared[h].clone()),
+            })
+            .collect();
+        Ok(Scene {
+            library: &shot.library,
+            looks,
+            camera: self.camera,
+            light: self.light,
+            outlines: shot.outlines,
+            aovs: shot.aov_switches(),
+        })
+    }
+}

@@ -1,0 +1,178 @@
+//! A loaded and validated shot: the model with every instance placed, and every track ready to
+//! be read at any frame.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use glam::{DVec3, Vec3};
+
+use super::file::{Aov, CameraSpec, HighlightSpec, LightSpec, OutlinesSpec, Preset};
+use super::output::frame_path;
+use crate::anim::Track;
+use crate::geom::PatchLibrary;
+use crate::render::tessellate::Density;
+use crate::render::{Antialias, Aovs, FrameMode, Outlines, Settings};
+use crate::toon::{AbstractShape, CelRamp, ToonTexture, XToon};
+
+/// A validated shot: the model with every instance placed, and every track ready to be read at
+/// any frame.
+#[derive(Debug)]
+pub struct Shot {
+    /// The shot file.
+    pub path: PathBuf,
+    /// The first and last frame, inclusive.
+    pub frames: (i64, i64),
+    pub fps: f64,
+    /// The output pattern, resolved against the shot file's folder.
+    pub output: PathBuf,
+    /// Every patch of every instance, named `INSTANCE/PATCH`.
+    pub library: Arc<PatchLibrary>,
+    /// Every file the shot was made from: the shot file, its includes, patch files and toon
+    /// textures, each once, in the order they were read.
+    pub inputs: Vec<PathBuf>,
+    pub instances: Vec<Instance>,
+    /// Image size, accuracy and threads as the shot asks for them.
+    pub settings: Settings,
+    pub(super) accuracy: Accuracy,
+    pub outlines: Option<Outlines>,
+    pub aovs: Vec<Aov>,
+    pub(super) camera: CameraSpec,
+    pub(super) light: LightSpec,
+    pub(super) materials: Vec<(String, Material)>,
+    pub(super) highlights: Vec<HighlightSpec>,
+    /// The material (index into `materials`) of each patch of `library`.
+    pub(super) patch_material: Vec<usize>,
+    /// The highlight entry (index into `highlights`) of each patch, if any.
+    pub(super) patch_highlight: Vec<Option<usize>>,
+}
+
+/// The accuracy a shot asks for: a preset and the settings it overrides.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Accuracy {
+    pub preset: Preset,
+    pub tessellation: Option<Density>,
+    pub frames: Option<FrameMode>,
+    pub antialias: Option<Antialias>,
+}
+
+impl Accuracy {
+    /// The settings of `preset` (default: the shot's own) at `width × height`, with the
+    /// shot's explicit tessellation, frame mode and anti-aliasing over it.
+    pub fn settings(&self, preset: Option<Preset>, (width, height): (u32, u32)) -> Settings {
+        let mut settings = match preset.unwrap_or(self.preset) {
+            Preset::Preview => Settings::preview(width, height),
+            Preset::Final => Settings::final_quality(width, height),
+        };
+        if let Some(density) = self.tessellation {
+            settings.density = density;
+        }
+        if let Some(frames) = self.frames {
+            settings.frames = frames;
+        }
+        if let Some(antialias) = self.antialias {
+            settings.antialias = antialias;
+        }
+        settings
+    }
+}
+
+/// A material ready to be read at any frame.
+#[derive(Debug)]
+pub(super) enum Material {
+    Cel {
+        base: Track<Vec3>,
+        bands: Vec<(Track<f32>, Track<Vec3>)>,
+    },
+    XToon {
+        tone: XToon<Track<f32>>,
+        texture: Arc<ToonTexture>,
+        /// The model's abstracted shape, when the tone has shape detail.
+        shape: Option<Arc<AbstractShape>>,
+    },
+}
+
+/// A material's parameters at one frame.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialState {
+    Cel(CelRamp),
+    XToon(XToon),
+}
+
+/// One placed patch file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Instance {
+    pub name: String,
+    /// Its patches in the shot's library.
+    pub patches: std::ops::Range<usize>,
+}
+
+impl Shot {
+    /// The names of the materials, in the order of [`FrameState::materials`](super::FrameState::materials).
+    pub fn material_names(&self) -> impl Iterator<Item = &str> {
+        self.materials.iter().map(|(name, _)| name.as_str())
+    }
+
+    /// The selector of each highlight entry as written, in the order of
+    /// [`FrameState::highlights`](super::FrameState::highlights).
+    pub fn highlight_selectors(&self) -> impl Iterator<Item = &[String]> {
+        self.highlights.iter().map(|h| h.patches.patterns())
+    }
+
+    /// The material index of patch `patch`.
+    pub fn material_of(&self, patch: usize) -> usize {
+        self.patch_material[patch]
+    }
+
+    /// The highlight entry of patch `patch`, if it has one.
+    pub fn highlight_of(&self, patch: usize) -> Option<usize> {
+        self.patch_highlight[patch]
+    }
+
+    /// The file frame `frame` is written to: the output pattern with its run of `#` replaced
+    /// by the frame number, zero-padded to the run's length.
+    pub fn frame_path(&self, frame: i64) -> PathBuf {
+        frame_path(&self.output, frame)
+    }
+
+    /// The settings for another preset or image size than the shot's own (what `glint render
+    /// --preset --size` ask for): the shot's explicit accuracy settings still apply.
+    pub fn settings_with(&self, preset: Option<Preset>, size: Option<(u32, u32)>) -> Settings {
+        let size = size.unwrap_or((self.settings.width, self.settings.height));
+        self.accuracy.settings(preset, size)
+    }
+
+    /// The renderer's AOV switches for this shot's AOV list.
+    pub fn aov_switches(&self) -> Aovs {
+        let on = |a: Aov| self.aovs.contains(&a);
+        Aovs {
+            matte: on(Aov::Matte),
+            patch_id: on(Aov::PatchId),
+            depth: on(Aov::Depth),
+            normal: on(Aov::Normal),
+            uv: on(Aov::Uv),
+            n_dot_h: on(Aov::NDotH),
+        }
+    }
+}
+
+impl From<&OutlinesSpec> for Outlines {
+    fn from(spec: &OutlinesSpec) -> Self {
+        Outlines {
+            width: spec.width,
+            colour: Vec3::from(spec.colour),
+            crease_degrees: spec.crease_degrees,
+            patch_borders: spec.patch_borders,
+        }
+    }
+}
+
+/// `p ↦ translate + R(axis, degrees) (scale · p)` as a point map.
+pub(super) fn placement(
+    translate: DVec3,
+    axis: DVec3,
+    degrees: f64,
+    scale: f64,
+) -> impl Fn(DVec3) -> DVec3 {
+    let rotation = glam::DQuat::from_axis_angle(axis.normalize(), degrees.to_radians());
+    move |p| translate + rotation * (scale * p)
+}

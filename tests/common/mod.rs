@@ -1,0 +1,40 @@
+//! Helpers shared by the test modules: running the binary, loading the shipped models.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::Arc;
+
+use glint::formats::load_patches;
+use glint::geom::PatchLibrary;
+
+/// The repository's root folder, where `patches/`, `shots/` and `textures/` are.
+pub fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A file of the repository, by its path from the root.
+pub fn repo_file(path: &str) -> PathBuf {
+    root().join(path)
+}
+
+/// The `glint` binary as a command, run in the repository's root folder.
+pub fn glint() -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_glint"));
+    command.current_dir(root());
+    command
+}
+
+/// Runs `glint` with `args` in the repository's root folder and returns what it did.
+pub fn glint_with(args: &[&str]) -> Output {
+    glint().args(args).output().expect("the glint binary runs")
+}
+
+/// What a command wrote to standard error, as text.
+pub fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// The Utah teapot: 32 bicubic Bezier patches.
+pub fn teapot() -> Arc<PatchLibrary> {
+    Arc::new(load_patches(&repo_file("patches/teapot.bpt")).expect("the shipped teapot loads"))
+}
