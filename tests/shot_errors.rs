@@ -190,7 +190,7 @@ const CASES: &[Case] = &[
         from: "frames: (1, 10)",
         to: "frames: (10, 1)",
         file: "shot.ron",
-        at: "frames:",
+        at: "(10, 1)",
         says: &["backwards"],
     },
     Case {
@@ -198,7 +198,7 @@ const CASES: &[Case] = &[
         from: "target: (0.0, 0.0, 0.0)",
         to: "target: (0.0, -6.0, 0.0)",
         file: "shot.ron",
-        at: "camera:",
+        at: "(\n        eye:",
         says: &["at frame 1", "eye and target are the same point"],
     },
     Case {
@@ -206,7 +206,7 @@ const CASES: &[Case] = &[
         from: "fov_y_degrees: 30.0",
         to: "fov_y_degrees: [(1, 30.0), (10, 190.0)]",
         file: "shot.ron",
-        at: "camera:",
+        at: "(\n        eye:",
         says: &["at frame", "fov_y_degrees must be in (0, 180)"],
     },
     Case {
@@ -246,8 +246,40 @@ const CASES: &[Case] = &[
         from: "resolution: (64, 48)",
         to: "resolution: (0, 48)",
         file: "shot.ron",
-        at: "resolution:",
+        at: "(0, 48)",
         says: &["image size 0×48"],
+    },
+    Case {
+        name: "a field named in a comment before it is written",
+        from: "    frames: (1, 10),",
+        to: "    // frames: (1, 10) was the range; fps: 0 was wrong\n    frames: (10, 1),",
+        file: "shot.ron",
+        at: "(10, 1)",
+        says: &["backwards"],
+    },
+    Case {
+        name: "second pattern of a list matches no patch",
+        from: "patches: \"ball/*\"",
+        to: "patches: [\"ball/*\", \"bal/0\"]",
+        file: "shot.ron",
+        at: "\"bal/0\"",
+        says: &["\"bal/0\" matches no patch", "did you mean"],
+    },
+    Case {
+        name: "out of range only at a key between frames",
+        from: "fov_y_degrees: 30.0",
+        to: "fov_y_degrees: [(1, 30.0), (2.5, 190.0), (4, 30.0)]",
+        file: "shot.ron",
+        at: "(\n        eye:",
+        says: &["at frame 2.5:", "fov_y_degrees must be in (0, 180)"],
+    },
+    Case {
+        name: "transform that cannot place",
+        from: "material: \"blue\"),",
+        to: "material: \"blue\", transform: (scale: 0.0)),",
+        file: "shot.ron",
+        at: "(scale: 0.0)",
+        says: &["scale greater than 0"],
     },
 ];
 

@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use super::geometry::{FrameCost, MeshError};
 use super::scaling::ScalingPoint;
-use super::sweep::{frames_name, Measurement, Summary};
+use super::sweep::{Measurement, Summary};
 
 /// Rows of `cells`, comma-separated, after the `header`.
 fn table<const N: usize>(header: [&str; N], rows: impl Iterator<Item = [String; N]>) -> String {
@@ -42,9 +42,9 @@ pub fn sweep(measurements: &[Measurement]) -> String {
                 m.size.to_string(),
                 m.stack.name().into(),
                 preset_label(m.rung.preset()),
-                m.rung.density_label(),
-                m.rung.frames_label().into(),
-                m.rung.antialias_label(),
+                m.rung.density.to_string(),
+                m.rung.frames.to_string(),
+                m.rung.antialias.to_string(),
                 m.triangles.to_string(),
                 format!("{:.6}", m.errors.one_minus_iou),
                 format!("{:.4}", m.errors.boundary_pixels),
@@ -78,9 +78,9 @@ pub fn summary(summaries: &[Summary]) -> String {
             [
                 s.size.to_string(),
                 preset_label(s.rung.preset()),
-                s.rung.density_label(),
-                s.rung.frames_label().into(),
-                s.rung.antialias_label(),
+                s.rung.density.to_string(),
+                s.rung.frames.to_string(),
+                s.rung.antialias.to_string(),
                 s.triangles.to_string(),
                 format!("{:.6}", s.mean_one_minus_iou),
                 format!("{:.6}", s.worst_one_minus_iou),
@@ -122,7 +122,7 @@ pub fn frame_costs(costs: &[FrameCost]) -> String {
         ["frames", "exact_frames", "gbuffer_ns_per_pixel", "frame_ms"],
         costs.iter().map(|c| {
             [
-                frames_name(c.frames).into(),
+                c.frames.to_string(),
                 c.exact_frames.to_string(),
                 format!("{:.1}", c.gbuffer_ns_per_pixel),
                 format!("{:.3}", 1e3 * c.frame_seconds),

@@ -142,46 +142,11 @@ impl Rung {
             None
         }
     }
-
-    pub fn density_label(&self) -> String {
-        match self.density {
-            Density::PerSpan { u, v } if u == v => format!("span {u}"),
-            Density::PerSpan { u, v } => format!("span {u}x{v}"),
-            Density::ScreenTolerance { pixels } => format!("tol {pixels} px"),
-        }
-    }
-
-    pub fn frames_label(&self) -> &'static str {
-        frames_name(self.frames)
-    }
-
-    pub fn antialias_label(&self) -> String {
-        match self.antialias {
-            Antialias::None => "none".into(),
-            Antialias::Analytic => "analytic".into(),
-            Antialias::Supersample(k) => format!("ssaa {k}"),
-        }
-    }
 }
 
 impl fmt::Display for Rung {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{} / {} / {}",
-            self.density_label(),
-            self.frames_label(),
-            self.antialias_label()
-        )
-    }
-}
-
-/// The frame mode's name as the sweep prints it.
-pub fn frames_name(frames: FrameMode) -> &'static str {
-    match frames {
-        FrameMode::Interpolated => "interpolated",
-        FrameMode::Exact => "exact",
-        FrameMode::Refined => "refined",
+        write!(f, "{} / {} / {}", self.density, self.frames, self.antialias)
     }
 }
 

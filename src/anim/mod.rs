@@ -4,4 +4,4 @@
 
 mod track;
 
-pub use track::{Direction, Interpolate, Key, Track, TrackError};
+pub use track::{Direction, Interpolate, Key, Keyed, Track, TrackError};

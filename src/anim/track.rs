@@ -176,6 +176,19 @@ impl<T: Interpolate> Track<T> {
     }
 }
 
+/// A track seen only for where it is keyed, whatever its value type: what a visitor over a
+/// shot's parameters needs to check the values at every key.
+pub trait Keyed {
+    /// Calls `f` with the frame of each key, in order (never for a constant).
+    fn for_each_key(&self, f: &mut dyn FnMut(f64));
+}
+
+impl<T: Interpolate> Keyed for Track<T> {
+    fn for_each_key(&self, f: &mut dyn FnMut(f64)) {
+        self.key_frames().for_each(f);
+    }
+}
+
 impl<T> From<T> for Track<T> {
     fn from(value: T) -> Self {
         Track::Constant(value)

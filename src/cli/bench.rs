@@ -11,7 +11,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use super::CliError;
 use crate::accuracy::geometry::{frame_costs, mesh_errors, FrameCost, MeshError};
 use crate::accuracy::scaling::{growth, Scaling, ScalingPoint, Series};
-use crate::accuracy::sweep::{compare_presets, frames_name, summarize, Summary, Sweep};
+use crate::accuracy::sweep::{compare_presets, summarize, Summary, Sweep};
 use crate::accuracy::{csv, plot};
 use crate::formats::atomic::write_atomically;
 use crate::formats::load_patches;
@@ -231,9 +231,9 @@ fn print_sweep(summaries: &[Summary]) {
             "{:>5} {:<8} {:<12} {:<13} {:<9} {:>7} {:>9.2e} {:>9.2e} {:>8.3} {:>8.2} {:>8.3} {:>9.2} {}",
             s.size,
             s.rung.preset().unwrap_or(""),
-            s.rung.density_label(),
-            s.rung.frames_label(),
-            s.rung.antialias_label(),
+            s.rung.density.to_string(),
+            s.rung.frames.to_string(),
+            s.rung.antialias.to_string(),
             s.triangles,
             s.mean_one_minus_iou,
             s.worst_one_minus_iou,
@@ -287,7 +287,7 @@ fn print_geometry(meshes: &[MeshError], costs: &[FrameCost]) {
     for c in costs {
         println!(
             "{:<13} {:>12} {:>14.1} {:>10.2} {:>14.2}x",
-            frames_name(c.frames),
+            c.frames.to_string(),
             c.exact_frames,
             c.gbuffer_ns_per_pixel,
             1e3 * c.frame_seconds,

@@ -9,6 +9,7 @@ pub mod image_encoding;
 mod patch_ron;
 pub mod png;
 pub mod ron_location;
+pub mod ron_paths;
 mod srgb;
 mod texture;
 

@@ -43,6 +43,12 @@ pub struct Shade {
 }
 
 impl<P> Expr<P> {
+    /// Calls `f` with every numeric parameter, in the order of [`map`](Self::map), which
+    /// it is built on: a parameter `map` reaches is visited, with no second list to keep.
+    pub fn for_each_param(&self, mut f: impl FnMut(&P)) {
+        let _visited: Expr<()> = self.map(|p| f(p));
+    }
+
     /// The same expression with every numeric parameter mapped through `f`, left to right.
     #[must_use]
     pub fn map<Q>(&self, mut f: impl FnMut(&P) -> Q) -> Expr<Q> {

@@ -19,18 +19,24 @@ pub enum Light {
     },
 }
 
-/// The viewer, seen from a surface point.
+/// The viewer, seen from a surface point: the one definition of the view vector V and of its
+/// fallback, which the renderer's camera hands out ([`Camera::view`]).
+///
+/// [`Camera::view`]: crate::render::Camera::view
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum View {
-    /// Orthographic camera; `towards` is the unit direction from the scene to the eye.
+    /// Orthographic camera: V is `towards` everywhere.
     Orthographic {
-        /// Unit direction toward the eye.
+        /// Unit direction toward the eye: the reverse line of sight.
         towards: Vec3,
     },
-    /// Perspective camera with its eye at `eye`.
+    /// Perspective camera with its eye at `eye`: V is per point.
     Perspective {
         /// World position of the eye.
         eye: Vec3,
+        /// Unit reverse line of sight, V where the eye sits on the point and `eye − p` has no
+        /// direction: the direction the point is seen along from any nearby place.
+        towards: Vec3,
     },
 }
 
@@ -46,13 +52,14 @@ impl Light {
 }
 
 impl View {
-    /// The unit vector V from `point` toward the eye (per point under perspective); N when the
-    /// eye sits on the point.
+    /// The unit vector V from `point` toward the eye: `towards` under orthographic projection;
+    /// `normalize(eye − point)` under perspective, or `towards` when the eye sits on the point.
+    #[inline]
     #[must_use]
-    pub fn direction(&self, point: Vec3, n: Vec3) -> Vec3 {
+    pub fn direction(&self, point: Vec3) -> Vec3 {
         match *self {
             View::Orthographic { towards } => towards,
-            View::Perspective { eye } => normalize_or(eye - point, n),
+            View::Perspective { eye, towards } => normalize_or(eye - point, towards),
         }
     }
 }
@@ -72,7 +79,7 @@ pub fn half_vector(l: Vec3, v: Vec3, n: Vec3) -> Vec3 {
 /// The half vector for a light and a view at a surface point with normal `n`.
 #[must_use]
 pub fn blinn_half_vector(light: &Light, view: &View, point: Vec3, n: Vec3) -> Vec3 {
-    half_vector(light.direction(point, n), view.direction(point, n), n)
+    half_vector(light.direction(point, n), view.direction(point), n)
 }
 
 /// The virtual light of a highlight vector (paper: "once H is specified, it follows that
@@ -120,6 +127,7 @@ mod tests {
         };
         let view = View::Perspective {
             eye: Vec3::new(10.0, 0.0, 0.0),
+            towards: Vec3::X,
         };
         let h = blinn_half_vector(&light, &view, Vec3::ZERO, Vec3::Y);
         assert!((h - Vec3::new(1.0, 0.0, 1.0).normalize()).length() < 1e-6);
@@ -128,6 +136,8 @@ mod tests {
         // A point light on the point itself: L falls back to N.
         assert_eq!(light.direction(Vec3::new(0.0, 0.0, 10.0), Vec3::Y), Vec3::Y);
         let ortho = View::Orthographic { towards: Vec3::Z };
-        assert_eq!(ortho.direction(Vec3::ONE, Vec3::Y), Vec3::Z);
+        assert_eq!(ortho.direction(Vec3::ONE), Vec3::Z);
+        // The eye on the point: V falls back to the reverse line of sight, not to N.
+        assert_eq!(view.direction(Vec3::new(10.0, 0.0, 0.0)), Vec3::X);
     }
 }

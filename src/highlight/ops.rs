@@ -127,6 +127,12 @@ pub enum SquareStyle {
 }
 
 impl<P> Op<P> {
+    /// Calls `f` with every numeric parameter, in the order of [`map`](Self::map), which
+    /// it is built on: a parameter `map` reaches is visited, with no second list to keep.
+    pub fn for_each_param(&self, mut f: impl FnMut(&P)) {
+        let _visited: Op<()> = self.map(|p| f(p));
+    }
+
     /// The same operation with every numeric parameter mapped through `f`, in declaration order.
     #[must_use]
     pub fn map<Q>(&self, mut f: impl FnMut(&P) -> Q) -> Op<Q> {

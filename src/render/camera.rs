@@ -4,6 +4,7 @@ use glam::{Mat4, Vec3};
 use serde::Deserialize;
 
 use super::RenderError;
+use crate::highlight::View;
 
 /// How a camera projects.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
@@ -106,15 +107,26 @@ impl Camera {
         }
     }
 
-    /// The unit vector V from `point` toward the eye: per point under perspective, the reverse
-    /// line of sight under orthographic projection.
-    pub fn toward_eye(&self, point: Vec3) -> Vec3 {
+    /// The viewer as the highlight model sees it: V and its fallback, defined once in
+    /// [`View::direction`].
+    #[must_use]
+    pub fn view(&self) -> View {
+        let towards = -self.forward();
         match self.projection {
-            Projection::Perspective { .. } => (self.eye - point)
-                .try_normalize()
-                .unwrap_or_else(|| -self.forward()),
-            Projection::Orthographic { .. } => -self.forward(),
+            Projection::Perspective { .. } => View::Perspective {
+                eye: self.eye,
+                towards,
+            },
+            Projection::Orthographic { .. } => View::Orthographic { towards },
         }
+    }
+
+    /// The unit vector V from `point` toward the eye: [`View::direction`] of [`Camera::view`],
+    /// per point under perspective, the reverse line of sight under orthographic projection
+    /// and where the eye sits on the point.
+    #[must_use]
+    pub fn toward_eye(&self, point: Vec3) -> Vec3 {
+        self.view().direction(point)
     }
 }
 
@@ -161,6 +173,8 @@ mod tests {
         assert!((persp.toward_eye(p) - (persp.eye - p).normalize()).length() < 1e-6);
         let ortho = camera(Projection::Orthographic { height: 4.0 });
         assert!((ortho.toward_eye(p) - Vec3::NEG_Y).length() < 1e-6);
+        // The eye on the point: the reverse line of sight, as under orthographic projection.
+        assert_eq!(persp.toward_eye(persp.eye), -persp.forward());
         // The unnormalized direction points the same way.
         for c in [persp, ortho] {
             let d = c.eye_direction(p);

@@ -373,12 +373,7 @@ fn detail(
     stats: &mut RenderStats,
 ) -> Ahead {
     let (ahead, seconds) = timed(|| xtoon_tone::run_ahead(gbuffer, scene, views));
-    let on_xtoon = gbuffer
-        .texels
-        .iter()
-        .filter(|t| views.get(t.patch as usize).is_some_and(Option::is_some))
-        .count();
-    stats.record(Stage::Detail, on_xtoon as u64, seconds);
+    stats.record(Stage::Detail, ahead.toned, seconds);
     ahead
 }
 

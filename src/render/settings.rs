@@ -1,5 +1,7 @@
 //! Accuracy and output settings, with the `preview` and `final` presets (docs/accuracy.md).
 
+use std::fmt;
+
 use serde::Deserialize;
 
 use super::tessellate::Density;
@@ -30,6 +32,28 @@ pub enum Antialias {
     Analytic,
     /// K × K samples per pixel, box-filtered (K from 2 to 8).
     Supersample(u32),
+}
+
+impl fmt::Display for FrameMode {
+    /// The mode as benchmarks, tables and `--stats` name it: `interpolated`, `exact`, `refined`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            FrameMode::Interpolated => "interpolated",
+            FrameMode::Exact => "exact",
+            FrameMode::Refined => "refined",
+        })
+    }
+}
+
+impl fmt::Display for Antialias {
+    /// `none`, `analytic`, or `ssaa K` for K × K samples.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Antialias::None => f.write_str("none"),
+            Antialias::Analytic => f.write_str("analytic"),
+            Antialias::Supersample(k) => write!(f, "ssaa {k}"),
+        }
+    }
 }
 
 /// How to render a frame.

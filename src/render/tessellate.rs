@@ -21,6 +21,17 @@ pub enum Density {
     ScreenTolerance { pixels: f32 },
 }
 
+impl std::fmt::Display for Density {
+    /// `span N` (or `span UxV`), or `tol P px`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Density::PerSpan { u, v } if u == v => write!(f, "span {u}"),
+            Density::PerSpan { u, v } => write!(f, "span {u}x{v}"),
+            Density::ScreenTolerance { pixels } => write!(f, "tol {pixels} px"),
+        }
+    }
+}
+
 /// The most segments per knot span an adaptive density chooses.
 pub const MAX_SEGMENTS_PER_SPAN: u32 = 64;
 

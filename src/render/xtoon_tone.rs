@@ -41,6 +41,8 @@ pub(super) struct Ahead {
     /// The G-buffer with the abstracted frame on every texel of a patch whose designed
     /// highlight uses it: the frames the highlights see.
     pub gbuffer: GBuffer,
+    /// How many texels were toned: those on a patch with an X-Toon tone.
+    pub toned: u64,
 }
 
 /// The detail stage: the X-Toon tone of every texel of `gbuffer` on a patch with a view, and
@@ -56,10 +58,11 @@ pub(super) fn run_ahead(gbuffer: &GBuffer, scene: &Scene, views: &Views) -> Ahea
         .collect();
     let mut tones = vec![Vec3::ZERO; gbuffer.texels.len()];
     let mut texels = gbuffer.texels.clone();
-    texels
+    let toned = texels
         .par_chunks_mut(PIXELS_PER_JOB)
         .zip(tones.par_chunks_mut(PIXELS_PER_JOB))
-        .for_each(|(texels, tones)| {
+        .map(|(texels, tones)| {
+            let mut toned = 0;
             let mut scratch = ToneScratch::default();
             let mut view_vectors = Lanes::default();
             let mut start = 0;
@@ -70,6 +73,7 @@ pub(super) fn run_ahead(gbuffer: &GBuffer, scene: &Scene, views: &Views) -> Ahea
                 let Some(view) = views.get(patch).and_then(Option::as_ref) else {
                     continue;
                 };
+                toned += run.len() as u64;
                 for (piece, tones) in run.chunks_mut(LANES).zip(tones[range].chunks_mut(LANES)) {
                     if view.uses_view() {
                         view_lanes(scene, piece, &mut view_vectors);
@@ -84,7 +88,9 @@ pub(super) fn run_ahead(gbuffer: &GBuffer, scene: &Scene, views: &Views) -> Ahea
                     }
                 }
             }
-        });
+            toned
+        })
+        .sum();
     Ahead {
         tones,
         gbuffer: GBuffer {
@@ -93,6 +99,7 @@ pub(super) fn run_ahead(gbuffer: &GBuffer, scene: &Scene, views: &Views) -> Ahea
             slot: gbuffer.slot.clone(),
             texels,
         },
+        toned,
     }
 }
 

@@ -2,11 +2,14 @@
 //! includes, validation with file:line:col errors, and [`Shot::at`], the pure evaluation of
 //! every track at a frame.
 
+mod every_frame;
 mod file;
 mod frame_state;
 mod glob;
 mod load;
 mod output;
+mod params;
+mod source;
 mod validated;
 
 pub use file::{Aov, Preset, Selector};

@@ -33,6 +33,12 @@ pub struct XToon<P = f32> {
 }
 
 impl<P> XToon<P> {
+    /// Calls `f` with every numeric parameter, in the order of [`map`](Self::map), which
+    /// it is built on: a parameter `map` reaches is visited, with no second list to keep.
+    pub fn for_each_param(&self, mut f: impl FnMut(&P)) {
+        let _visited: XToon<()> = self.map(|p| f(p));
+    }
+
     /// The same tone with every numeric parameter mapped through `f`.
     #[must_use]
     pub fn map<Q>(&self, mut f: impl FnMut(&P) -> Q) -> XToon<Q> {

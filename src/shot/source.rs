@@ -1,0 +1,73 @@
+//! A file read for a shot (the shot or an include): its text, and errors placed where a value
+//! is written in it.
+
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+
+use super::ShotError;
+use crate::formats::ron_location::{explain, position_of, start_of_value_closed_at};
+use crate::formats::ron_paths::{locate_or_nearest, Step};
+
+/// A file read for the shot: its path, its name as shown in messages, its folder and its text.
+pub(super) struct Source {
+    pub path: PathBuf,
+    pub shown: String,
+    pub folder: PathBuf,
+    text: String,
+}
+
+impl Source {
+    pub fn read(path: &Path) -> Result<Self, ShotError> {
+        let shown = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| ShotError::File {
+            path: shown.clone(),
+            message: format!("cannot read the file: {e}"),
+        })?;
+        Ok(Self {
+            path: path.to_path_buf(),
+            shown,
+            folder: path.parent().map(Path::to_path_buf).unwrap_or_default(),
+            text,
+        })
+    }
+
+    /// An error at the value `path` leads to (a map entry: at its key), or at the deepest
+    /// value on the way that is written, when the rest is left to its default.
+    pub fn error_at(&self, path: &[Step], message: impl Into<String>) -> ShotError {
+        self.error_at_offset(locate_or_nearest(&self.text, path), message.into())
+    }
+
+    fn error_at_offset(&self, offset: usize, message: String) -> ShotError {
+        let (line, col) = position_of(&self.text, offset);
+        ShotError::At {
+            path: self.shown.clone(),
+            line,
+            col,
+            message,
+        }
+    }
+
+    /// Parses the text as `T`, with errors placed where they are written.
+    pub fn parse<T: DeserializeOwned>(&self) -> Result<T, ShotError> {
+        let options = ron::Options::default()
+            .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+        options.from_str(&self.text).map_err(|e| {
+            let mut at = (e.span.start.line, e.span.start.col);
+            if matches!(
+                e.code,
+                ron::Error::Message(_) | ron::Error::MissingStructField { .. }
+            ) {
+                // A value that failed its own checks, or lacks a field, is reported at its
+                // closing bracket.
+                at = start_of_value_closed_at(&self.text, at).unwrap_or(at);
+            }
+            ShotError::At {
+                path: self.shown.clone(),
+                line: at.0,
+                col: at.1,
+                message: explain(&e.code),
+            }
+        })
+    }
+}
