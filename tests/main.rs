@@ -30,3 +30,26 @@ mod toon_render;
 mod toon_serde;
 mod toon_shape;
 mod toon_texture;
+
+/// `autotests = false` makes this file the only test crate: a test file it does not declare
+/// would never be compiled, let alone run.
+#[test]
+fn every_test_file_is_a_module_of_this_crate() {
+    let main = include_str!("main.rs");
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let mut missing = Vec::new();
+    for entry in std::fs::read_dir(&folder).unwrap() {
+        let path = entry.unwrap().path();
+        let Some(stem) = path.file_stem().and_then(|s| s.to_str()) else {
+            continue;
+        };
+        let is_module = path.extension().is_some_and(|e| e == "rs") || path.join("mod.rs").exists();
+        if is_module && stem != "main" && !main.contains(&format!("\nmod {stem};")) {
+            missing.push(stem.to_string());
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "not declared in tests/main.rs: {missing:?}"
+    );
+}

@@ -11,6 +11,7 @@ use crate::highlight::TangentFrame;
 /// `du = normalize(a − (a·N) N)`; `dv = N × du`. `toward_eye` is V at any length (only its
 /// direction counts). Degenerate input falls back to any frame around the viewer direction,
 /// never NaN.
+#[inline]
 pub fn facing_frame(n: Vec3, along_u: Vec3, toward_eye: Vec3) -> TangentFrame {
     let Some((normal, inverse_squared)) = facing(n, toward_eye) else {
         let normal = unfacing_fallback(toward_eye);
@@ -29,6 +30,7 @@ pub fn facing_frame(n: Vec3, along_u: Vec3, toward_eye: Vec3) -> TangentFrame {
 /// the viewer: `(du, s dv, s N)` with `s = −1` where `N·V < 0`. This is [`facing_frame`] of it
 /// without normalizing again; a frame whose axes are not unit to within 10⁻⁵ after rounding
 /// goes through [`facing_frame`].
+#[inline]
 pub(super) fn facing_patch_frame(f: &Frame, toward_eye: Vec3) -> TangentFrame {
     let (n, du, dv) = (f.normal.as_vec3(), f.du.as_vec3(), f.dv.as_vec3());
     let unit = |v: Vec3| (v.length_squared() - 1.0).abs() < 1e-5;
@@ -40,6 +42,7 @@ pub(super) fn facing_patch_frame(f: &Frame, toward_eye: Vec3) -> TangentFrame {
 }
 
 /// The normal of [`facing_frame`] alone, for shading that needs no tangents.
+#[inline]
 pub(crate) fn facing_normal(n: Vec3, toward_eye: Vec3) -> Vec3 {
     facing(n, toward_eye).map_or_else(|| unfacing_fallback(toward_eye), |(normal, _)| normal)
 }
@@ -58,6 +61,7 @@ fn facing(n: Vec3, toward_eye: Vec3) -> Option<(Vec3, f32)> {
 }
 
 /// The normal where no normal is given: the viewer direction.
+#[inline]
 fn unfacing_fallback(toward_eye: Vec3) -> Vec3 {
     toward_eye.normalize_or(Vec3::Z)
 }

@@ -3,70 +3,64 @@
 
 use std::fmt;
 
-/// A stage of the pipeline ([`Plan`](super::Plan) decides which run).
-///
-/// ```text
-/// Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ Shade ▸ Outline ▸ Aov ▸ Resolve
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Stage {
+/// Defines [`Stage`] with [`Stage::ALL`], [`Stage::COUNT`] and [`Stage::name`] from one list,
+/// so that a new stage is one line here and cannot be left out of any of them.
+macro_rules! stages {
+    ($( $(#[doc = $doc:literal])* $stage:ident => $name:literal, )*) => {
+        /// A stage of the pipeline ([`Plan`](super::Plan) decides which run).
+        ///
+        /// ```text
+        /// Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ Shade ▸ Outline ▸ Aov ▸ Resolve
+        /// ```
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum Stage {
+            $( $(#[doc = $doc])* $stage, )*
+        }
+
+        impl Stage {
+            /// How many stages there are.
+            pub const COUNT: usize = [$($name),*].len();
+
+            /// Every stage, in the order a frame runs them.
+            pub const ALL: [Stage; Stage::COUNT] = [$(Stage::$stage),*];
+
+            /// The stage's name in statistics: `tessellate`, `rasterize`, `gbuffer`, `detail`,
+            /// `edge_widths`, `shade`, `outline`, `aov`, `resolve`.
+            #[must_use]
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $( Stage::$stage => $name, )*
+                }
+            }
+        }
+    };
+}
+
+stages! {
     /// Patches to a mesh of triangles; the mesh is kept while the segment counts stay the same.
-    Tessellate,
+    Tessellate => "tessellate",
     /// The mesh to a visibility buffer: per sample the nearest triangle and its barycentrics.
-    Rasterize,
+    Rasterize => "rasterize",
     /// Per covered sample its patch, (u, v), position and shading frame.
-    GBuffer,
+    GBuffer => "gbuffer",
     /// The X-Toon tone of every texel ahead of shading, when a designed highlight is evaluated
     /// in the abstracted frame; otherwise the shade stage computes the tone as it goes.
-    Detail,
+    Detail => "detail",
     /// Per texel the width of the highlight's edge over the pixel's footprint, for analytic
     /// anti-aliasing.
-    EdgeWidths,
+    EdgeWidths => "edge_widths",
     /// Tone and designed highlights, composited: from the G-buffer, or straight from the
     /// visibility buffer when the only effect is the cel tone over interpolated frames.
-    Shade,
+    Shade => "shade",
     /// Ink lines where the G-buffer is discontinuous.
-    Outline,
+    Outline => "outline",
     /// The extra images a shot asked for.
-    Aov,
+    Aov => "aov",
     /// Samples averaged into pixels under supersampling.
-    Resolve,
+    Resolve => "resolve",
 }
 
 impl Stage {
-    /// How many stages there are.
-    pub const COUNT: usize = 9;
-
-    /// Every stage, in the order a frame runs them.
-    pub const ALL: [Stage; Stage::COUNT] = [
-        Stage::Tessellate,
-        Stage::Rasterize,
-        Stage::GBuffer,
-        Stage::Detail,
-        Stage::EdgeWidths,
-        Stage::Shade,
-        Stage::Outline,
-        Stage::Aov,
-        Stage::Resolve,
-    ];
-
-    /// The stage's name in statistics: `tessellate`, `rasterize`, `gbuffer`, `detail`,
-    /// `edge_widths`, `shade`, `outline`, `aov`, `resolve`.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Stage::Tessellate => "tessellate",
-            Stage::Rasterize => "rasterize",
-            Stage::GBuffer => "gbuffer",
-            Stage::Detail => "detail",
-            Stage::EdgeWidths => "edge_widths",
-            Stage::Shade => "shade",
-            Stage::Outline => "outline",
-            Stage::Aov => "aov",
-            Stage::Resolve => "resolve",
-        }
-    }
-
     /// The stage's place in [`Stage::ALL`].
     pub(crate) const fn index(self) -> usize {
         self as usize
