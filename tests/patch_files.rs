@@ -8,11 +8,13 @@ use std::path::{Path, PathBuf};
 use glint::formats::load_patches;
 use glint::geom::{GridEvaluator, PatchLibrary};
 
+/// Every model in `patches/` (not the parts files beside them, which name their groups).
 fn patch_files() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("patches");
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
+        .filter(|p| !p.to_string_lossy().ends_with(".parts.ron"))
         .collect();
     files.sort();
     files
@@ -108,6 +110,29 @@ fn documented_example_parses_into_every_kind_of_surface() {
     assert_eq!((tile.knots_u().degree(), tile.knots_v().degree()), (1, 1));
     let panel = &lib.find("panel").unwrap().surface;
     assert_eq!(panel.control_point(1, 0).1, 0.7);
+}
+
+#[test]
+fn documented_parts_examples_read_as_written() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/patch-format.md");
+    let doc = std::fs::read_to_string(path).unwrap();
+    let blocks: Vec<&str> = doc
+        .split("```ron\n")
+        .skip(1)
+        .map(|b| &b[..b.find("```").unwrap()])
+        .collect();
+    assert_eq!(blocks.len(), 3);
+    let lib = glint::formats::parse_patch_ron(blocks[1], "patch-format.md").unwrap();
+    assert_eq!(lib.group("paint").unwrap().patches, [0, 1]);
+    assert_eq!(lib.group("front").unwrap().patches, [0]);
+    let dir = tempfile::tempdir().unwrap();
+    let parts = dir.path().join("teapot.parts.ron");
+    std::fs::write(&parts, blocks[2]).unwrap();
+    let teapot = crate::common::teapot();
+    let groups = glint::formats::parts::read_parts_file(&parts, &teapot.patches, &[]).unwrap();
+    for group in &groups {
+        assert_eq!(Some(group), teapot.group(&group.name), "as shipped");
+    }
 }
 
 /// A camera framing a model: its control points' bounding sphere seen from the front-right,

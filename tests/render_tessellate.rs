@@ -20,6 +20,7 @@ fn sphere_vertices_lie_on_the_sphere_with_its_frames() {
             name: "ball".into(),
             surface: shapes::sphere(DVec3::ZERO, 2.0).unwrap(),
         }],
+        groups: Vec::new(),
     };
     let mut t = Tessellator::new(library.clone());
     let (mesh, _) = t.mesh(Density::PerSpan { u: 4, v: 6 }, view(), 640, 480);

@@ -128,6 +128,7 @@ fn xtoon_on_the_exact_sphere_matches_the_analytic_sphere() {
             name: "sphere".into(),
             surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
         }],
+        groups: Vec::new(),
     });
     let (z_min, r) = (4.1_f32, 1.2_f32);
     let tone = XToon {

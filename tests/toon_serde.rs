@@ -14,6 +14,7 @@ fn sphere() -> PatchLibrary {
             name: "sphere".into(),
             surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
         }],
+        groups: Vec::new(),
     }
 }
 

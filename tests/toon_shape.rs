@@ -13,6 +13,7 @@ fn library(surface: NurbsSurface) -> PatchLibrary {
             name: "shape".into(),
             surface,
         }],
+        groups: Vec::new(),
     }
 }
 

@@ -58,6 +58,7 @@ impl AnalyticSphere {
                 surface: shapes::sphere(DVec3::ZERO, 1.0)
                     .expect("the unit sphere has a positive radius"),
             }],
+            groups: Vec::new(),
         })
     }
 

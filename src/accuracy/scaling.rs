@@ -63,7 +63,7 @@ pub fn copies(model: &PatchLibrary, count: usize, spacing: f64) -> PatchLibrary 
             })
         })
         .collect();
-    PatchLibrary { patches }
+    PatchLibrary::new(patches)
 }
 
 /// The centre and radius of a sphere around every control point of `library` (the surfaces lie
@@ -257,6 +257,7 @@ mod tests {
                 name: "ball".into(),
                 surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
             }],
+            groups: Vec::new(),
         };
         let four = copies(&model, 4, 3.0);
         assert_eq!(four.patches.len(), 4);

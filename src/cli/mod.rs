@@ -3,6 +3,7 @@
 
 mod bench;
 mod inspect;
+mod patches;
 mod probe;
 mod render;
 
@@ -24,6 +25,7 @@ enum Command {
     Render(render::RenderArgs),
     Inspect(inspect::InspectArgs),
     Probe(probe::ProbeArgs),
+    Patches(patches::PatchesArgs),
     Bench(bench::BenchArgs),
 }
 
@@ -45,6 +47,7 @@ pub fn main() -> ExitCode {
         Command::Render(args) => render::run(&args),
         Command::Inspect(args) => inspect::run(&args),
         Command::Probe(args) => probe::run(&args),
+        Command::Patches(args) => patches::run(&args),
         Command::Bench(args) => bench::run(&args),
     };
     match result {

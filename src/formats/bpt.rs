@@ -69,7 +69,7 @@ pub fn parse_bpt(text: &str, path: &str) -> Result<PatchLibrary, FormatError> {
             message: format!("unexpected data after the {count} patches the first line announces"),
         });
     }
-    Ok(PatchLibrary { patches })
+    Ok(PatchLibrary::new(patches))
 }
 
 /// Non-blank lines with their 1-based numbers.

@@ -6,6 +6,7 @@ mod bpt;
 pub mod exr;
 mod frame_files;
 pub mod image_encoding;
+pub mod parts;
 mod patch_ron;
 pub mod png;
 pub mod ron_location;
@@ -52,6 +53,10 @@ pub enum FormatError {
         "{path}: unknown patch file type; use .ron (a patch library) or .bpt (Bezier patches)"
     )]
     UnknownKind { path: String },
+    #[error(
+        "{path} names the parts of a model, it is not one; give the model it is beside ({model})"
+    )]
+    PartsFile { path: String, model: String },
 }
 
 /// Loads a model: a RON patch library (`.ron`) or Bezier patches (`.bpt`), by extension.
@@ -61,6 +66,12 @@ pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
+    if let Some(model) = parts::model_of_parts_file(path) {
+        return Err(FormatError::PartsFile {
+            path: shown,
+            model: model.display().to_string(),
+        });
+    }
     let parse = match kind.as_deref() {
         Some("ron") => parse_patch_ron,
         Some("bpt") => parse_bpt,
@@ -70,5 +81,11 @@ pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
         path: shown.clone(),
         source,
     })?;
-    parse(&text, &shown)
+    let mut library = parse(&text, &shown)?;
+    let parts = parts::parts_file(path);
+    if parts.is_file() {
+        let more = parts::read_parts_file(&parts, &library.patches, &library.groups)?;
+        library.groups.extend(more);
+    }
+    Ok(library)
 }

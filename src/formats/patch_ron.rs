@@ -4,7 +4,9 @@
 use glam::DVec3;
 use serde::Deserialize;
 
+use super::parts::{located, resolve_groups, GroupsSpec};
 use super::ron_location::{explain, position_of, start_of_value_closed_at};
+use super::ron_paths::Step;
 use super::FormatError;
 use crate::geom::{shapes, GeomError, NamedPatch, NurbsSurface, PatchLibrary};
 
@@ -12,6 +14,9 @@ use crate::geom::{shapes, GeomError, NamedPatch, NurbsSurface, PatchLibrary};
 #[serde(deny_unknown_fields)]
 struct LibraryFile {
     patches: Vec<PatchSpec>,
+    /// Named parts: each a list of patch names or 0-based indices.
+    #[serde(default)]
+    groups: GroupsSpec,
 }
 
 #[derive(Deserialize)]
@@ -169,7 +174,9 @@ pub fn parse_patch_ron(text: &str, path: &str) -> Result<PatchLibrary, FormatErr
             surface: spec.surface.0,
         });
     }
-    Ok(PatchLibrary { patches })
+    let groups = resolve_groups(&file.groups, &patches, &[])
+        .map_err(|e| located(&e, text, path, &[Step::Field("groups")]))?;
+    Ok(PatchLibrary { patches, groups })
 }
 
 /// The 1-based line and column of the second occurrence of `needle` (or of the first, or 1:1).

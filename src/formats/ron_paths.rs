@@ -34,15 +34,14 @@ pub fn locate_or_nearest(text: &str, path: &[Step]) -> usize {
 /// (or the text is malformed before it is reached).
 #[must_use]
 pub fn try_locate(text: &str, path: &[Step]) -> Option<usize> {
-    let mut cursor = Cursor { text, at: 0 };
-    cursor.skip_blank();
-    while cursor.rest().starts_with("#!") {
-        cursor.at += 2;
-        cursor.skip_blank();
-        cursor.skip_value()?;
-        cursor.skip_blank();
-    }
-    cursor.find(path, 0)
+    Cursor::at_top_level(text)?.find(path, 0)
+}
+
+/// The name written before the top-level value's bracket (`Shot` in `Shot(…)`), after blanks
+/// and `#![…]` attributes; `None` when it has none.
+#[must_use]
+pub fn top_level_name(text: &str) -> Option<&str> {
+    Cursor::at_top_level(text)?.identifier()
 }
 
 /// Nesting deeper than this is treated as malformed, so hostile text cannot exhaust the stack.
@@ -54,6 +53,19 @@ struct Cursor<'t> {
 }
 
 impl<'t> Cursor<'t> {
+    /// A cursor at the top-level value of `text`: past blanks and `#![…]` attributes.
+    fn at_top_level(text: &'t str) -> Option<Self> {
+        let mut cursor = Cursor { text, at: 0 };
+        cursor.skip_blank();
+        while cursor.rest().starts_with("#!") {
+            cursor.at += 2;
+            cursor.skip_blank();
+            cursor.skip_value()?;
+            cursor.skip_blank();
+        }
+        Some(cursor)
+    }
+
     fn rest(&self) -> &'t str {
         &self.text[self.at..]
     }
@@ -372,6 +384,13 @@ Shot(
             ),
             Some(at("'x'"))
         );
+    }
+
+    #[test]
+    fn the_top_level_name_is_read_past_comments_and_attributes() {
+        assert_eq!(top_level_name(SHOT), Some("Shot"));
+        assert_eq!(top_level_name("// c\n(patches: [])"), None);
+        assert_eq!(top_level_name(""), None);
     }
 
     #[test]

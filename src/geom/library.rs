@@ -1,4 +1,4 @@
-//! A model: named patches, looked up by name or index.
+//! A model: named patches, looked up by name or index, and its named parts (groups of patches).
 
 use thiserror::Error;
 
@@ -11,10 +11,21 @@ pub struct NamedPatch {
     pub surface: NurbsSurface,
 }
 
-/// The patches of one model file, in file order.
+/// A named part of a model: a set of its patches (`lid`, `glass`). Selectors in a shot match
+/// group names as they match patch names.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatchGroup {
+    pub name: String,
+    /// Indices into the library's patches, increasing, each once.
+    pub patches: Vec<usize>,
+}
+
+/// The patches of one model file, in file order, and its named parts.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PatchLibrary {
     pub patches: Vec<NamedPatch>,
+    /// Named groups of `patches`, each name distinct from every other group's and patch's.
+    pub groups: Vec<PatchGroup>,
 }
 
 /// A patch name or index that is not in the library.
@@ -26,6 +37,28 @@ pub struct PatchNotFound {
 }
 
 impl PatchLibrary {
+    /// A library of `patches` with no groups.
+    #[must_use]
+    pub fn new(patches: Vec<NamedPatch>) -> Self {
+        Self {
+            patches,
+            groups: Vec::new(),
+        }
+    }
+
+    /// The group named `name`, if there is one.
+    #[must_use]
+    pub fn group(&self, name: &str) -> Option<&PatchGroup> {
+        self.groups.iter().find(|g| g.name == name)
+    }
+
+    /// The groups patch `patch` belongs to.
+    pub fn groups_of(&self, patch: usize) -> impl Iterator<Item = &PatchGroup> {
+        self.groups
+            .iter()
+            .filter(move |g| g.patches.binary_search(&patch).is_ok())
+    }
+
     /// The patch named `query`, or else, when `query` is a whole number, the patch at that
     /// 0-based index.
     pub fn find(&self, query: &str) -> Result<&NamedPatch, PatchNotFound> {
@@ -63,6 +96,7 @@ mod tests {
         };
         let lib = PatchLibrary {
             patches: vec![patch("lid"), patch("1"), patch("body")],
+            groups: Vec::new(),
         };
         assert_eq!(lib.find("body").unwrap().name, "body");
         assert_eq!(lib.find("1").unwrap().name, "1");

@@ -1,6 +1,7 @@
 //! Geometry in f64: knot vectors and B-spline bases, rational surfaces with derivatives, frames,
 //! grid evaluation and exact shapes.
 
+mod edges;
 mod error;
 mod fixed_degree;
 mod frame;
@@ -11,10 +12,11 @@ mod on_ray;
 pub mod shapes;
 mod surface;
 
+pub use edges::Edge;
 pub use error::GeomError;
 pub use frame::Frame;
 pub use grid::GridEvaluator;
 pub use knots::KnotVector;
-pub use library::{NamedPatch, PatchLibrary, PatchNotFound};
+pub use library::{NamedPatch, PatchGroup, PatchLibrary, PatchNotFound};
 pub use on_ray::REFINE_STEPS;
 pub use surface::{Domain, NurbsSurface, SurfaceDerivs};

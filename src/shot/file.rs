@@ -7,6 +7,7 @@ use glam::Vec3;
 use serde::Deserialize;
 
 use crate::anim::{Direction, Track};
+use crate::formats::parts::GroupsSpec;
 use crate::highlight::Expr;
 use crate::render::tessellate::Density;
 use crate::render::{Antialias, FrameMode};
@@ -66,6 +67,10 @@ pub struct InstanceSpec {
     pub material: String,
     #[serde(default)]
     pub transform: TransformSpec,
+    /// Named parts besides the model's own: each a list of patch names or 0-based indices,
+    /// selected as `NAME/PART`.
+    #[serde(default)]
+    pub groups: GroupsSpec,
 }
 
 /// `p ↦ translate + R(axis, degrees) (scale · p)`.

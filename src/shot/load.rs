@@ -15,10 +15,11 @@ use super::output::{check_numbered, resolve_path};
 use super::source::Source;
 use super::validated::{placement, Accuracy, Instance, Material, Shot};
 use super::{ShotError, MAX_FRAMES};
+use crate::formats::parts::{parts_file, resolve_groups};
 use crate::formats::ron_location::closest_name;
 use crate::formats::ron_paths::Step::{Entry, Field, Index};
 use crate::formats::{load_patches, read_toon_texture};
-use crate::geom::{NamedPatch, PatchLibrary};
+use crate::geom::{NamedPatch, PatchGroup, PatchLibrary};
 use crate::render::{Outlines, Settings};
 use crate::toon::{AbstractShape, Abstraction, ToonTexture, XToon};
 
@@ -242,6 +243,7 @@ fn place_instances(
     let mut placed = Placed {
         library: PatchLibrary {
             patches: Vec::new(),
+            groups: Vec::new(),
         },
         instances: Vec::new(),
         patch_material: Vec::new(),
@@ -302,11 +304,26 @@ fn place_instances(
                 at("file", message)
             })?;
             inputs.add(&model_path);
+            let parts = parts_file(&model_path);
+            if parts.is_file() {
+                inputs.add(&parts);
+            }
             models.insert(key.clone(), model);
         }
+        let model = &models[&key];
+        let own = resolve_groups(&spec.groups, &model.patches, &model.groups).map_err(|e| {
+            let to_groups = [Field("instances"), Index(index), Field("groups")];
+            source.error_at(&e.path(&to_groups), e.message.clone())
+        })?;
         let place = placement(translate, axis, t.degrees, t.scale);
         let start = placed.library.patches.len();
-        for patch in &models[&key].patches {
+        for group in model.groups.iter().chain(&own) {
+            placed.library.groups.push(PatchGroup {
+                name: format!("{}/{}", spec.name, group.name),
+                patches: group.patches.iter().map(|p| start + p).collect(),
+            });
+        }
+        for patch in &model.patches {
             placed.library.patches.push(NamedPatch {
                 name: format!("{}/{}", spec.name, patch.name),
                 surface: patch.surface.map_points(&place),
@@ -332,19 +349,32 @@ fn select_highlights(
     for (entry, (spec, written)) in highlights.iter().enumerate() {
         for (index, pattern) in spec.patches.patterns().iter().enumerate() {
             let mut any = false;
-            for (patch, slot) in library.patches.iter().zip(&mut patch_highlight) {
-                if glob::matches(pattern, &patch.name) {
-                    *slot = Some(entry);
-                    any = true;
+            let mut pick = |patch: usize| {
+                patch_highlight[patch] = Some(entry);
+                any = true;
+            };
+            for (patch, named) in library.patches.iter().enumerate() {
+                if glob::matches(pattern, &named.name) {
+                    pick(patch);
+                }
+            }
+            for group in &library.groups {
+                if glob::matches(pattern, &group.name) {
+                    group.patches.iter().for_each(|&patch| pick(patch));
                 }
             }
             if !any {
-                let names: Vec<&str> = library.patches.iter().map(|p| p.name.as_str()).collect();
-                let mut message = format!("the selector \"{pattern}\" matches no patch");
+                let names: Vec<&str> = library
+                    .groups
+                    .iter()
+                    .map(|g| g.name.as_str())
+                    .chain(library.patches.iter().map(|p| p.name.as_str()))
+                    .collect();
+                let mut message = format!("the selector \"{pattern}\" matches no patch or part");
                 match closest_name(pattern, &names) {
                     Some(close) => message.push_str(&format!("; did you mean \"{close}\"?")),
                     None => message.push_str(&format!(
-                        "; patches are named INSTANCE/PATCH, e.g. \"{}\"",
+                        "; patches are named INSTANCE/PATCH and parts INSTANCE/PART, e.g. \"{}\"",
                         names.first().copied().unwrap_or("ball/0")
                     )),
                 }

@@ -280,6 +280,7 @@ mod tests {
                 name: "plane".into(),
                 surface: shapes::plane(2.0, 1.0).unwrap(),
             }],
+            groups: Vec::new(),
         };
         let smoothed = SmoothedNormals::new(&library, 5).unwrap();
         for uv in [

@@ -254,6 +254,7 @@ mod tests {
                 name: "sphere".into(),
                 surface: shapes::sphere(DVec3::ZERO, 2.0).unwrap(),
             }],
+            groups: Vec::new(),
         };
         let texels: Vec<Vec3> = (0..8 * 4)
             .map(|k| Vec3::new((k % 8) as f32 / 7.0, (k / 8) as f32 / 3.0, 0.5))

@@ -1,0 +1,239 @@
+//! `glint patches`: the patches and named parts of a model or of a shot's placed instances —
+//! what a selector can name.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::anyhow;
+use clap::Args;
+use serde::Serialize;
+
+use super::CliError;
+use crate::formats::load_patches;
+use crate::formats::ron_paths::top_level_name;
+use crate::geom::{Edge, PatchLibrary};
+use crate::shot::load_shot;
+
+/// List the patches and named parts (groups) of a patch file, or of a shot's instances.
+///
+/// Given a shot, the names are the ones its selectors match: `INSTANCE/PATCH` and
+/// `INSTANCE/PART`. For each patch: its index, name, degrees, parameter domain, knot spans and
+/// the edges that collapse to a point (where the frame is the limit from inside the patch).
+/// Each part is listed with the patches it groups. Parts come from a patch library's `groups`,
+/// from a `NAME.parts.ron` file beside the model (`teapot.bpt` → `teapot.parts.ron`), and from
+/// an instance's `groups` in the shot.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:
+  glint patches patches/teapot.bpt
+  glint patches shots/teapot_turntable.ron
+  glint patches patches/car_panels.ron --json")]
+pub struct PatchesArgs {
+    /// A patch file (.ron library or .bpt), or a shot file
+    file: PathBuf,
+    /// Print JSON instead of a table
+    #[arg(long)]
+    json: bool,
+}
+
+/// One patch, as listed.
+#[derive(Serialize)]
+struct PatchRow {
+    index: usize,
+    name: String,
+    degree: [usize; 2],
+    domain: [[f64; 2]; 2],
+    spans: [usize; 2],
+    collapsed: Vec<String>,
+    parts: Vec<String>,
+}
+
+/// One part, as listed.
+#[derive(Serialize)]
+struct PartRow {
+    name: String,
+    patches: Vec<usize>,
+}
+
+#[derive(Serialize)]
+struct Listing {
+    patches: Vec<PatchRow>,
+    parts: Vec<PartRow>,
+}
+
+pub fn run(args: &PatchesArgs) -> Result<(), CliError> {
+    let library = read(&args.file).map_err(CliError::BadInput)?;
+    let listing = listing(&library);
+    let mut out = std::io::stdout().lock();
+    let written = if args.json {
+        serde_json::to_writer_pretty(&mut out, &listing)
+            .map_err(anyhow::Error::from)
+            .and_then(|()| writeln!(out).map_err(anyhow::Error::from))
+    } else {
+        write_table(&mut out, &args.file, &listing).map_err(anyhow::Error::from)
+    };
+    match written {
+        // A reader that stopped early (`glint patches … | head`) is not a failure.
+        Err(e)
+            if e.downcast_ref::<std::io::Error>()
+                .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) =>
+        {
+            Ok(())
+        }
+        other => other.map_err(|e| CliError::Failed(e.context("writing the listing"))),
+    }
+}
+
+/// The model of a patch file, or the placed model of a shot (a `.ron` file whose top level is
+/// `Shot(…)`).
+fn read(path: &Path) -> anyhow::Result<PatchLibrary> {
+    let is_ron = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ron"));
+    if is_ron {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| anyhow!("{}: cannot read the file: {e}", path.display()))?;
+        if top_level_name(&text) == Some("Shot") {
+            let shot = load_shot(path)?;
+            return Ok((*shot.library).clone());
+        }
+    }
+    Ok(load_patches(path)?)
+}
+
+fn listing(library: &PatchLibrary) -> Listing {
+    let patches = library
+        .patches
+        .iter()
+        .enumerate()
+        .map(|(index, patch)| {
+            let s = &patch.surface;
+            let domain = s.domain();
+            PatchRow {
+                index,
+                name: patch.name.clone(),
+                degree: [s.knots_u().degree(), s.knots_v().degree()],
+                domain: [[domain.u.0, domain.u.1], [domain.v.0, domain.v.1]],
+                spans: [
+                    spans(s.knots_u().knots(), s.knots_u().degree(), s.count_u()),
+                    spans(s.knots_v().knots(), s.knots_v().degree(), s.count_v()),
+                ],
+                collapsed: s.collapsed_edges().iter().map(Edge::to_string).collect(),
+                parts: library.groups_of(index).map(|g| g.name.clone()).collect(),
+            }
+        })
+        .collect();
+    let parts = library
+        .groups
+        .iter()
+        .map(|g| PartRow {
+            name: g.name.clone(),
+            patches: g.patches.clone(),
+        })
+        .collect();
+    Listing { patches, parts }
+}
+
+/// The knot spans of non-zero length inside the domain `[t_p, t_n]`.
+fn spans(knots: &[f64], degree: usize, count: usize) -> usize {
+    knots[degree..=count]
+        .windows(2)
+        .filter(|w| w[1] > w[0])
+        .count()
+}
+
+fn write_table(out: &mut impl Write, file: &Path, listing: &Listing) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "{}: {} patches, {} parts",
+        file.display(),
+        listing.patches.len(),
+        listing.parts.len()
+    )?;
+    let width = listing
+        .patches
+        .iter()
+        .map(|p| p.name.chars().count())
+        .chain(listing.parts.iter().map(|p| p.name.chars().count()))
+        .max()
+        .unwrap_or(4)
+        .max(4);
+    writeln!(
+        out,
+        "{:>5}  {:<width$}  {:<6}  {:<27}  {:<5}  {:<15}  parts",
+        "index", "name", "degree", "domain (u × v)", "spans", "collapsed"
+    )?;
+    for p in &listing.patches {
+        let domain = format!(
+            "[{}, {}] × [{}, {}]",
+            p.domain[0][0], p.domain[0][1], p.domain[1][0], p.domain[1][1]
+        );
+        let collapsed = if p.collapsed.is_empty() {
+            "-".to_string()
+        } else {
+            p.collapsed.join(" ")
+        };
+        writeln!(
+            out,
+            "{:>5}  {:<width$}  {:<6}  {:<27}  {:<5}  {:<15}  {}",
+            p.index,
+            p.name,
+            format!("{}×{}", p.degree[0], p.degree[1]),
+            domain,
+            format!("{}×{}", p.spans[0], p.spans[1]),
+            collapsed,
+            p.parts.join(" ")
+        )?;
+    }
+    if !listing.parts.is_empty() {
+        writeln!(out)?;
+        writeln!(out, "{:<width$}  patches", "part")?;
+        for part in &listing.parts {
+            writeln!(
+                out,
+                "{:<width$}  {}",
+                part.name,
+                index_ranges(&part.patches)
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// Increasing indices written with runs shortened: `0-3 8 10-11`.
+fn index_ranges(indices: &[usize]) -> String {
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    for &i in indices {
+        match runs.last_mut() {
+            Some((_, end)) if *end + 1 == i => *end = i,
+            _ => runs.push((i, i)),
+        }
+    }
+    runs.iter()
+        .map(|&(a, b)| {
+            if a == b {
+                a.to_string()
+            } else {
+                format!("{a}-{b}")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn runs_of_indices_are_shortened() {
+        assert_eq!(index_ranges(&[0, 1, 2, 3, 8, 10, 11]), "0-3 8 10-11");
+        assert_eq!(index_ranges(&[]), "");
+    }
+
+    #[test]
+    fn spans_count_intervals_of_nonzero_length_inside_the_domain() {
+        // Degree 2, 5 control points, one double interior knot.
+        assert_eq!(spans(&[0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0], 2, 5), 2);
+        assert_eq!(spans(&[0.0, 0.0, 1.0, 1.0], 1, 2), 1);
+    }
+}
