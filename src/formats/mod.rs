@@ -59,6 +59,39 @@ pub enum FormatError {
     PartsFile { path: String, model: String },
 }
 
+impl FormatError {
+    /// A RON error in `text` (shown as `shown`) at the value `path` leads to, or at the
+    /// deepest value on it that is written.
+    #[must_use]
+    pub fn ron_at(text: &str, shown: &str, path: &[ron_paths::Step], message: String) -> Self {
+        let offset = ron_paths::locate_or_nearest(text, path);
+        let (line, col) = ron_location::position_of(text, offset);
+        FormatError::Ron {
+            path: shown.into(),
+            line,
+            col,
+            message,
+        }
+    }
+}
+
+/// Parses `text` (shown as `shown`) as `T`, with errors placed where they are written: a value
+/// that failed its own checks, which serde reports at its closing bracket, at its start.
+fn parse_ron<T: serde::de::DeserializeOwned>(text: &str, shown: &str) -> Result<T, FormatError> {
+    ron::Options::default().from_str(text).map_err(|e| {
+        let mut at = (e.span.start.line, e.span.start.col);
+        if matches!(e.code, ron::Error::Message(_)) {
+            at = ron_location::start_of_value_closed_at(text, at).unwrap_or(at);
+        }
+        FormatError::Ron {
+            path: shown.into(),
+            line: at.0,
+            col: at.1,
+            message: ron_location::explain(&e.code),
+        }
+    })
+}
+
 /// Loads a model: a RON patch library (`.ron`) or Bezier patches (`.bpt`), by extension.
 pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
     let shown = path.display().to_string();

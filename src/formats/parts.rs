@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 use serde::de::{self, Deserializer, Visitor};
 use serde::Deserialize;
 
-use super::ron_location::{closest_name, explain, position_of};
-use super::ron_paths::{locate_or_nearest, Step};
-use super::FormatError;
+use super::ron_location::closest_name;
+use super::ron_paths::Step;
+use super::{parse_ron, FormatError};
 use crate::geom::{NamedPatch, PatchGroup};
 
 /// Groups as written: each name with its members.
@@ -206,29 +206,15 @@ pub fn read_parts_file(
         path: shown.clone(),
         source,
     })?;
-    let file: PartsFile =
-        ron::Options::default()
-            .from_str(&text)
-            .map_err(|e| FormatError::Ron {
-                path: shown.clone(),
-                line: e.span.start.line,
-                col: e.span.start.col,
-                message: explain(&e.code),
-            })?;
-    resolve_groups(&file.groups, patches, taken)
-        .map_err(|e| located(&e, &text, &shown, &[Step::Field("groups")]))
-}
-
-/// `error` as a RON error at where it is written in `text`, below the path `to_groups`.
-#[must_use]
-pub fn located(error: &GroupError, text: &str, shown: &str, to_groups: &[Step]) -> FormatError {
-    let (line, col) = position_of(text, locate_or_nearest(text, &error.path(to_groups)));
-    FormatError::Ron {
-        path: shown.into(),
-        line,
-        col,
-        message: error.message.clone(),
-    }
+    let file: PartsFile = parse_ron(&text, &shown)?;
+    resolve_groups(&file.groups, patches, taken).map_err(|e| {
+        FormatError::ron_at(
+            &text,
+            &shown,
+            &e.path(&[Step::Field("groups")]),
+            e.message.clone(),
+        )
+    })
 }
 
 #[cfg(test)]
@@ -325,9 +311,12 @@ mod tests {
             &[],
         );
         let error = error.unwrap_err();
-        let FormatError::Ron { line, col, .. } =
-            located(&error, text, "t.parts.ron", &[Step::Field("groups")])
-        else {
+        let FormatError::Ron { line, col, .. } = FormatError::ron_at(
+            text,
+            "t.parts.ron",
+            &error.path(&[Step::Field("groups")]),
+            error.message.clone(),
+        ) else {
             panic!("not a RON error");
         };
         assert_eq!((line, col), (2, 19));

@@ -4,10 +4,9 @@
 use glam::DVec3;
 use serde::Deserialize;
 
-use super::parts::{located, resolve_groups, GroupsSpec};
-use super::ron_location::{explain, position_of, start_of_value_closed_at};
-use super::ron_paths::Step;
-use super::FormatError;
+use super::parts::{resolve_groups, GroupsSpec};
+use super::ron_paths::Step::{Field, Index};
+use super::{parse_ron, FormatError};
 use crate::geom::{shapes, GeomError, NamedPatch, NurbsSurface, PatchLibrary};
 
 #[derive(Deserialize)]
@@ -141,52 +140,29 @@ impl TryFrom<SurfaceSpec> for BuiltSurface {
 
 /// Reads a RON patch library; `path` is used in error messages only.
 pub fn parse_patch_ron(text: &str, path: &str) -> Result<PatchLibrary, FormatError> {
-    let file: LibraryFile = ron::Options::default().from_str(text).map_err(|e| {
-        let mut at = (e.span.start.line, e.span.start.col);
-        if matches!(e.code, ron::Error::Message(_)) {
-            // A surface that failed validation: serde reports it at its closing
-            // parenthesis; point at its start instead.
-            at = start_of_value_closed_at(text, at).unwrap_or(at);
-        }
-        FormatError::Ron {
-            path: path.into(),
-            line: at.0,
-            col: at.1,
-            message: explain(&e.code),
-        }
-    })?;
+    let file: LibraryFile = parse_ron(text, path)?;
     let mut patches: Vec<NamedPatch> = Vec::with_capacity(file.patches.len());
-    for spec in file.patches {
+    for (index, spec) in file.patches.into_iter().enumerate() {
         if patches.iter().any(|p| p.name == spec.name) {
-            let (line, col) = second_occurrence(text, &format!("\"{}\"", spec.name));
-            return Err(FormatError::Ron {
-                path: path.into(),
-                line,
-                col,
-                message: format!(
+            return Err(FormatError::ron_at(
+                text,
+                path,
+                &[Field("patches"), Index(index), Field("name")],
+                format!(
                     "the patch name \"{}\" is used twice; patch names must be unique",
                     spec.name
                 ),
-            });
+            ));
         }
         patches.push(NamedPatch {
             name: spec.name,
             surface: spec.surface.0,
         });
     }
-    let groups = resolve_groups(&file.groups, &patches, &[])
-        .map_err(|e| located(&e, text, path, &[Step::Field("groups")]))?;
+    let groups = resolve_groups(&file.groups, &patches, &[]).map_err(|e| {
+        FormatError::ron_at(text, path, &e.path(&[Field("groups")]), e.message.clone())
+    })?;
     Ok(PatchLibrary { patches, groups })
-}
-
-/// The 1-based line and column of the second occurrence of `needle` (or of the first, or 1:1).
-fn second_occurrence(text: &str, needle: &str) -> (usize, usize) {
-    let offset = text
-        .match_indices(needle)
-        .nth(1)
-        .or_else(|| text.match_indices(needle).next())
-        .map_or(0, |(i, _)| i);
-    position_of(text, offset)
 }
 
 #[cfg(test)]
@@ -230,6 +206,13 @@ mod tests {
         assert_eq!(
             error_of(text),
             "m.ron:3:8: the patch name \"a\" is used twice; patch names must be unique"
+        );
+        // The name written in a comment first does not mislead the location.
+        let commented = format!("// \"a\" and \"a\" again\n{text}");
+        assert!(
+            error_of(&commented).starts_with("m.ron:4:8: "),
+            "{}",
+            error_of(&commented)
         );
     }
 }

@@ -35,16 +35,12 @@ impl Source {
     /// An error at the value `path` leads to (a map entry: at its key), or at the deepest
     /// value on the way that is written, when the rest is left to its default.
     pub fn error_at(&self, path: &[Step], message: impl Into<String>) -> ShotError {
-        self.error_at_offset(locate_or_nearest(&self.text, path), message.into())
-    }
-
-    fn error_at_offset(&self, offset: usize, message: String) -> ShotError {
-        let (line, col) = position_of(&self.text, offset);
+        let (line, col) = position_of(&self.text, locate_or_nearest(&self.text, path));
         ShotError::At {
             path: self.shown.clone(),
             line,
             col,
-            message,
+            message: message.into(),
         }
     }
 
