@@ -12,6 +12,7 @@ mod geometry_derivatives;
 mod geometry_sphere;
 mod geometry_stability;
 mod geometry_teapot;
+mod highlight_place;
 mod highlight_serde;
 mod highlight_sphere;
 mod highlight_stability;

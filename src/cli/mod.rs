@@ -4,6 +4,7 @@
 mod bench;
 mod inspect;
 mod patches;
+mod place;
 mod probe;
 mod render;
 
@@ -26,6 +27,7 @@ enum Command {
     Inspect(inspect::InspectArgs),
     Probe(probe::ProbeArgs),
     Patches(patches::PatchesArgs),
+    Place(place::PlaceArgs),
     Bench(bench::BenchArgs),
 }
 
@@ -48,6 +50,7 @@ pub fn main() -> ExitCode {
         Command::Inspect(args) => inspect::run(&args),
         Command::Probe(args) => probe::run(&args),
         Command::Patches(args) => patches::run(&args),
+        Command::Place(args) => place::run(&args),
         Command::Bench(args) => bench::run(&args),
     };
     match result {

@@ -64,14 +64,23 @@ pub struct RenderArgs {
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
-enum PresetArg {
+pub(super) enum PresetArg {
     /// Fast feedback: coarse tessellation, interpolated frames, no anti-aliasing
     Preview,
     /// Finished frames: fine tessellation, exact frames, supersampling
     Final,
 }
 
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
+impl From<PresetArg> for Preset {
+    fn from(preset: PresetArg) -> Self {
+        match preset {
+            PresetArg::Preview => Preset::Preview,
+            PresetArg::Final => Preset::Final,
+        }
+    }
+}
+
+pub(super) fn parse_size(text: &str) -> Result<(u32, u32), String> {
     text.split_once(['x', 'X'])
         .and_then(|(w, h)| Some((w.trim().parse().ok()?, h.trim().parse().ok()?)))
         .filter(|&(w, h): &(u32, u32)| w > 0 && h > 0)
@@ -104,10 +113,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let overrides = Overrides {
         frames: args.frames.as_ref().map(|f| f.0.clone()),
         size: args.size,
-        preset: args.preset.map(|p| match p {
-            PresetArg::Preview => Preset::Preview,
-            PresetArg::Final => Preset::Final,
-        }),
+        preset: args.preset.map(Preset::from),
         aovs: args.aov.as_ref().map(|a| a.0.clone()),
         threads: args.threads,
         output: args.out.clone(),

@@ -27,6 +27,21 @@ pub enum HighlightError {
         /// The second (upper) bound given.
         max: f32,
     },
+    /// A highlight placed on a point, in a stack with no translation to place it with.
+    #[error(
+        "the stack has no Translate to place the highlight with; add \
+         `Translate(alpha: 0.0, beta: 0.0)` where the highlight should be moved"
+    )]
+    NoTranslation,
+    /// A pinned layer prepared before its translation was solved for its point.
+    #[error(
+        "the layer is pinned to \"{patch}\", and its translation must be solved for that point \
+         before it is drawn (Layer::centred_on)"
+    )]
+    Unresolved {
+        /// The pin's patch as written.
+        patch: String,
+    },
     /// An error inside a numbered part of a larger description (a layer of an expression, an op
     /// of a stack).
     #[error("{place}: {source}")]

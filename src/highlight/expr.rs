@@ -55,6 +55,52 @@ impl<P> Expr<P> {
         self.map_dyn(&mut f)
     }
 
+    /// The layers, left to right as written (the numbering of error messages, from 0 here).
+    #[must_use]
+    pub fn layers(&self) -> Vec<&Layer<P>> {
+        match self {
+            Expr::Layer(l) => vec![l],
+            Expr::Union(a, b) | Expr::Subtract(a, b) | Expr::Intersect(a, b) => {
+                let mut layers = a.layers();
+                layers.extend(b.layers());
+                layers
+            }
+        }
+    }
+
+    /// The layers, left to right as written, to change in place.
+    pub fn layers_mut(&mut self) -> Vec<&mut Layer<P>> {
+        match self {
+            Expr::Layer(l) => vec![l],
+            Expr::Union(a, b) | Expr::Subtract(a, b) | Expr::Intersect(a, b) => {
+                let mut layers = a.layers_mut();
+                layers.extend(b.layers_mut());
+                layers
+            }
+        }
+    }
+
+    /// Where layer `k` (left to right, from 0) is written inside the expression: the operand
+    /// index of each Boolean on the way (`Subtract(a, b)`: 0 for `a`, 1 for `b`), then 0 for
+    /// the layer's own parentheses (`Layer((…))`). `None` when there are not that many layers.
+    #[must_use]
+    pub fn layer_route(&self, k: usize) -> Option<Vec<usize>> {
+        match self {
+            Expr::Layer(_) => (k == 0).then(|| vec![0]),
+            Expr::Union(a, b) | Expr::Subtract(a, b) | Expr::Intersect(a, b) => {
+                let left = a.layers().len();
+                let (side, operand, k) = if k < left {
+                    (0, a, k)
+                } else {
+                    (1, b, k - left)
+                };
+                let mut route = vec![side];
+                route.extend(operand.layer_route(k)?);
+                Some(route)
+            }
+        }
+    }
+
     fn map_dyn<Q>(&self, f: &mut dyn FnMut(&P) -> Q) -> Expr<Q> {
         let pair = |a: &Self, b: &Self, f: &mut dyn FnMut(&P) -> Q| {
             let a = Box::new(a.map_dyn(f));
@@ -336,6 +382,7 @@ mod tests {
             opacity,
             feather: None,
             mask: None,
+            pin: None,
         })
     }
 
@@ -409,5 +456,25 @@ mod tests {
         // Each layer: ε, 3 colour components, opacity.
         assert_eq!(seen.len(), 15);
         assert_eq!([seen[0], seen[5], seen[10]], [0.1, 0.2, 0.3]);
+    }
+
+    #[test]
+    fn layers_are_found_left_to_right_with_their_routes() {
+        let mut e = Expr::Intersect(
+            Box::new(layer(0.1, 1.0)),
+            Box::new(Expr::Subtract(
+                Box::new(layer(0.2, 1.0)),
+                Box::new(layer(0.3, 1.0)),
+            )),
+        );
+        let eps: Vec<f32> = e.layers().iter().map(|l| l.epsilon).collect();
+        assert_eq!(eps, [0.1, 0.2, 0.3]);
+        assert_eq!(e.layer_route(0), Some(vec![0, 0]));
+        assert_eq!(e.layer_route(1), Some(vec![1, 0, 0]));
+        assert_eq!(e.layer_route(2), Some(vec![1, 1, 0]));
+        assert_eq!(e.layer_route(3), None);
+        e.layers_mut()[2].epsilon = 0.4;
+        assert!(matches!(&e, Expr::Intersect(_, b)
+            if matches!(&**b, Expr::Subtract(_, c) if matches!(&**c, Expr::Layer(l) if l.epsilon == 0.4))));
     }
 }

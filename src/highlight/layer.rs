@@ -8,6 +8,7 @@ use super::error::HighlightError;
 use super::frame::TangentFrame;
 use super::inside::{coverage_from_signed, signed_inside};
 use super::ops::Op;
+use super::pin::Pin;
 use super::stack::{LocalChunk, PreparedStack};
 use crate::math::LANES;
 use crate::param::{check, Range};
@@ -45,6 +46,11 @@ pub struct Layer<P = f32> {
     /// clean-up of "an unnecessary part of a highlight". None (the default): no mask.
     #[serde(default)]
     pub mask: Option<Mask<P>>,
+    /// Keeps the highlight's centre on a surface point on every frame: the stack's placing
+    /// translation is solved for it ([`Pin`]). None (the default): the stack's translation as
+    /// written.
+    #[serde(default)]
+    pub pin: Option<Pin<P>>,
 }
 
 /// The default opacity of a layer as written in a file: 1.
@@ -80,6 +86,7 @@ impl Layer {
             opacity: 1.0,
             feather: None,
             mask: None,
+            pin: None,
         }
     }
 }
@@ -99,6 +106,7 @@ impl<P> Layer<P> {
                 v: (f(&m.v.0), f(&m.v.1)),
                 feather: f(&m.feather),
             }),
+            pin: self.pin.as_ref().map(|p| p.map(&mut f)),
         }
     }
 }
@@ -165,9 +173,16 @@ impl Layer<f32> {
         Ok(())
     }
 
-    /// Validates and precomputes the per-point form.
+    /// Validates and precomputes the per-point form. A pinned layer is first centred on its
+    /// point ([`centred_on`](Self::centred_on)) by whoever knows the point; with its pin still
+    /// set it is an error, never a translation silently left as written.
     pub fn prepare(&self) -> Result<PreparedLayer, HighlightError> {
         self.validate()?;
+        if let Some(pin) = &self.pin {
+            return Err(HighlightError::Unresolved {
+                patch: pin.patch.clone(),
+            });
+        }
         Ok(PreparedLayer {
             stack: PreparedStack::new(
                 self.stack
@@ -340,6 +355,7 @@ mod tests {
             opacity: 0.8,
             feather: None,
             mask: None,
+            pin: None,
         }
     }
 

@@ -11,6 +11,7 @@
 //! A point is inside a highlight iff `‖N − H'‖² / 2 < ε`, where H' is the op stack applied to the
 //! initial H, Blinn's half vector ([`half_vector`]).
 
+mod centre;
 mod error;
 mod expr;
 mod frame;
@@ -18,6 +19,7 @@ mod half_vector;
 mod inside;
 mod layer;
 mod ops;
+mod pin;
 mod stack;
 
 pub use error::HighlightError;
@@ -28,5 +30,6 @@ pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View
 pub use inside::{coverage_from_signed, inside, signed_inside};
 pub use layer::{Layer, Mask, Paint, PreparedLayer};
 pub use ops::{Axis, Op, PreparedOp, SquareStyle};
+pub use pin::Pin;
 pub(crate) use stack::LocalChunk;
 pub use stack::PreparedStack;

@@ -18,6 +18,7 @@
 //! ```
 
 mod frame_list;
+mod place;
 mod write;
 
 use std::path::{Path, PathBuf};
@@ -25,6 +26,7 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 pub use frame_list::parse_frames;
+pub use place::{LayerChoice, PlaceError, Placement, Residual};
 
 use crate::formats::atomic::WriteError;
 use crate::render::{RenderError, RenderedFrame, Renderer, Scene, Settings};

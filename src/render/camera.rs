@@ -1,6 +1,6 @@
 //! Cameras: where the eye is, where it looks, and how it projects.
 
-use glam::{Mat4, Vec3};
+use glam::{DVec2, DVec3, Mat4, Vec3};
 use serde::Deserialize;
 
 use super::RenderError;
@@ -105,6 +105,27 @@ impl Camera {
             Projection::Perspective { .. } => self.eye - point,
             Projection::Orthographic { .. } => self.eye - self.target,
         }
+    }
+
+    /// The ray through the image position `(x, y)` of a `width × height` image, in pixel
+    /// units with pixel `(i, j)`'s centre at `(i + 0.5, j + 0.5)`: the points the inverse
+    /// view-projection maps to the near and far planes there, as origin and direction (the
+    /// refined frames' rays, [`NurbsSurface::try_refine_on_ray`]).
+    ///
+    /// [`NurbsSurface::try_refine_on_ray`]: crate::geom::NurbsSurface::try_refine_on_ray
+    #[must_use]
+    pub fn ray_through(&self, (x, y): (f64, f64), (width, height): (u32, u32)) -> (DVec3, DVec3) {
+        let inverse = self
+            .view_projection(width as f32 / height as f32)
+            .as_dmat4()
+            .inverse();
+        let ndc = DVec2::new(
+            2.0 * x / f64::from(width) - 1.0,
+            1.0 - 2.0 * y / f64::from(height),
+        );
+        let near = inverse.project_point3(ndc.extend(0.0));
+        let far = inverse.project_point3(ndc.extend(1.0));
+        (near, far - near)
     }
 
     /// The viewer as the highlight model sees it: V and its fallback, defined once in

@@ -21,6 +21,7 @@ mod settings;
 mod shade;
 mod stage;
 mod stats;
+mod surface_point;
 pub mod tessellate;
 mod visibility_shade;
 mod xtoon_tone;
@@ -33,6 +34,7 @@ pub use scene::{Aovs, Outlines, PatchLook, Scene, Tone};
 pub use settings::{Antialias, FrameMode, Settings, MAX_SIDE};
 pub use stage::Stage;
 pub use stats::{RenderStats, StageStats};
+pub use surface_point::SurfacePoint;
 
 use thiserror::Error;
 

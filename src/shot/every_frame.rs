@@ -3,6 +3,7 @@
 use std::collections::BTreeSet;
 
 use super::load::Written;
+use super::pin::pin_path;
 use super::source::Source;
 use super::validated::{MaterialState, Shot};
 use super::ShotError;
@@ -62,12 +63,17 @@ pub(super) fn check_every_frame(
                 )
             })?;
         }
-        for ((expr, selector), written) in state
+        for (entry, ((expr, selector), written)) in state
             .highlights
             .iter()
             .zip(shot.highlight_selectors())
             .zip(highlights_written)
+            .enumerate()
         {
+            shot.check_pins(entry, frame, |k, message| {
+                let spec = &shot.highlights[entry].expr;
+                sources[written.source].error_at(&pin_path(*written, spec, k), message)
+            })?;
             expr.validate().map_err(|e| {
                 let pattern = &selector[0];
                 sources[written.source].error_at(

@@ -17,7 +17,11 @@ pub struct FrameState {
     pub light: Light,
     /// Each material, in the order of [`Shot::material_names`].
     pub materials: Vec<MaterialState>,
-    /// Each highlight entry's expression, in the order they are written (includes first).
+    /// Each highlight entry's expression, in the order they are written (includes first),
+    /// with every pinned layer centred on its point ([`Layer::centred_on`]) and its pin
+    /// cleared.
+    ///
+    /// [`Layer::centred_on`]: crate::highlight::Layer::centred_on
     pub highlights: Vec<Expr>,
 }
 
@@ -35,7 +39,7 @@ impl Shot {
                 height: height.at(frame),
             },
         };
-        FrameState {
+        let mut state = FrameState {
             frame,
             camera: Camera {
                 eye: camera.eye.at(frame),
@@ -67,12 +71,19 @@ impl Shot {
                     Material::XToon { tone, .. } => MaterialState::XToon(tone.map(|t| t.at(frame))),
                 })
                 .collect(),
-            highlights: self
-                .highlights
-                .iter()
-                .map(|h| h.expr.map(|t| t.at(frame)))
-                .collect(),
-        }
+            highlights: Vec::new(),
+        };
+        state.highlights = self
+            .highlights
+            .iter()
+            .enumerate()
+            .map(|(entry, h)| {
+                let mut expr = h.expr.map(|t| t.at(frame));
+                self.centre_pins(entry, &mut expr, &state.camera, &state.light);
+                expr
+            })
+            .collect();
+        state
     }
 }
 

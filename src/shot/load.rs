@@ -12,6 +12,7 @@ use super::every_frame::check_every_frame;
 use super::file::{HighlightSpec, InstanceSpec, LooksFile, MaterialSpec, RenderSpec, ShotFile};
 use super::glob;
 use super::output::{check_numbered, resolve_path};
+use super::pin::resolve_pins;
 use super::source::Source;
 use super::validated::{placement, Accuracy, Instance, Material, Shot};
 use super::{ShotError, MAX_FRAMES};
@@ -57,6 +58,7 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
     let output = check_frames_and_output(&file.frames, file.fps, &file.output, shot_source)?;
     let placed = place_instances(&file.instances, &looks, shot_source, &mut inputs)?;
     let patch_highlight = select_highlights(&looks.highlights, &placed.library, &sources)?;
+    let pins = resolve_pins(&looks.highlights, &placed.library, &sources)?;
     let (accuracy, settings, outlines) =
         render_settings(&file.render, file.resolution, shot_source)?;
 
@@ -70,6 +72,10 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
         material_sources.push(source);
     }
     let (highlights, highlights_written): (Vec<_>, Vec<_>) = looks.highlights.into_iter().unzip();
+    let written_in = highlights_written
+        .iter()
+        .map(|w: &Written| (sources[w.source].path.clone(), w.index))
+        .collect();
     let mut files = sources.iter().map(|s| s.path.clone()).collect::<Vec<_>>();
     files.extend(inputs.0);
     let shot = Shot {
@@ -90,6 +96,8 @@ pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
         highlights,
         patch_material: placed.patch_material,
         patch_highlight,
+        pins,
+        highlights_written: written_in,
     };
     check_every_frame(&shot, &sources, &material_sources, &highlights_written)?;
     Ok(shot)

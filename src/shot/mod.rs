@@ -9,6 +9,7 @@ mod glob;
 mod load;
 mod output;
 mod params;
+mod pin;
 mod source;
 mod validated;
 

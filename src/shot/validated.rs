@@ -44,6 +44,11 @@ pub struct Shot {
     pub(super) patch_material: Vec<usize>,
     /// The highlight entry (index into `highlights`) of each patch, if any.
     pub(super) patch_highlight: Vec<Option<usize>>,
+    /// Per highlight entry, per layer left to right: the patch its pin names, if pinned.
+    pub(super) pins: Vec<Vec<Option<usize>>>,
+    /// Per highlight entry: the file it is written in and its index in that file's
+    /// `highlights` list.
+    pub(super) highlights_written: Vec<(PathBuf, usize)>,
 }
 
 /// The accuracy a shot asks for: a preset and the settings it overrides.
@@ -121,6 +126,21 @@ impl Shot {
     /// The material index of patch `patch`.
     pub fn material_of(&self, patch: usize) -> usize {
         self.patch_material[patch]
+    }
+
+    /// The number of highlight entries, includes first.
+    #[must_use]
+    pub fn highlight_count(&self) -> usize {
+        self.highlights.len()
+    }
+
+    /// Where highlight entry `entry` is written: the file (the shot or an include) and its
+    /// index in that file's `highlights` list, as a parameter path counts it.
+    #[must_use]
+    pub fn highlight_written(&self, entry: usize) -> Option<(&std::path::Path, usize)> {
+        self.highlights_written
+            .get(entry)
+            .map(|(path, index)| (path.as_path(), *index))
     }
 
     /// The highlight entry of patch `patch`, if it has one.

@@ -1,0 +1,253 @@
+//! `glint place`: the translation that puts a highlight's centre on the surface point under a
+//! pixel.
+
+use std::path::PathBuf;
+
+use anyhow::anyhow;
+use clap::Args;
+use serde::Serialize;
+
+use super::render::{parse_size, PresetArg};
+use super::CliError;
+use crate::job::{LayerChoice, Overrides, Placement, RenderJob};
+use crate::shot::Preset;
+
+/// Solve a highlight's translation so that its centre lands on the point under a pixel.
+///
+/// Finds the patch and (u, v) under the pixel (the patch the frame draws there, then (u, v)
+/// refined onto the pixel's ray) and solves the layer's translation (α, β) in closed form so
+/// that the highlight's centre — where the transformed H equals N — is on that point under
+/// that frame's camera and light, with the operations before the translation taken into
+/// account and those after it shaping the highlight around the centre. The translation solved
+/// is the layer's last Translate. Prints the key in the shot's syntax and the `glint key`
+/// commands that write it; --write writes both keys into the file the highlight is written in.
+///
+/// One (α, β) serves every patch the layer is drawn on, each in its own frame; the report
+/// shows, for each, how near its highlight comes to a centre there (0 at a centre, below ε
+/// where the highlight shows).
+///
+/// Pixels are counted from the top left, in the shot's resolution (or --size); a pixel's
+/// centre is at its integer coordinates, and fractions are allowed. Exit code 2 for a pixel
+/// off the model or outside the image, a patch without a highlight, a layer without a
+/// translation or one that is pinned (its translation is solved on every frame: move its pin
+/// instead).
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:
+  glint place shots/sphere_ops.ron --frame 1 --pixel 320,180
+  glint place shots/crescent.ron --frame 12 --pixel 330,170 --layer 1
+  glint place shots/sphere_ops.ron --frame 30 --pixel 200,150 --size 240x240 --json")]
+pub struct PlaceArgs {
+    /// The shot file (RON)
+    shot: PathBuf,
+    /// The frame whose camera, light and parameters to solve with [default: the shot's first]
+    #[arg(long, value_name = "F")]
+    frame: Option<f64>,
+    /// The image position: pixel column and row from the top left
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    pixel: (f64, f64),
+    /// The highlight entry, from 0, includes first [default: the one drawn on the patch]
+    #[arg(long, value_name = "N")]
+    highlight: Option<usize>,
+    /// The layer of the highlight's expression, left to right from 0 [default: the first
+    /// with a translation]
+    #[arg(long, value_name = "K")]
+    layer: Option<usize>,
+    /// Image size the pixel refers to, instead of the shot's resolution
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Accuracy preset of the frame the patch is looked up in [default: the shot's]
+    #[arg(long, value_enum)]
+    preset: Option<PresetArg>,
+    /// Print the placement as JSON
+    #[arg(long)]
+    json: bool,
+}
+
+fn parse_pixel(text: &str) -> Result<(f64, f64), String> {
+    text.split_once(',')
+        .and_then(|(x, y)| Some((x.trim().parse().ok()?, y.trim().parse().ok()?)))
+        .filter(|&(x, y): &(f64, f64)| x.is_finite() && y.is_finite())
+        .ok_or_else(|| format!("expected a pixel X,Y such as 320,180, got '{text}'"))
+}
+
+/// A placement as printed with --json.
+#[derive(Serialize)]
+struct Report<'a> {
+    frame: f64,
+    pixel: [f64; 2],
+    patch: &'a str,
+    parts: Vec<&'a str>,
+    u: f64,
+    v: f64,
+    highlight: usize,
+    file: String,
+    path: String,
+    alpha: f32,
+    beta: f32,
+    residuals: Vec<ResidualReport<'a>>,
+}
+
+#[derive(Serialize)]
+struct ResidualReport<'a> {
+    patch: &'a str,
+    nearest: f32,
+    u: f64,
+    v: f64,
+    covered: bool,
+}
+
+pub fn run(args: &PlaceArgs) -> Result<(), CliError> {
+    let overrides = Overrides {
+        size: args.size,
+        preset: args.preset.map(Preset::from),
+        threads: None,
+        ..Overrides::default()
+    };
+    let mut job = RenderJob::load(&args.shot, &overrides).map_err(|e| {
+        if e.is_bad_input() {
+            CliError::BadInput(e.into())
+        } else {
+            CliError::Failed(e.into())
+        }
+    })?;
+    let frame = args.frame.unwrap_or(job.shot().frames.0 as f64);
+    let (first, last) = job.shot().frames;
+    if !(frame >= first as f64 && frame <= last as f64) {
+        return Err(CliError::BadInput(anyhow!(
+            "{}: frame {frame} is outside the shot's frame range {first}-{last}",
+            args.shot.display()
+        )));
+    }
+    let choice = LayerChoice {
+        highlight: args.highlight,
+        layer: args.layer,
+    };
+    let placement = job.place(frame, args.pixel, choice).map_err(|e| {
+        let bad = e.is_bad_input();
+        let e = anyhow!("{}: {e}", args.shot.display());
+        if bad {
+            CliError::BadInput(e)
+        } else {
+            CliError::Failed(e)
+        }
+    })?;
+    let report = report(&job, &placement);
+    if args.json {
+        let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::Failed(e.into()))?;
+        println!("{text}");
+    } else {
+        print_report(&report, &placement);
+    }
+    Ok(())
+}
+
+/// The placement with names and the parameter path of its translation.
+fn report<'a>(job: &'a RenderJob, p: &Placement) -> Report<'a> {
+    let shot = job.shot();
+    let library = &shot.library;
+    let (file, index) = shot
+        .highlight_written(p.highlight)
+        .map_or((shot.path.as_path(), p.highlight), |(f, i)| (f, i));
+    Report {
+        frame: p.frame,
+        pixel: [p.pixel.0, p.pixel.1],
+        patch: &library.patches[p.patch].name,
+        parts: library
+            .groups_of(p.patch)
+            .map(|g| g.name.as_str())
+            .collect(),
+        u: p.uv.0,
+        v: p.uv.1,
+        highlight: p.highlight,
+        file: file.display().to_string(),
+        path: format!("highlights[{index}].layers[{}].stack[{}]", p.layer, p.op),
+        alpha: p.translation.x,
+        beta: p.translation.y,
+        residuals: p
+            .residuals
+            .iter()
+            .map(|r| ResidualReport {
+                patch: &library.patches[r.patch].name,
+                nearest: r.nearest,
+                u: r.uv.0,
+                v: r.uv.1,
+                covered: r.covered,
+            })
+            .collect(),
+    }
+}
+
+fn print_report(r: &Report, p: &Placement) {
+    let parts = if r.parts.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", r.parts.join(", "))
+    };
+    println!(
+        "pixel ({}, {}) at frame {}: {}{parts}, u = {}, v = {}",
+        r.pixel[0],
+        r.pixel[1],
+        r.frame,
+        r.patch,
+        number(r.u),
+        number(r.v)
+    );
+    let frame = key_frame(p.frame);
+    println!(
+        "{} in {}: Translate(alpha: {}, beta: {})",
+        r.path,
+        r.file,
+        number(f64::from(r.alpha)),
+        number(f64::from(r.beta))
+    );
+    println!(
+        "keys at frame {frame}: alpha: ({frame}, {}), beta: ({frame}, {})",
+        number(f64::from(r.alpha)),
+        number(f64::from(r.beta))
+    );
+    if r.residuals.len() > 1 {
+        println!("the layer on each of its patches (least ‖N − H'‖²/2; 0 is a centre):");
+        for res in &r.residuals {
+            let shows = if res.covered {
+                "shows"
+            } else {
+                "does not show"
+            };
+            println!(
+                "  {:<16} {:<10} at u = {}, v = {}: the highlight {shows}",
+                res.patch,
+                number(f64::from(res.nearest)),
+                number(res.u),
+                number(res.v)
+            );
+        }
+    }
+}
+
+/// A frame as a key writes it: an integer without a fraction.
+fn key_frame(frame: f64) -> String {
+    if frame.fract() == 0.0 {
+        format!("{}", frame as i64)
+    } else {
+        format!("{frame}")
+    }
+}
+
+/// A number to six significant digits, without trailing zeros.
+fn number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{}", if x == 0.0 { 0.0 } else { x });
+    }
+    let digits = (5 - x.abs().log10().floor() as i32).clamp(0, 12) as usize;
+    let text = format!("{x:.digits$}");
+    let text = if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    };
+    if text == "-0" {
+        "0".to_string()
+    } else {
+        text
+    }
+}

@@ -1,0 +1,328 @@
+//! Placing a highlight where the animator points: the surface point under a pixel, and the
+//! translation that centres a layer's highlight there.
+
+use glam::Vec2;
+use thiserror::Error;
+
+use super::{JobError, RenderJob};
+use crate::highlight::{HighlightError, Layer};
+use crate::render::{Aovs, SurfacePoint};
+
+/// Which highlight layer to place; `None` picks as [`RenderJob::place`] says.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LayerChoice {
+    /// The highlight entry (includes first, from 0); it must be the one drawn on the patch.
+    pub highlight: Option<usize>,
+    /// The layer of its expression, left to right from 0.
+    pub layer: Option<usize>,
+}
+
+/// A highlight layer's centre placed on the surface point under a pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Placement {
+    /// The frame the camera, light and parameters were read at.
+    pub frame: f64,
+    /// The image position asked for, in pixels (a pixel's centre at integer values).
+    pub pixel: (f64, f64),
+    /// The patch under the pixel (index into the shot's library).
+    pub patch: usize,
+    /// Its parameters where the pixel's ray meets it.
+    pub uv: (f64, f64),
+    /// The highlight entry drawn on the patch (includes first).
+    pub highlight: usize,
+    /// The layer placed, left to right from 0.
+    pub layer: usize,
+    /// The index in the layer's stack of the translation solved for.
+    pub op: usize,
+    /// The translation `(α, β)` that centres the layer's highlight on the point.
+    pub translation: Vec2,
+    /// How near the placed layer comes to a highlight centre on each patch it is drawn on.
+    pub residuals: Vec<Residual>,
+}
+
+/// How near a placed layer's highlight comes to having a centre on one patch: one `(α, β)`
+/// serves every patch of the layer, each in its own frame, so only the patch under the pixel
+/// is sure to hold the centre.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Residual {
+    /// The patch (index into the shot's library).
+    pub patch: usize,
+    /// The least `‖N − H'‖² / 2` found on the patch: 0 at a centre, below ε inside the
+    /// highlight.
+    pub nearest: f32,
+    /// Where on the patch it was found.
+    pub uv: (f64, f64),
+    /// Whether the highlight shows on the patch at all (`nearest < ε`).
+    pub covered: bool,
+}
+
+/// Why a highlight cannot be placed at a pixel.
+#[derive(Debug, Error)]
+pub enum PlaceError {
+    /// The position lies outside the image.
+    #[error("pixel ({x}, {y}) is outside the {width}×{height} image")]
+    OutsideImage {
+        x: f64,
+        y: f64,
+        width: u32,
+        height: u32,
+    },
+    /// No patch is drawn at the pixel.
+    #[error("pixel ({x}, {y}) at frame {frame} shows no patch of the model")]
+    OffModel { x: f64, y: f64, frame: f64 },
+    /// The patch under the pixel has no designed highlight, or not the one asked for.
+    #[error("{0}")]
+    NoHighlight(String),
+    /// The layer asked for does not exist, has no translation, or is pinned.
+    #[error("{0}")]
+    Layer(String),
+    /// The frame could not be read or rendered.
+    #[error(transparent)]
+    Job(#[from] JobError),
+}
+
+impl PlaceError {
+    /// Whether the input is at fault (exit code 2), not the work.
+    #[must_use]
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            PlaceError::OutsideImage { .. }
+            | PlaceError::OffModel { .. }
+            | PlaceError::NoHighlight(_)
+            | PlaceError::Layer(_) => true,
+            PlaceError::Job(e) => e.is_bad_input(),
+        }
+    }
+}
+
+/// Samples per side of the grid a patch's residual is searched on.
+const RESIDUAL_GRID: usize = 33;
+
+/// Steps of the compass search that refines the best grid sample.
+const REFINE_STEPS: usize = 60;
+
+impl RenderJob {
+    /// Places a highlight layer's centre on the surface point under image position `pixel`
+    /// (in pixels, pixel `(i, j)`'s centre at `(i, j)`) at `frame`.
+    ///
+    /// The patch under the pixel is the one the job's renderer draws there (its patch-id AOV);
+    /// its `(u, v)` are then refined onto the ray through the pixel by the Newton steps of
+    /// refined frames. The layer is `choice.layer`, or the first with a translation; the
+    /// translation solved is its placing translation ([`Layer::centring_translation`]: closed
+    /// form, under this frame's camera and light, with the operations before it read at this
+    /// frame). Errors when the pixel is outside the image or off the model, the patch has no
+    /// highlight (or not `choice.highlight`), the layer has no translation or is pinned.
+    pub fn place(
+        &mut self,
+        frame: f64,
+        pixel: (f64, f64),
+        choice: LayerChoice,
+    ) -> Result<Placement, PlaceError> {
+        let (width, height) = (self.settings.width, self.settings.height);
+        let position = (pixel.0 + 0.5, pixel.1 + 0.5);
+        let inside = |p: f64, side: u32| p >= 0.0 && p < f64::from(side);
+        if !(inside(position.0, width) && inside(position.1, height)) {
+            return Err(PlaceError::OutsideImage {
+                x: pixel.0,
+                y: pixel.1,
+                width,
+                height,
+            });
+        }
+        let (patch, uv) = self.patch_under(frame, position)?;
+        let shot = &self.shot;
+        let name = &shot.library.patches[patch].name;
+        let Some(drawn) = shot.highlight_of(patch) else {
+            return Err(PlaceError::NoHighlight(format!(
+                "{name}, under pixel ({}, {}), has no designed highlight; add an entry to \
+                 `highlights` whose patches select it",
+                pixel.0, pixel.1
+            )));
+        };
+        if let Some(asked) = choice.highlight.filter(|&h| h != drawn) {
+            return Err(PlaceError::NoHighlight(format!(
+                "highlight {asked} is not the one drawn on {name}, under pixel ({}, {}): \
+                 highlight {drawn} is",
+                pixel.0, pixel.1
+            )));
+        }
+        let state = shot.at(frame);
+        let expr = &state.highlights[drawn];
+        let layers = expr.layers();
+        let layer = match choice.layer {
+            Some(k) if k < layers.len() => k,
+            Some(k) => {
+                return Err(PlaceError::Layer(format!(
+                    "highlight {drawn} has {} layer(s), numbered from 0, so there is no layer {k}",
+                    layers.len()
+                )))
+            }
+            None => layers
+                .iter()
+                .position(|l| l.placing_translation().is_some())
+                .unwrap_or(0),
+        };
+        if shot.pinned_patch(drawn, layer).is_some() {
+            let pinned = &shot.library.patches[shot.pinned_patch(drawn, layer).unwrap_or(patch)];
+            return Err(PlaceError::Layer(format!(
+                "layer {layer} of highlight {drawn} is pinned to a point of {}, and its translation is \
+                 solved on every frame; to move it, pin it here: pin: (patch: \"{name}\", u: {}, v: {})",
+                pinned.name,
+                short(uv.0),
+                short(uv.1)
+            )));
+        }
+        let chosen: &Layer = layers[layer];
+        let surface = &shot.library.patches[patch].surface;
+        let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
+        let translation = chosen
+            .centring_translation(point.local_half_vector())
+            .map_err(|e| match e {
+                HighlightError::NoTranslation => {
+                    PlaceError::Layer(format!("layer {layer} of highlight {drawn}: {e}"))
+                }
+                other => PlaceError::Layer(format!(
+                    "layer {layer} of highlight {drawn} at frame {frame}: {other}"
+                )),
+            })?;
+        let op = chosen
+            .placing_translation()
+            .expect("a translation was just solved for");
+        let mut placed = chosen.clone();
+        placed.stack[op] = crate::highlight::Op::Translate {
+            alpha: translation.x,
+            beta: translation.y,
+        };
+        let residuals = self.residuals(drawn, &placed, &state.camera, &state.light)?;
+        Ok(Placement {
+            frame,
+            pixel,
+            patch,
+            uv,
+            highlight: drawn,
+            layer,
+            op,
+            translation,
+            residuals,
+        })
+    }
+
+    /// The patch drawn at image position `position` and its parameters on the ray there.
+    fn patch_under(
+        &mut self,
+        frame: f64,
+        position: (f64, f64),
+    ) -> Result<(usize, (f64, f64)), PlaceError> {
+        let (width, height) = (self.settings.width, self.settings.height);
+        let mut scene = self
+            .shot
+            .at(frame)
+            .scene(&self.shot)
+            .map_err(JobError::from)?;
+        scene.aovs = Aovs {
+            patch_id: true,
+            uv: true,
+            ..Aovs::default()
+        };
+        scene.outlines = None;
+        let image = self
+            .renderer
+            .render(&scene, &self.settings)
+            .map_err(|source| JobError::Render { frame, source })?;
+        let index = position.1 as usize * width as usize + position.0 as usize;
+        let ids = image.aovs.patch_id.as_deref().unwrap_or_default();
+        let uvs = image.aovs.uv.as_deref().unwrap_or_default();
+        let (Some(&patch), Some(&uv)) = (ids.get(index), uvs.get(index)) else {
+            return Err(off_model(position, frame));
+        };
+        if patch as usize >= self.shot.library.patches.len() {
+            return Err(off_model(position, frame));
+        }
+        let surface = &self.shot.library.patches[patch as usize].surface;
+        let start = (f64::from(uv.x), f64::from(uv.y));
+        let (origin, direction) = scene.camera.ray_through(position, (width, height));
+        let uv = surface
+            .try_refine_on_ray(start, origin, direction)
+            .unwrap_or(start);
+        Ok((patch as usize, uv))
+    }
+
+    /// The residual of `layer`, placed, on every patch highlight entry `entry` is drawn on.
+    fn residuals(
+        &self,
+        entry: usize,
+        layer: &Layer,
+        camera: &crate::render::Camera,
+        light: &crate::highlight::Light,
+    ) -> Result<Vec<Residual>, PlaceError> {
+        let prepared = layer
+            .prepare()
+            .map_err(|e| PlaceError::Layer(e.to_string()))?;
+        let shot = &self.shot;
+        let mut residuals = Vec::new();
+        for (patch, named) in shot.library.patches.iter().enumerate() {
+            if shot.highlight_of(patch) != Some(entry) {
+                continue;
+            }
+            let domain = named.surface.domain();
+            let distance = |uv: (f64, f64)| {
+                let point = SurfacePoint::new(&named.surface, uv, camera, light);
+                layer.epsilon - prepared.signed(&point.frame, point.half_vector)
+            };
+            let last = (RESIDUAL_GRID - 1) as f64;
+            let mut best = (f32::INFINITY, domain.center());
+            for i in 0..RESIDUAL_GRID {
+                for j in 0..RESIDUAL_GRID {
+                    let uv = domain.lerp(i as f64 / last, j as f64 / last);
+                    let nearest = distance(uv);
+                    if nearest < best.0 {
+                        best = (nearest, uv);
+                    }
+                }
+            }
+            // Compass search from the best sample: a step along ±u or ±v that lowers the
+            // distance is taken, and the step halves when none does.
+            let mut step = (
+                (domain.u.1 - domain.u.0) / last,
+                (domain.v.1 - domain.v.0) / last,
+            );
+            for _ in 0..REFINE_STEPS {
+                let (u, v) = best.1;
+                let better = [(step.0, 0.0), (-step.0, 0.0), (0.0, step.1), (0.0, -step.1)]
+                    .into_iter()
+                    .map(|(du, dv)| {
+                        let uv = (
+                            (u + du).clamp(domain.u.0, domain.u.1),
+                            (v + dv).clamp(domain.v.0, domain.v.1),
+                        );
+                        (distance(uv), uv)
+                    })
+                    .find(|candidate| candidate.0 < best.0);
+                match better {
+                    Some(candidate) => best = candidate,
+                    None => step = (step.0 / 2.0, step.1 / 2.0),
+                }
+            }
+            residuals.push(Residual {
+                patch,
+                nearest: best.0.max(0.0),
+                uv: best.1,
+                covered: best.0 < layer.epsilon,
+            });
+        }
+        Ok(residuals)
+    }
+}
+
+fn off_model(position: (f64, f64), frame: f64) -> PlaceError {
+    PlaceError::OffModel {
+        x: position.0 - 0.5,
+        y: position.1 - 0.5,
+        frame,
+    }
+}
+
+/// A parameter value to six significant digits, for messages.
+fn short(x: f64) -> String {
+    format!("{}", (x * 1e6).round() / 1e6)
+}

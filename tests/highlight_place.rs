@@ -1,0 +1,515 @@
+//! Placing a highlight on a pixel (`RenderJob::place`, `glint place`) and pinning it to a surface
+//! point (`pin`): checked against a closed form on the sphere, and against the centroid of the
+//! rendered matte on the sphere, the teapot body and the whole turntable.
+
+use std::path::{Path, PathBuf};
+
+use glam::{DVec3, Vec2};
+use glint::job::{LayerChoice, Overrides, RenderJob};
+use glint::shot::Aov;
+
+use crate::common::{glint_with, repo_file, stderr};
+
+/// A shot of one model with one highlight entry, written into `dir`.
+struct TestShot<'a> {
+    model: &'a str,
+    selector: &'a str,
+    camera: String,
+    light: String,
+    layer: String,
+    frames: (i64, i64),
+    size: (u32, u32),
+    render: &'a str,
+}
+
+impl TestShot<'_> {
+    fn write(&self, dir: &Path, name: &str) -> PathBuf {
+        let text = format!(
+            r#"Shot(
+    resolution: ({w}, {h}),
+    frames: ({f0}, {f1}),
+    fps: 24,
+    output: "out/{name}.####.png",
+    instances: [(name: "m", file: "{model}", material: "grey")],
+    materials: {{ "grey": Cel(base: (0.1, 0.1, 0.1), bands: [(0.0, (0.5, 0.5, 0.5))]) }},
+    camera: {camera},
+    light: {light},
+    highlights: [(patches: "{selector}", expr: Layer({layer}))],
+    render: {render},
+)"#,
+            w = self.size.0,
+            h = self.size.1,
+            f0 = self.frames.0,
+            f1 = self.frames.1,
+            model = repo_file(self.model).display(),
+            camera = self.camera,
+            light = self.light,
+            selector = self.selector,
+            layer = self.layer,
+            render = self.render,
+        );
+        let path = dir.join(format!("{name}.ron"));
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+}
+
+/// A small round highlight moved by one translation.
+fn translated(alpha: f32, beta: f32, epsilon: f32) -> String {
+    format!(
+        "(stack: [Translate(alpha: {alpha}, beta: {beta})], epsilon: {epsilon}, colour: (1.0, 1.0, 1.0))"
+    )
+}
+
+fn job(path: &Path) -> RenderJob {
+    let overrides = Overrides {
+        aovs: Some(vec![Aov::Matte, Aov::PatchId]),
+        ..Overrides::default()
+    };
+    RenderJob::load(path, &overrides).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The centroid, in pixel centres, of the matte within `radius` pixels of `at`, and whether the
+/// matte is clear on the window's edge (the blob lies wholly inside).
+fn matte_centroid(
+    matte: &[f32],
+    (width, height): (u32, u32),
+    at: (f64, f64),
+    radius: f64,
+) -> Option<((f64, f64), bool)> {
+    let (mut sum, mut sx, mut sy, mut edge) = (0.0, 0.0, 0.0, 0.0_f64);
+    for y in 0..height {
+        for x in 0..width {
+            let (cx, cy) = (f64::from(x), f64::from(y));
+            let d = ((cx - at.0).powi(2) + (cy - at.1).powi(2)).sqrt();
+            let m = f64::from(matte[(y * width + x) as usize]);
+            if d <= radius {
+                sum += m;
+                sx += m * cx;
+                sy += m * cy;
+                if d > radius - 1.5 {
+                    edge = edge.max(m);
+                }
+            }
+        }
+    }
+    (sum > 0.0).then(|| ((sx / sum, sy / sum), edge == 0.0))
+}
+
+/// The translation that puts the highlight centre on the unit sphere's point under `pixel`,
+/// from the ray, the sphere and the half vector directly: `α = −(H, east)`,
+/// `β = −(H, north)` at the hit point `p = N`, the sphere's frame (du, dv) being (east, north).
+#[allow(clippy::too_many_arguments)]
+fn sphere_closed_form(
+    eye: DVec3,
+    target: DVec3,
+    perspective: Option<f64>,
+    ortho_height: f64,
+    light: DVec3,
+    pixel: (f64, f64),
+    (width, height): (u32, u32),
+) -> (DVec3, Vec2) {
+    let forward = (target - eye).normalize();
+    let right = forward.cross(DVec3::Z).normalize();
+    let up = right.cross(forward);
+    let aspect = f64::from(width) / f64::from(height);
+    let ndc_x = 2.0 * (pixel.0 + 0.5) / f64::from(width) - 1.0;
+    let ndc_y = 1.0 - 2.0 * (pixel.1 + 0.5) / f64::from(height);
+    let (origin, direction) = match perspective {
+        Some(fov) => {
+            let t = (fov.to_radians() / 2.0).tan();
+            let d = forward + ndc_x * t * aspect * right + ndc_y * t * up;
+            (eye, d.normalize())
+        }
+        None => {
+            let half = ortho_height / 2.0;
+            (
+                eye + ndc_x * half * aspect * right + ndc_y * half * up,
+                forward,
+            )
+        }
+    };
+    let b = origin.dot(direction);
+    let c = origin.length_squared() - 1.0;
+    let t = -b - (b * b - c).sqrt();
+    let p = origin + t * direction;
+    let v = match perspective {
+        Some(_) => (eye - p).normalize(),
+        None => -forward,
+    };
+    let h = (light.normalize() + v).normalize();
+    let east = DVec3::new(-p.y, p.x, 0.0).normalize();
+    let north = p.cross(east);
+    let step = Vec2::new(-h.dot(east) as f32, -h.dot(north) as f32);
+    (p, step)
+}
+
+#[test]
+fn place_on_the_sphere_matches_the_closed_form_and_the_rendered_centroid() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = (320, 240);
+    let light = DVec3::new(0.3, -1.0, 0.5);
+    let cases = [
+        // (name, camera, eyes at frames 1 and 2, perspective fov)
+        (
+            "ortho",
+            (DVec3::new(0.0, -6.0, 0.0), DVec3::new(-2.0, -5.5, 1.0)),
+            None,
+        ),
+        (
+            "persp",
+            (DVec3::new(0.5, -5.0, 1.0), DVec3::new(3.0, -4.0, -1.0)),
+            Some(30.0),
+        ),
+    ];
+    let sphere = glint::geom::shapes::sphere(DVec3::ZERO, 1.0).unwrap();
+    for (name, (eye1, eye2), fov) in cases {
+        let projection = match fov {
+            Some(f) => format!("Perspective(fov_y_degrees: {f})"),
+            None => "Orthographic(height: 2.6)".to_string(),
+        };
+        let camera = format!(
+            "(eye: [(1, ({}, {}, {})), (2, ({}, {}, {}))], target: (0.0, 0.0, 0.0), projection: {projection})",
+            eye1.x, eye1.y, eye1.z, eye2.x, eye2.y, eye2.z
+        );
+        let shot = TestShot {
+            model: "patches/sphere.ron",
+            selector: "m/*",
+            camera,
+            light: format!(
+                "Directional(towards: ({}, {}, {}))",
+                light.x, light.y, light.z
+            ),
+            layer: translated(0.0, 0.0, 0.005),
+            frames: (1, 2),
+            size,
+            render: "(preset: Final)",
+        };
+        let path = shot.write(dir.path(), name);
+        let mut placing = job(&path);
+        for (frame, eye) in [(1, eye1), (2, eye2)] {
+            for pixel in [(160.0, 120.0), (135.0, 100.0), (190.0, 142.0)] {
+                let placed = placing
+                    .place(frame as f64, pixel, LayerChoice::default())
+                    .unwrap();
+                let (p, step) = sphere_closed_form(eye, DVec3::ZERO, fov, 2.6, light, pixel, size);
+                let hit = sphere.point(placed.uv.0, placed.uv.1);
+                assert!((hit - p).length() < 1e-6, "{name} {pixel:?}: {hit} vs {p}");
+                assert!(
+                    (placed.translation - step).length() < 1e-5,
+                    "{name} frame {frame} {pixel:?}: {} vs closed form {step}",
+                    placed.translation
+                );
+
+                // The highlight rendered with that translation is centred on the pixel.
+                let solved = TestShot {
+                    layer: translated(placed.translation.x, placed.translation.y, 0.005),
+                    ..shot.clone_with_frames()
+                }
+                .write(dir.path(), &format!("{name}_solved"));
+                let image = job(&solved).render_frame(frame as f64).unwrap();
+                let matte = image.aovs.matte.as_ref().unwrap();
+                let (centroid, inside) = matte_centroid(matte, size, pixel, 40.0).unwrap();
+                assert!(
+                    inside,
+                    "{name} {pixel:?}: the highlight is larger than the window"
+                );
+                let miss = ((centroid.0 - pixel.0).powi(2) + (centroid.1 - pixel.1).powi(2)).sqrt();
+                assert!(
+                    miss < 1.0,
+                    "{name} frame {frame} {pixel:?}: centroid {centroid:?}, {miss} px off"
+                );
+            }
+        }
+    }
+}
+
+impl TestShot<'_> {
+    fn clone_with_frames(&self) -> Self {
+        TestShot {
+            model: self.model,
+            selector: self.selector,
+            camera: self.camera.clone(),
+            light: self.light.clone(),
+            layer: self.layer.clone(),
+            frames: self.frames,
+            size: self.size,
+            render: self.render,
+        }
+    }
+}
+
+/// The turntable's camera and light, copied from the shipped shot.
+fn turntable_camera_and_light() -> (String, String) {
+    let text = std::fs::read_to_string(repo_file("shots/teapot_turntable.ron")).unwrap();
+    let start = text.find("camera: (").unwrap() + "camera: ".len();
+    let light = text.find("    light: ").unwrap();
+    let camera = text[start..light]
+        .trim_end()
+        .trim_end_matches(',')
+        .to_string();
+    let end = light + text[light..].find('\n').unwrap();
+    let light = text[light + "    light: ".len()..end]
+        .trim_end_matches(',')
+        .to_string();
+    (camera, light)
+}
+
+#[test]
+fn place_on_the_teapot_body_centres_the_rendered_highlight_on_the_pixel() {
+    let dir = tempfile::tempdir().unwrap();
+    let (camera, light) = turntable_camera_and_light();
+    let size = (480, 270);
+    let shot = TestShot {
+        model: "patches/teapot.bpt",
+        selector: "m/body",
+        camera,
+        light,
+        layer: translated(0.0, 0.0, 0.0005),
+        frames: (1, 96),
+        size,
+        render: "(preset: Final)",
+    };
+    let path = shot.write(dir.path(), "body");
+    let mut placing = job(&path);
+    for (frame, pixels) in [
+        (1, [(185.0, 150.0), (230.0, 175.0), (205.0, 200.0)]),
+        (60, [(200.0, 140.0), (250.0, 180.0), (165.0, 170.0)]),
+    ] {
+        for pixel in pixels {
+            let placed = placing
+                .place(f64::from(frame), pixel, LayerChoice::default())
+                .unwrap_or_else(|e| panic!("frame {frame} {pixel:?}: {e}"));
+            let solved = TestShot {
+                layer: translated(placed.translation.x, placed.translation.y, 0.0005),
+                ..shot.clone_with_frames()
+            }
+            .write(dir.path(), "body_solved");
+            let image = job(&solved).render_frame(f64::from(frame)).unwrap();
+            let matte = image.aovs.matte.as_ref().unwrap();
+            let (centroid, inside) = matte_centroid(matte, size, pixel, 30.0)
+                .unwrap_or_else(|| panic!("frame {frame} {pixel:?}: no highlight near the pixel"));
+            assert!(
+                inside,
+                "frame {frame} {pixel:?}: the highlight is larger than the window"
+            );
+            let miss = ((centroid.0 - pixel.0).powi(2) + (centroid.1 - pixel.1).powi(2)).sqrt();
+            assert!(
+                miss < 1.0,
+                "frame {frame} {pixel:?}: centroid {centroid:?}, {miss} px off"
+            );
+        }
+    }
+}
+
+/// Where the pinned point of `job`'s shot is drawn at `frame`: its image position (pixel
+/// centres at integers), if it lies in front of the eye.
+fn projected(job: &RenderJob, patch: usize, uv: (f64, f64), frame: f64) -> Option<(f64, f64)> {
+    let shot = job.shot();
+    let camera = shot.at(frame).camera;
+    let settings = job.settings();
+    let p = shot.library.patches[patch]
+        .surface
+        .point(uv.0, uv.1)
+        .as_vec3();
+    let clip =
+        camera.view_projection(settings.width as f32 / settings.height as f32) * p.extend(1.0);
+    (clip.w > 0.0).then(|| {
+        let ndc = clip.truncate() / clip.w;
+        (
+            (f64::from(ndc.x) + 1.0) * 0.5 * f64::from(settings.width) - 0.5,
+            (1.0 - f64::from(ndc.y)) * 0.5 * f64::from(settings.height) - 0.5,
+        )
+    })
+}
+
+/// The turntable with a small highlight on the body, pinned to `(u, v)` of body patch 4 by
+/// `pin`, or moved by `stack` alone.
+fn pinned_turntable(dir: &Path, name: &str, layer_tail: &str) -> PathBuf {
+    let (camera, light) = turntable_camera_and_light();
+    TestShot {
+        model: "patches/teapot.bpt",
+        selector: "m/body",
+        camera,
+        light,
+        layer: format!("(epsilon: 0.0002, colour: (1.0, 1.0, 1.0), {layer_tail})"),
+        frames: (1, 96),
+        size: (640, 360),
+        render: "(preset: Preview, frames: Refined)",
+    }
+    .write(dir, name)
+}
+
+#[test]
+fn a_pinned_highlight_stays_on_its_point_over_the_whole_turntable() {
+    let dir = tempfile::tempdir().unwrap();
+    let uv = (0.63, 0.39);
+    let pin = format!("stack: [], pin: (patch: \"m/4\", u: {}, v: {})", uv.0, uv.1);
+    let mut pinned = job(&pinned_turntable(dir.path(), "pinned", &pin));
+    // The same highlight with the translation the pin solves on frame 1, kept on every frame.
+    let first = pinned.shot().at(1.0).highlights[0].layers()[0].stack[0].clone();
+    let glint::highlight::Op::Translate { alpha, beta } = first else {
+        panic!("the pin puts a translation first: {first:?}");
+    };
+    let fixed = format!("stack: [Translate(alpha: {alpha}, beta: {beta})]");
+    let mut unpinned = job(&pinned_turntable(dir.path(), "fixed", &fixed));
+
+    let (mut checked, mut drift) = (0, 0.0_f64);
+    for frame in 1..=96 {
+        let frame = f64::from(frame);
+        let at = projected(&pinned, 4, uv, frame).unwrap();
+        let image = pinned.render_frame(frame).unwrap();
+        let (w, h) = (image.width, image.height);
+        let pixel = (at.0.round() as u32).min(w - 1) + (at.1.round() as u32).min(h - 1) * w;
+        if image.aovs.patch_id.as_ref().unwrap()[pixel as usize] != 4 {
+            continue; // The point is hidden on this frame.
+        }
+        let matte = image.aovs.matte.as_ref().unwrap();
+        let (centroid, inside) = matte_centroid(matte, (w, h), at, 30.0)
+            .unwrap_or_else(|| panic!("frame {frame}: no highlight at the pinned point {at:?}"));
+        assert!(
+            inside,
+            "frame {frame}: the highlight is larger than the window"
+        );
+        let miss = ((centroid.0 - at.0).powi(2) + (centroid.1 - at.1).powi(2)).sqrt();
+        assert!(
+            miss < 1.0,
+            "frame {frame}: centroid {centroid:?}, pinned point at {at:?}: {miss} px off"
+        );
+        checked += 1;
+
+        // Without the pin the highlight leaves the point.
+        let image = unpinned.render_frame(frame).unwrap();
+        let matte = image.aovs.matte.as_ref().unwrap();
+        drift = drift.max(
+            matte_centroid(matte, (w, h), at, 30.0).map_or(f64::INFINITY, |(c, _)| {
+                ((c.0 - at.0).powi(2) + (c.1 - at.1).powi(2)).sqrt()
+            }),
+        );
+    }
+    assert!(
+        checked >= 80,
+        "the pinned point was visible on only {checked} of 96 frames"
+    );
+    assert!(
+        drift > 5.0,
+        "without the pin the highlight drifts only {drift} px: the test could not tell"
+    );
+}
+
+#[test]
+fn place_refuses_what_it_cannot_place_with_one_line_and_exit_code_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let (camera, light) = turntable_camera_and_light();
+    let write = |name: &str, selector: &'static str, layer: &str| {
+        TestShot {
+            model: "patches/teapot.bpt",
+            selector,
+            camera: camera.clone(),
+            light: light.clone(),
+            layer: layer.to_string(),
+            frames: (1, 2),
+            size: (320, 180),
+            render: "(preset: Preview)",
+        }
+        .write(dir.path(), name)
+    };
+    let movable = write("ok", "m/body", &translated(0.0, 0.0, 0.01));
+    let bare = write(
+        "bare",
+        "m/body",
+        "(stack: [Scale(delta: 0.5)], epsilon: 0.01, colour: (1.0, 1.0, 1.0))",
+    );
+    let pinned = write(
+        "pinned",
+        "m/body",
+        "(stack: [], epsilon: 0.01, colour: (1.0, 1.0, 1.0), pin: (patch: \"m/body\", member: 1, u: 0.5, v: 0.5))",
+    );
+    let lid = write("lid", "m/lid", &translated(0.0, 0.0, 0.01));
+    let cases = [
+        (&movable, "2,2", "shows no patch of the model"),
+        (&movable, "400,20", "outside the 320×180 image"),
+        (&bare, "125,95", "no Translate"),
+        (&pinned, "125,95", "pin: (patch: \"m/"),
+        (&lid, "125,95", "has no designed highlight"),
+    ];
+    for (shot, pixel, expected) in cases {
+        let out = glint_with(&[
+            "place",
+            shot.to_str().unwrap(),
+            "--frame",
+            "1",
+            "--pixel",
+            pixel,
+        ]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{pixel}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.contains(expected),
+            "{pixel}: expected '{expected}' in {err}"
+        );
+        assert!(out.stdout.is_empty());
+    }
+
+    // A good pixel prints the key; --json gives the same numbers to a script.
+    let out = glint_with(&[
+        "place",
+        movable.to_str().unwrap(),
+        "--pixel",
+        "125,95",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["path"], "highlights[0].layers[0].stack[0]");
+    assert!(report["patch"].as_str().unwrap().starts_with("m/"));
+    assert_eq!(report["parts"][0], "m/body");
+    let residuals = report["residuals"].as_array().unwrap();
+    assert_eq!(residuals.len(), 8, "one residual per body patch");
+    let own = residuals
+        .iter()
+        .find(|r| r["patch"] == report["patch"])
+        .unwrap();
+    assert!(own["nearest"].as_f64().unwrap() < 1e-4 && own["covered"] == true);
+}
+
+#[test]
+fn a_pin_on_no_patch_or_outside_its_domain_is_refused_where_it_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let (camera, light) = turntable_camera_and_light();
+    for (pin, expected) in [
+        (
+            "(patch: \"m/bdy\", u: 0.5, v: 0.5)",
+            "did you mean \"m/body\"?",
+        ),
+        (
+            "(patch: \"m/body\", member: 8, u: 0.5, v: 0.5)",
+            "member must be below 8",
+        ),
+        (
+            "(patch: \"m/4\", u: [(1, 0.5), (2, 1.5)], v: 0.5)",
+            "outside the domain",
+        ),
+    ] {
+        let path = TestShot {
+            model: "patches/teapot.bpt",
+            selector: "m/body",
+            camera: camera.clone(),
+            light: light.clone(),
+            layer: format!("(stack: [], epsilon: 0.01, colour: (1.0, 1.0, 1.0), pin: {pin})"),
+            frames: (1, 2),
+            size: (320, 180),
+            render: "(preset: Preview)",
+        }
+        .write(dir.path(), "bad_pin");
+        let out = glint_with(&["render", path.to_str().unwrap(), "--frames", "1"]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(expected), "expected '{expected}' in {err}");
+        // Placed at the pin.
+        let text = std::fs::read_to_string(&path).unwrap();
+        let line = 1 + text.lines().position(|l| l.contains("pin:")).unwrap();
+        assert!(err.contains(&format!("bad_pin.ron:{line}:")), "{err}");
+    }
+}
