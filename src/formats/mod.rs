@@ -79,15 +79,13 @@ impl FormatError {
 /// that failed its own checks, which serde reports at its closing bracket, at its start.
 fn parse_ron<T: serde::de::DeserializeOwned>(text: &str, shown: &str) -> Result<T, FormatError> {
     ron::Options::default().from_str(text).map_err(|e| {
-        let mut at = (e.span.start.line, e.span.start.col);
-        if matches!(e.code, ron::Error::Message(_)) {
-            at = ron_location::start_of_value_closed_at(text, at).unwrap_or(at);
-        }
+        let (at, message) =
+            ron_location::explain_at(text, &e.code, (e.span.start.line, e.span.start.col));
         FormatError::Ron {
             path: shown.into(),
             line: at.0,
             col: at.1,
-            message: ron_location::explain(&e.code),
+            message,
         }
     })
 }

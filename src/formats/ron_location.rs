@@ -62,6 +62,145 @@ pub fn closest_name<'a>(found: &str, candidates: &[&'a str]) -> Option<&'a str> 
         .map(|(_, c)| c)
 }
 
+/// Where a RON parse error is best shown in `text`, and what to say there, from the parser's
+/// error `code` at 1-based `at`:
+///
+/// - a value that failed its own checks, or lacks a field, is shown where it starts (the parser
+///   stops at its closing bracket);
+/// - a missing comma is shown right after the value it should follow (the parser stops at the
+///   next item, often on the next line), a `;` where a `,` belongs at the `;`, and a file that
+///   ends inside a bracket at that bracket;
+/// - `=` where a `:` belongs says so, and a missing `:` asks for one;
+/// - everything else as [`explain`] words it, where the parser stopped.
+#[must_use]
+pub fn explain_at(text: &str, code: &ron::Error, at: (usize, usize)) -> ((usize, usize), String) {
+    let offset = offset_of(text, at).unwrap_or(text.len());
+    let next = text[offset.min(text.len())..].trim_start().chars().next();
+    match code {
+        ron::Error::Message(_) | ron::Error::MissingStructField { .. } => (
+            start_of_value_closed_at(text, at).unwrap_or(at),
+            explain(code),
+        ),
+        ron::Error::ExpectedComma => {
+            let last_line = !text[offset.min(text.len())..].trim_end().contains('\n');
+            match (next, ends_open(text)) {
+                (Some(';'), _) => (
+                    at,
+                    "expected `,` here, not `;`: items are separated by commas".into(),
+                ),
+                (Some('='), _) => (at, COLON_NOT_EQUALS.into()),
+                (_, Some(open)) if last_line => open,
+                _ => {
+                    let end = end_of_previous_value(text, offset);
+                    let (line, _) = position_of(text, offset);
+                    (
+                        position_of(text, end),
+                        format!(
+                            "a `,` is missing here, between this value and the next item \
+                             (line {line}); items of a list, tuple or struct are separated by \
+                             commas"
+                        ),
+                    )
+                }
+            }
+        }
+        ron::Error::Eof => ends_open(text).unwrap_or_else(|| (at, explain(code))),
+        ron::Error::ExpectedMapColon if next == Some('=') => (at, COLON_NOT_EQUALS.into()),
+        ron::Error::ExpectedMapColon => (
+            at,
+            "expected `:` between a field name (or map key) and its value".into(),
+        ),
+        _ => (at, explain(code)),
+    }
+}
+
+/// Where the innermost bracket still open at the end of `text` is, and the message that says
+/// the file ends before it is closed; `None` when every bracket is closed.
+fn ends_open(text: &str) -> Option<((usize, usize), String)> {
+    let open = innermost_open_bracket(text)?;
+    Some((
+        position_of(text, open),
+        format!(
+            "the file ends before this `{}` is closed",
+            &text[open..=open]
+        ),
+    ))
+}
+
+const COLON_NOT_EQUALS: &str = "write `name: value`: a field name is followed by `:`, not `=`";
+
+/// The byte offset just after the last character before `offset` that is not blank or inside
+/// a `//` comment: where the value before `offset` ends.
+fn end_of_previous_value(text: &str, offset: usize) -> usize {
+    let mut end = offset;
+    loop {
+        let before = text[..end].trim_end();
+        // A `//` comment on the last line is skipped whole.
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        match code_part(&before[line_start..]) {
+            Some(code) if code.trim().is_empty() => end = line_start,
+            Some(code) => return line_start + code.trim_end().len(),
+            None => return before.len(),
+        }
+        if end == 0 {
+            return 0;
+        }
+    }
+}
+
+/// The part of a line before a `//` comment that is not inside a string; `None` when the line
+/// has no such comment.
+fn code_part(line: &str) -> Option<&str> {
+    let mut in_string = false;
+    let mut escaped = false;
+    for (i, c) in line.char_indices() {
+        match c {
+            '\\' if in_string => escaped = !escaped,
+            '"' if !escaped => in_string = !in_string,
+            '/' if !in_string && line[i..].starts_with("//") => return Some(&line[..i]),
+            _ => escaped = false,
+        }
+        if c != '\\' {
+            escaped = false;
+        }
+    }
+    None
+}
+
+/// The byte offset of the innermost bracket still open at the end of `text` (strings and
+/// comments skipped), if any.
+fn innermost_open_bracket(text: &str) -> Option<usize> {
+    let mut open = Vec::new();
+    let mut chars = text.char_indices().peekable();
+    while let Some((i, c)) = chars.next() {
+        match c {
+            '"' => {
+                let mut escaped = false;
+                for (_, s) in chars.by_ref() {
+                    match s {
+                        '\\' if !escaped => escaped = true,
+                        '"' if !escaped => break,
+                        _ => escaped = false,
+                    }
+                }
+            }
+            '/' if chars.peek().map(|&(_, n)| n) == Some('/') => {
+                for (_, s) in chars.by_ref() {
+                    if s == '\n' {
+                        break;
+                    }
+                }
+            }
+            '(' | '[' | '{' => open.push(i),
+            ')' | ']' | '}' => {
+                open.pop();
+            }
+            _ => {}
+        }
+    }
+    open.pop()
+}
+
 /// A RON error message a person can act on: unknown names get the closest valid one and the
 /// list of valid ones.
 pub fn explain(code: &ron::Error) -> String {
@@ -119,6 +258,32 @@ mod tests {
         assert_eq!(start_of_value_closed_at(text, (2, 20)), Some((2, 5)));
         assert_eq!(start_of_value_closed_at(text, (2, 2)), None);
         assert_eq!(start_of_value_closed_at(text, (9, 1)), None);
+    }
+
+    fn hint(text: &str) -> ((usize, usize), String) {
+        let e = ron::from_str::<ron::Value>(text).unwrap_err();
+        explain_at(text, &e.code, (e.span.start.line, e.span.start.col))
+    }
+
+    #[test]
+    fn a_missing_comma_is_shown_after_the_value_it_should_follow() {
+        let (at, message) = hint("(\n  a: 1 // one\n  // more\n  b: 2,\n)");
+        assert_eq!(at, (2, 7), "{message}");
+        assert!(message.contains("line 4"), "{message}");
+        let (at, _) = hint("[(1, 2.0) (3, \"a // b\")]");
+        assert_eq!(at, (1, 10));
+        let (at, message) = hint("(a: 1; b: 2)");
+        assert_eq!(at, (1, 6));
+        assert!(message.contains("not `;`"), "{message}");
+        let (_, message) = hint("(a = 1)");
+        assert!(message.contains("not `=`"), "{message}");
+    }
+
+    #[test]
+    fn a_file_that_ends_early_points_at_the_open_bracket() {
+        let (at, message) = hint("(a: [1, 2,\n  3, \"]\"");
+        assert_eq!(at, (1, 5), "{message}");
+        assert!(message.contains("`[` is closed"), "{message}");
     }
 
     #[test]

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use serde::de::DeserializeOwned;
 
 use super::ShotError;
-use crate::formats::ron_location::{explain, position_of, start_of_value_closed_at};
+use crate::formats::ron_location::{explain_at, position_of};
 use crate::formats::ron_paths::{locate_or_nearest, Step};
 
 /// A file read for the shot: its path, its name as shown in messages, its folder and its text.
@@ -49,20 +49,13 @@ impl Source {
         let options = ron::Options::default()
             .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
         options.from_str(&self.text).map_err(|e| {
-            let mut at = (e.span.start.line, e.span.start.col);
-            if matches!(
-                e.code,
-                ron::Error::Message(_) | ron::Error::MissingStructField { .. }
-            ) {
-                // A value that failed its own checks, or lacks a field, is reported at its
-                // closing bracket.
-                at = start_of_value_closed_at(&self.text, at).unwrap_or(at);
-            }
+            let (at, message) =
+                explain_at(&self.text, &e.code, (e.span.start.line, e.span.start.col));
             ShotError::At {
                 path: self.shown.clone(),
                 line: at.0,
                 col: at.1,
-                message: explain(&e.code),
+                message,
             }
         })
     }
