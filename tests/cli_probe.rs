@@ -100,7 +100,7 @@ fn bad_patch_files_give_one_located_error_each() {
         (
             "malformed.ron",
             "(patches: [(name: \"p\", surface: Sphere(radius: 1.0)\n])".into(),
-            "malformed.ron:2:1: ",
+            "malformed.ron:2:1: this `]` meets the `(` opened at line 1, column 12: a `)` is missing",
         ),
         (
             "knots.ron",

@@ -83,13 +83,21 @@ pub fn explain_at(text: &str, code: &ron::Error, at: (usize, usize)) -> ((usize,
         ),
         ron::Error::ExpectedComma => {
             let last_line = !text[offset.min(text.len())..].trim_end().contains('\n');
-            match (next, ends_open(text)) {
+            let start = offset
+                + (text[offset.min(text.len())..].len()
+                    - text[offset.min(text.len())..].trim_start().len());
+            match (next, brackets(text)) {
                 (Some(';'), _) => (
                     at,
                     "expected `,` here, not `;`: items are separated by commas".into(),
                 ),
                 (Some('='), _) => (at, COLON_NOT_EQUALS.into()),
-                (_, Some(open)) if last_line => open,
+                (_, Brackets::Mismatched { open, close }) if close == start => {
+                    mismatched(text, open, close)
+                }
+                (_, Brackets::Unclosed(_)) if last_line => {
+                    ends_open(text).unwrap_or_else(|| (at, explain(code)))
+                }
                 _ => {
                     let end = end_of_previous_value(text, offset);
                     let (line, _) = position_of(text, offset);
@@ -114,17 +122,39 @@ pub fn explain_at(text: &str, code: &ron::Error, at: (usize, usize)) -> ((usize,
     }
 }
 
-/// Where the innermost bracket still open at the end of `text` is, and the message that says
-/// the file ends before it is closed; `None` when every bracket is closed.
+/// Where the file ends with a bracket still open, or a bracket closed by another kind, and
+/// the message that says so; `None` when every bracket is closed by its own kind.
 fn ends_open(text: &str) -> Option<((usize, usize), String)> {
-    let open = innermost_open_bracket(text)?;
-    Some((
-        position_of(text, open),
+    match brackets(text) {
+        Brackets::Unclosed(open) => Some((
+            position_of(text, open),
+            format!(
+                "the file ends before this `{}` is closed",
+                &text[open..=open]
+            ),
+        )),
+        Brackets::Mismatched { open, close } => Some(mismatched(text, open, close)),
+        Brackets::Balanced => None,
+    }
+}
+
+/// The message for the closing bracket at `close` that meets the opening one at `open`.
+fn mismatched(text: &str, open: usize, close: usize) -> ((usize, usize), String) {
+    let want = match text.as_bytes()[open] {
+        b'(' => ')',
+        b'[' => ']',
+        _ => '}',
+    };
+    let (line, col) = position_of(text, open);
+    (
+        position_of(text, close),
         format!(
-            "the file ends before this `{}` is closed",
+            "this `{}` meets the `{}` opened at line {line}, column {col}: a `{want}` is missing \
+             before it",
+            &text[close..=close],
             &text[open..=open]
         ),
-    ))
+    )
 }
 
 const COLON_NOT_EQUALS: &str = "write `name: value`: a field name is followed by `:`, not `=`";
@@ -167,9 +197,19 @@ fn code_part(line: &str) -> Option<&str> {
     None
 }
 
-/// The byte offset of the innermost bracket still open at the end of `text` (strings and
-/// comments skipped), if any.
-fn innermost_open_bracket(text: &str) -> Option<usize> {
+/// What the brackets of a text do, strings and comments skipped.
+#[derive(Debug, PartialEq)]
+enum Brackets {
+    /// Every bracket is closed by its own kind.
+    Balanced,
+    /// The bracket at this byte offset is still open at the end (the innermost such).
+    Unclosed(usize),
+    /// The closing bracket at `close` meets the opening bracket at `open` of another kind.
+    Mismatched { open: usize, close: usize },
+}
+
+/// How the brackets of `text` pair up, up to the first that does not.
+fn brackets(text: &str) -> Brackets {
     let mut open = Vec::new();
     let mut chars = text.char_indices().peekable();
     while let Some((i, c)) = chars.next() {
@@ -193,12 +233,18 @@ fn innermost_open_bracket(text: &str) -> Option<usize> {
             }
             '(' | '[' | '{' => open.push(i),
             ')' | ']' | '}' => {
-                open.pop();
+                let Some(o) = open.pop() else {
+                    return Brackets::Balanced;
+                };
+                let pair = (text.as_bytes()[o], c);
+                if !matches!(pair, (b'(', ')') | (b'[', ']') | (b'{', '}')) {
+                    return Brackets::Mismatched { open: o, close: i };
+                }
             }
             _ => {}
         }
     }
-    open.pop()
+    open.pop().map_or(Brackets::Balanced, Brackets::Unclosed)
 }
 
 /// A RON error message a person can act on: unknown names get the closest valid one and the
@@ -284,6 +330,17 @@ mod tests {
         let (at, message) = hint("(a: [1, 2,\n  3, \"]\"");
         assert_eq!(at, (1, 5), "{message}");
         assert!(message.contains("`[` is closed"), "{message}");
+    }
+
+    #[test]
+    fn a_bracket_closed_by_another_kind_names_the_one_it_meets() {
+        let (at, message) = hint("(a: [(1, 2.0\n], b: 1)");
+        assert_eq!(at, (2, 1), "{message}");
+        assert!(
+            message.contains("`(` opened at line 1, column 6: a `)` is missing"),
+            "{message}"
+        );
+        assert_eq!(brackets("(\"(\" // (\n)"), Brackets::Balanced);
     }
 
     #[test]
