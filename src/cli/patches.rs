@@ -8,7 +8,7 @@ use anyhow::anyhow;
 use clap::Args;
 use serde::Serialize;
 
-use super::CliError;
+use super::{write_stdout, CliError};
 use crate::formats::load_patches;
 use crate::formats::ron_paths::top_level_name;
 use crate::geom::{Edge, PatchLibrary};
@@ -63,24 +63,15 @@ struct Listing {
 pub fn run(args: &PatchesArgs) -> Result<(), CliError> {
     let library = read(&args.file).map_err(CliError::BadInput)?;
     let listing = listing(&library);
-    let mut out = std::io::stdout().lock();
-    let written = if args.json {
-        serde_json::to_writer_pretty(&mut out, &listing)
-            .map_err(anyhow::Error::from)
-            .and_then(|()| writeln!(out).map_err(anyhow::Error::from))
-    } else {
-        write_table(&mut out, &args.file, &listing).map_err(anyhow::Error::from)
-    };
-    match written {
-        // A reader that stopped early (`glint patches … | head`) is not a failure.
-        Err(e)
-            if e.downcast_ref::<std::io::Error>()
-                .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) =>
-        {
-            Ok(())
+    write_stdout("the listing", |out| {
+        if args.json {
+            serde_json::to_writer_pretty(&mut *out, &listing)?;
+            writeln!(out)?;
+        } else {
+            write_table(out, &args.file, &listing)?;
         }
-        other => other.map_err(|e| CliError::Failed(e.context("writing the listing"))),
-    }
+        Ok(())
+    })
 }
 
 /// The model of a patch file, or the placed model of a shot (a `.ron` file whose top level is
@@ -141,7 +132,7 @@ fn spans(knots: &[f64], degree: usize, count: usize) -> usize {
         .count()
 }
 
-fn write_table(out: &mut impl Write, file: &Path, listing: &Listing) -> std::io::Result<()> {
+fn write_table(out: &mut dyn Write, file: &Path, listing: &Listing) -> std::io::Result<()> {
     writeln!(
         out,
         "{}: {} patches, {} parts",

@@ -1,6 +1,7 @@
 //! `glint place`: the translation that puts a highlight's centre on the surface point under a
 //! pixel.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::anyhow;
@@ -8,7 +9,7 @@ use clap::Args;
 use serde::Serialize;
 
 use super::render::{parse_size, PresetArg};
-use super::CliError;
+use super::{write_stdout, CliError};
 use crate::job::{LayerChoice, Overrides, Placement, RenderJob};
 use crate::shot::Preset;
 
@@ -132,13 +133,15 @@ pub fn run(args: &PlaceArgs) -> Result<(), CliError> {
         }
     })?;
     let report = report(&job, &placement);
-    if args.json {
-        let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::Failed(e.into()))?;
-        println!("{text}");
-    } else {
-        print_report(&report, &placement);
-    }
-    Ok(())
+    write_stdout("the placement", |out| {
+        if args.json {
+            serde_json::to_writer_pretty(&mut *out, &report)?;
+            writeln!(out)?;
+        } else {
+            write_report(out, &report, &placement)?;
+        }
+        Ok(())
+    })
 }
 
 /// The placement with names and the parameter path of its translation.
@@ -177,13 +180,14 @@ fn report<'a>(job: &'a RenderJob, p: &Placement) -> Report<'a> {
     }
 }
 
-fn print_report(r: &Report, p: &Placement) {
+fn write_report(out: &mut dyn Write, r: &Report, p: &Placement) -> std::io::Result<()> {
     let parts = if r.parts.is_empty() {
         String::new()
     } else {
         format!(" ({})", r.parts.join(", "))
     };
-    println!(
+    writeln!(
+        out,
         "pixel ({}, {}) at frame {}: {}{parts}, u = {}, v = {}",
         r.pixel[0],
         r.pixel[1],
@@ -191,37 +195,44 @@ fn print_report(r: &Report, p: &Placement) {
         r.patch,
         number(r.u),
         number(r.v)
-    );
+    )?;
     let frame = key_frame(p.frame);
-    println!(
+    writeln!(
+        out,
         "{} in {}: Translate(alpha: {}, beta: {})",
         r.path,
         r.file,
         number(f64::from(r.alpha)),
         number(f64::from(r.beta))
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "keys at frame {frame}: alpha: ({frame}, {}), beta: ({frame}, {})",
         number(f64::from(r.alpha)),
         number(f64::from(r.beta))
-    );
+    )?;
     if r.residuals.len() > 1 {
-        println!("the layer on each of its patches (least ‖N − H'‖²/2; 0 is a centre):");
+        writeln!(
+            out,
+            "the layer on each of its patches (least ‖N − H'‖²/2; 0 is a centre):"
+        )?;
         for res in &r.residuals {
             let shows = if res.covered {
                 "shows"
             } else {
                 "does not show"
             };
-            println!(
+            writeln!(
+                out,
                 "  {:<16} {:<10} at u = {}, v = {}: the highlight {shows}",
                 res.patch,
                 number(f64::from(res.nearest)),
                 number(res.u),
                 number(res.v)
-            );
+            )?;
         }
     }
+    Ok(())
 }
 
 /// A frame as a key writes it: an integer without a fraction.
