@@ -344,3 +344,84 @@ fn the_documented_examples_run_and_their_paths_resolve() {
     assert!(examples.len() >= 4, "{examples:?}");
     run_all(workspace().path(), &examples);
 }
+
+/// Runs `glint inspect FILE --frame FRAME` in `dir`.
+fn inspect(dir: &Path, file: &str, frame: &str) -> String {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+        .current_dir(dir)
+        .args(["inspect", file, "--frame", frame])
+        .output()
+        .unwrap();
+    assert_exit(&out, 0);
+    stdout(&out)
+}
+
+/// The numbers written in `line`: runs of digits, `-` and `.` after a blank or `(` and before
+/// a `,` or `)`.
+fn numbers(line: &str) -> Vec<&str> {
+    line.split([' ', '(', '['])
+        .map(|word| word.trim_end_matches([',', ')', ']', ':']))
+        .filter(|word| {
+            !word.is_empty()
+                && word.contains(|c: char| c.is_ascii_digit())
+                && word
+                    .chars()
+                    .all(|c| c.is_ascii_digit() || c == '-' || c == '.')
+        })
+        .collect()
+}
+
+#[test]
+fn inspect_prints_values_in_the_shot_syntax_that_key_takes_back() {
+    let dir = workspace();
+    for file in [
+        "shots/crescent.ron",
+        "shots/sphere_ops.ron",
+        "shots/xtoon_shape_torus.ron",
+        "shots/xtoon_receding_shadows.ron",
+    ] {
+        let report = inspect(dir.path(), file, "7.3");
+        for line in report.lines().skip(1) {
+            for rust_only in ["Some(", "None", " { ", "ShapeDetail"] {
+                assert!(!line.contains(rust_only), "{file}: {line}");
+            }
+            // The values: what follows `NAME: ` or `layer 1: `.
+            let Some((_, values)) = line.split_once(": ") else {
+                continue;
+            };
+            for number in numbers(values) {
+                let digits = number.trim_start_matches('-').replace('.', "");
+                let significant = digits.trim_start_matches('0').trim_end_matches('0');
+                assert!(significant.len() <= 6, "{file}: {number} in {line}");
+            }
+        }
+    }
+
+    // The Translate of the crescent's subtracted layer between its keys, pasted back as a key
+    // at that frame, reads the same there.
+    let file = "shots/crescent.ron";
+    let before = inspect(dir.path(), file, "7.3");
+    let translate = before
+        .lines()
+        .find(|l| l.contains("Translate(alpha: "))
+        .unwrap();
+    let alpha = translate
+        .split("alpha: ")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap();
+    let at = "highlights[0].layers[1].stack[1].alpha";
+    let out = key(
+        dir.path(),
+        &[file, "--at", at, "--frame", "7.3", "--value", alpha],
+    );
+    assert_exit(&out, 0);
+    assert!(
+        stdout(&out).contains(&format!("(7.3, {alpha})")),
+        "{}",
+        stdout(&out)
+    );
+    assert_eq!(inspect(dir.path(), file, "7.3"), before);
+}
