@@ -425,3 +425,31 @@ fn inspect_prints_values_in_the_shot_syntax_that_key_takes_back() {
     );
     assert_eq!(inspect(dir.path(), file, "7.3"), before);
 }
+
+#[cfg(unix)]
+#[test]
+fn the_file_keeps_its_permissions_and_a_read_only_file_is_left_alone() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = workspace();
+    let file = "shots/sphere_ops.ron";
+    let path = dir.path().join(file);
+    let epsilon = "highlights[0].layers[0].epsilon";
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o640)).unwrap();
+    assert_exit(
+        &key(dir.path(), &[file, "--at", epsilon, "--value", "0.03"]),
+        0,
+    );
+    let mode = std::fs::metadata(&path).unwrap().permissions().mode();
+    assert_eq!(mode & 0o777, 0o640);
+    let edited = read(dir.path(), file);
+    assert_eq!(
+        edited,
+        replaced(&shipped(file), "epsilon: 0.025", "epsilon: 0.03")
+    );
+
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let out = key(dir.path(), &[file, "--at", epsilon, "--value", "0.04"]);
+    assert_exit(&out, 1);
+    assert!(stderr(&out).contains("read-only"), "{}", stderr(&out));
+    assert_eq!(read(dir.path(), file), edited);
+}

@@ -1,7 +1,7 @@
 //! `glint key`: one track of a shot or look file set, keyed or unkeyed in place.
 
 use std::io::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 use clap::{ArgGroup, Args};
@@ -108,10 +108,25 @@ pub fn run(args: &KeyArgs) -> Result<(), CliError> {
         println!("+ {after}");
         return Ok(());
     }
-    write_atomically(file, |out| {
-        out.write_all(edited.as_bytes()).map_err(|e| e.to_string())
-    })
-    .map_err(|e| CliError::Failed(e.into()))?;
+    write_in_place(file, &edited).map_err(CliError::Failed)?;
     println!("{after}");
+    Ok(())
+}
+
+/// Replaces the file at `file` (the file a link leads to, if it is one) with `text`,
+/// atomically, keeping its permissions; a read-only file is refused.
+fn write_in_place(file: &Path, text: &str) -> anyhow::Result<()> {
+    let target = std::fs::canonicalize(file)?;
+    let permissions = std::fs::metadata(&target)?.permissions();
+    if permissions.readonly() {
+        return Err(anyhow!(
+            "{} is read-only; it is left as it is",
+            file.display()
+        ));
+    }
+    write_atomically(&target, |out| {
+        out.write_all(text.as_bytes()).map_err(|e| e.to_string())
+    })?;
+    std::fs::set_permissions(&target, permissions)?;
     Ok(())
 }

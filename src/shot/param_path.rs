@@ -497,18 +497,7 @@ impl ParamPath {
     #[must_use]
     pub fn without_component(&self) -> (ParamPath, Option<usize>) {
         let mut whole = self.clone();
-        let component = match &mut whole {
-            ParamPath::Material {
-                param: MaterialParam::Detail(DetailParam::Focus(c)),
-                ..
-            }
-            | ParamPath::Highlight {
-                param: LayerParam::Colour(c),
-                ..
-            } => c.take(),
-            ParamPath::Camera(_) | ParamPath::Light(_) => None,
-            ParamPath::Material { .. } | ParamPath::Highlight { .. } => None,
-        };
+        let component = whole.component_slot().and_then(Option::take);
         (whole, component)
     }
 
@@ -517,18 +506,31 @@ impl ParamPath {
     #[must_use]
     pub fn try_with_component(&self, component: usize) -> Option<ParamPath> {
         let mut part = self.clone();
-        match &mut part {
+        let slot = part.component_slot()?;
+        if slot.is_some() {
+            return None;
+        }
+        *slot = Some(component);
+        Some(part)
+    }
+
+    /// The component of a `colour` or `focus` path (`None` for the whole); `None` for a path
+    /// that names no three tracks.
+    fn component_slot(&mut self) -> Option<&mut Option<usize>> {
+        match self {
             ParamPath::Material {
-                param: MaterialParam::Detail(DetailParam::Focus(c @ None)),
+                param: MaterialParam::Detail(DetailParam::Focus(component)),
                 ..
             }
             | ParamPath::Highlight {
-                param: LayerParam::Colour(c @ None),
+                param: LayerParam::Colour(component),
                 ..
-            } => *c = Some(component),
-            _ => return None,
+            } => Some(component),
+            ParamPath::Camera(_)
+            | ParamPath::Light(_)
+            | ParamPath::Material { .. }
+            | ParamPath::Highlight { .. } => None,
         }
-        Some(part)
     }
 }
 
@@ -638,6 +640,13 @@ mod tests {
                 }
             }
         );
+        let colour: ParamPath = "highlights[0].layers[1].colour".parse().unwrap();
+        let green = colour.try_with_component(1).unwrap();
+        assert_eq!(green.to_string(), "highlights[0].layers[1].colour[1]");
+        assert_eq!(green.without_component(), (colour.clone(), Some(1)));
+        assert_eq!(colour.without_component(), (colour, None));
+        assert_eq!(green.try_with_component(2), None);
+        assert_eq!(path.try_with_component(0), None);
         let named: ParamPath = "materials{\"a \\\"b\\\" \\\\ c\"}.base".parse().unwrap();
         assert!(matches!(named, ParamPath::Material { ref name, .. } if name == "a \"b\" \\ c"));
     }

@@ -136,9 +136,28 @@ fn line_start(text: &str, at: usize) -> usize {
     text[..at].rfind('\n').map_or(0, |i| i + 1)
 }
 
-/// Where the line holding byte `at` ends (at its `\n`, or the end of the text).
+/// Where the line holding byte `at` ends: at its `\r\n` or `\n`, or the end of the text.
 fn line_end(text: &str, at: usize) -> usize {
-    text[at..].find('\n').map_or(text.len(), |i| at + i)
+    let end = text[at..].find('\n').map_or(text.len(), |i| at + i);
+    if end > at && text.as_bytes()[end - 1] == b'\r' {
+        end - 1
+    } else {
+        end
+    }
+}
+
+/// Where the line after the one holding byte `at` starts (the end of the text on the last).
+fn next_line_start(text: &str, at: usize) -> usize {
+    text[at..].find('\n').map_or(text.len(), |i| at + i + 1)
+}
+
+/// The line break the text uses: `\r\n` where it has one, `\n` otherwise.
+fn line_break(text: &str) -> &'static str {
+    if text.contains("\r\n") {
+        "\r\n"
+    } else {
+        "\n"
+    }
 }
 
 /// The blanks before `at` on its line, when nothing else is before it there.
@@ -172,9 +191,10 @@ pub(super) fn insert_item(
     item: &str,
 ) -> Option<Splice> {
     let insert = |at: usize, text: String| Splice { span: at..at, text };
+    let br = line_break(text);
     if let Some(next) = before.and_then(|i| items.get(i)) {
         return Some(match alone_indent(text, next.start) {
-            Some(indent) => insert(next.start, format!("{item},\n{indent}")),
+            Some(indent) => insert(next.start, format!("{item},{br}{indent}")),
             None => insert(next.start, format!("{item}, ")),
         });
     }
@@ -182,10 +202,10 @@ pub(super) fn insert_item(
     Some(
         match (alone_indent(text, last.start), comma_after(text, last.end)) {
             (Some(indent), Some(comma)) if rest_of_line_is_blank(text, comma) => {
-                insert(line_end(text, comma), format!("\n{indent}{item},"))
+                insert(line_end(text, comma), format!("{br}{indent}{item},"))
             }
-            (Some(indent), Some(comma)) => insert(comma, format!("\n{indent}{item},")),
-            (Some(indent), None) => insert(last.end, format!(",\n{indent}{item}")),
+            (Some(indent), Some(comma)) => insert(comma, format!("{br}{indent}{item},")),
+            (Some(indent), None) => insert(last.end, format!(",{br}{indent}{item}")),
             (None, _) => insert(last.end, format!(", {item}")),
         },
     )
@@ -200,8 +220,7 @@ pub(super) fn remove_item(text: &str, items: &[Range<usize>], index: usize) -> S
     let item = &items[index];
     let after = comma_after(text, item.end).unwrap_or(item.end);
     let span = if alone_indent(text, item.start).is_some() && rest_of_line_is_blank(text, after) {
-        let end = line_end(text, after);
-        line_start(text, item.start)..(end + 1).min(text.len())
+        line_start(text, item.start)..next_line_start(text, after)
     } else if let Some(next) = items.get(index + 1) {
         item.start..next.start
     } else {
@@ -290,6 +309,32 @@ mod tests {
         let without = |index| apply(lines, &[remove_item(lines, &items, index)]);
         assert_eq!(without(1), "[\n    (1, 0.5),\n    (17, 0.25)\n]");
         assert_eq!(without(2), "[\n    (1, 0.5),\n    (9, 0.1), // mid\n]");
+    }
+
+    #[test]
+    fn lines_end_as_the_text_ends_them() {
+        let text = "[\r\n    (1, 0.5), // first\r\n    (17, 0.25),\r\n]";
+        let items = spans(text, &["(1, 0.5)", "(17, 0.25)"]);
+        let added = apply(
+            text,
+            &[insert_item(text, &items, None, "(20, 0.1)").unwrap()],
+        );
+        assert_eq!(
+            added,
+            "[\r\n    (1, 0.5), // first\r\n    (17, 0.25),\r\n    (20, 0.1),\r\n]"
+        );
+        let added = apply(
+            text,
+            &[insert_item(text, &items, Some(1), "(9, 0.1)").unwrap()],
+        );
+        assert_eq!(
+            added,
+            "[\r\n    (1, 0.5), // first\r\n    (9, 0.1),\r\n    (17, 0.25),\r\n]"
+        );
+        assert_eq!(
+            apply(text, &[remove_item(text, &items, 0)]),
+            "[\r\n    (17, 0.25),\r\n]"
+        );
     }
 
     #[test]
