@@ -192,7 +192,7 @@ fn inspect_prints_the_interpolated_value_between_keys() {
     let out = succeed(glint().args(["inspect", "--frame", "6.5"]).arg(&shot));
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("alpha: 0.2,"), "{stdout}");
-    assert!(stdout.contains("eye: (0, -6, 0)"), "{stdout}");
+    assert!(stdout.contains("eye: (0.0, -6.0, 0.0)"), "{stdout}");
     let out = run(glint()
         .args(["inspect", "--frame", "1", "--patch", "nothing/*"])
         .arg(&shot));

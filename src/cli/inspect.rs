@@ -5,18 +5,20 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 use clap::Args;
-use ron::ser::PrettyConfig;
-use serde::Serialize;
+use glam::Vec3;
 
 use super::CliError;
-use crate::highlight::{Expr, Light};
+use crate::highlight::{Axis, Expr, Layer, Light, Op};
 use crate::render::Projection;
-use crate::shot::{load_shot, MaterialState, Shot};
+use crate::shot::{load_shot, rounded_number_text, MaterialState, Shot};
+use crate::toon::{Abstraction, DetailMap, HighlightFrame, ShapeDetail, XToon};
 
 /// Print the value of every track of a shot at one frame.
 ///
 /// Camera, light, materials and each parameter of each highlight layer, in the shot file's own
-/// syntax. Fractional frames show what the interpolation gives between keys.
+/// syntax: numbers to 6 significant digits, vectors as (x, y, z), so that a value can be pasted
+/// into the file (or given to `glint key --value`). Fractional frames show what the
+/// interpolation gives between keys.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:
   glint inspect shots/sphere_ops.ron --frame 12
@@ -73,14 +75,17 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
     let _ = writeln!(out, "  target: {}", triple(c.target));
     let _ = writeln!(out, "  up: {}", triple(c.up));
     let _ = match c.projection {
-        Projection::Perspective { fov_y_degrees } => {
+        Projection::Perspective { fov_y_degrees } => writeln!(
+            out,
+            "  projection: Perspective(fov_y_degrees: {})",
+            number(fov_y_degrees)
+        ),
+        Projection::Orthographic { height } => {
             writeln!(
                 out,
-                "  projection: Perspective(fov_y_degrees: {fov_y_degrees})"
+                "  projection: Orthographic(height: {})",
+                number(height)
             )
-        }
-        Projection::Orthographic { height } => {
-            writeln!(out, "  projection: Orthographic(height: {height})")
         }
     };
     let _ = match state.light {
@@ -99,7 +104,7 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
                 let bands: Vec<String> = ramp
                     .bands
                     .iter()
-                    .map(|(t, c)| format!("({t}, {})", triple(*c)))
+                    .map(|(t, c)| format!("({}, {})", number(*t), triple(*c)))
                     .collect();
                 writeln!(
                     out,
@@ -109,11 +114,9 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
                     bands.join(", ")
                 )
             }
-            MaterialState::XToon(tone) => writeln!(
-                out,
-                "material \"{}\": XToon(detail: {:?}, invert: {}, shape: {:?})",
-                names[index], tone.detail, tone.invert, tone.shape
-            ),
+            MaterialState::XToon(tone) => {
+                writeln!(out, "material \"{}\": {}", names[index], xtoon(tone))
+            }
         };
     }
     for (index, (expr, selector)) in state
@@ -137,7 +140,7 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
             selector.join(", "),
             on.join(", ")
         );
-        describe(expr, 1, &mut 0, &mut out)?;
+        describe(expr, 1, &mut 0, &mut out);
     }
     let bare: Vec<&str> = patches
         .iter()
@@ -150,46 +153,148 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
     Ok(out)
 }
 
-fn triple(v: glam::Vec3) -> String {
-    format!("({}, {}, {})", v.x, v.y, v.z)
+/// A number as the shot file writes it, to 6 significant digits.
+fn number(x: f32) -> String {
+    rounded_number_text(x)
+}
+
+/// A point, vector or colour as the shot file writes it: `(x, y, z)`.
+fn triple(v: Vec3) -> String {
+    format!("({}, {}, {})", number(v.x), number(v.y), number(v.z))
 }
 
 /// The expression as an indented tree: Booleans with their operands, each layer's parameters
 /// and then its ops one per line, in the shot file's syntax.
-fn describe(expr: &Expr, depth: usize, layers: &mut usize, out: &mut String) -> anyhow::Result<()> {
+fn describe(expr: &Expr, depth: usize, layers: &mut usize, out: &mut String) {
     let pad = "  ".repeat(depth);
     let (name, a, b) = match expr {
         Expr::Layer(layer) => {
             *layers += 1;
-            let _ = writeln!(
-                out,
-                "{pad}layer {layers}: epsilon {}, colour {}, opacity {}, feather {}, mask {}",
-                layer.epsilon,
-                compact(&layer.colour)?,
-                layer.opacity,
-                compact(&layer.feather)?,
-                compact(&layer.mask)?
-            );
+            let _ = writeln!(out, "{pad}layer {layers}: {}", layer_fields(layer));
             for (i, op) in layer.stack.iter().enumerate() {
-                let _ = writeln!(out, "{pad}  op {}: {}", i + 1, compact(op)?);
+                let _ = writeln!(out, "{pad}  op {}: {}", i + 1, op_text(op));
             }
-            return Ok(());
+            return;
         }
         Expr::Union(a, b) => ("union", a, b),
         Expr::Subtract(a, b) => ("subtract (first minus second)", a, b),
         Expr::Intersect(a, b) => ("intersect", a, b),
     };
     let _ = writeln!(out, "{pad}{name}:");
-    describe(a, depth + 1, layers, out)?;
-    describe(b, depth + 1, layers, out)
+    describe(a, depth + 1, layers, out);
+    describe(b, depth + 1, layers, out);
 }
 
-/// A value on one line in RON, e.g. `Translate(alpha: 0.2, beta: 0.0)`.
-fn compact(value: &impl Serialize) -> anyhow::Result<String> {
-    let config = PrettyConfig::new()
-        .compact_structs(true)
-        .compact_arrays(true)
-        .new_line(" ".to_string())
-        .indentor(String::new());
-    Ok(ron::ser::to_string_pretty(value, config)?)
+/// A layer's fields but its stack, as written in `Layer((…))`: a feather or mask only when it
+/// has one.
+fn layer_fields(layer: &Layer) -> String {
+    let Layer {
+        stack: _,
+        epsilon,
+        colour,
+        opacity,
+        feather,
+        mask,
+    } = layer;
+    let mut fields = format!(
+        "epsilon: {}, colour: {}, opacity: {}",
+        number(*epsilon),
+        triple(Vec3::from_array(*colour)),
+        number(*opacity)
+    );
+    if let Some(feather) = feather {
+        fields.push_str(&format!(", feather: {}", number(*feather)));
+    }
+    if let Some(m) = mask {
+        fields.push_str(&format!(
+            ", mask: (u: ({}, {}), v: ({}, {}), feather: {})",
+            number(m.u.0),
+            number(m.u.1),
+            number(m.v.0),
+            number(m.v.1),
+            number(m.feather)
+        ));
+    }
+    fields
+}
+
+/// An operation as written in a stack, e.g. `Translate(alpha: 0.2, beta: 0.0)`.
+fn op_text(op: &Op) -> String {
+    match op {
+        Op::Translate { alpha, beta } => {
+            format!(
+                "Translate(alpha: {}, beta: {})",
+                number(*alpha),
+                number(*beta)
+            )
+        }
+        Op::Rotate { degrees } => format!("Rotate(degrees: {})", number(*degrees)),
+        Op::Scale { delta, axis } => {
+            let axis = match axis {
+                Axis::U => "U".to_string(),
+                Axis::V => "V".to_string(),
+                Axis::Angle(phi) => format!("Angle({})", number(*phi)),
+            };
+            format!("Scale(delta: {}, axis: {axis})", number(*delta))
+        }
+        Op::Split { gamma_u, gamma_v } => format!(
+            "Split(gamma_u: {}, gamma_v: {})",
+            number(*gamma_u),
+            number(*gamma_v)
+        ),
+        Op::Square { sigma, n, style } => format!(
+            "Square(sigma: {}, n: {}, style: {style:?})",
+            number(*sigma),
+            number(*n)
+        ),
+    }
+}
+
+/// An X-Toon material without its texture, e.g.
+/// `XToon(detail: Depth(z_min: 9.0, r: 3.5), invert: false)`; its shape detail when it has one.
+fn xtoon(tone: &XToon) -> String {
+    let XToon {
+        detail,
+        invert,
+        shape,
+    } = tone;
+    let detail = match detail {
+        DetailMap::Depth { z_min, r } => {
+            format!("Depth(z_min: {}, r: {})", number(*z_min), number(*r))
+        }
+        DetailMap::DepthOfField { focus, z_min, r } => format!(
+            "DepthOfField(focus: {}, z_min: {}, r: {})",
+            triple(Vec3::from_array(*focus)),
+            number(*z_min),
+            number(*r)
+        ),
+        DetailMap::NearSilhouette { r } => format!("NearSilhouette(r: {})", number(*r)),
+        DetailMap::Highlight { s } => format!("Highlight(s: {})", number(*s)),
+    };
+    let shape = match shape {
+        None => String::new(),
+        Some(ShapeDetail {
+            abstraction,
+            weight,
+            highlight_frame,
+        }) => {
+            let abstraction = match abstraction {
+                Abstraction::Sphere => "Sphere".to_string(),
+                Abstraction::Ellipsoid => "Ellipsoid".to_string(),
+                Abstraction::Cylinder => "Cylinder".to_string(),
+                Abstraction::Smoothed { iterations } => {
+                    format!("Smoothed(iterations: {iterations})")
+                }
+            };
+            let frame = match highlight_frame {
+                HighlightFrame::Abstracted => "Abstracted",
+                HighlightFrame::True => "True",
+            };
+            format!(
+                ", shape: (abstraction: {abstraction}, weight: {}, highlight_frame: {frame})",
+                number(*weight)
+            )
+        }
+    };
+    format!("XToon(detail: {detail}, invert: {invert}{shape})")
 }

@@ -3,6 +3,7 @@
 
 mod bench;
 mod inspect;
+mod key;
 mod patches;
 mod place;
 mod probe;
@@ -25,6 +26,7 @@ pub struct Cli {
 enum Command {
     Render(render::RenderArgs),
     Inspect(inspect::InspectArgs),
+    Key(key::KeyArgs),
     Probe(probe::ProbeArgs),
     Patches(patches::PatchesArgs),
     Place(place::PlaceArgs),
@@ -66,6 +68,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Inspect(args) => inspect::run(&args),
+        Command::Key(args) => key::run(&args),
         Command::Probe(args) => probe::run(&args),
         Command::Patches(args) => patches::run(&args),
         Command::Place(args) => place::run(&args),

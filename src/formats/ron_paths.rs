@@ -1,11 +1,14 @@
-//! Where a value is written in RON text, found by its path (`instances[2].name`), so that an
-//! error about a parsed value points at the value itself.
+//! Where a value is written in RON text, found by its path (`instances[2].name`): its start, so
+//! that an error about a parsed value points at the value itself, and its span and the spans of
+//! its items, so that one value can be rewritten with every other byte left as it is.
 //!
 //! `ron` keeps no positions for the values it has parsed, so this walks the text's structure
 //! again: structs and enum variants `Name(field: value, …)`, tuples `(a, b)`, lists `[a, b]`,
 //! maps `{key: value}`, strings (plain, raw and byte), chars, numbers, identifiers, `//` and
 //! nested `/* */` comments, and `#![…]` attributes at the top. `Some(x)` is looked through, as
 //! the `implicit_some` extension the shot reader enables makes it optional.
+
+use std::ops::Range;
 
 /// One step of a path into a RON document.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,6 +47,62 @@ pub fn top_level_name(text: &str) -> Option<&str> {
     Cursor::at_top_level(text)?.identifier()
 }
 
+/// The bytes of `text` the value at `path` is written in, from its first to just past its last;
+/// a `Some(…)` around it is looked through, so the span is of the value inside. `None` where it
+/// is not written (or the text is malformed before it ends).
+#[must_use]
+pub fn try_span(text: &str, path: &[Step]) -> Option<Range<usize>> {
+    let mut cursor = Cursor::at_top_level(text)?;
+    cursor.find(path, 0)?;
+    cursor.enter_some();
+    let start = cursor.at;
+    cursor.skip_value()?;
+    Some(start..cursor.at)
+}
+
+/// The spans of the items of the list, tuple, map or struct at `path` (a `Some(…)` and a
+/// variant's name before the bracket looked through), in the order written: each item's value,
+/// and for a map entry or a struct field from its key or name to the end of its value.
+/// Separators, blanks and comments between items are in no span. `None` where the value is not
+/// written or is not bracketed.
+#[must_use]
+pub fn try_item_spans(text: &str, path: &[Step]) -> Option<Vec<Range<usize>>> {
+    let mut cursor = Cursor::at_top_level(text)?;
+    cursor.find(path, 0)?;
+    cursor.enter_some();
+    if cursor.identifier().is_some() {
+        cursor.skip_blank();
+    }
+    let close = match cursor.peek()? {
+        '(' => ')',
+        '[' => ']',
+        '{' => '}',
+        _ => return None,
+    };
+    cursor.at += 1;
+    let mut items = Vec::new();
+    loop {
+        cursor.skip_blank();
+        if cursor.eat(close) {
+            return Some(items);
+        }
+        let start = cursor.at;
+        cursor.skip_nested(1)?;
+        let mut end = cursor.at;
+        cursor.skip_blank();
+        if cursor.eat(':') {
+            cursor.skip_blank();
+            cursor.skip_nested(1)?;
+            end = cursor.at;
+            cursor.skip_blank();
+        }
+        items.push(start..end);
+        if !cursor.eat(',') && cursor.peek() != Some(close) {
+            return None;
+        }
+    }
+}
+
 /// Nesting deeper than this is treated as malformed, so hostile text cannot exhaust the stack.
 const MAX_DEPTH: usize = 128;
 
@@ -64,6 +123,20 @@ impl<'t> Cursor<'t> {
             cursor.skip_blank();
         }
         Some(cursor)
+    }
+
+    /// Moves into the `Some(…)` written here, if one is, to the value inside (after blanks);
+    /// otherwise stays.
+    fn enter_some(&mut self) {
+        let before = self.at;
+        if self.identifier() == Some("Some") {
+            self.skip_blank();
+            if self.eat('(') {
+                self.skip_blank();
+                return;
+            }
+        }
+        self.at = before;
     }
 
     fn rest(&self) -> &'t str {
@@ -386,6 +459,63 @@ Shot(
         );
     }
 
+    fn spanned(text: &str, span: Option<Range<usize>>) -> Option<&str> {
+        span.map(|r| &text[r])
+    }
+
+    #[test]
+    fn spans_run_from_a_value_to_its_end_through_some() {
+        let span = |path: &[Step]| spanned(SHOT, try_span(SHOT, path));
+        assert_eq!(span(&[Field("frames")]), Some("(1, 10)"));
+        assert_eq!(
+            span(&[Field("instances"), Index(1), Field("transform")]),
+            Some("(scale: 2.0)")
+        );
+        assert_eq!(
+            span(&[Field("materials"), Entry("m"), Field("detail")]),
+            Some("Depth(near: 1.0, far: 2.0)")
+        );
+        assert_eq!(
+            span(&[Field("instances"), Index(1), Field("name")]),
+            Some("r#\"b\"#")
+        );
+        assert_eq!(
+            span(&[Field("instances"), Index(0), Field("transform")]),
+            None
+        );
+    }
+
+    #[test]
+    fn items_are_spanned_without_their_separators() {
+        let items = |path: &[Step]| {
+            try_item_spans(SHOT, path)
+                .map(|spans| spans.into_iter().map(|r| &SHOT[r]).collect::<Vec<_>>())
+        };
+        assert_eq!(
+            items(&[Field("instances"), Index(0)]),
+            Some(vec!["name: \"a\"", "file: \"s.ron\"", "material: \"m\""])
+        );
+        assert_eq!(
+            items(&[Field("highlights"), Index(0), Field("patches")]),
+            Some(vec!["\"a/*\"", "\"b/*\""])
+        );
+        assert_eq!(
+            items(&[Field("materials"), Entry("m"), Field("detail")]),
+            Some(vec!["near: 1.0", "far: 2.0"])
+        );
+        assert_eq!(
+            items(&[Field("instances"), Index(1), Field("transform")]),
+            Some(vec!["scale: 2.0"])
+        );
+        assert_eq!(items(&[Field("materials")]).map(|i| i.len()), Some(2));
+        assert_eq!(items(&[Field("frames"), Index(0)]), None);
+        assert_eq!(try_item_spans("Shot(a: [1 2])", &[Field("a")]), None);
+        assert_eq!(
+            try_item_spans("(a: [ /* c */ 1 , 2, // d\n ])", &[Field("a")]),
+            Some(vec![14..15, 18..19])
+        );
+    }
+
     #[test]
     fn the_top_level_name_is_read_past_comments_and_attributes() {
         assert_eq!(top_level_name(SHOT), Some("Shot"));
@@ -440,6 +570,9 @@ Shot(
             let _ = try_locate(text, &[Field("frames")]);
             let _ = try_locate(text, &[Field("a"), Index(5), Entry("k")]);
             let _ = locate_or_nearest(text, &[Field("a"), Index(0)]);
+            let _ = try_span(text, &[Field("a"), Index(0)]);
+            let _ = try_item_spans(text, &[Field("a")]);
+            let _ = try_item_spans(text, &[]);
         }
         assert_eq!(try_locate(&deep, &[Index(0); 200]), None);
         assert_eq!(

@@ -14,7 +14,7 @@ use crate::render::{Antialias, FrameMode};
 use crate::toon::{DetailMap, ShapeDetail};
 
 /// A shot: `Shot(resolution: …, frames: …, …)`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, rename = "Shot")]
 pub struct ShotFile {
     /// Image size in pixels, `(width, height)`.
@@ -45,7 +45,7 @@ pub struct ShotFile {
 }
 
 /// A look library: materials and highlights shared between shots.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, rename = "Looks")]
 pub struct LooksFile {
     #[serde(default)]
@@ -57,7 +57,7 @@ pub struct LooksFile {
 }
 
 /// One placement of a patch file: its patches are named `NAME/PATCH`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InstanceSpec {
     pub name: String,
@@ -74,7 +74,7 @@ pub struct InstanceSpec {
 }
 
 /// `p ↦ translate + R(axis, degrees) (scale · p)`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TransformSpec {
     #[serde(default)]
@@ -107,7 +107,7 @@ fn one() -> f64 {
 }
 
 /// A material: a cel ramp, or an X-Toon tone (docs/xtoon.md), every number a track.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum MaterialSpec {
     /// Flat bands over `n·l`.
@@ -131,7 +131,7 @@ pub enum MaterialSpec {
 }
 
 /// A camera whose placement and lens are tracks.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSpec {
     pub eye: Track<Vec3>,
@@ -157,7 +157,7 @@ fn far() -> f32 {
     1000.0
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum ProjectionSpec {
     Perspective { fov_y_degrees: Track<f32> },
@@ -165,7 +165,7 @@ pub enum ProjectionSpec {
 }
 
 /// The light for tone and highlights.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum LightSpec {
     /// Light arriving from the direction `towards` points to (keys turn along great circles).
@@ -175,7 +175,7 @@ pub enum LightSpec {
 }
 
 /// A highlight expression on the patches a selector picks.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HighlightSpec {
     pub patches: Selector,
@@ -184,7 +184,7 @@ pub struct HighlightSpec {
 
 /// Patch names (`INSTANCE/PATCH`) as one glob pattern or a list of them: `*` any run of
 /// characters, `?` one character, `[a-c]` one of a set.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Selector {
     One(String),
     Any(Vec<String>),
@@ -231,7 +231,7 @@ impl Selector {
 }
 
 /// How frames are rendered.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RenderSpec {
     /// The accuracy preset the other fields refine (default `Final`).
@@ -260,7 +260,7 @@ pub enum Preset {
     Final,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutlinesSpec {
     #[serde(default = "outline_width")]

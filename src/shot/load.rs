@@ -37,8 +37,22 @@ pub(super) struct Written {
 
 /// Reads, checks and prepares the shot at `path`.
 pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
+    load_source(Source::read(path)?)
+}
+
+/// Checks and prepares the shot as if the file at `path` held `text`: what
+/// [`load_shot`] gives once `text` is written there. Includes, patch files and textures are
+/// still read from disk, relative to `path`; the file at `path` itself is not read.
+pub fn load_shot_text(path: &Path, text: String) -> Result<Shot, ShotError> {
+    load_source(Source::new(path, text))
+}
+
+/// Checks and prepares the shot whose file is `source`.
+fn load_source(source: Source) -> Result<Shot, ShotError> {
+    let path = source.path.clone();
+    let path = path.as_path();
     let mut reader = Reader {
-        sources: vec![Source::read(path)?],
+        sources: vec![source],
         inputs: Inputs::default(),
         looks: Looks::default(),
     };

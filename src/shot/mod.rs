@@ -2,22 +2,38 @@
 //! includes, validation with file:line:col errors, and [`Shot::at`], the pure evaluation of
 //! every track at a frame.
 
+mod edit;
 mod every_frame;
 mod file;
 mod frame_state;
 mod glob;
 mod load;
+mod number_text;
 mod output;
+mod param_path;
+mod param_sites;
 mod params;
 mod pin;
 mod source;
+mod track_edit;
+mod track_splice;
 mod validated;
 
+pub use edit::{
+    apply_edits, edit_text, param_paths, parse_param_path, track_span, track_text, track_texts,
+    EditError,
+};
 pub use file::{Aov, Preset, Selector};
 pub use frame_state::FrameState;
 pub use glob::matches as matches_patch;
-pub use load::load_shot;
+pub use load::{load_shot, load_shot_text};
+pub use number_text::{frame_text, number_text, rounded_number_text, value_text};
 pub use output::{check_numbered, frame_path, resolve_path};
+pub use param_path::{
+    CameraParam, DetailParam, HighlightRef, LayerParam, LightParam, MaterialParam, OpParam,
+    ParamPath, ParamPathError,
+};
+pub use track_edit::TrackEdit;
 pub use validated::{Instance, MaterialState, Shot};
 
 /// The longest frame range a shot may have, and the most frames one frame list may name.

@@ -19,17 +19,21 @@ pub(super) struct Source {
 
 impl Source {
     pub fn read(path: &Path) -> Result<Self, ShotError> {
-        let shown = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|e| ShotError::File {
-            path: shown.clone(),
+            path: path.display().to_string(),
             message: format!("cannot read the file: {e}"),
         })?;
-        Ok(Self {
+        Ok(Self::new(path, text))
+    }
+
+    /// The file at `path` as if it held `text`.
+    pub fn new(path: &Path, text: String) -> Self {
+        Self {
             path: path.to_path_buf(),
-            shown,
+            shown: path.display().to_string(),
             folder: path.parent().map(Path::to_path_buf).unwrap_or_default(),
             text,
-        })
+        }
     }
 
     /// An error at the value `path` leads to (a map entry: at its key), or at the deepest
