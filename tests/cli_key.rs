@@ -73,30 +73,27 @@ fn a_key_changes_its_track_alone_and_prints_it() {
     let dir = workspace();
     let shots = dir.path().join("shots");
     let before = names(&shots);
-    let file = "shots/teapot_turntable.ron";
-    let alpha = "highlights[1].layers[0].stack[0].alpha";
+    let file = "shots/sphere_ops.ron";
+    let alpha = "highlights[0].layers[0].stack[0].alpha";
     let out = key(
         dir.path(),
-        &[file, "--at", alpha, "--frame", "17", "--value", "0.5"],
+        &[file, "--at", alpha, "--frame", "12", "--value", "0.5"],
     );
     assert_exit(&out, 0);
-    let keys = "(1, 0.341), (17, 0.229), (33, 0.12)";
-    let expected = replaced(&shipped(file), keys, "(1, 0.341), (17, 0.5), (33, 0.12)");
+    let keys = "(1, 0.0), (12, 0.35), (24, 0.0)";
+    let expected = replaced(&shipped(file), keys, "(1, 0.0), (12, 0.5), (24, 0.0)");
     assert_eq!(read(dir.path(), file), expected);
-    assert_eq!(
-        stdout(&out),
-        "[(1, 0.341), (17, 0.5), (33, 0.12), (49, 0.024), (65, -0.045), (81, -0.07), (96, -0.036)]\n"
-    );
+    assert_eq!(stdout(&out), "[(1, 0.0), (12, 0.5), (24, 0.0)]\n");
 
     // A new key goes between its neighbours, on the list's line; the highlight picked by its
     // pattern is the same entry.
-    let by_pattern = "highlights[\"teapot/[4-9]\"].layers[0].stack[0].alpha";
+    let by_pattern = "highlights[\"ball/*\"].layers[0].stack[0].alpha";
     let out = key(
         dir.path(),
-        &[file, "--at", by_pattern, "--frame", "25", "--value", "-0.2"],
+        &[file, "--at", by_pattern, "--frame", "18", "--value", "-0.2"],
     );
     assert_exit(&out, 0);
-    let expected = replaced(&expected, "(17, 0.5), (33", "(17, 0.5), (25, -0.2), (33");
+    let expected = replaced(&expected, "(12, 0.5), (24", "(12, 0.5), (18, -0.2), (24");
     assert_eq!(read(dir.path(), file), expected);
     // Written atomically: no temporary file is left beside it.
     assert_eq!(names(&shots), before);
@@ -137,8 +134,12 @@ fn a_bad_path_exits_2_naming_the_nearest_valid_path_and_writes_nothing() {
             "highlights[1].layers[0].epsilon",
         ),
         (
+            "highlights[1].layers[0].stack[0].sigma",
             "highlights[1].layers[0].stack[1].sigma",
-            "highlights[1].layers[0].stack[2].sigma",
+        ),
+        (
+            "highlights[1].layers[0].pin.w",
+            "highlights[1].layers[0].pin.u",
         ),
         (
             "camera.projection.height",

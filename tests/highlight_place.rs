@@ -513,3 +513,88 @@ fn a_pin_on_no_patch_or_outside_its_domain_is_refused_where_it_is_written() {
         assert!(err.contains(&format!("bad_pin.ron:{line}:")), "{err}");
     }
 }
+
+#[test]
+fn place_write_keys_the_translation_and_changes_nothing_else() {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = dir.path().join("shots");
+    std::fs::create_dir_all(&shots).unwrap();
+    std::fs::create_dir_all(dir.path().join("patches")).unwrap();
+    std::fs::copy(
+        repo_file("patches/sphere.ron"),
+        dir.path().join("patches/sphere.ron"),
+    )
+    .unwrap();
+    let shot = shots.join("sphere_ops.ron");
+    std::fs::copy(repo_file("shots/sphere_ops.ron"), &shot).unwrap();
+    let before = std::fs::read_to_string(&shot).unwrap();
+
+    let json = glint_with(&[
+        "place",
+        shot.to_str().unwrap(),
+        "--frame",
+        "30",
+        "--pixel",
+        "300,200",
+        "--json",
+    ]);
+    assert!(json.status.success(), "{}", stderr(&json));
+    let report: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    let out = glint_with(&[
+        "place",
+        shot.to_str().unwrap(),
+        "--frame",
+        "30",
+        "--pixel",
+        "300,200",
+        "--write",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let after = std::fs::read_to_string(&shot).unwrap();
+
+    // Only the two tracks changed: α gained a key at 30 among its keys, β became that key.
+    let tracks = |text: &str| glint::shot::track_texts(text).unwrap();
+    let (old, new) = (tracks(&before), tracks(&after));
+    assert_eq!(old.len(), new.len());
+    let changed: Vec<String> = old
+        .iter()
+        .zip(&new)
+        .filter(|(a, b)| a != b)
+        .map(|(a, _)| a.0.to_string())
+        .collect();
+    assert_eq!(
+        changed,
+        [
+            "highlights[0].layers[0].stack[0].alpha",
+            "highlights[0].layers[0].stack[0].beta"
+        ]
+    );
+    let unchanged_outside = |text: &str| {
+        let line = text.lines().position(|l| l.contains("Translate(")).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        (lines[..line].join("\n"), lines[line + 1..].join("\n"))
+    };
+    assert_eq!(unchanged_outside(&before), unchanged_outside(&after));
+
+    // Read back at frame 30, the layer's translation is the one placed.
+    let loaded = glint::shot::load_shot(&shot).unwrap();
+    let state = loaded.at(30.0);
+    let glint::highlight::Op::Translate { alpha, beta } = state.highlights[0].layers()[0].stack[0]
+    else {
+        panic!("the first operation is a translation");
+    };
+    let want = (
+        report["alpha"].as_f64().unwrap(),
+        report["beta"].as_f64().unwrap(),
+    );
+    assert!(
+        (f64::from(alpha) - want.0).abs() < 1e-5,
+        "{alpha} vs {}",
+        want.0
+    );
+    assert!(
+        (f64::from(beta) - want.1).abs() < 1e-5,
+        "{beta} vs {}",
+        want.1
+    );
+}

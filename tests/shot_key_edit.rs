@@ -71,6 +71,8 @@ fn shape(path: &ParamPath) -> Shape {
             | LayerParam::MaskU(_)
             | LayerParam::MaskV(_)
             | LayerParam::MaskFeather
+            | LayerParam::PinU
+            | LayerParam::PinV
             | LayerParam::Op { .. } => Shape::Number,
         },
     }

@@ -195,6 +195,8 @@ fn layer_fields(layer: &Layer) -> String {
         opacity,
         feather,
         mask,
+        // At a frame a pin is already solved into the stack's translation.
+        pin: _,
     } = layer;
     let mut fields = format!(
         "epsilon: {}, colour: {}, opacity: {}",

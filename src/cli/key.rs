@@ -115,7 +115,7 @@ pub fn run(args: &KeyArgs) -> Result<(), CliError> {
 
 /// Replaces the file at `file` (the file a link leads to, if it is one) with `text`,
 /// atomically, keeping its permissions; a read-only file is refused.
-fn write_in_place(file: &Path, text: &str) -> anyhow::Result<()> {
+pub(super) fn write_in_place(file: &Path, text: &str) -> anyhow::Result<()> {
     let target = std::fs::canonicalize(file)?;
     let permissions = std::fs::metadata(&target)?.permissions();
     if permissions.readonly() {

@@ -2,16 +2,19 @@
 //! pixel.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 use clap::Args;
 use serde::Serialize;
 
+use super::key::write_in_place;
 use super::render::{parse_size, PresetArg};
 use super::{write_stdout, CliError};
 use crate::job::{LayerChoice, Overrides, Placement, RenderJob};
-use crate::shot::Preset;
+use crate::shot::{
+    apply_edits, frame_text, parse_param_path, rounded_number_text, Preset, TrackEdit,
+};
 
 /// Solve a highlight's translation so that its centre lands on the point under a pixel.
 ///
@@ -36,7 +39,8 @@ use crate::shot::Preset;
 #[command(after_help = "Examples:
   glint place shots/sphere_ops.ron --frame 1 --pixel 320,180
   glint place shots/crescent.ron --frame 12 --pixel 330,170 --layer 1
-  glint place shots/sphere_ops.ron --frame 30 --pixel 200,150 --size 240x240 --json")]
+  glint place shots/sphere_ops.ron --frame 30 --pixel 200,150 --size 240x240 --json
+  glint place shots/sphere_ops.ron --frame 12 --pixel 300,200 --write")]
 pub struct PlaceArgs {
     /// The shot file (RON)
     shot: PathBuf,
@@ -62,6 +66,10 @@ pub struct PlaceArgs {
     /// Print the placement as JSON
     #[arg(long)]
     json: bool,
+    /// Write the keys into the file the highlight is written in (the shot or an include),
+    /// atomically, leaving every other byte as it was
+    #[arg(long)]
+    write: bool,
 }
 
 fn parse_pixel(text: &str) -> Result<(f64, f64), String> {
@@ -133,15 +141,45 @@ pub fn run(args: &PlaceArgs) -> Result<(), CliError> {
         }
     })?;
     let report = report(&job, &placement);
+    if args.write {
+        write_keys(&report, &placement)?;
+    }
     write_stdout("the placement", |out| {
         if args.json {
             serde_json::to_writer_pretty(&mut *out, &report)?;
             writeln!(out)?;
         } else {
             write_report(out, &report, &placement)?;
+            if args.write {
+                writeln!(out, "wrote both keys into {}", report.file)?;
+            }
         }
         Ok(())
     })
+}
+
+/// Keys the placed translation's α and β at the placement's frame in the file its highlight
+/// is written in ([`apply_edits`]: only those two tracks change, checked by reading the file
+/// back), and writes the file in place.
+fn write_keys(r: &Report, p: &Placement) -> Result<(), CliError> {
+    let file = Path::new(&r.file);
+    let text = std::fs::read_to_string(file)
+        .map_err(|e| CliError::Failed(anyhow!("{}: cannot read the file: {e}", file.display())))?;
+    let bad = |e: crate::shot::EditError| CliError::BadInput(e.in_file(file).into());
+    let mut edits = Vec::with_capacity(2);
+    for (name, value) in [("alpha", r.alpha), ("beta", r.beta)] {
+        let path = parse_param_path(&text, &format!("{}.{name}", r.path)).map_err(bad)?;
+        let value = rounded_number_text(value);
+        edits.push((
+            path,
+            TrackEdit::Key {
+                frame: p.frame,
+                value,
+            },
+        ));
+    }
+    let edited = apply_edits(&text, &edits).map_err(bad)?;
+    write_in_place(file, &edited).map_err(CliError::Failed)
 }
 
 /// The placement with names and the parameter path of its translation.
@@ -196,7 +234,7 @@ fn write_report(out: &mut dyn Write, r: &Report, p: &Placement) -> std::io::Resu
         number(r.u),
         number(r.v)
     )?;
-    let frame = key_frame(p.frame);
+    let frame = frame_text(p.frame);
     writeln!(
         out,
         "{} in {}: Translate(alpha: {}, beta: {})",
@@ -235,30 +273,7 @@ fn write_report(out: &mut dyn Write, r: &Report, p: &Placement) -> std::io::Resu
     Ok(())
 }
 
-/// A frame as a key writes it: an integer without a fraction.
-fn key_frame(frame: f64) -> String {
-    if frame.fract() == 0.0 {
-        format!("{}", frame as i64)
-    } else {
-        format!("{frame}")
-    }
-}
-
-/// A number to six significant digits, without trailing zeros.
+/// A number as the report and the keys write it: six significant digits.
 fn number(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{}", if x == 0.0 { 0.0 } else { x });
-    }
-    let digits = (5 - x.abs().log10().floor() as i32).clamp(0, 12) as usize;
-    let text = format!("{x:.digits$}");
-    let text = if text.contains('.') {
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        text
-    };
-    if text == "-0" {
-        "0".to_string()
-    } else {
-        text
-    }
+    rounded_number_text(x as f32)
 }

@@ -107,6 +107,10 @@ pub enum LayerParam {
     MaskV(usize),
     /// `mask.feather`.
     MaskFeather,
+    /// `pin.u`.
+    PinU,
+    /// `pin.v`.
+    PinV,
     /// `stack[J].…`: a number of the J-th operation of the stack, from 0.
     Op { index: usize, param: OpParam },
 }
@@ -462,7 +466,9 @@ fn read_material(r: &mut Reader) -> Result<MaterialParam, String> {
 }
 
 fn read_layer(r: &mut Reader) -> Result<LayerParam, String> {
-    let fields = ["epsilon", "colour", "opacity", "feather", "mask", "stack"];
+    let fields = [
+        "epsilon", "colour", "opacity", "feather", "mask", "pin", "stack",
+    ];
     Ok(match r.name(&fields)? {
         "epsilon" => LayerParam::Epsilon,
         "colour" => LayerParam::Colour(r.optional_component(3)?),
@@ -472,6 +478,10 @@ fn read_layer(r: &mut Reader) -> Result<LayerParam, String> {
             "u" => LayerParam::MaskU(bound(r)?),
             "v" => LayerParam::MaskV(bound(r)?),
             _ => LayerParam::MaskFeather,
+        },
+        "pin" => match r.name(&["u", "v"])? {
+            "u" => LayerParam::PinU,
+            _ => LayerParam::PinV,
         },
         _ => {
             let index = r.index()?;
@@ -584,6 +594,8 @@ impl fmt::Display for ParamPath {
                     LayerParam::MaskU(i) => write!(f, "mask.u[{i}]"),
                     LayerParam::MaskV(i) => write!(f, "mask.v[{i}]"),
                     LayerParam::MaskFeather => f.write_str("mask.feather"),
+                    LayerParam::PinU => f.write_str("pin.u"),
+                    LayerParam::PinV => f.write_str("pin.v"),
                     LayerParam::Op { index, param } => {
                         write!(f, "stack[{index}].{}", param.name())
                     }

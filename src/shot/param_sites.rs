@@ -342,6 +342,7 @@ fn layer_sites<'a>(
         opacity,
         feather,
         mask,
+        pin,
     } = l;
     for (index, op) in stack.iter_mut().enumerate() {
         let mut number = |param, track, more: &[Step<'a>]| {
@@ -414,6 +415,18 @@ fn layer_sites<'a>(
             LayerParam::MaskFeather,
             &[Field("mask"), Field("feather")],
             TrackMut::Scalar(&mut mask.feather),
+        );
+    }
+    if let Some(pin) = pin {
+        site(
+            LayerParam::PinU,
+            &[Field("pin"), Field("u")],
+            TrackMut::Scalar(&mut pin.u),
+        );
+        site(
+            LayerParam::PinV,
+            &[Field("pin"), Field("v")],
+            TrackMut::Scalar(&mut pin.v),
         );
     }
 }
