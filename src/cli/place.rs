@@ -264,7 +264,7 @@ fn write_report(out: &mut dyn Write, r: &Report, p: &Placement) -> std::io::Resu
                 out,
                 "  {:<16} {:<10} at u = {}, v = {}: the highlight {shows}",
                 res.patch,
-                number(f64::from(res.nearest)),
+                format!("{:.5}", res.nearest),
                 number(res.u),
                 number(res.v)
             )?;
