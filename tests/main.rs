@@ -20,6 +20,7 @@ mod patch_files;
 mod raster_coverage;
 mod raster_determinism;
 mod raster_geometry;
+mod render_reuse;
 mod render_sphere;
 mod render_teapot;
 mod render_tessellate;

@@ -163,7 +163,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
 }
 
 /// One line per stage, in pipeline order, for `--stats`: what it processed and its time, or
-/// that the plan skipped it.
+/// that the previous frame's result was reused, or that the plan skipped it.
 fn stats_report(frame: i64, s: &RenderStats) -> String {
     let mut out = format!(
         "frame {frame} stats: {:.2} ms total, {} triangles (tessellation {})",
@@ -189,6 +189,8 @@ fn stats_report(frame: i64, s: &RenderStats) -> String {
                 st.pixels,
                 st.seconds * 1e3
             ));
+        } else if s.reused(stage) {
+            out.push_str(&format!("\n  {name:<12} {:>10}", "reused"));
         } else {
             out.push_str(&format!("\n  {name:<12} {:>10}", "skipped"));
         }

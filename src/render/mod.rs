@@ -21,6 +21,7 @@ mod settings;
 mod shade;
 mod stage;
 mod stats;
+mod surface_key;
 pub mod tessellate;
 mod visibility_shade;
 mod xtoon_tone;
