@@ -15,6 +15,7 @@ mod geometry_teapot;
 mod highlight_serde;
 mod highlight_sphere;
 mod highlight_stability;
+mod job_reload;
 mod model_parts;
 mod patch_files;
 mod raster_coverage;
