@@ -2,10 +2,13 @@
 //! usage, 1 a failure while working).
 
 mod bench;
+mod bench_loop;
 mod inspect;
 mod patches;
 mod probe;
 mod render;
+mod watch;
+mod watched;
 
 use std::process::ExitCode;
 
