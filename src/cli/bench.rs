@@ -1,5 +1,6 @@
 //! `glint bench`: measurements run from the command line, with progress bars and printed
-//! tables. `glint bench accuracy` sweeps the accuracy ladder (see `crate::accuracy`).
+//! tables. `glint bench accuracy` sweeps the accuracy ladder (see `crate::accuracy`); `glint
+//! bench loop` times an edit to a written frame (`super::bench_loop`).
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -16,7 +17,7 @@ use crate::accuracy::{csv, plot};
 use crate::formats::atomic::write_atomically;
 use crate::formats::load_patches;
 
-/// Measure what accuracy costs in time.
+/// Measure what accuracy costs in time, and how long an edit takes to reach a frame.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
     #[command(subcommand)]
@@ -26,6 +27,7 @@ pub struct BenchArgs {
 #[derive(Debug, Subcommand)]
 enum Bench {
     Accuracy(AccuracyArgs),
+    Loop(super::bench_loop::LoopArgs),
 }
 
 /// Sweep the accuracy ladder on the analytic sphere and time frames as they scale.
@@ -88,6 +90,7 @@ pub struct AccuracyArgs {
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     match &args.bench {
         Bench::Accuracy(args) => accuracy(args),
+        Bench::Loop(args) => super::bench_loop::run(args),
     }
 }
 

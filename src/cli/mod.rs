@@ -2,12 +2,15 @@
 //! usage, 1 a failure while working).
 
 mod bench;
+mod bench_loop;
 mod inspect;
 mod key;
 mod patches;
 mod place;
 mod probe;
 mod render;
+mod watch;
+mod watched;
 
 use std::process::ExitCode;
 

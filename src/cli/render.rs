@@ -27,6 +27,7 @@ use crate::shot::{Aov, Preset};
   glint render shots/sphere_ops.ron --frames 1-24 --preset preview --size 320x320
   glint render shots/crescent.ron --frames 1-48x2 --aov matte,patch_id --stats
   glint render shots/teapot_turntable.ron --frames 49-96 --skip-existing --quiet   # a farm task
+  glint render shots/teapot_turntable.ron --frames 12 --preset preview --watch     # tune, save, look
 
 Frame lists: 12 | 1-48 | 1-48x2 (every second frame) | 1,5,9-12.")]
 pub struct RenderArgs {
@@ -61,6 +62,12 @@ pub struct RenderArgs {
     /// Print nothing but errors
     #[arg(long)]
     quiet: bool,
+    /// Render, then render again whenever the shot, an include, a patch file or a texture
+    /// changes, until Ctrl-C: one line per render, one error line for a broken edit (the next
+    /// good save renders). An edit that keeps the camera and settings re-runs only the stages
+    /// it touches
+    #[arg(long, conflicts_with = "skip_existing")]
+    watch: bool,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -118,6 +125,13 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         threads: args.threads,
         output: args.out.clone(),
     };
+    if args.watch {
+        let printing = super::watch::Printing {
+            stats: args.stats,
+            quiet: args.quiet,
+        };
+        return super::watch::run(&args.shot, &overrides, printing);
+    }
     let failed = |e: JobError| {
         if e.is_bad_input() {
             CliError::BadInput(e.into())
@@ -169,8 +183,8 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
 }
 
 /// One line per stage, in pipeline order, for `--stats`: what it processed and its time, or
-/// that the plan skipped it.
-fn stats_report(frame: i64, s: &RenderStats) -> String {
+/// that the previous frame's result was reused, or that the plan skipped it.
+pub(super) fn stats_report(frame: i64, s: &RenderStats) -> String {
     let mut out = format!(
         "frame {frame} stats: {:.2} ms total, {} triangles (tessellation {})",
         s.total_seconds * 1e3,
@@ -195,6 +209,8 @@ fn stats_report(frame: i64, s: &RenderStats) -> String {
                 st.pixels,
                 st.seconds * 1e3
             ));
+        } else if s.reused(stage) {
+            out.push_str(&format!("\n  {name:<12} {:>10}", "reused"));
         } else {
             out.push_str(&format!("\n  {name:<12} {:>10}", "skipped"));
         }

@@ -2,26 +2,43 @@
 //! colours, depth, normals, (u, v) and the `N·H` heat map.
 
 use glam::{Vec2, Vec3, Vec4};
+use rayon::prelude::*;
 
 use super::srgb::{byte, linear_to_srgb};
 
 /// The `N·H` span the heat map shows below 1: a highlight of ε up to this is in view.
 pub const HEAT_RANGE: f32 = 0.1;
 
-/// RGBA8: sRGB-encoded colour, linear straight alpha.
+/// RGBA8: sRGB-encoded colour, linear straight alpha. Cel frames are mostly runs of one
+/// colour, so a pixel equal to the one before it takes its bytes without encoding them again
+/// (the transfer function's power is most of a written frame's time); blocks of pixels are
+/// encoded in parallel.
 pub fn colour_rgba8(colour: &[Vec4]) -> Vec<u8> {
+    let encode = |c: Vec4| {
+        [
+            byte(linear_to_srgb(c.x)),
+            byte(linear_to_srgb(c.y)),
+            byte(linear_to_srgb(c.z)),
+            byte(c.w),
+        ]
+    };
     colour
-        .iter()
-        .flat_map(|c| {
-            [
-                byte(linear_to_srgb(c.x)),
-                byte(linear_to_srgb(c.y)),
-                byte(linear_to_srgb(c.z)),
-                byte(c.w),
-            ]
+        .par_chunks(PIXELS_PER_JOB)
+        .flat_map_iter(|block| {
+            let mut last = (Vec4::ZERO, encode(Vec4::ZERO));
+            block.iter().map(move |&c| {
+                if c != last.0 {
+                    last = (c, encode(c));
+                }
+                last.1
+            })
         })
-        .collect()
+        .collect::<Vec<[u8; 4]>>()
+        .into_flattened()
 }
+
+/// Pixels per parallel job of the colour encoding.
+const PIXELS_PER_JOB: usize = 16384;
 
 /// Grey8: a value in [0, 1] per pixel (the highlight matte).
 pub fn grey8(values: &[f32]) -> Vec<u8> {
@@ -121,6 +138,24 @@ mod tests {
             colour_rgba8(&[Vec4::new(1.0, 0.0, 2.0, 0.5)]),
             [255, 0, 255, 128]
         );
+    }
+
+    #[test]
+    fn runs_of_one_colour_encode_as_each_pixel_alone() {
+        // Runs, changes, the background and NaN, across the blocks encoded in parallel.
+        let colours = [
+            Vec4::ZERO,
+            Vec4::new(0.2, 0.3, 0.4, 1.0),
+            Vec4::new(0.2, 0.3, 0.4, 1.0),
+            Vec4::new(0.9, 0.001, 0.5, 1.0),
+            Vec4::new(f32::NAN, 0.5, 0.5, 1.0),
+        ];
+        let image: Vec<Vec4> = (0..3 * PIXELS_PER_JOB + 7)
+            .map(|i| colours[(i / 3 + i / 1000) % colours.len()])
+            .collect();
+        let alone: Vec<u8> = image.iter().flat_map(|&c| colour_rgba8(&[c])).collect();
+        assert_eq!(colour_rgba8(&image), alone);
+        assert_eq!(colour_rgba8(&colours[1..2]), [124, 149, 170, 255]);
     }
 
     #[test]

@@ -22,6 +22,7 @@ mod place;
 mod write;
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use thiserror::Error;
 
@@ -81,13 +82,56 @@ impl JobError {
     }
 }
 
+/// `shot` with `overrides` applied, its settings and its frames ([`RenderJob::new`]).
+fn apply(mut shot: Shot, overrides: &Overrides) -> Result<(Shot, Settings, Vec<i64>), JobError> {
+    let refuse = |message: String| JobError::Overrides {
+        shot: shot.path.display().to_string(),
+        message,
+    };
+    let mut settings = shot.settings_with(overrides.preset, overrides.size);
+    if let Some(threads) = overrides.threads {
+        settings.threads = threads;
+    }
+    settings.validate().map_err(|e| refuse(e.to_string()))?;
+    let (first, last) = shot.frames;
+    let frames = match &overrides.frames {
+        Some(frames) => frames.clone(),
+        None => (first..=last).collect(),
+    };
+    if let Some(outside) = frames.iter().find(|f| !(first..=last).contains(*f)) {
+        return Err(refuse(format!(
+            "frame {outside} is outside the shot's frame range {first}-{last}"
+        )));
+    }
+    if let Some(aovs) = &overrides.aovs {
+        shot.aovs.clone_from(aovs);
+    }
+    if let Some(out) = &overrides.output {
+        let folder = shot.path.parent().unwrap_or(Path::new(""));
+        shot.output = resolve_path(folder, out);
+    }
+    check_numbered(&shot.output, frames.len()).map_err(refuse)?;
+    Ok((shot, settings, frames))
+}
+
 /// A shot ready to render: its settings, frames and output with the overrides applied, and a
 /// renderer that keeps the model's tessellation and working memory from frame to frame.
 pub struct RenderJob {
     shot: Shot,
+    overrides: Overrides,
     settings: Settings,
     frames: Vec<i64>,
     renderer: Renderer,
+}
+
+/// What [`RenderJob::reload`] did with the model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reloaded {
+    /// The model is the same patch for patch: the renderer, with its tessellation and the
+    /// last frame's surfaces, was kept.
+    ModelKept,
+    /// The model changed (a patch file, or an instance's file or placement): a new renderer.
+    ModelChanged,
 }
 
 impl RenderJob {
@@ -99,41 +143,37 @@ impl RenderJob {
     /// The job of rendering `shot` as `overrides` ask: every frame must lie in the shot's
     /// range, the settings must be valid, and an output pattern for more than one frame must
     /// number them.
-    pub fn new(mut shot: Shot, overrides: &Overrides) -> Result<Self, JobError> {
-        let refuse = |message: String| JobError::Overrides {
-            shot: shot.path.display().to_string(),
-            message,
-        };
-        let mut settings = shot.settings_with(overrides.preset, overrides.size);
-        if let Some(threads) = overrides.threads {
-            settings.threads = threads;
-        }
-        settings.validate().map_err(|e| refuse(e.to_string()))?;
-        let (first, last) = shot.frames;
-        let frames = match &overrides.frames {
-            Some(frames) => frames.clone(),
-            None => (first..=last).collect(),
-        };
-        if let Some(outside) = frames.iter().find(|f| !(first..=last).contains(*f)) {
-            return Err(refuse(format!(
-                "frame {outside} is outside the shot's frame range {first}-{last}"
-            )));
-        }
-        if let Some(aovs) = &overrides.aovs {
-            shot.aovs.clone_from(aovs);
-        }
-        if let Some(out) = &overrides.output {
-            let folder = shot.path.parent().unwrap_or(Path::new(""));
-            shot.output = resolve_path(folder, out);
-        }
-        check_numbered(&shot.output, frames.len()).map_err(refuse)?;
-        let renderer = Renderer::new(std::sync::Arc::clone(&shot.library));
+    pub fn new(shot: Shot, overrides: &Overrides) -> Result<Self, JobError> {
+        let (shot, settings, frames) = apply(shot, overrides)?;
+        let renderer = Renderer::new(Arc::clone(&shot.library));
         Ok(Self {
             shot,
+            overrides: overrides.clone(),
             settings,
             frames,
             renderer,
         })
+    }
+
+    /// Loads the shot again from its file, with the same overrides, after an edit. When the
+    /// model is the same patch for patch, the new shot shares this job's model and the job
+    /// keeps its renderer, so that the next frame reuses the tessellation and, if its camera
+    /// and settings are those of the last frame rendered, that frame's surfaces too. On an
+    /// error the job is left as it was.
+    pub fn reload(&mut self) -> Result<Reloaded, JobError> {
+        let mut shot = load_shot(&self.shot.path)?;
+        let reloaded = if *shot.library == **self.renderer.library() {
+            shot.library = Arc::clone(self.renderer.library());
+            Reloaded::ModelKept
+        } else {
+            Reloaded::ModelChanged
+        };
+        let (shot, settings, frames) = apply(shot, &self.overrides)?;
+        if reloaded == Reloaded::ModelChanged {
+            self.renderer = Renderer::new(Arc::clone(&shot.library));
+        }
+        (self.shot, self.settings, self.frames) = (shot, settings, frames);
+        Ok(reloaded)
     }
 
     /// The shot, with the overridden AOVs and output.

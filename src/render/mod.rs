@@ -21,6 +21,7 @@ mod settings;
 mod shade;
 mod stage;
 mod stats;
+mod surface_key;
 mod surface_point;
 pub mod tessellate;
 mod visibility_shade;

@@ -1,6 +1,6 @@
 //! The plan of a frame: which stages the scene and settings call for, decided before any stage
-//! runs. A stage the plan leaves out does not run, and [`RenderStats`](super::RenderStats)
-//! shows it.
+//! runs, and which of them the previous frame's results serve. A stage the plan leaves out does
+//! not run, and [`RenderStats`](super::RenderStats) shows it.
 
 use super::scene::{Aovs, Scene, Tone};
 use super::settings::{Antialias, FrameMode, Settings};
@@ -17,12 +17,18 @@ pub enum Surfaces {
 }
 
 /// The stages one frame runs: the one place that decides them.
+///
+/// A stage the frame calls for either runs or, when its result depends only on what the
+/// previous frame's did ([`Plan::depends_on_surfaces_only`]) and that is unchanged, is reused:
+/// the previous frame's result serves, and the stage does no work.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Plan {
     /// Where the shade stage reads the surface.
     pub surfaces: Surfaces,
     /// Per stage in [`Stage::ALL`] order, whether it runs.
     runs: [bool; Stage::COUNT],
+    /// Per stage in [`Stage::ALL`] order, whether the previous frame's result serves instead.
+    reused: [bool; Stage::COUNT],
 }
 
 impl Plan {
@@ -67,17 +73,76 @@ impl Plan {
             Stage::Aov => aovs,
             Stage::Resolve => settings.samples_per_side() > 1,
         });
-        Self { surfaces, runs }
+        Self {
+            surfaces,
+            runs,
+            reused: [false; Stage::COUNT],
+        }
     }
 
-    /// Whether `stage` runs.
+    /// Whether `stage`'s result depends only on the model, the camera, the image and accuracy
+    /// settings, and where the shade stage reads surfaces — not on any material, highlight,
+    /// light or outline setting — so that a frame that changes none of those can reuse it:
+    ///
+    /// - the mesh, the visibility buffer and the G-buffer (whose frames face the eye, not the
+    ///   light) depend on nothing else;
+    /// - the X-Toon detail reads the tone's parameters and the light, the edge widths the
+    ///   highlight's layers, and the shade stage both; the outlines draw over the shaded colour
+    ///   in the outline colour; the matte and `N·H` AOVs come from the shade stage, and the
+    ///   resolve averages its colour.
+    #[must_use]
+    pub const fn depends_on_surfaces_only(stage: Stage) -> bool {
+        match stage {
+            Stage::Tessellate | Stage::Rasterize | Stage::GBuffer => true,
+            Stage::Detail
+            | Stage::EdgeWidths
+            | Stage::Shade
+            | Stage::Outline
+            | Stage::Aov
+            | Stage::Resolve => false,
+        }
+    }
+
+    /// This plan with every stage it runs that [depends on surfaces
+    /// only](Plan::depends_on_surfaces_only) reused instead: what a frame runs when the
+    /// previous frame of the same renderer had the same surfaces.
+    #[must_use]
+    pub fn reusing_surfaces(mut self) -> Self {
+        for stage in Stage::ALL {
+            let k = stage.index();
+            if self.runs[k] && Self::depends_on_surfaces_only(stage) {
+                self.runs[k] = false;
+                self.reused[k] = true;
+            }
+        }
+        self
+    }
+
+    /// Whether `stage` runs: it is called for and not reused.
     #[must_use]
     pub fn runs(&self, stage: Stage) -> bool {
         self.runs[stage.index()]
     }
 
+    /// Whether the previous frame's result of `stage` serves this frame instead of running it.
+    #[must_use]
+    pub fn reuses(&self, stage: Stage) -> bool {
+        self.reused[stage.index()]
+    }
+
+    /// Whether the frame uses `stage`'s result: it runs or is reused.
+    #[must_use]
+    pub fn uses(&self, stage: Stage) -> bool {
+        self.runs(stage) || self.reuses(stage)
+    }
+
     /// The stages that run, in pipeline order.
     pub fn stages(&self) -> impl Iterator<Item = Stage> + '_ {
         Stage::ALL.into_iter().filter(|&stage| self.runs(stage))
+    }
+
+    /// The stages whose previous result is reused, in pipeline order.
+    pub fn reused_stages(&self) -> impl Iterator<Item = Stage> + '_ {
+        Stage::ALL.into_iter().filter(|&stage| self.reuses(stage))
     }
 }

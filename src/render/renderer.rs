@@ -1,5 +1,6 @@
 //! One frame, stage by stage, as the plan decides: tessellate (cached) ▸ rasterize ▸ G-buffer ▸
-//! detail ▸ edge widths ▸ shade ▸ outline ▸ AOVs ▸ resolve ([`Stage`]).
+//! detail ▸ edge widths ▸ shade ▸ outline ▸ AOVs ▸ resolve ([`Stage`]), the first three reused
+//! from the previous frame when its surfaces are the same.
 
 use std::ops::{Add, Mul};
 use std::sync::Arc;
@@ -18,6 +19,7 @@ use super::settings::Settings;
 use super::shade::{shade, ShadeBuffers, Shaded};
 use super::stage::Stage;
 use super::stats::{timed, RenderStats};
+use super::surface_key::SurfaceKey;
 use super::tessellate::{Mesh, Tessellator};
 use super::visibility_shade::shade_visibility;
 use super::xtoon_tone::{self, Ahead};
@@ -69,7 +71,10 @@ impl AovImages {
 }
 
 /// Renders frames of one model, keeping its tessellation, working memory and worker threads
-/// between frames.
+/// between frames. A frame whose camera, image and accuracy settings are the previous frame's
+/// (only materials, highlights, the light or outline settings changed) reuses its mesh,
+/// visibility buffer and G-buffer: only the stages those changes touch run
+/// ([`Plan::reusing_surfaces`]), and the bytes are those of a fresh renderer's frame.
 pub struct Renderer {
     library: Arc<PatchLibrary>,
     stages: Stages,
@@ -79,6 +84,8 @@ pub struct Renderer {
 /// What the stages keep from one frame to the next: the mesh, and every buffer whose size
 /// depends only on the image and the mesh, so that a frame allocates just the images it returns.
 struct Stages {
+    /// What the mesh, visibility buffer and G-buffer now hold, once a frame has filled them.
+    kept: Option<KeptSurfaces>,
     tessellator: Tessellator,
     /// The mesh's vertices in clip space.
     clip: Vec<Vec4>,
@@ -95,6 +102,7 @@ impl Renderer {
         let library = library.into();
         Self {
             stages: Stages {
+                kept: None,
                 tessellator: Tessellator::new(Arc::clone(&library)),
                 clip: Vec::new(),
                 rasterizer: Rasterizer::new(),
@@ -154,6 +162,13 @@ impl Renderer {
     }
 }
 
+/// The surfaces the stages' buffers hold: their key, and the samples the rasterizer covered.
+#[derive(Clone, Copy)]
+struct KeptSurfaces {
+    key: SurfaceKey,
+    covered: u64,
+}
+
 /// What a frame is drawn at: its image in samples and the scene's view.
 #[derive(Clone, Copy)]
 struct Frame {
@@ -184,6 +199,9 @@ impl Stages {
         settings: &Settings,
     ) -> RenderedFrame {
         let plan = Plan::new(scene, settings);
+        let key = SurfaceKey::new(&scene.camera, settings, &plan);
+        let reuse = self.kept.is_some_and(|kept| kept.key == key);
+        let plan = if reuse { plan.reusing_surfaces() } else { plan };
         let mut stats = RenderStats::new(plan);
         let k = settings.samples_per_side();
         let frame = Frame {
@@ -197,6 +215,7 @@ impl Stages {
                 .view_projection(settings.width as f32 / settings.height as f32),
         };
         let Stages {
+            kept,
             tessellator,
             clip,
             rasterizer,
@@ -206,15 +225,34 @@ impl Stages {
             outlining,
         } = self;
 
-        let mesh = tessellate(tessellator, settings, &frame, &mut stats);
-        rasterize(rasterizer, mesh, &frame, clip, visibility, &mut stats);
+        let (mesh, covered) = match kept.filter(|_| reuse) {
+            Some(surfaces) => {
+                let mesh = tessellator
+                    .cached_mesh()
+                    .expect("kept surfaces were made from the cached mesh");
+                stats.triangles = mesh.triangles.len();
+                (mesh, surfaces.covered)
+            }
+            None => {
+                // Until the buffers are filled again they hold no frame's surfaces.
+                *kept = None;
+                let mesh = tessellate(tessellator, settings, &frame, &mut stats);
+                let covered = rasterize(rasterizer, mesh, &frame, clip, visibility, &mut stats);
+                if plan.runs(Stage::GBuffer) {
+                    let edges = plan.runs(Stage::Outline).then_some(&mut outlining.surfaces);
+                    fill_gbuffer(
+                        gbuffer, visibility, mesh, library, scene, settings, edges, &mut stats,
+                    );
+                }
+                *kept = Some(KeptSurfaces { key, covered });
+                (mesh, covered)
+            }
+        };
         let mut shaded = match plan.surfaces {
-            Surfaces::Visibility => shade_from_visibility(visibility, mesh, scene, &mut stats),
+            Surfaces::Visibility => {
+                shade_from_visibility(visibility, mesh, scene, covered, &mut stats)
+            }
             Surfaces::Texels => {
-                let edges = plan.runs(Stage::Outline).then_some(&mut outlining.surfaces);
-                fill_gbuffer(
-                    gbuffer, visibility, mesh, library, scene, settings, edges, &mut stats,
-                );
                 let views = xtoon_tone::views(scene);
                 let ahead = plan
                     .runs(Stage::Detail)
@@ -293,7 +331,7 @@ fn tessellate<'t>(
 }
 
 /// [`Stage::Rasterize`]: the mesh's vertices to clip space, then its triangles into the
-/// visibility buffer at the sample resolution.
+/// visibility buffer at the sample resolution. Returns the samples covered.
 fn rasterize(
     rasterizer: &mut Rasterizer,
     mesh: &Mesh,
@@ -301,7 +339,7 @@ fn rasterize(
     clip: &mut Vec<Vec4>,
     visibility: &mut VisibilityBuffer,
     stats: &mut RenderStats,
-) {
+) -> u64 {
     let (raster, seconds) = timed(|| {
         mesh.positions
             .par_iter()
@@ -315,18 +353,19 @@ fn rasterize(
         rasterizer.rasterize_into(frame.samples, clip, &mesh.triangles, &options, visibility)
     });
     stats.record(Stage::Rasterize, raster.pixels_covered, seconds);
+    raster.pixels_covered
 }
 
 /// [`Stage::Shade`] straight from the visibility buffer (the plan's
-/// [`Surfaces::Visibility`]).
+/// [`Surfaces::Visibility`]), which covers `covered` samples.
 fn shade_from_visibility(
     visibility: &VisibilityBuffer,
     mesh: &Mesh,
     scene: &Scene,
+    covered: u64,
     stats: &mut RenderStats,
 ) -> Shaded {
     let (colour, seconds) = timed(|| shade_visibility(visibility, mesh, scene));
-    let covered = stats[Stage::Rasterize].pixels;
     stats.record(Stage::Shade, covered, seconds);
     Shaded {
         colour,

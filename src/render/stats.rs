@@ -1,5 +1,6 @@
 //! Render statistics: what each stage of a frame did and how long it took. A stage the plan
-//! leaves out reports that it did not run.
+//! leaves out reports that it did not run, and one whose previous result served, that it was
+//! reused.
 
 use std::ops::Index;
 use std::time::Instant;
@@ -22,11 +23,13 @@ pub struct StageStats {
 /// Per-stage statistics of one rendered frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderStats {
-    /// The stages the frame ran.
+    /// The stages the frame ran and reused.
     pub plan: Plan,
-    /// Per stage, in [`Stage::ALL`] order; zero for a stage that did not run.
+    /// Per stage, in [`Stage::ALL`] order; zero for a stage that did not run (reused or not
+    /// called for).
     stages: [StageStats; Stage::COUNT],
-    /// Whether the mesh had to be rebuilt (false when the cached one served).
+    /// Whether the mesh had to be rebuilt (false when the cached one served, or the
+    /// tessellation was reused).
     pub tessellation_rebuilt: bool,
     pub triangles: usize,
     /// NURBS frames evaluated per pixel (exact and refined frames).
@@ -62,6 +65,13 @@ impl RenderStats {
         self.plan.runs(stage)
     }
 
+    /// Whether `stage` did not run because the previous frame's result served
+    /// ([`Plan::reusing_surfaces`]).
+    #[must_use]
+    pub fn reused(&self, stage: Stage) -> bool {
+        self.plan.reuses(stage)
+    }
+
     /// The stages that ran, in pipeline order, with what each did.
     pub fn ran_stages(&self) -> impl Iterator<Item = (Stage, StageStats)> + '_ {
         self.plan.stages().map(|stage| (stage, self[stage]))
@@ -81,8 +91,8 @@ impl Index<Stage> for RenderStats {
     }
 }
 
-/// As JSON: `stages` maps the name of each stage that ran to its work, in pipeline order; the
-/// counts follow.
+/// As JSON: `stages` maps the name of each stage that ran to its work, in pipeline order;
+/// `reused` lists the stages whose previous result served; the counts follow.
 impl Serialize for RenderStats {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         struct Stages<'a>(&'a RenderStats);
@@ -95,8 +105,10 @@ impl Serialize for RenderStats {
                 map.end()
             }
         }
-        let mut s = serializer.serialize_struct("RenderStats", 7)?;
+        let reused: Vec<&str> = self.plan.reused_stages().map(Stage::name).collect();
+        let mut s = serializer.serialize_struct("RenderStats", 8)?;
         s.serialize_field("stages", &Stages(self))?;
+        s.serialize_field("reused", &reused)?;
         s.serialize_field("tessellation_rebuilt", &self.tessellation_rebuilt)?;
         s.serialize_field("triangles", &self.triangles)?;
         s.serialize_field("exact_frames", &self.exact_frames)?;

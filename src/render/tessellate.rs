@@ -91,6 +91,12 @@ impl Tessellator {
         (mesh, rebuilt)
     }
 
+    /// The mesh last made by [`Tessellator::mesh`], if any.
+    #[must_use]
+    pub fn cached_mesh(&self) -> Option<&Mesh> {
+        self.cached.as_ref().map(|(_, mesh)| mesh)
+    }
+
     /// Segments per span for every patch: the density's own choice, then the largest within
     /// each class of directions that share edges, so shared edges are sampled alike.
     pub fn segments(
