@@ -17,6 +17,7 @@ mod highlight_sphere;
 mod highlight_stability;
 mod model_parts;
 mod patch_files;
+mod pictures;
 mod raster_coverage;
 mod raster_determinism;
 mod raster_geometry;

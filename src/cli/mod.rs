@@ -3,6 +3,7 @@
 
 mod bench;
 mod inspect;
+mod patch_map;
 mod patches;
 mod probe;
 mod render;
