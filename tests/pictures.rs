@@ -1,16 +1,18 @@
-//! Pictures for people: `glint patches --map`, the patch map of a model or a shot, through the
-//! API and the binary.
+//! Pictures for people: `glint patches --map` (the patch map of a model or a shot) and
+//! `glint sheet` (tiles of frames or variants in one PNG), through the API and the binary.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 use std::process::Output;
 
-use image::RgbaImage;
+use image::{Rgba, RgbaImage};
 
 use glint::formats::image_encoding::patch_colour;
 use glint::picture::patch_map::{MAP_BACKGROUND, SEAM};
+use glint::picture::sheet::SHEET_BACKGROUND;
 use glint::picture::{
     part_legend, patch_labels, render_patch_map, try_three_quarter_camera, PatchMap, PixelRect,
+    SheetLayout,
 };
 use glint::render::Settings;
 use glint::shot::{load_shot, Preset};
@@ -248,7 +250,7 @@ fn a_shot_map_is_seen_through_the_shot_camera_at_the_frame() {
 #[test]
 fn map_options_that_cannot_be_met_exit_2_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("m.png");
+    let out = dir.path().join("maps/m.png");
     for (args, says) in [
         (
             vec![
@@ -296,6 +298,237 @@ fn map_options_that_cannot_be_met_exit_2_and_write_nothing() {
             stderr(&result)
         );
         assert!(result.stdout.is_empty(), "{args:?}");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "{args:?}"
+        );
+    }
+}
+
+#[test]
+fn a_sheet_over_time_holds_each_frame_as_rendered_alone_with_its_caption() {
+    let dir = tempfile::tempdir().unwrap();
+    let sheet_path = dir.path().join("sheets/ops.png");
+    let shot = "shots/sphere_ops.ron";
+    let frames = [1, 30, 61];
+    succeed(&[
+        "sheet",
+        shot,
+        "--frames",
+        "1,30,61",
+        "--tile",
+        "96x64",
+        "--out",
+        text(&sheet_path),
+    ]);
+    succeed(&[
+        "render",
+        shot,
+        "--frames",
+        "1,30,61",
+        "--size",
+        "96x64",
+        "--preset",
+        "preview",
+        "--aov",
+        "none",
+        "--out",
+        text(&dir.path().join("f.####.png")),
+    ]);
+    let sheet = png(&sheet_path);
+    // Three tiles: a 2 × 2 grid, 4 pixels between cells and around them, a 12-pixel caption
+    // strip (8-pixel glyphs and 2 pixels of padding) under each tile.
+    assert_eq!(
+        sheet.dimensions(),
+        (4 + 2 * (96 + 4), 4 + 2 * (64 + 12 + 4))
+    );
+    let captions: Vec<String> = frames.iter().map(|f| format!("frame {f}")).collect();
+    let layout = SheetLayout::new(&captions, (96, 64), None).unwrap();
+    assert_eq!((layout.columns, layout.rows), (2, 2));
+    let mut strips = Vec::new();
+    for (i, frame) in frames.iter().enumerate() {
+        let alone = png(&dir.path().join(format!("f.{frame:04}.png")));
+        let (x0, y0) = layout.tile_origin(i);
+        assert_eq!(
+            (x0, y0),
+            (4 + (i as u32 % 2) * 100, 4 + (i as u32 / 2) * 80)
+        );
+        for (x, y, p) in alone.enumerate_pixels() {
+            assert_eq!(
+                sheet.get_pixel(x0 + x, y0 + y),
+                p,
+                "frame {frame} at ({x}, {y})"
+            );
+        }
+        // The caption: ink under the tile, and a different picture for each frame's number.
+        let strip: Vec<Rgba<u8>> = (0..12)
+            .flat_map(|y| (0..96).map(move |x| (x, y)))
+            .map(|(x, y)| *sheet.get_pixel(x0 + x, y0 + 64 + y))
+            .collect();
+        assert!(strip.iter().filter(|p| p[0] < 60 && p[3] == 255).count() > 40);
+        strips.push(strip);
+    }
+    assert!(strips[0] != strips[1] && strips[1] != strips[2]);
+    // The fourth cell is empty.
+    let (x0, y0) = layout.tile_origin(3);
+    assert_eq!(*sheet.get_pixel(x0 + 48, y0 + 32), SHEET_BACKGROUND);
+    // The frames differ, so the comparison above tells tiles apart.
+    assert_ne!(
+        png(&dir.path().join("f.0001.png")),
+        png(&dir.path().join("f.0061.png"))
+    );
+
+    // --columns 3: one row.
+    succeed(&[
+        "sheet",
+        shot,
+        "--frames",
+        "1,30,61",
+        "--tile",
+        "96x64",
+        "--columns",
+        "3",
+        "--out",
+        text(&sheet_path),
+    ]);
+    assert_eq!(png(&sheet_path).dimensions(), (4 + 3 * 100, 4 + 80));
+}
+
+#[test]
+fn sheet_tiles_default_to_320_pixels_wide_at_the_shot_aspect() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("tt.png");
+    // The turntable is 640 × 360: tiles of 320 × 180; a caption fits at scale 2 (20 pixels).
+    succeed(&[
+        "sheet",
+        "shots/teapot_turntable.ron",
+        "--frames",
+        "1",
+        "--out",
+        text(&out),
+    ]);
+    assert_eq!(png(&out).dimensions(), (4 + 320 + 4, 4 + 180 + 20 + 4));
+}
+
+#[test]
+fn sheets_that_cannot_be_made_exit_2_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sheets/s.png");
+    let o = text(&out);
+    for (args, says) in [
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--frames",
+                "1-70",
+                "--out",
+                o,
+            ],
+            "70 tiles are more than the 64",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--frames",
+                "70-80",
+                "--out",
+                o,
+            ],
+            "frame 73 is outside the shot's frame range 1-72",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--vary",
+                "a=1,2,3,4,5,6,7,8",
+                "--vary",
+                "b=1,2,3,4,5,6,7,8,9",
+                "--out",
+                o,
+            ],
+            "72 variants (8 × 9), more than the 64",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--vary",
+                "a=1",
+                "--vary",
+                "a=2",
+                "--out",
+                o,
+            ],
+            "given twice",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--vary",
+                "a=(1, 2",
+                "--out",
+                o,
+            ],
+            "'(' is not closed",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--frame",
+                "36",
+                "--vary",
+                "highlights[0].layers[1].stack[1].alpha=0.1,0.3",
+                "--out",
+                o,
+            ],
+            "--vary is not available yet",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--frames",
+                "1",
+                "--columns",
+                "0",
+                "--out",
+                o,
+            ],
+            "--columns must be at least 1",
+        ),
+        (vec!["sheet", "shots/crescent.ron", "--out", o], "--frames"),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--frames",
+                "1,2",
+                "--tile",
+                "9000x10",
+                "--out",
+                o,
+            ],
+            "over the 16384",
+        ),
+    ] {
+        let result = glint_with(&args);
+        assert_eq!(
+            result.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            stderr(&result)
+        );
+        assert!(
+            stderr(&result).contains(says),
+            "{args:?}: {}",
+            stderr(&result)
+        );
         assert_eq!(
             std::fs::read_dir(dir.path()).unwrap().count(),
             0,

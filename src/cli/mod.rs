@@ -7,6 +7,8 @@ mod patch_map;
 mod patches;
 mod probe;
 mod render;
+mod sheet;
+mod vary;
 
 use std::process::ExitCode;
 
@@ -27,6 +29,7 @@ enum Command {
     Inspect(inspect::InspectArgs),
     Probe(probe::ProbeArgs),
     Patches(patches::PatchesArgs),
+    Sheet(sheet::SheetArgs),
     Bench(bench::BenchArgs),
 }
 
@@ -49,6 +52,7 @@ pub fn main() -> ExitCode {
         Command::Inspect(args) => inspect::run(&args),
         Command::Probe(args) => probe::run(&args),
         Command::Patches(args) => patches::run(&args),
+        Command::Sheet(args) => sheet::run(&args),
         Command::Bench(args) => bench::run(&args),
     };
     match result {

@@ -64,7 +64,7 @@ pub struct RenderArgs {
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
-enum PresetArg {
+pub(super) enum PresetArg {
     /// Fast feedback: coarse tessellation, interpolated frames, no anti-aliasing
     Preview,
     /// Finished frames: fine tessellation, exact frames, supersampling
