@@ -66,6 +66,7 @@ pub mod highlight;
 pub mod job;
 pub mod math;
 pub mod param;
+pub mod picture;
 pub mod render;
 pub mod shot;
 pub mod toon;

@@ -22,6 +22,7 @@ mod highlight_stability;
 mod job_reload;
 mod model_parts;
 mod patch_files;
+mod pictures;
 mod raster_coverage;
 mod raster_determinism;
 mod raster_geometry;

@@ -5,10 +5,13 @@ mod bench;
 mod bench_loop;
 mod inspect;
 mod key;
+mod patch_map;
 mod patches;
 mod place;
 mod probe;
 mod render;
+mod sheet;
+mod vary;
 mod watch;
 mod watched;
 
@@ -33,6 +36,7 @@ enum Command {
     Probe(probe::ProbeArgs),
     Patches(patches::PatchesArgs),
     Place(place::PlaceArgs),
+    Sheet(sheet::SheetArgs),
     Bench(bench::BenchArgs),
 }
 
@@ -75,6 +79,7 @@ pub fn main() -> ExitCode {
         Command::Probe(args) => probe::run(&args),
         Command::Patches(args) => patches::run(&args),
         Command::Place(args) => place::run(&args),
+        Command::Sheet(args) => sheet::run(&args),
         Command::Bench(args) => bench::run(&args),
     };
     match result {

@@ -3,6 +3,7 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use anyhow::anyhow;
 use clap::Args;
@@ -12,7 +13,7 @@ use super::{write_stdout, CliError};
 use crate::formats::load_patches;
 use crate::formats::ron_paths::top_level_name;
 use crate::geom::{Edge, PatchLibrary};
-use crate::shot::load_shot;
+use crate::shot::{load_shot, Shot};
 
 /// List the patches and named parts (groups) of a patch file, or of a shot's instances.
 ///
@@ -22,17 +23,35 @@ use crate::shot::load_shot;
 /// Each part is listed with the patches it groups. Parts come from a patch library's `groups`,
 /// from a `NAME.parts.ron` file beside the model (`teapot.bpt` → `teapot.parts.ron`), and from
 /// an instance's `groups` in the shot.
+///
+/// With --map, also draws the patch map: the model as the shot's camera sees it at --frame (or,
+/// for a patch file, from a three-quarter view framing it), each patch in its own flat colour
+/// shaded lightly by how it faces the eye, the seams between patches and the silhouette drawn
+/// dark, each visible patch labelled with its name, and a legend of the parts and their
+/// patches (`lid: 24-27`) in the emptiest corner.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:
   glint patches patches/teapot.bpt
   glint patches shots/teapot_turntable.ron
-  glint patches patches/car_panels.ron --json")]
+  glint patches patches/car_panels.ron --json
+  glint patches patches/teapot.bpt --map out/teapot.map.png
+  glint patches shots/teapot_turntable.ron --map out/turntable.map.png --frame 48")]
 pub struct PatchesArgs {
     /// A patch file (.ron library or .bpt), or a shot file
     file: PathBuf,
     /// Print JSON instead of a table
     #[arg(long)]
     json: bool,
+    /// Also draw the patch map to this PNG (written atomically)
+    #[arg(long, value_name = "OUT.png")]
+    map: Option<PathBuf>,
+    /// The frame of the shot whose camera the map shows (fractional frames allowed)
+    /// [default: the shot's first frame]
+    #[arg(long, value_name = "F", requires = "map")]
+    frame: Option<f64>,
+    /// The map's size [default: the shot's resolution, or 800x600 for a patch file]
+    #[arg(long, value_name = "WxH", requires = "map", value_parser = super::render::parse_size)]
+    size: Option<(u32, u32)>,
 }
 
 /// One patch, as listed.
@@ -61,7 +80,16 @@ struct Listing {
 }
 
 pub fn run(args: &PatchesArgs) -> Result<(), CliError> {
-    let library = read(&args.file).map_err(CliError::BadInput)?;
+    let (library, shot) = read(&args.file).map_err(CliError::BadInput)?;
+    if let Some(out) = &args.map {
+        let view = super::patch_map::MapView {
+            file: &args.file,
+            shot: shot.as_ref(),
+            frame: args.frame,
+            size: args.size,
+        };
+        super::patch_map::write_map(&library, &view, out)?;
+    }
     let listing = listing(&library);
     write_stdout("the listing", |out| {
         if args.json {
@@ -75,8 +103,8 @@ pub fn run(args: &PatchesArgs) -> Result<(), CliError> {
 }
 
 /// The model of a patch file, or the placed model of a shot (a `.ron` file whose top level is
-/// `Shot(…)`).
-fn read(path: &Path) -> anyhow::Result<PatchLibrary> {
+/// `Shot(…)`) and the shot.
+fn read(path: &Path) -> anyhow::Result<(Arc<PatchLibrary>, Option<Shot>)> {
     let is_ron = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("ron"));
@@ -85,10 +113,10 @@ fn read(path: &Path) -> anyhow::Result<PatchLibrary> {
             .map_err(|e| anyhow!("{}: cannot read the file: {e}", path.display()))?;
         if top_level_name(&text) == Some("Shot") {
             let shot = load_shot(path)?;
-            return Ok((*shot.library).clone());
+            return Ok((Arc::clone(&shot.library), Some(shot)));
         }
     }
-    Ok(load_patches(path)?)
+    Ok((Arc::new(load_patches(path)?), None))
 }
 
 fn listing(library: &PatchLibrary) -> Listing {

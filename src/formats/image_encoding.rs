@@ -53,24 +53,32 @@ pub fn patch_colours_rgba8(ids: &[u32]) -> Vec<u8> {
             if id == u32::MAX {
                 return [0, 0, 0, 0];
             }
-            let hue = (id as f32 * 0.618_034).fract() * 6.0;
-            let x = 1.0 - (hue % 2.0 - 1.0).abs();
-            let (r, g, b) = match hue as u32 {
-                0 => (1.0, x, 0.0),
-                1 => (x, 1.0, 0.0),
-                2 => (0.0, 1.0, x),
-                3 => (0.0, x, 1.0),
-                4 => (x, 0.0, 1.0),
-                _ => (1.0, 0.0, x),
-            };
-            [
-                byte(0.25 + 0.7 * r),
-                byte(0.25 + 0.7 * g),
-                byte(0.25 + 0.7 * b),
-                255,
-            ]
+            let [r, g, b] = patch_colour(id);
+            [r, g, b, 255]
         })
         .collect()
+}
+
+/// The flat colour of patch `id` (sRGB bytes): the hue `h = fract(0.618034 · id)` of the
+/// golden angle, so that consecutive indices lie far apart on the colour wheel, at full
+/// saturation, each channel `c` in [0, 1] written as `0.25 + 0.7 c`.
+#[must_use]
+pub fn patch_colour(id: u32) -> [u8; 3] {
+    let hue = (id as f32 * 0.618_034).fract() * 6.0;
+    let x = 1.0 - (hue % 2.0 - 1.0).abs();
+    let (r, g, b) = match hue as u32 {
+        0 => (1.0, x, 0.0),
+        1 => (x, 1.0, 0.0),
+        2 => (0.0, 1.0, x),
+        3 => (0.0, x, 1.0),
+        4 => (x, 0.0, 1.0),
+        _ => (1.0, 0.0, x),
+    };
+    [
+        byte(0.25 + 0.7 * r),
+        byte(0.25 + 0.7 * g),
+        byte(0.25 + 0.7 * b),
+    ]
 }
 
 /// Grey16 (big-endian): the patch index itself, 65535 where no patch is.

@@ -42,6 +42,19 @@ pub fn write_png(
             pixels.len()
         )));
     }
+    // The encoder takes 16-bit samples in native byte order and writes them big-endian, as PNG
+    // stores them.
+    let native: Vec<u8>;
+    let pixels = match layout {
+        PngLayout::Gray16 => {
+            native = pixels
+                .chunks_exact(2)
+                .flat_map(|b| u16::from_be_bytes([b[0], b[1]]).to_ne_bytes())
+                .collect();
+            &native
+        }
+        PngLayout::Rgba8 | PngLayout::Gray8 => pixels,
+    };
     write_atomically(path, |out| {
         PngEncoder::new(out)
             .write_image(pixels, width, height, color)
@@ -66,6 +79,17 @@ mod tests {
             .map(|e| e.unwrap().file_name())
             .collect();
         assert_eq!(names, ["a.png"]);
+    }
+
+    #[test]
+    fn sixteen_bit_samples_given_big_endian_decode_to_their_values() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("g.png");
+        let values: [u16; 3] = [21, 0x0102, 65_535];
+        let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
+        write_png(&path, 3, 1, PngLayout::Gray16, &bytes).unwrap();
+        let decoded = image::open(&path).unwrap().to_luma16();
+        assert_eq!(decoded.as_raw(), &values);
     }
 
     #[test]
