@@ -2,7 +2,7 @@
 //! place with every other byte kept, bad paths and values refused with exit 2 and nothing
 //! written, keys deleted, and the examples of `--help` and docs/shot-format.md run.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Output;
 
 use crate::common::{repo_file, stderr};
@@ -312,15 +312,8 @@ fn commands(text: &str) -> Vec<String> {
 
 /// Runs each of `commands` with `sh` in `dir`, `glint` being the binary under test.
 fn run_all(dir: &Path, commands: &[String]) {
-    let binary = PathBuf::from(env!("CARGO_BIN_EXE_glint"));
     for command in commands {
-        let line = command.replacen("glint", &format!("'{}'", binary.display()), 1);
-        let out = std::process::Command::new("sh")
-            .current_dir(dir)
-            .arg("-c")
-            .arg(&line)
-            .output()
-            .unwrap();
+        let out = crate::common::run_documented(dir, command);
         assert_exit(&out, 0);
         assert!(!stdout(&out).is_empty(), "{command}");
     }

@@ -31,14 +31,7 @@ fn script() -> (String, Vec<String>) {
 /// Runs `command` (a line of the tutorial) with `sh` in `dir`, `glint` being the binary under
 /// test.
 fn run(dir: &Path, command: &str) {
-    let binary = env!("CARGO_BIN_EXE_glint");
-    let line = command.replacen("glint", &format!("'{binary}'"), 1);
-    let out = std::process::Command::new("sh")
-        .current_dir(dir)
-        .arg("-c")
-        .arg(&line)
-        .output()
-        .unwrap();
+    let out = crate::common::run_documented(dir, command);
     assert!(
         out.status.success(),
         "{command}\n{}",

@@ -13,6 +13,7 @@ use super::{write_stdout, CliError};
 use crate::formats::load_patches;
 use crate::formats::ron_paths::top_level_name;
 use crate::geom::{Edge, PatchLibrary};
+use crate::picture::patch_map::number_runs;
 use crate::shot::{load_shot, Shot};
 
 /// List the patches and named parts (groups) of a patch file, or of a shot's instances.
@@ -220,23 +221,7 @@ fn write_table(out: &mut dyn Write, file: &Path, listing: &Listing) -> std::io::
 
 /// Increasing indices written with runs shortened: `0-3 8 10-11`.
 fn index_ranges(indices: &[usize]) -> String {
-    let mut runs: Vec<(usize, usize)> = Vec::new();
-    for &i in indices {
-        match runs.last_mut() {
-            Some((_, end)) if *end + 1 == i => *end = i,
-            _ => runs.push((i, i)),
-        }
-    }
-    runs.iter()
-        .map(|&(a, b)| {
-            if a == b {
-                a.to_string()
-            } else {
-                format!("{a}-{b}")
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
+    number_runs(&indices.iter().map(|&i| i as u64).collect::<Vec<_>>())
 }
 
 #[cfg(test)]

@@ -52,6 +52,16 @@ impl PatchLibrary {
         self.groups.iter().find(|g| g.name == name)
     }
 
+    /// Every name that names patches: the parts' names, then the patches'.
+    #[must_use]
+    pub fn names(&self) -> Vec<&str> {
+        self.groups
+            .iter()
+            .map(|g| g.name.as_str())
+            .chain(self.patches.iter().map(|p| p.name.as_str()))
+            .collect()
+    }
+
     /// The groups patch `patch` belongs to.
     pub fn groups_of(&self, patch: usize) -> impl Iterator<Item = &PatchGroup> {
         self.groups

@@ -104,7 +104,8 @@ pub fn part_legend(library: &PatchLibrary, instance_prefix: Option<&str>) -> Vec
 }
 
 /// Numbers written with each run of consecutive ones shortened: `0-3 8 10-11`.
-fn number_runs(numbers: &[u64]) -> String {
+#[must_use]
+pub fn number_runs(numbers: &[u64]) -> String {
     let mut runs: Vec<(u64, u64)> = Vec::new();
     for &n in numbers {
         match runs.last_mut() {

@@ -386,12 +386,7 @@ fn select_highlights(
                 }
             }
             if !any {
-                let names: Vec<&str> = library
-                    .groups
-                    .iter()
-                    .map(|g| g.name.as_str())
-                    .chain(library.patches.iter().map(|p| p.name.as_str()))
-                    .collect();
+                let names = library.names();
                 let mut message = format!("the selector \"{pattern}\" matches no patch or part");
                 match closest_name(pattern, &names) {
                     Some(close) => message.push_str(&format!("; did you mean \"{close}\"?")),

@@ -78,12 +78,7 @@ fn pin_patch(pin: &Pin<Track<f32>>, library: &PatchLibrary) -> Result<usize, Str
             )
         });
     }
-    let names: Vec<&str> = library
-        .groups
-        .iter()
-        .map(|g| g.name.as_str())
-        .chain(library.patches.iter().map(|p| p.name.as_str()))
-        .collect();
+    let names = library.names();
     let mut message = format!("the pin's patch \"{}\" is no patch or part", pin.patch);
     if let Some(close) = closest_name(&pin.patch, &names) {
         message.push_str(&format!("; did you mean \"{close}\"?"));

@@ -38,3 +38,16 @@ pub fn stderr(out: &Output) -> String {
 pub fn teapot() -> Arc<PatchLibrary> {
     Arc::new(load_patches(&repo_file("patches/teapot.bpt")).expect("the shipped teapot loads"))
 }
+
+/// Runs a documented command line (`glint …`) with `sh` in `dir`, `glint` being the binary
+/// under test, and returns what it did.
+pub fn run_documented(dir: &Path, command: &str) -> Output {
+    let binary = env!("CARGO_BIN_EXE_glint");
+    let line = command.replacen("glint", &format!("'{binary}'"), 1);
+    Command::new("sh")
+        .current_dir(dir)
+        .arg("-c")
+        .arg(&line)
+        .output()
+        .expect("sh runs")
+}
