@@ -9,6 +9,7 @@ use anyhow::anyhow;
 use clap::Args;
 
 use super::CliError;
+use crate::formats::atomic::Durability;
 use crate::job::{JobError, Overrides, RenderJob};
 use crate::render::{RenderStats, Stage};
 
@@ -158,6 +159,8 @@ impl Subject {
             ..Overrides::default()
         };
         let mut job = RenderJob::load(&path, &overrides).map_err(bad)?;
+        // Frames written as `glint render --watch` writes them.
+        job.set_durability(Durability::Unsynced);
         job.check_writable().map_err(bad)?;
         let image = job.render_frame(1.0).map_err(failed)?;
         job.write_frame(1, &image).map_err(failed)?;
@@ -241,12 +244,16 @@ fn print_report(subjects: &[Subject; 2], measured: &[Vec<Steps>; 2], rounds: usi
     for subject in subjects {
         if let Some(stats) = &subject.last {
             let names = |pick: fn(&RenderStats, Stage) -> bool| {
-                Stage::ALL
+                let names: Vec<&str> = Stage::ALL
                     .into_iter()
                     .filter(|&s| pick(stats, s))
                     .map(Stage::name)
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                    .collect();
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.join(", ")
+                }
             };
             println!(
                 "{:<10} ran {}; reused {}",

@@ -12,6 +12,7 @@ use notify::{RecommendedWatcher, RecursiveMode, Watcher};
 
 use super::watched::WatchedFiles;
 use super::CliError;
+use crate::formats::atomic::Durability;
 use crate::job::{JobError, Overrides, RenderJob};
 use crate::render::Stage;
 
@@ -182,9 +183,14 @@ impl Session {
                 job.reload()?;
                 job
             }
-            None => self
-                .job
-                .insert(RenderJob::load(&self.shot, &self.overrides)?),
+            None => {
+                let job = self
+                    .job
+                    .insert(RenderJob::load(&self.shot, &self.overrides)?);
+                // Previews, made again at the next save: atomic, but not waiting for the disk.
+                job.set_durability(Durability::Unsynced);
+                job
+            }
         };
         job.check_writable()?;
         let mut summary = Summary::default();

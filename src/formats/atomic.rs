@@ -25,10 +25,31 @@ pub fn temporary_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
 }
 
+/// Whether a written file is synced to the disk before it is renamed into place.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Durability {
+    /// Synced first: once the file exists under its name it survives a crash or power cut —
+    /// what a render farm's frames need.
+    #[default]
+    Synced,
+    /// Renamed without waiting for the disk: still whole or absent for any reader, but a power
+    /// cut may lose it — for previews that are made again at the next save.
+    Unsynced,
+}
+
 /// Writes `path` through `write`, which fills a buffered temporary file; synced and renamed over
 /// `path` on success, removed on failure.
 pub fn write_atomically(
     path: &Path,
+    write: impl FnOnce(&mut BufWriter<File>) -> Result<(), String>,
+) -> Result<(), WriteError> {
+    write_atomically_with(path, Durability::Synced, write)
+}
+
+/// [`write_atomically`] with the sync before the rename as `durability` says.
+pub fn write_atomically_with(
+    path: &Path,
+    durability: Durability,
     write: impl FnOnce(&mut BufWriter<File>) -> Result<(), String>,
 ) -> Result<(), WriteError> {
     let temporary = temporary_path(path);
@@ -37,7 +58,10 @@ pub fn write_atomically(
         let mut out = BufWriter::new(file);
         write(&mut out)?;
         let file = out.into_inner().map_err(|e| e.to_string())?;
-        file.sync_all().map_err(|e| e.to_string())?;
+        match durability {
+            Durability::Synced => file.sync_all().map_err(|e| e.to_string())?,
+            Durability::Unsynced => {}
+        }
         std::fs::rename(&temporary, path).map_err(|e| e.to_string())
     })();
     if written.is_err() {
@@ -85,6 +109,27 @@ pub fn remove_stale_temporaries(path: &Path) -> std::io::Result<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn unsynced_writes_are_whole_and_leave_no_temporary() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("frame.png");
+        for (durability, text) in [
+            (Durability::Unsynced, "first"),
+            (Durability::Synced, "second"),
+        ] {
+            write_atomically_with(&path, durability, |out| {
+                std::io::Write::write_all(out, text.as_bytes()).map_err(|e| e.to_string())
+            })
+            .unwrap();
+            assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
+        }
+        let failed = write_atomically_with(&path, Durability::Unsynced, |_| Err("no".into()));
+        assert!(failed.is_err());
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "second");
+        let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+        assert_eq!(names.len(), 1, "only the target is left");
+    }
 
     #[test]
     fn stale_temporaries_of_one_target_go_and_nothing_else() {

@@ -5,13 +5,13 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec4;
 
-use super::atomic::WriteError;
+use super::atomic::{Durability, WriteError};
 use super::exr::write_exr;
 use super::image_encoding::{
     colour_rgba8, depth16, grey8, heat_rgba8, normal_rgba8, patch_colours_rgba8, patch_ids16,
     uv_rgba8, HEAT_RANGE,
 };
-use super::png::{write_png, PngLayout};
+use super::png::{write_png_with, PngLayout};
 use crate::render::RenderedFrame;
 
 /// The file beside the frame file `path` that holds its AOV `name`: `shot.0001.png` gives
@@ -30,6 +30,15 @@ pub fn beside(path: &Path, name: &str) -> PathBuf {
 /// `.normal.png`, `.uv.png` and `.n_dot_h.png` (heat map). The colour is written last, so once
 /// it exists the whole frame does. Returns the paths written.
 pub fn write_pngs(frame: &RenderedFrame, path: &Path) -> Result<Vec<PathBuf>, WriteError> {
+    write_pngs_with(frame, path, Durability::Synced)
+}
+
+/// [`write_pngs`], each file synced as `durability` says.
+pub fn write_pngs_with(
+    frame: &RenderedFrame,
+    path: &Path,
+    durability: Durability,
+) -> Result<Vec<PathBuf>, WriteError> {
     let (w, h) = (frame.width, frame.height);
     let aov_file = |name: &str| beside(path, name);
     let a = &frame.aovs;
@@ -69,7 +78,7 @@ pub fn write_pngs(frame: &RenderedFrame, path: &Path) -> Result<Vec<PathBuf>, Wr
     ));
     let mut written = Vec::with_capacity(images.len());
     for (file, layout, pixels) in images {
-        write_png(&file, w, h, layout, &pixels)?;
+        write_png_with(&file, (w, h), layout, &pixels, durability)?;
         written.push(file);
     }
     Ok(written)

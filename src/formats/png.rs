@@ -5,7 +5,7 @@ use std::path::Path;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 
-use super::atomic::{write_atomically, WriteError};
+use super::atomic::{write_atomically_with, Durability, WriteError};
 
 /// The pixel layouts glint writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -18,13 +18,24 @@ pub enum PngLayout {
     Gray16,
 }
 
-/// Writes `pixels` (rows top to bottom, in `layout`) as a PNG at `path`, atomically.
+/// Writes `pixels` (rows top to bottom, in `layout`) as a PNG at `path`, atomically and synced.
 pub fn write_png(
     path: &Path,
     width: u32,
     height: u32,
     layout: PngLayout,
     pixels: &[u8],
+) -> Result<(), WriteError> {
+    write_png_with(path, (width, height), layout, pixels, Durability::Synced)
+}
+
+/// [`write_png`] of a `(width, height)` image, synced as `durability` says.
+pub fn write_png_with(
+    path: &Path,
+    (width, height): (u32, u32),
+    layout: PngLayout,
+    pixels: &[u8],
+    durability: Durability,
 ) -> Result<(), WriteError> {
     let error = |reason: String| WriteError {
         path: path.display().to_string(),
@@ -55,7 +66,7 @@ pub fn write_png(
         }
         PngLayout::Rgba8 | PngLayout::Gray8 => pixels,
     };
-    write_atomically(path, |out| {
+    write_atomically_with(path, durability, |out| {
         PngEncoder::new(out)
             .write_image(pixels, width, height, color)
             .map_err(|e| e.to_string())

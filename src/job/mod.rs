@@ -29,7 +29,7 @@ use thiserror::Error;
 pub use frame_list::parse_frames;
 pub use place::{LayerChoice, PlaceError, Placement, Residual};
 
-use crate::formats::atomic::WriteError;
+use crate::formats::atomic::{Durability, WriteError};
 use crate::render::{RenderError, RenderedFrame, Renderer, Scene, Settings};
 use crate::shot::{check_numbered, load_shot, resolve_path, Aov, Preset, Shot, ShotError};
 
@@ -122,6 +122,7 @@ pub struct RenderJob {
     settings: Settings,
     frames: Vec<i64>,
     renderer: Renderer,
+    durability: Durability,
 }
 
 /// What [`RenderJob::reload`] did with the model.
@@ -152,6 +153,7 @@ impl RenderJob {
             settings,
             frames,
             renderer,
+            durability: Durability::Synced,
         })
     }
 
@@ -230,12 +232,24 @@ impl RenderJob {
         Ok(())
     }
 
+    /// Whether frame files are synced to the disk before they are renamed into place
+    /// ([`Durability::Synced`], the default, for frames a farm relies on); a preview made again at
+    /// every save may skip it ([`Durability::Unsynced`]), and stays atomic.
+    pub fn set_durability(&mut self, durability: Durability) {
+        self.durability = durability;
+    }
+
     /// Writes `image`, rendered for `frame`, to its files: stale temporaries of earlier, killed
     /// runs cleared, each file written atomically, the EXR (when there are AOVs) and the AOV
     /// PNGs first and the colour PNG last, so that once the colour exists the whole frame does.
     /// Returns the paths written.
     pub fn write_frame(&self, frame: i64, image: &RenderedFrame) -> Result<Vec<PathBuf>, JobError> {
         let exr = !self.shot.aovs.is_empty();
-        Ok(write::write_frame(image, &self.frame_path(frame), exr)?)
+        Ok(write::write_frame(
+            image,
+            &self.frame_path(frame),
+            exr,
+            self.durability,
+        )?)
     }
 }

@@ -3,17 +3,19 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::formats::atomic::{remove_stale_temporaries, WriteError};
-use crate::formats::{write_frame_exr, write_pngs};
+use crate::formats::atomic::{remove_stale_temporaries, Durability, WriteError};
+use crate::formats::{write_frame_exr, write_pngs_with};
 use crate::render::RenderedFrame;
 
 /// Writes `image` to `path` and its AOVs beside it: stale temporaries of earlier, killed runs
 /// removed; the EXR (with `exr`, when there are AOVs) and the AOV PNGs first, the colour PNG
-/// last, so that once the colour exists the whole frame does. Returns the paths written.
+/// last, so that once the colour exists the whole frame does; the PNGs synced as `durability`
+/// says. Returns the paths written.
 pub(super) fn write_frame(
     image: &RenderedFrame,
     path: &Path,
     exr: bool,
+    durability: Durability,
 ) -> Result<Vec<PathBuf>, WriteError> {
     let exr_path = path.with_extension("exr");
     for target in [path, exr_path.as_path()] {
@@ -27,7 +29,7 @@ pub(super) fn write_frame(
         write_frame_exr(image, &exr_path)?;
         written.push(exr_path);
     }
-    written.extend(write_pngs(image, path)?);
+    written.extend(write_pngs_with(image, path, durability)?);
     Ok(written)
 }
 
