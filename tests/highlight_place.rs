@@ -11,6 +11,7 @@ use glint::shot::Aov;
 use crate::common::{glint_with, repo_file, stderr};
 
 /// A shot of one model with one highlight entry, written into `dir`.
+#[derive(Clone)]
 struct TestShot<'a> {
     model: &'a str,
     selector: &'a str,
@@ -94,6 +95,15 @@ fn matte_centroid(
         }
     }
     (sum > 0.0).then(|| ((sx / sum, sy / sum), edge == 0.0))
+}
+
+/// How far the centroid of the matte within `radius` pixels of `at` lies from `at`, after
+/// checking that there is a highlight there and that it lies wholly inside that window.
+fn centroid_miss(matte: &[f32], size: (u32, u32), at: (f64, f64), radius: f64, what: &str) -> f64 {
+    let (centroid, inside) = matte_centroid(matte, size, at, radius)
+        .unwrap_or_else(|| panic!("{what}: no highlight near {at:?}"));
+    assert!(inside, "{what}: the highlight is larger than the window");
+    ((centroid.0 - at.0).powi(2) + (centroid.1 - at.1).powi(2)).sqrt()
 }
 
 /// The translation that puts the highlight centre on the unit sphere's point under `pixel`,
@@ -204,37 +214,15 @@ fn place_on_the_sphere_matches_the_closed_form_and_the_rendered_centroid() {
                 // The highlight rendered with that translation is centred on the pixel.
                 let solved = TestShot {
                     layer: translated(placed.translation.x, placed.translation.y, 0.005),
-                    ..shot.clone_with_frames()
+                    ..shot.clone()
                 }
                 .write(dir.path(), &format!("{name}_solved"));
                 let image = job(&solved).render_frame(frame as f64).unwrap();
                 let matte = image.aovs.matte.as_ref().unwrap();
-                let (centroid, inside) = matte_centroid(matte, size, pixel, 40.0).unwrap();
-                assert!(
-                    inside,
-                    "{name} {pixel:?}: the highlight is larger than the window"
-                );
-                let miss = ((centroid.0 - pixel.0).powi(2) + (centroid.1 - pixel.1).powi(2)).sqrt();
-                assert!(
-                    miss < 1.0,
-                    "{name} frame {frame} {pixel:?}: centroid {centroid:?}, {miss} px off"
-                );
+                let what = format!("{name} frame {frame} {pixel:?}");
+                let miss = centroid_miss(matte, size, pixel, 40.0, &what);
+                assert!(miss < 1.0, "{what}: the centroid is {miss} px off");
             }
-        }
-    }
-}
-
-impl TestShot<'_> {
-    fn clone_with_frames(&self) -> Self {
-        TestShot {
-            model: self.model,
-            selector: self.selector,
-            camera: self.camera.clone(),
-            light: self.light.clone(),
-            layer: self.layer.clone(),
-            frames: self.frames,
-            size: self.size,
-            render: self.render,
         }
     }
 }
@@ -282,22 +270,14 @@ fn place_on_the_teapot_body_centres_the_rendered_highlight_on_the_pixel() {
                 .unwrap_or_else(|e| panic!("frame {frame} {pixel:?}: {e}"));
             let solved = TestShot {
                 layer: translated(placed.translation.x, placed.translation.y, 0.0005),
-                ..shot.clone_with_frames()
+                ..shot.clone()
             }
             .write(dir.path(), "body_solved");
             let image = job(&solved).render_frame(f64::from(frame)).unwrap();
             let matte = image.aovs.matte.as_ref().unwrap();
-            let (centroid, inside) = matte_centroid(matte, size, pixel, 30.0)
-                .unwrap_or_else(|| panic!("frame {frame} {pixel:?}: no highlight near the pixel"));
-            assert!(
-                inside,
-                "frame {frame} {pixel:?}: the highlight is larger than the window"
-            );
-            let miss = ((centroid.0 - pixel.0).powi(2) + (centroid.1 - pixel.1).powi(2)).sqrt();
-            assert!(
-                miss < 1.0,
-                "frame {frame} {pixel:?}: centroid {centroid:?}, {miss} px off"
-            );
+            let what = format!("frame {frame} {pixel:?}");
+            let miss = centroid_miss(matte, size, pixel, 30.0, &what);
+            assert!(miss < 1.0, "{what}: the centroid is {miss} px off");
         }
     }
 }
@@ -365,17 +345,9 @@ fn a_pinned_highlight_stays_on_its_point_over_the_whole_turntable() {
             continue; // The point is hidden on this frame.
         }
         let matte = image.aovs.matte.as_ref().unwrap();
-        let (centroid, inside) = matte_centroid(matte, (w, h), at, 30.0)
-            .unwrap_or_else(|| panic!("frame {frame}: no highlight at the pinned point {at:?}"));
-        assert!(
-            inside,
-            "frame {frame}: the highlight is larger than the window"
-        );
-        let miss = ((centroid.0 - at.0).powi(2) + (centroid.1 - at.1).powi(2)).sqrt();
-        assert!(
-            miss < 1.0,
-            "frame {frame}: centroid {centroid:?}, pinned point at {at:?}: {miss} px off"
-        );
+        let what = format!("frame {frame}, pinned point at {at:?}");
+        let miss = centroid_miss(matte, (w, h), at, 30.0, &what);
+        assert!(miss < 1.0, "{what}: the centroid is {miss} px off");
         checked += 1;
 
         // Without the pin the highlight leaves the point.

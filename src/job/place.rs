@@ -7,6 +7,7 @@ use thiserror::Error;
 use super::{JobError, RenderJob};
 use crate::highlight::{HighlightError, Layer};
 use crate::render::{Aovs, SurfacePoint};
+use crate::shot::rounded_number_text;
 
 /// Which highlight layer to place; `None` picks as [`RenderJob::place`] says.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -168,8 +169,8 @@ impl RenderJob {
                 "layer {layer} of highlight {drawn} is pinned to a point of {}, and its translation is \
                  solved on every frame; to move it, pin it here: pin: (patch: \"{name}\", u: {}, v: {})",
                 pinned.name,
-                short(uv.0),
-                short(uv.1)
+                rounded_number_text(uv.0 as f32),
+                rounded_number_text(uv.1 as f32)
             )));
         }
         let chosen: &Layer = layers[layer];
@@ -320,9 +321,4 @@ fn off_model(position: (f64, f64), frame: f64) -> PlaceError {
         y: position.1 - 0.5,
         frame,
     }
-}
-
-/// A parameter value to six significant digits, for messages.
-fn short(x: f64) -> String {
-    format!("{}", (x * 1e6).round() / 1e6)
 }

@@ -45,22 +45,4 @@ impl SurfacePoint {
     pub fn local_half_vector(&self) -> Vec3 {
         self.frame.to_local(self.half_vector)
     }
-
-    /// Where the point is in an image of `width × height` pixels, in pixel units with pixel
-    /// `(x, y)`'s centre at `(x + 0.5, y + 0.5)`; `None` behind the eye or not finite.
-    #[must_use]
-    pub fn try_image_position(
-        &self,
-        camera: &Camera,
-        (width, height): (u32, u32),
-    ) -> Option<(f64, f64)> {
-        let clip = camera.view_projection(width as f32 / height as f32) * self.position.extend(1.0);
-        if clip.w.is_nan() || clip.w <= 0.0 {
-            return None;
-        }
-        let ndc = clip.truncate() / clip.w;
-        let x = (f64::from(ndc.x) + 1.0) * 0.5 * f64::from(width);
-        let y = (1.0 - f64::from(ndc.y)) * 0.5 * f64::from(height);
-        (x.is_finite() && y.is_finite()).then_some((x, y))
-    }
 }

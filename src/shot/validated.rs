@@ -128,12 +128,6 @@ impl Shot {
         self.patch_material[patch]
     }
 
-    /// The number of highlight entries, includes first.
-    #[must_use]
-    pub fn highlight_count(&self) -> usize {
-        self.highlights.len()
-    }
-
     /// Where highlight entry `entry` is written: the file (the shot or an include) and its
     /// index in that file's `highlights` list, as a parameter path counts it.
     #[must_use]
