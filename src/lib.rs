@@ -70,3 +70,4 @@ pub mod picture;
 pub mod render;
 pub mod shot;
 pub mod toon;
+pub mod tune;

@@ -56,7 +56,59 @@ pub(crate) enum Range {
     NonNegativeStep,
 }
 
+/// The ends of an allowed range as an editor shows them: `min` and `max` (infinite where the
+/// range is unbounded on that side) and whether each end is excluded.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    pub min: f32,
+    pub max: f32,
+    /// The range excludes `min` (ε > 0, n > 0).
+    pub min_open: bool,
+    /// The range excludes `max`.
+    pub max_open: bool,
+}
+
+impl Bounds {
+    /// Whether `x` lies in the range: finite, and between the ends as they are included.
+    #[must_use]
+    pub fn contains(self, x: f32) -> bool {
+        let above = if self.min_open {
+            x > self.min
+        } else {
+            x >= self.min
+        };
+        let below = if self.max_open {
+            x < self.max
+        } else {
+            x <= self.max
+        };
+        x.is_finite() && above && below
+    }
+}
+
 impl Range {
+    /// The range's ends.
+    #[must_use]
+    pub(crate) fn bounds(self) -> Bounds {
+        let (min, max, min_open, max_open) = match self {
+            Range::Finite => (f32::NEG_INFINITY, f32::INFINITY, true, true),
+            Range::NonNegative => (0.0, f32::INFINITY, false, true),
+            Range::Positive => (0.0, f32::INFINITY, true, true),
+            Range::AboveOne => (1.0, f32::INFINITY, true, true),
+            Range::AtLeastOne => (1.0, f32::INFINITY, false, true),
+            Range::Unit => (0.0, 1.0, false, false),
+            Range::Epsilon => (0.0, 2.0, true, false),
+            Range::Step => (-MAX_STEP, MAX_STEP, false, false),
+            Range::NonNegativeStep => (0.0, MAX_STEP, false, false),
+        };
+        Bounds {
+            min,
+            max,
+            min_open,
+            max_open,
+        }
+    }
+
     fn contains(self, x: f32) -> bool {
         match self {
             Range::Finite => true,
@@ -111,6 +163,33 @@ pub(crate) fn check(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bounds_contain_what_the_range_does() {
+        let ranges = [
+            Range::Finite,
+            Range::NonNegative,
+            Range::Positive,
+            Range::AboveOne,
+            Range::AtLeastOne,
+            Range::Unit,
+            Range::Epsilon,
+            Range::Step,
+            Range::NonNegativeStep,
+        ];
+        let probes = [
+            -2e6, -1e6, -1.0, -1e-9, 0.0, 1e-9, 0.5, 1.0, 1.5, 2.0, 2.5, 1e6, 2e6,
+        ];
+        for range in ranges {
+            for x in probes {
+                assert_eq!(
+                    range.bounds().contains(x),
+                    range.contains(x),
+                    "{range:?} at {x}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn message_names_parameter_value_and_range() {

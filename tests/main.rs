@@ -39,6 +39,7 @@ mod toon_render;
 mod toon_serde;
 mod toon_shape;
 mod toon_texture;
+mod tune_http;
 mod tutorial;
 
 /// `autotests = false` makes this file the only test crate: a test file it does not declare

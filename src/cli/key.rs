@@ -1,13 +1,12 @@
 //! `glint key`: one track of a shot or look file set, keyed or unkeyed in place.
 
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use anyhow::anyhow;
 use clap::{ArgGroup, Args};
 
 use super::CliError;
-use crate::formats::atomic::write_atomically;
+use crate::formats::replace_text::replace_text;
 use crate::formats::ron_location::position_of;
 use crate::formats::ron_paths::top_level_name;
 use crate::shot::{
@@ -113,20 +112,7 @@ pub fn run(args: &KeyArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Replaces the file at `file` (the file a link leads to, if it is one) with `text`,
-/// atomically, keeping its permissions; a read-only file is refused.
+/// Replaces the file at `file` with `text` ([`replace_text`]).
 pub(super) fn write_in_place(file: &Path, text: &str) -> anyhow::Result<()> {
-    let target = std::fs::canonicalize(file)?;
-    let permissions = std::fs::metadata(&target)?.permissions();
-    if permissions.readonly() {
-        return Err(anyhow!(
-            "{} is read-only; it is left as it is",
-            file.display()
-        ));
-    }
-    write_atomically(&target, |out| {
-        out.write_all(text.as_bytes()).map_err(|e| e.to_string())
-    })?;
-    std::fs::set_permissions(&target, permissions)?;
-    Ok(())
+    Ok(replace_text(file, text)?)
 }

@@ -11,6 +11,7 @@ mod place;
 mod probe;
 mod render;
 mod sheet;
+mod tune;
 mod vary;
 mod watch;
 mod watched;
@@ -37,6 +38,7 @@ enum Command {
     Patches(patches::PatchesArgs),
     Place(place::PlaceArgs),
     Sheet(sheet::SheetArgs),
+    Tune(tune::TuneArgs),
     Bench(bench::BenchArgs),
 }
 
@@ -80,6 +82,7 @@ pub fn main() -> ExitCode {
         Command::Patches(args) => patches::run(&args),
         Command::Place(args) => place::run(&args),
         Command::Sheet(args) => sheet::run(&args),
+        Command::Tune(args) => tune::run(&args),
         Command::Bench(args) => bench::run(&args),
     };
     match result {

@@ -18,10 +18,10 @@ use crate::render::Stage;
 
 /// How long the inputs must stay unchanged after a change before the shot is loaded again: an
 /// editor's save (a new file written, renamed over the old one) is one change, not several.
-const QUIET: Duration = Duration::from_millis(100);
+pub(super) const QUIET: Duration = Duration::from_millis(100);
 
 /// What reaches the watch loop.
-enum Message {
+pub(super) enum Message {
     /// A file-system event, or the watcher's error.
     Files(notify::Result<notify::Event>),
     /// Ctrl-C.
@@ -89,7 +89,10 @@ pub(super) fn run(shot: &Path, overrides: &Overrides, printing: Printing) -> Res
 
 /// Waits for a change to a file of `watched` and then for [`QUIET`] without another; returns
 /// the files changed, or `None` on Ctrl-C.
-fn next_change(messages: &Receiver<Message>, watched: &WatchedFiles) -> Option<Vec<PathBuf>> {
+pub(super) fn next_change(
+    messages: &Receiver<Message>,
+    watched: &WatchedFiles,
+) -> Option<Vec<PathBuf>> {
     let mut changed: Vec<PathBuf> = Vec::new();
     let mut deadline: Option<Instant> = None;
     loop {
@@ -120,7 +123,7 @@ fn next_change(messages: &Receiver<Message>, watched: &WatchedFiles) -> Option<V
 }
 
 /// Makes `watcher` watch the folders of `inputs` and no others, and `watched` follow them.
-fn follow(
+pub(super) fn follow(
     watcher: &mut RecommendedWatcher,
     watched: &mut WatchedFiles,
     inputs: Vec<PathBuf>,

@@ -9,6 +9,7 @@ pub mod image_encoding;
 pub mod parts;
 mod patch_ron;
 pub mod png;
+pub mod replace_text;
 pub mod ron_location;
 pub mod ron_paths;
 mod srgb;

@@ -163,7 +163,14 @@ impl RenderJob {
     /// and settings are those of the last frame rendered, that frame's surfaces too. On an
     /// error the job is left as it was.
     pub fn reload(&mut self) -> Result<Reloaded, JobError> {
-        let mut shot = load_shot(&self.shot.path)?;
+        let shot = load_shot(&self.shot.path)?;
+        self.replace_shot(shot)
+    }
+
+    /// Renders `shot` from now on, with the same overrides, as [`RenderJob::reload`] does with
+    /// the shot read from its file: for an edit not saved yet (a shot loaded from text with
+    /// `load_shot_text`). On an error the job is left as it was.
+    pub fn replace_shot(&mut self, mut shot: Shot) -> Result<Reloaded, JobError> {
         let reloaded = if *shot.library == **self.renderer.library() {
             shot.library = Arc::clone(self.renderer.library());
             Reloaded::ModelKept

@@ -119,18 +119,27 @@ impl RenderJob {
         pixel: (f64, f64),
         choice: LayerChoice,
     ) -> Result<Placement, PlaceError> {
-        let (width, height) = (self.settings.width, self.settings.height);
-        let position = (pixel.0 + 0.5, pixel.1 + 0.5);
-        let inside = |p: f64, side: u32| p >= 0.0 && p < f64::from(side);
-        if !(inside(position.0, width) && inside(position.1, height)) {
-            return Err(PlaceError::OutsideImage {
-                x: pixel.0,
-                y: pixel.1,
-                width,
-                height,
-            });
-        }
-        let (patch, uv) = self.patch_under(frame, position)?;
+        let mut placement = self.place_centre(frame, pixel, choice)?;
+        let state = self.shot.at(frame);
+        let mut placed = state.highlights[placement.highlight].layers()[placement.layer].clone();
+        placed.stack[placement.op] = crate::highlight::Op::Translate {
+            alpha: placement.translation.x,
+            beta: placement.translation.y,
+        };
+        placement.residuals =
+            self.residuals(placement.highlight, &placed, &state.camera, &state.light)?;
+        Ok(placement)
+    }
+
+    /// [`RenderJob::place`] without the residuals (`residuals` is empty): the translation alone,
+    /// for a highlight that follows a pointer.
+    pub fn place_centre(
+        &mut self,
+        frame: f64,
+        pixel: (f64, f64),
+        choice: LayerChoice,
+    ) -> Result<Placement, PlaceError> {
+        let (patch, uv) = self.point_under(frame, pixel)?;
         let shot = &self.shot;
         let name = &shot.library.patches[patch].name;
         let Some(drawn) = shot.highlight_of(patch) else {
@@ -189,12 +198,6 @@ impl RenderJob {
         let op = chosen
             .placing_translation()
             .expect("a translation was just solved for");
-        let mut placed = chosen.clone();
-        placed.stack[op] = crate::highlight::Op::Translate {
-            alpha: translation.x,
-            beta: translation.y,
-        };
-        let residuals = self.residuals(drawn, &placed, &state.camera, &state.light)?;
         Ok(Placement {
             frame,
             pixel,
@@ -204,17 +207,30 @@ impl RenderJob {
             layer,
             op,
             translation,
-            residuals,
+            residuals: Vec::new(),
         })
     }
 
-    /// The patch drawn at image position `position` and its parameters on the ray there.
-    fn patch_under(
+    /// The patch drawn at image position `pixel` (in pixels, pixel `(i, j)`'s centre at
+    /// `(i, j)`) at `frame`, and its parameters where the pixel's ray meets it: the patch from
+    /// the patch-id AOV of the frame, its `(u, v)` refined onto the ray by the Newton steps of
+    /// refined frames. Errors when the pixel is outside the image or shows no patch.
+    pub fn point_under(
         &mut self,
         frame: f64,
-        position: (f64, f64),
+        pixel: (f64, f64),
     ) -> Result<(usize, (f64, f64)), PlaceError> {
         let (width, height) = (self.settings.width, self.settings.height);
+        let position = (pixel.0 + 0.5, pixel.1 + 0.5);
+        let inside = |p: f64, side: u32| p >= 0.0 && p < f64::from(side);
+        if !(inside(position.0, width) && inside(position.1, height)) {
+            return Err(PlaceError::OutsideImage {
+                x: pixel.0,
+                y: pixel.1,
+                width,
+                height,
+            });
+        }
         let mut scene = self
             .shot
             .at(frame)

@@ -1,8 +1,9 @@
-//! Pictures for people to read: text labels drawn on images, the patch map of a model, and
-//! sheets of tiles with captions. Built on rendered frames; nothing here writes files.
+//! Pictures for people to read: text labels drawn on images, the patch map of a model, sheets
+//! of tiles with captions, and marks over a frame being tuned. Built on rendered frames; nothing here writes files.
 
 pub mod framing;
 pub mod label_placement;
+pub mod overlay;
 pub mod patch_map;
 pub mod sheet;
 pub mod text;

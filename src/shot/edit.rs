@@ -164,7 +164,7 @@ pub fn edit_text(text: &str, path: &ParamPath, edit: &TrackEdit) -> Result<Strin
     if let Some(frame) = edit.frame().filter(|f| !f.is_finite()) {
         return Err(EditError::BadFrame { frame });
     }
-    let mut expected = read(text)?;
+    let mut expected = read_file(text)?;
     let path = resolve(&mut expected, path)?;
     let Some(site) = expected.site(&path) else {
         return Err(unknown_path_without_list(&path));
@@ -201,7 +201,7 @@ pub fn edit_text(text: &str, path: &ParamPath, edit: &TrackEdit) -> Result<Strin
         col,
         reason,
     };
-    match read(&edited) {
+    match read_file(&edited) {
         Ok(reread) if reread == expected => Ok(edited),
         Ok(_) => Err(unchecked(
             "the edited file reads back with more changed than this track".to_string(),
@@ -225,13 +225,13 @@ pub fn apply_edits(text: &str, edits: &[(ParamPath, TrackEdit)]) -> Result<Strin
 /// tracks, each material's, each highlight layer's (entries by index), and after a whole
 /// `colour` or `focus` each of its components. Tracks left to their default are included.
 pub fn param_paths(text: &str) -> Result<Vec<ParamPath>, EditError> {
-    Ok(read(text)?.paths())
+    Ok(read_file(text)?.paths())
 }
 
 /// Every parameter path of the file `text` ([`param_paths`]) with its track on one line
 /// ([`track_text`]).
 pub fn track_texts(text: &str) -> Result<Vec<(ParamPath, String)>, EditError> {
-    let mut file = read(text)?;
+    let mut file = read_file(text)?;
     let mut tracks = Vec::new();
     file.for_each_site(&mut |site| {
         let shown = match try_span(text, &site.steps) {
@@ -259,7 +259,7 @@ pub fn track_texts(text: &str) -> Result<Vec<(ParamPath, String)>, EditError> {
 /// The path `written` as a path of the file `text`: read, and naming a track of it. Otherwise a
 /// [`EditError::BadPath`] with the valid path closest to what was written.
 pub fn parse_param_path(text: &str, written: &str) -> Result<ParamPath, EditError> {
-    let mut file = read(text)?;
+    let mut file = read_file(text)?;
     let path = written
         .parse::<ParamPath>()
         .map_err(|e| bad_path(&mut file, written, e.reason))?;
@@ -270,7 +270,7 @@ pub fn parse_param_path(text: &str, written: &str) -> Result<ParamPath, EditErro
 /// The bytes of `text` the track at `path` is written in, or `None` for a track left to its
 /// default. For a whole `colour` or `focus`, the span of all three.
 pub fn track_span(text: &str, path: &ParamPath) -> Result<Option<Range<usize>>, EditError> {
-    let mut file = read(text)?;
+    let mut file = read_file(text)?;
     let path = resolve(&mut file, path)?;
     let site = file
         .site(&path)
@@ -281,7 +281,7 @@ pub fn track_span(text: &str, path: &ParamPath) -> Result<Option<Range<usize>>, 
 /// The track at `path` of the file `text` on one line, as written there (comments and line
 /// breaks dropped), or, left to its default, as it would be written (`none` for no feather).
 pub fn track_text(text: &str, path: &ParamPath) -> Result<String, EditError> {
-    let mut file = read(text)?;
+    let mut file = read_file(text)?;
     let path = resolve(&mut file, path)?;
     let site = file
         .site(&path)
@@ -293,7 +293,7 @@ pub fn track_text(text: &str, path: &ParamPath) -> Result<String, EditError> {
 }
 
 /// The text read as a shot or look file.
-fn read(text: &str) -> Result<ParsedFile, EditError> {
+pub(super) fn read_file(text: &str) -> Result<ParsedFile, EditError> {
     ParsedFile::parse(text).map_err(|e| match e {
         ShotError::At {
             line, col, message, ..

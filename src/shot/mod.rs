@@ -7,10 +7,13 @@ mod every_frame;
 mod file;
 mod frame_state;
 mod glob;
+mod layer_edit;
 mod load;
 mod number_text;
 mod output;
 mod param_path;
+mod param_range;
+mod param_readings;
 mod param_sites;
 mod params;
 mod pin;
@@ -26,6 +29,7 @@ pub use edit::{
 pub use file::{Aov, Preset, Selector};
 pub use frame_state::FrameState;
 pub use glob::matches as matches_patch;
+pub use layer_edit::{edit_layer, op_text, LayerEdit};
 pub use load::{load_shot, load_shot_text};
 pub use number_text::{frame_text, number_text, rounded_number_text, value_text};
 pub use output::{check_numbered, frame_path, resolve_path};
@@ -33,6 +37,7 @@ pub use param_path::{
     CameraParam, DetailParam, HighlightRef, LayerParam, LightParam, MaterialParam, OpParam,
     ParamPath, ParamPathError,
 };
+pub use param_readings::{param_readings, ParamReading};
 pub use track_edit::TrackEdit;
 pub use validated::{Instance, MaterialState, Shot};
 

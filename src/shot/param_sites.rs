@@ -140,6 +140,22 @@ impl ParsedFile {
         Some(site)
     }
 
+    /// Layer `layer` (left to right through the Booleans) of highlight entry `entry` of the file,
+    /// with the steps to where it is written; `None` when the file has no such layer.
+    pub fn layer_mut(
+        &mut self,
+        entry: usize,
+        layer: usize,
+    ) -> Option<(&mut Layer<Track<f32>>, Vec<Step<'static>>)> {
+        let highlights = match self {
+            ParsedFile::Shot(shot) => &mut shot.highlights,
+            ParsedFile::Looks(looks) => &mut looks.highlights,
+        };
+        let expr = &mut highlights.get_mut(entry)?.expr;
+        let steps = vec![Field("highlights"), Index(entry), Field("expr")];
+        find_layer(expr, steps, &mut 0, layer)
+    }
+
     /// Calls `f` with every track of the file: the camera's, the light's, each material's (by
     /// name) and each highlight layer's, in that order.
     pub fn for_each_site<'a>(&'a mut self, f: &mut dyn FnMut(Site<'a>)) {
@@ -287,6 +303,31 @@ fn material_sites<'a>(
                     );
                 }
             }
+        }
+    }
+}
+
+/// Layer `wanted` of `expr`, whose layers are numbered from `*seen` on, with the steps to it.
+fn find_layer<'e>(
+    expr: &'e mut Expr<Track<f32>>,
+    mut steps: Vec<Step<'static>>,
+    seen: &mut usize,
+    wanted: usize,
+) -> Option<(&'e mut Layer<Track<f32>>, Vec<Step<'static>>)> {
+    match expr {
+        Expr::Layer(l) => {
+            *seen += 1;
+            steps.push(Index(0));
+            (*seen - 1 == wanted).then_some((l, steps))
+        }
+        Expr::Union(a, b) | Expr::Subtract(a, b) | Expr::Intersect(a, b) => {
+            let mut right = steps.clone();
+            steps.push(Index(0));
+            right.push(Index(1));
+            if let Some(found) = find_layer(a, steps, seen, wanted) {
+                return Some(found);
+            }
+            find_layer(b, right, seen, wanted)
         }
     }
 }

@@ -137,6 +137,25 @@ impl Shot {
             .map(|(path, index)| (path.as_path(), *index))
     }
 
+    /// How many highlight entries the shot has (includes first).
+    #[must_use]
+    pub fn highlight_count(&self) -> usize {
+        self.highlights.len()
+    }
+
+    /// The layers of highlight entry `entry` as written, left to right through its Booleans,
+    /// each parameter a track; empty for an entry the shot does not have.
+    #[must_use]
+    pub fn highlight_layers(
+        &self,
+        entry: usize,
+    ) -> Vec<&crate::highlight::Layer<crate::anim::Track<f32>>> {
+        self.highlights
+            .get(entry)
+            .map(|h| h.expr.layers())
+            .unwrap_or_default()
+    }
+
     /// The highlight entry of patch `patch`, if it has one.
     pub fn highlight_of(&self, patch: usize) -> Option<usize> {
         self.patch_highlight[patch]

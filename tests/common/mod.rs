@@ -1,5 +1,7 @@
 //! Helpers shared by the test modules: running the binary, loading the shipped models.
 
+pub mod http;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::Arc;

@@ -1,0 +1,496 @@
+"use strict";
+// The page of `glint tune`: shows the frame, follows the pointer with the highlight, and sends
+// every accepted change to the server, which writes it to the shot file.
+
+const token = new URLSearchParams(location.search).get("token") || "";
+const $ = (id) => document.getElementById(id);
+const canvas = $("view");
+const context = canvas.getContext("2d");
+
+// What the page knows. `state` is the server's StateView at `frame`.
+const page = {
+  state: null,
+  frame: 1,
+  highlight: null, // a shot entry index (includes first)
+  layer: 0,
+  param: null, // the parameter path whose keys the timeline shows
+  format: new URLSearchParams(location.search).get("format") === "png" ? "png" : "raw",
+  playing: false,
+  finalTimer: null,
+};
+
+// What tests and the latency benchmark read: every painted frame, with its times.
+window.glintTune = { paints: 0, latencies: [], last: null, errors: 0 };
+
+function overlays() {
+  return { seams: $("overlay-seams").checked, matte: $("overlay-matte").checked, pins: $("overlay-pins").checked };
+}
+
+function showError(message) {
+  $("status").textContent = message || "";
+  if (message) window.glintTune.errors += 1;
+}
+
+async function api(method, url, body) {
+  const options = { method, headers: { "X-Glint-Token": token } };
+  if (body !== undefined) {
+    options.headers["Content-Type"] = "application/json";
+    options.body = JSON.stringify(body);
+  }
+  const response = await fetch(url, options);
+  if (!response.ok) {
+    let message = response.status + " " + response.statusText;
+    try { message = (await response.json()).error || message; } catch (_) { /* not JSON */ }
+    const error = new Error(message);
+    error.status = response.status;
+    throw error;
+  }
+  return response;
+}
+
+// ---- frames -------------------------------------------------------------------------------
+
+// One image request at a time; while one is under way only the newest waiting one is kept.
+let inFlight = false;
+let waiting = null;
+
+function requestImage(kind, body, onChanges) {
+  waiting = { kind, body, onChanges, asked: performance.now() };
+  pump();
+}
+
+async function pump() {
+  if (inFlight || !waiting) return;
+  const job = waiting;
+  waiting = null;
+  inFlight = true;
+  try {
+    const url = "/api/" + job.kind + "?format=" + page.format;
+    const response = await api("POST", url, job.body);
+    const width = Number(response.headers.get("X-Glint-Width"));
+    const height = Number(response.headers.get("X-Glint-Height"));
+    const renderMs = Number(response.headers.get("X-Glint-Render-Ms"));
+    const changes = response.headers.get("X-Glint-Changes");
+    if (changes && job.onChanges) job.onChanges(JSON.parse(changes));
+    await paint(response, width, height);
+    const total = performance.now() - job.asked;
+    const quality = (job.body && job.body.quality) || "preview";
+    window.glintTune.paints += 1;
+    window.glintTune.last = { quality, renderMs, totalMs: total, at: performance.now() };
+    if (quality === "preview") window.glintTune.latencies.push(total);
+    $("frame-time").textContent = `${quality} ${width}×${height}: render ${renderMs.toFixed(1)} ms, on screen ${total.toFixed(1)} ms`;
+    showError("");
+    if (quality === "preview") scheduleFinal();
+  } catch (error) {
+    showError(error.message);
+  } finally {
+    inFlight = false;
+    pump();
+  }
+}
+
+// The canvas as large as the stage allows, its aspect kept.
+function fitCanvas() {
+  const stage = $("stage").getBoundingClientRect();
+  const scale = Math.min((stage.width - 20) / canvas.width, (stage.height - 60) / canvas.height);
+  canvas.style.width = Math.max(1, Math.floor(canvas.width * scale)) + "px";
+}
+window.addEventListener("resize", fitCanvas);
+
+async function paint(response, width, height) {
+  if (canvas.width !== width || canvas.height !== height) {
+    canvas.width = width;
+    canvas.height = height;
+    fitCanvas();
+  }
+  if (page.format === "png") {
+    const bitmap = await createImageBitmap(await response.blob());
+    context.clearRect(0, 0, width, height);
+    context.drawImage(bitmap, 0, 0);
+    bitmap.close();
+  } else {
+    const pixels = new Uint8ClampedArray(await response.arrayBuffer());
+    context.putImageData(new ImageData(pixels, width, height), 0, 0);
+  }
+}
+
+function frameBody(changes, quality) {
+  return { frame: page.frame, quality: quality || "preview", overlays: overlays(), changes: changes || [] };
+}
+
+function showFrame(changes) {
+  requestImage("frame", frameBody(changes));
+}
+
+// When the user pauses, the same frame at final quality.
+function scheduleFinal() {
+  clearTimeout(page.finalTimer);
+  if (page.playing || dragging) return;
+  page.finalTimer = setTimeout(() => {
+    if (!inFlight && !waiting && !page.playing && !dragging) requestImage("frame", frameBody([], "final"));
+  }, 600);
+}
+
+// ---- state --------------------------------------------------------------------------------
+
+async function loadState() {
+  const response = await api("GET", "/api/state?frame=" + page.frame);
+  page.state = await response.json();
+  const s = page.state;
+  $("file").textContent = s.file;
+  $("frame").min = s.frames[0];
+  $("frame").max = s.frames[1];
+  $("frame").value = page.frame;
+  $("frame-number").value = page.frame;
+  $("undo").disabled = s.undo === 0;
+  $("redo").disabled = s.redo === 0;
+  if (s.disk_error) showError("the file does not load now: " + s.disk_error);
+  if (page.highlight === null && s.highlights.length > 0) {
+    const editable = s.highlights.find((h) => h.file_index !== null);
+    page.highlight = (editable || s.highlights[0]).entry;
+  }
+  renderPanel();
+  renderKeys();
+}
+
+function currentHighlight() {
+  return page.state && page.state.highlights.find((h) => h.entry === page.highlight);
+}
+
+function currentLayer() {
+  const h = currentHighlight();
+  return h && h.layers[Math.min(page.layer, h.layers.length - 1)];
+}
+
+function allParams(layer) {
+  if (!layer) return [];
+  return layer.ops.flatMap((op) => op.params).concat(layer.params);
+}
+
+function findParam(path) {
+  return allParams(currentLayer()).find((p) => p.path === path);
+}
+
+// A change to a parameter's value at the current frame: a key where the track is keyed, the
+// constant otherwise.
+function valueChange(param, value) {
+  if (param.keys.length > 0) return { kind: "key", path: param.path, frame: page.frame, value };
+  return { kind: "set", path: param.path, value };
+}
+
+async function commit(changes) {
+  try {
+    await api("POST", "/api/commit", { changes });
+    await loadState();
+    showFrame();
+  } catch (error) {
+    showError(error.message);
+    await loadState().catch(() => {});
+    showFrame();
+  }
+}
+
+// ---- panel --------------------------------------------------------------------------------
+
+function element(tag, attributes, ...children) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attributes || {})) {
+    if (k.startsWith("on")) e.addEventListener(k.slice(2), v);
+    else if (k === "dataset") Object.assign(e.dataset, v);
+    else if (v !== null && v !== undefined && v !== false) e.setAttribute(k, v === true ? "" : v);
+  }
+  for (const c of children) e.append(c);
+  return e;
+}
+
+function isKeyedHere(param) {
+  return param.keys.some((k) => Math.abs(k - page.frame) < 1e-9);
+}
+
+function paramRow(param, editable) {
+  const value = param.value.length > 0 ? param.value[0] : 0;
+  // A power of ten, about a thousandth of the span, so that values stay short decimals.
+  const step = Math.pow(10, Math.floor(Math.log10((param.slider[1] - param.slider[0]) / 500)));
+  const range = element("input", {
+    type: "range", min: param.slider[0], max: param.slider[1], step, value,
+    dataset: { path: param.path }, disabled: !editable,
+  });
+  const number = element("input", {
+    type: "number", value: param.value.length > 0 ? String(value) : "", placeholder: "none",
+    step: "any", min: param.min ?? null, max: param.max ?? null,
+    dataset: { number: param.path }, disabled: !editable,
+  });
+  const select = () => { page.param = param.path; renderKeys(); markSelected(); };
+  range.addEventListener("input", () => {
+    select();
+    number.value = range.value;
+    showFrame([valueChange(param, [Number(range.value)])]);
+  });
+  range.addEventListener("change", () => commit([valueChange(param, [Number(range.value)])]));
+  number.addEventListener("change", () => {
+    select();
+    commit([valueChange(param, [Number(number.value)])]);
+  });
+  range.addEventListener("focus", select);
+  const keyed = isKeyedHere(param);
+  const key = element("button", {
+    class: "key" + (keyed ? " on" : ""), title: `Key ${param.name} at this frame`,
+    dataset: { key: param.path }, disabled: !editable || param.value.length === 0,
+    onclick: () => { select(); commit([{ kind: "key", path: param.path, frame: page.frame, value: param.value }]); },
+  }, "◆");
+  const unkey = element("button", {
+    class: "key", title: `Delete ${param.name}'s key at this frame`,
+    dataset: { unkey: param.path }, disabled: !editable || !keyed,
+    onclick: () => { select(); commit([{ kind: "delete", path: param.path, frame: page.frame }]); },
+  }, "×");
+  return element("div", { class: "param" + (page.param === param.path ? " selected" : ""), dataset: { row: param.path } },
+    element("label", { title: param.path }, param.name), range, number, key, unkey);
+}
+
+function colourRow(param, editable) {
+  const toHex = (c) => {
+    const s = c <= 0.0031308 ? c * 12.92 : 1.055 * Math.pow(c, 1 / 2.4) - 0.055;
+    return Math.round(Math.min(1, Math.max(0, s)) * 255).toString(16).padStart(2, "0");
+  };
+  const toLinear = (h) => {
+    const s = parseInt(h, 16) / 255;
+    return s <= 0.04045 ? s / 12.92 : Math.pow((s + 0.055) / 1.055, 2.4);
+  };
+  const read = (hex) => [toLinear(hex.slice(1, 3)), toLinear(hex.slice(3, 5)), toLinear(hex.slice(5, 7))];
+  const picker = element("input", { type: "color", value: "#" + param.value.map(toHex).join(""), dataset: { path: param.path }, disabled: !editable });
+  picker.addEventListener("input", () => showFrame([valueChange(param, read(picker.value))]));
+  picker.addEventListener("change", () => commit([valueChange(param, read(picker.value))]));
+  const key = element("button", {
+    class: "key" + (isKeyedHere(param) ? " on" : ""), dataset: { key: param.path }, disabled: !editable,
+    title: "Key the colour at this frame",
+    onclick: () => commit([{ kind: "key", path: param.path, frame: page.frame, value: param.value }]),
+  }, "◆");
+  return element("div", { class: "param", dataset: { row: param.path } },
+    element("label", {}, "colour"), picker, element("span"), key, element("span"));
+}
+
+function renderPanel() {
+  const box = $("layer");
+  box.replaceChildren();
+  const h = currentHighlight();
+  if (!h) return;
+  const editable = h.file_index !== null;
+  const fileIndex = h.file_index;
+  const choose = element("select", { id: "layer-choice", onchange: (e) => { page.layer = Number(e.target.value); renderPanel(); renderKeys(); } },
+    ...h.layers.map((l) => element("option", { value: l.index, selected: l.index === page.layer }, "layer " + l.index)));
+  box.append(element("h3", {}, `highlight ${h.entry} on ${h.patches.join(", ")} `), choose);
+  if (!editable) box.append(element("p", {}, `written in ${h.written_in}: edit it there (tune changes only the shot file)`));
+  const layer = currentLayer();
+  if (!layer) return;
+  if (layer.pinned_to) box.append(element("p", {}, `pinned to ${layer.pinned_to}: dragging moves the pin`));
+  const structural = (change) => commit([Object.assign({ highlight: fileIndex, layer: layer.index }, change)]);
+  box.append(element("h3", {}, "operations"));
+  layer.ops.forEach((op, i) => {
+    const head = element("div", { class: "op-head" },
+      element("span", { class: "name" }, `${i}. ${op.name}`),
+      element("button", { title: "Move up", disabled: !editable || i === 0, onclick: () => structural({ kind: "move_op", from: i, to: i - 1 }) }, "↑"),
+      element("button", { title: "Move down", disabled: !editable || i === layer.ops.length - 1, onclick: () => structural({ kind: "move_op", from: i, to: i + 1 }) }, "↓"),
+      element("button", { title: "Remove", dataset: { remove: i }, disabled: !editable, onclick: () => structural({ kind: "remove_op", index: i }) }, "✕"));
+    box.append(element("div", { class: "op" }, head, ...op.params.map((p) => paramRow(p, editable))));
+  });
+  const kind = element("select", { id: "op-kind" }, ...page.state.op_kinds.map((k) => element("option", { value: k }, k)));
+  box.append(element("div", {}, kind, " ",
+    element("button", { id: "add-op", disabled: !editable, onclick: () => structural({ kind: "insert_op", index: layer.ops.length, op: kind.value }) }, "add operation")));
+  box.append(element("h3", {}, "layer"));
+  for (const p of layer.params) {
+    box.append(p.name === "colour" ? colourRow(p, editable) : paramRow(p, editable));
+  }
+  box.append(element("div", {},
+    layer.has_mask
+      ? element("button", { id: "remove-mask", disabled: !editable, onclick: () => structural({ kind: "remove_mask" }) }, "remove mask")
+      : element("button", { id: "add-mask", disabled: !editable, onclick: () => structural({ kind: "add_mask" }) }, "add mask")));
+}
+
+function markSelected() {
+  for (const row of document.querySelectorAll(".param")) row.classList.toggle("selected", row.dataset.row === page.param);
+}
+
+// ---- timeline -----------------------------------------------------------------------------
+
+function selectedKeys() {
+  const p = page.param && findParam(page.param);
+  if (p) return p.keys;
+  const all = allParams(currentLayer()).flatMap((q) => q.keys);
+  return [...new Set(all)].sort((a, b) => a - b);
+}
+
+function renderKeys() {
+  const box = $("keys");
+  box.replaceChildren();
+  if (!page.state) return;
+  const [first, last] = page.state.frames;
+  const p = page.param && findParam(page.param);
+  $("param-name").textContent = p ? p.name : "";
+  for (const k of selectedKeys()) {
+    const at = last > first ? (k - first) / (last - first) : 0;
+    box.append(element("span", { style: `left: ${(at * 100).toFixed(3)}%`, dataset: { frame: k } }));
+  }
+}
+
+async function goToFrame(frame) {
+  const [first, last] = page.state ? page.state.frames : [frame, frame];
+  page.frame = Math.min(last, Math.max(first, frame));
+  $("frame").value = page.frame;
+  $("frame-number").value = page.frame;
+  showFrame();
+  await loadState().catch((e) => showError(e.message));
+}
+
+function jumpKey(direction) {
+  const keys = selectedKeys();
+  const next = direction > 0 ? keys.find((k) => k > page.frame + 1e-9) : [...keys].reverse().find((k) => k < page.frame - 1e-9);
+  if (next !== undefined) goToFrame(next);
+}
+
+function play() {
+  page.playing = !page.playing;
+  $("play").textContent = page.playing ? "pause" : "play";
+  const step = () => {
+    if (!page.playing) { loadState().catch(() => {}); scheduleFinal(); return; }
+    const [first, last] = page.state.frames;
+    page.frame = page.frame >= last ? first : page.frame + 1;
+    $("frame").value = page.frame;
+    $("frame-number").value = page.frame;
+    const before = window.glintTune.paints;
+    showFrame();
+    const wait = () => (window.glintTune.paints > before || !inFlight && !waiting ? setTimeout(step, 1000 / page.state.fps) : requestAnimationFrame(wait));
+    requestAnimationFrame(wait);
+  };
+  if (page.playing) step();
+}
+
+// ---- the pointer ----------------------------------------------------------------------------
+
+let dragging = false;
+let pressed = null;
+let dragChanges = null;
+
+function imagePosition(event) {
+  const rect = canvas.getBoundingClientRect();
+  return {
+    x: (event.clientX - rect.left) / rect.width * canvas.width - 0.5,
+    y: (event.clientY - rect.top) / rect.height * canvas.height - 0.5,
+  };
+}
+
+canvas.addEventListener("pointerdown", async (event) => {
+  const at = imagePosition(event);
+  pressed = { x: at.x, y: at.y, picked: null };
+  canvas.setPointerCapture(event.pointerId);
+  try {
+    const response = await api("POST", "/api/pick", { frame: page.frame, x: at.x, y: at.y });
+    const pick = await response.json();
+    if (!pressed) return;
+    pressed.picked = pick;
+    const parts = pick.parts.length ? ` (${pick.parts.join(", ")})` : "";
+    const where = `${pick.patch}${parts} at u ${pick.uv[0].toFixed(3)}, v ${pick.uv[1].toFixed(3)}`;
+    if (pick.highlight === null) {
+      $("selection").textContent = `${where}: no highlight`;
+      return;
+    }
+    if (pick.highlight !== page.highlight) page.layer = 0;
+    page.highlight = pick.highlight;
+    if (pick.covering.length > 0 && !pick.covering.includes(page.layer)) page.layer = pick.covering[0];
+    $("selection").textContent = `${where}: highlight ${pick.highlight}, layer ${page.layer}`;
+    renderPanel();
+    renderKeys();
+  } catch (error) {
+    $("selection").textContent = error.message;
+  }
+});
+
+canvas.addEventListener("pointermove", (event) => {
+  if (!pressed) return;
+  const at = imagePosition(event);
+  if (!dragging && Math.hypot(at.x - pressed.x, at.y - pressed.y) < 3) return;
+  const h = currentHighlight();
+  if (!h || h.file_index === null || !pressed.picked || pressed.picked.highlight !== page.highlight) return;
+  dragging = true;
+  clearTimeout(page.finalTimer);
+  requestImage("drag", {
+    frame: page.frame, x: at.x, y: at.y, highlight: page.highlight, layer: page.layer,
+    quality: "preview", overlays: overlays(),
+  }, (changes) => { dragChanges = changes; });
+});
+
+async function release() {
+  const was = dragging;
+  pressed = null;
+  dragging = false;
+  if (!was) return;
+  // The last drag request may still be on its way: wait for it, then write what it showed.
+  while (inFlight || waiting) await new Promise((r) => setTimeout(r, 5));
+  const changes = dragChanges;
+  dragChanges = null;
+  if (changes) await commit(changes);
+}
+
+canvas.addEventListener("pointerup", release);
+canvas.addEventListener("pointercancel", release);
+
+// ---- controls -----------------------------------------------------------------------------
+
+$("frame").addEventListener("input", () => goToFrame(Number($("frame").value)));
+$("frame-number").addEventListener("change", () => goToFrame(Number($("frame-number").value)));
+$("prev-key").addEventListener("click", () => jumpKey(-1));
+$("next-key").addEventListener("click", () => jumpKey(1));
+$("play").addEventListener("click", play);
+for (const id of ["overlay-seams", "overlay-matte", "overlay-pins"]) $(id).addEventListener("change", () => showFrame());
+
+async function history(which) {
+  try {
+    await api("POST", "/api/" + which);
+    await loadState();
+    showFrame();
+  } catch (error) {
+    showError(error.message);
+  }
+}
+$("undo").addEventListener("click", () => history("undo"));
+$("redo").addEventListener("click", () => history("redo"));
+document.addEventListener("keydown", (event) => {
+  if (event.target instanceof HTMLInputElement && event.target.type !== "range") return;
+  const z = event.key === "z" || event.key === "Z";
+  if ((event.ctrlKey || event.metaKey) && z) { event.preventDefault(); history(event.shiftKey ? "redo" : "undo"); }
+  else if ((event.ctrlKey || event.metaKey) && event.key === "y") { event.preventDefault(); history("redo"); }
+  else if (event.key === " " && !(event.target instanceof HTMLInputElement)) { event.preventDefault(); play(); }
+});
+
+// Changes made elsewhere (a text editor saving the file) arrive here.
+async function follow(version) {
+  for (;;) {
+    try {
+      const response = await api("GET", "/api/wait?version=" + version);
+      const next = (await response.json()).version;
+      if (next !== version) {
+        version = next;
+        if (!page.state || page.state.version !== next) {
+          await loadState();
+          showFrame();
+        }
+      }
+    } catch (error) {
+      showError("the server stopped: " + error.message);
+      await new Promise((r) => setTimeout(r, 2000));
+    }
+  }
+}
+
+(async () => {
+  try {
+    await loadState();
+    if (page.frame !== page.state.frames[0]) {
+      page.frame = page.state.frames[0];
+      await loadState();
+    }
+    showFrame();
+    follow(page.state.version);
+  } catch (error) {
+    showError(error.message);
+  }
+})();

@@ -1,0 +1,552 @@
+//! One tuning session: the shot file's text as last read or written (the truth), the jobs that
+//! render it at preview and final quality with changes not yet accepted, and the history of
+//! accepted changes. Synchronous; the server calls it from its blocking pool, one request at a
+//! time.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use super::change::{apply_changes, Change};
+use super::error::TuneError;
+use super::history::History;
+use super::view::{highlight_views, pin_at, StateView};
+use crate::formats::image_encoding::colour_rgba8;
+use crate::formats::replace_text::replace_text;
+use crate::job::{JobError, LayerChoice, Overrides, PlaceError, RenderJob};
+use crate::picture::overlay::{draw_matte, draw_pin, draw_seams};
+use crate::render::{Stage, SurfacePoint};
+use crate::shot::{load_shot_text, Aov, HighlightRef, LayerParam, OpParam, ParamPath, Preset};
+
+/// The quality a frame is rendered at.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Quality {
+    /// The `preview` preset: what follows every change.
+    #[default]
+    Preview,
+    /// The `final` preset: when the user pauses.
+    Final,
+}
+
+/// The marks drawn over a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Overlays {
+    /// Patch seams and the silhouette.
+    pub seams: bool,
+    /// The highlight matte, tinted, with its edge.
+    pub matte: bool,
+    /// Every pin of the shot file's layers.
+    pub pins: bool,
+}
+
+/// A frame asked for: at a frame, a quality, with overlays, and with changes made to the text
+/// in memory only.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct FrameRequest {
+    pub frame: f64,
+    pub quality: Quality,
+    pub overlays: Overlays,
+    /// Changes shown but not written (a slider being dragged).
+    pub changes: Vec<Change>,
+}
+
+/// A rendered frame for the page: sRGB RGBA8, rows from the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameImage {
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<u8>,
+    /// The render alone, in milliseconds.
+    pub render_ms: f64,
+    /// The stages that ran, by name.
+    pub stages: Vec<&'static str>,
+}
+
+/// What is under a pixel: the patch, its parts, its (u, v), and the highlight drawn on it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Pick {
+    pub patch: String,
+    pub parts: Vec<String>,
+    pub uv: [f64; 2],
+    /// The highlight entry drawn on the patch (includes first), if any.
+    pub highlight: Option<usize>,
+    /// Its layers that cover the point at this frame.
+    pub covering: Vec<usize>,
+}
+
+/// A pointer dragging a highlight layer at a frame: its centre goes where the pointer is.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DragRequest {
+    pub frame: f64,
+    /// The image position, pixel centres at integer values.
+    pub x: f64,
+    pub y: f64,
+    /// The highlight entry (includes first) and its layer.
+    pub highlight: usize,
+    pub layer: usize,
+    #[serde(default)]
+    pub quality: Quality,
+    #[serde(default)]
+    pub overlays: Overlays,
+}
+
+/// A job and the text its shot was loaded from.
+struct Rendering {
+    job: RenderJob,
+    text: String,
+    /// An input other than the shot file changed: load again even for the same text.
+    stale: bool,
+}
+
+/// One tuning session of one shot file.
+pub struct Session {
+    path: PathBuf,
+    text: String,
+    version: u64,
+    history: History,
+    preview: Rendering,
+    final_frames: Rendering,
+    disk_error: Option<String>,
+}
+
+/// The AOVs every frame of a session is rendered with: the patch under each pixel for picking
+/// and seams, the matte for its overlay.
+const SESSION_AOVS: [Aov; 2] = [Aov::PatchId, Aov::Matte];
+
+fn bad(e: impl std::fmt::Display) -> TuneError {
+    TuneError::Bad(e.to_string())
+}
+
+fn job_error(e: JobError) -> TuneError {
+    if e.is_bad_input() {
+        TuneError::Bad(e.to_string())
+    } else {
+        TuneError::Failed(e.to_string())
+    }
+}
+
+fn place_error(e: PlaceError) -> TuneError {
+    if e.is_bad_input() {
+        TuneError::Bad(e.to_string())
+    } else {
+        TuneError::Failed(e.to_string())
+    }
+}
+
+impl Session {
+    /// Opens the shot at `path`, its frames rendered at `size` (the shot's resolution if
+    /// `None`). The file must load as `glint render` loads it.
+    pub fn open(path: &Path, size: Option<(u32, u32)>) -> Result<Self, JobError> {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            JobError::Shot(crate::shot::ShotError::File {
+                path: path.display().to_string(),
+                message: format!("cannot read the file: {e}"),
+            })
+        })?;
+        let rendering = |preset| -> Result<Rendering, JobError> {
+            let overrides = Overrides {
+                size,
+                preset: Some(preset),
+                aovs: Some(SESSION_AOVS.to_vec()),
+                ..Overrides::default()
+            };
+            let shot = load_shot_text(path, text.clone())?;
+            Ok(Rendering {
+                job: RenderJob::new(shot, &overrides)?,
+                text: text.clone(),
+                stale: false,
+            })
+        };
+        Ok(Self {
+            path: path.to_path_buf(),
+            preview: rendering(Preset::Preview)?,
+            final_frames: rendering(Preset::Final)?,
+            text,
+            version: 1,
+            history: History::default(),
+            disk_error: None,
+        })
+    }
+
+    /// The shot file.
+    #[must_use]
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The file's text as last read or written.
+    #[must_use]
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// Grows with every change of the file.
+    #[must_use]
+    pub fn version(&self) -> u64 {
+        self.version
+    }
+
+    /// The state the page shows at `frame`.
+    pub fn state(&mut self, frame: f64) -> Result<StateView, TuneError> {
+        check_frame(frame)?;
+        let text = self.text.clone();
+        sync(&mut self.preview, &self.path, &text)?;
+        let (undo, redo) = self.history.depth();
+        let settings = self.preview.job.settings();
+        let shot = self.preview.job.shot();
+        Ok(StateView {
+            version: self.version,
+            file: shot.path.display().to_string(),
+            frame,
+            frames: [shot.frames.0, shot.frames.1],
+            fps: shot.fps,
+            size: [settings.width, settings.height],
+            undo,
+            redo,
+            disk_error: self.disk_error.clone(),
+            highlights: highlight_views(shot, &text, frame)?,
+            op_kinds: ["Translate", "Rotate", "Scale", "Split", "Square"],
+        })
+    }
+
+    /// Renders the frame `request` asks for, with its changes made to the text in memory only:
+    /// the file is not touched. A change that is not valid is refused as it would be if it were
+    /// written.
+    pub fn render(&mut self, request: &FrameRequest) -> Result<FrameImage, TuneError> {
+        check_frame(request.frame)?;
+        let text =
+            apply_changes(&self.text, &request.changes).map_err(|e| bad(e.in_file(&self.path)))?;
+        let rendering = match request.quality {
+            Quality::Preview => &mut self.preview,
+            Quality::Final => &mut self.final_frames,
+        };
+        sync(rendering, &self.path, &text)?;
+        draw(&mut rendering.job, request.frame, request.overlays)
+    }
+
+    /// What is under pixel `(x, y)` at `frame`.
+    pub fn pick(&mut self, frame: f64, (x, y): (f64, f64)) -> Result<Pick, TuneError> {
+        check_frame(frame)?;
+        let text = self.text.clone();
+        sync(&mut self.preview, &self.path, &text)?;
+        let job = &mut self.preview.job;
+        let (patch, uv) = job.point_under(frame, (x, y)).map_err(place_error)?;
+        let shot = job.shot();
+        let library = &shot.library;
+        let highlight = shot.highlight_of(patch);
+        let state = shot.at(frame);
+        let covering = match highlight {
+            Some(entry) => {
+                let point = SurfacePoint::new(
+                    &library.patches[patch].surface,
+                    uv,
+                    &state.camera,
+                    &state.light,
+                );
+                state.highlights[entry]
+                    .layers()
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, layer)| {
+                        layer
+                            .prepare()
+                            .is_ok_and(|p| p.signed(&point.frame, point.half_vector) > 0.0)
+                    })
+                    .map(|(k, _)| k)
+                    .collect()
+            }
+            None => Vec::new(),
+        };
+        Ok(Pick {
+            patch: library.patches[patch].name.clone(),
+            parts: library.groups_of(patch).map(|g| g.name.clone()).collect(),
+            uv: [uv.0, uv.1],
+            highlight,
+            covering,
+        })
+    }
+
+    /// The changes that put the centre of the layer `request` names on the surface point under
+    /// its pixel, keyed at its frame: the layer's placing translation (`glint place`), or, for
+    /// a pinned layer, its pin's (u, v) — the pointer must then be on the pinned patch.
+    pub fn drag_changes(&mut self, request: &DragRequest) -> Result<Vec<Change>, TuneError> {
+        check_frame(request.frame)?;
+        let text = self.text.clone();
+        sync(&mut self.preview, &self.path, &text)?;
+        let file_index = self.file_index(request.highlight)?;
+        let job = &mut self.preview.job;
+        let (entry, layer, frame) = (request.highlight, request.layer, request.frame);
+        let path = |param| {
+            ParamPath::Highlight {
+                entry: HighlightRef::Index(file_index),
+                layer,
+                param,
+            }
+            .to_string()
+        };
+        let key = |param, value: f64| Change::Key {
+            path: path(param),
+            frame,
+            value: vec![value as f32],
+        };
+        if let Some(pinned) = job.shot().pinned_patch(entry, layer) {
+            let (patch, uv) = job
+                .point_under(frame, (request.x, request.y))
+                .map_err(place_error)?;
+            let shot = job.shot();
+            let name = |p: usize| shot.library.patches[p].name.clone();
+            let mut changes = Vec::new();
+            if patch != pinned {
+                if shot.highlight_of(patch) != Some(entry) {
+                    return Err(TuneError::Bad(format!(
+                        "layer {layer} of highlight {entry} is pinned to {}; {} under the \
+                         pointer has another highlight, so the pin cannot move there",
+                        name(pinned),
+                        name(patch)
+                    )));
+                }
+                let pin = shot.highlight_layers(entry)[layer].pin.as_ref();
+                let keyed_elsewhere = pin.is_some_and(|pin| {
+                    (pin.u.key_frames().chain(pin.v.key_frames())).any(|k| k != frame)
+                });
+                if keyed_elsewhere {
+                    return Err(TuneError::Bad(format!(
+                        "layer {layer} of highlight {entry} is pinned to {} with keys at other \
+                         frames, which belong to that patch; drag it on {} or delete those keys",
+                        name(pinned),
+                        name(pinned)
+                    )));
+                }
+                changes.push(Change::PinTo {
+                    highlight: file_index,
+                    layer,
+                    patch: name(patch),
+                });
+            }
+            changes.extend([key(LayerParam::PinU, uv.0), key(LayerParam::PinV, uv.1)]);
+            return Ok(changes);
+        }
+        let choice = LayerChoice {
+            highlight: Some(entry),
+            layer: Some(layer),
+        };
+        let placed = job
+            .place_centre(frame, (request.x, request.y), choice)
+            .map_err(place_error)?;
+        let op = |param| LayerParam::Op {
+            index: placed.op,
+            param,
+        };
+        Ok(vec![
+            key(op(OpParam::Alpha), f64::from(placed.translation.x)),
+            key(op(OpParam::Beta), f64::from(placed.translation.y)),
+        ])
+    }
+
+    /// The index in the shot file's `highlights` of highlight entry `entry`; an entry written
+    /// in an include is refused: the session writes no file but the shot.
+    fn file_index(&self, entry: usize) -> Result<usize, TuneError> {
+        let shot = self.preview.job.shot();
+        let Some((file, index)) = shot.highlight_written(entry) else {
+            return Err(TuneError::Bad(format!(
+                "the shot has {} highlight entries, numbered from 0, so there is no entry {entry}",
+                shot.highlight_count()
+            )));
+        };
+        let same = |a: &Path, b: &Path| {
+            std::fs::canonicalize(a)
+                .ok()
+                .zip(std::fs::canonicalize(b).ok())
+                .is_some_and(|(a, b)| a == b)
+        };
+        if !same(file, &self.path) {
+            return Err(TuneError::Bad(format!(
+                "highlight {entry} is written in {}; tune changes only the shot file {}: edit \
+                 the include with `glint key`",
+                file.display(),
+                self.path.display()
+            )));
+        }
+        Ok(index)
+    }
+
+    /// Makes `changes` and writes the file: each is checked as `glint key` checks it, and the
+    /// result must load as the shot; otherwise nothing is written. Returns the new version.
+    pub fn commit(&mut self, changes: &[Change]) -> Result<u64, TuneError> {
+        self.adopt_disk()?;
+        let edited = apply_changes(&self.text, changes).map_err(|e| bad(e.in_file(&self.path)))?;
+        if edited == self.text {
+            return Ok(self.version);
+        }
+        self.write(edited.clone())?;
+        let before = std::mem::replace(&mut self.text, edited);
+        self.history.record(before, self.text.clone());
+        Ok(self.bump())
+    }
+
+    /// Undoes the last accepted change, writing the file back as it was before it.
+    pub fn undo(&mut self) -> Result<u64, TuneError> {
+        self.adopt_disk()?;
+        let Some(before) = self.history.undo(&self.text) else {
+            return Err(TuneError::Conflict("there is nothing to undo".to_string()));
+        };
+        self.write(before.clone())?;
+        self.text = before;
+        Ok(self.bump())
+    }
+
+    /// Makes the last undone change again.
+    pub fn redo(&mut self) -> Result<u64, TuneError> {
+        self.adopt_disk()?;
+        let Some(after) = self.history.redo(&self.text) else {
+            return Err(TuneError::Conflict("there is nothing to redo".to_string()));
+        };
+        self.write(after.clone())?;
+        self.text = after;
+        Ok(self.bump())
+    }
+
+    /// Takes in a change of the shot's inputs made elsewhere (an editor saving the file, a
+    /// patch file or texture written): the file's text is read again; a text that loads
+    /// becomes the session's (and the history, which no longer applies, is forgotten); one
+    /// that does not is reported in the state until it is fixed. Returns whether anything
+    /// changed.
+    pub fn inputs_changed(&mut self) -> bool {
+        let Ok(text) = std::fs::read_to_string(&self.path) else {
+            return false;
+        };
+        if text == self.text && self.disk_error.is_none() {
+            // The session's own write, or another input: load again from the files.
+            self.preview.stale = true;
+            self.final_frames.stale = true;
+            self.bump();
+            return true;
+        }
+        match load_shot_text(&self.path, text.clone()) {
+            Ok(_) => {
+                self.text = text;
+                self.disk_error = None;
+                self.history.clear();
+                self.preview.stale = true;
+                self.final_frames.stale = true;
+            }
+            Err(e) => self.disk_error = Some(e.to_string()),
+        }
+        self.bump();
+        true
+    }
+
+    /// Refuses to change a file that was changed elsewhere and not yet taken in.
+    fn adopt_disk(&mut self) -> Result<(), TuneError> {
+        let on_disk = std::fs::read_to_string(&self.path).map_err(|e| {
+            TuneError::Failed(format!(
+                "{}: cannot read the file: {e}",
+                self.path.display()
+            ))
+        })?;
+        if on_disk == self.text {
+            return Ok(());
+        }
+        self.inputs_changed();
+        Err(TuneError::Conflict(format!(
+            "{} was changed elsewhere; the page now shows it as it is, so make the change again",
+            self.path.display()
+        )))
+    }
+
+    /// Writes `text` to the shot file after checking that it loads.
+    fn write(&self, text: String) -> Result<(), TuneError> {
+        load_shot_text(&self.path, text.clone()).map_err(bad)?;
+        replace_text(&self.path, &text).map_err(|e| TuneError::Failed(e.to_string()))
+    }
+
+    fn bump(&mut self) -> u64 {
+        self.version += 1;
+        self.version
+    }
+}
+
+/// Refuses a frame that is not a finite number.
+fn check_frame(frame: f64) -> Result<(), TuneError> {
+    if frame.is_finite() {
+        Ok(())
+    } else {
+        Err(TuneError::Bad(format!(
+            "the frame {frame} is not a finite number"
+        )))
+    }
+}
+
+/// Makes `rendering` render the shot whose file's text is `text`.
+fn sync(rendering: &mut Rendering, path: &Path, text: &str) -> Result<(), TuneError> {
+    if rendering.text == text && !rendering.stale {
+        return Ok(());
+    }
+    let shot = load_shot_text(path, text.to_string()).map_err(bad)?;
+    rendering.job.replace_shot(shot).map_err(job_error)?;
+    rendering.text = text.to_string();
+    rendering.stale = false;
+    Ok(())
+}
+
+/// Renders `frame` of `job` with `overlays` drawn over it.
+fn draw(job: &mut RenderJob, frame: f64, overlays: Overlays) -> Result<FrameImage, TuneError> {
+    let started = Instant::now();
+    let image = job.render_frame(frame).map_err(job_error)?;
+    let render_ms = started.elapsed().as_secs_f64() * 1e3;
+    let (width, height) = (image.width, image.height);
+    let mut rgba = colour_rgba8(&image.colour);
+    if overlays.matte {
+        if let Some(matte) = &image.aovs.matte {
+            draw_matte(&mut rgba, matte, width, height);
+        }
+    }
+    if overlays.seams {
+        if let Some(ids) = &image.aovs.patch_id {
+            draw_seams(&mut rgba, ids, width, height);
+        }
+    }
+    if overlays.pins {
+        let shot = job.shot();
+        let state = shot.at(frame);
+        let aspect = width as f32 / height as f32;
+        let to_clip = state.camera.view_projection(aspect);
+        for entry in 0..shot.highlight_count() {
+            for (k, layer) in shot.highlight_layers(entry).into_iter().enumerate() {
+                let (Some(patch), Some(uv)) = (shot.pinned_patch(entry, k), pin_at(layer, frame))
+                else {
+                    continue;
+                };
+                let surface = &shot.library.patches[patch].surface;
+                let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
+                let clip = to_clip * point.position.extend(1.0);
+                if clip.w <= 0.0 {
+                    continue;
+                }
+                let (x, y) = (clip.x / clip.w, clip.y / clip.w);
+                let pixel = (
+                    f64::from((x + 1.0) * 0.5 * width as f32) - 0.5,
+                    f64::from((1.0 - y) * 0.5 * height as f32) - 0.5,
+                );
+                draw_pin(&mut rgba, width, height, pixel);
+            }
+        }
+    }
+    let stages = Stage::ALL
+        .into_iter()
+        .filter(|&s| image.stats.ran(s))
+        .map(Stage::name)
+        .collect();
+    Ok(FrameImage {
+        width,
+        height,
+        rgba,
+        render_ms,
+        stages,
+    })
+}

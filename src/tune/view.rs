@@ -1,0 +1,239 @@
+//! What the page is told about the shot: its frames and size, and for each highlight layer of
+//! the shot file its operations and parameters, each with its value at the frame, its keys, the
+//! range it must lie in and the span its slider covers.
+
+use serde::Serialize;
+
+use crate::anim::Track;
+use crate::shot::{
+    param_readings, HighlightRef, LayerParam, OpParam, ParamPath, ParamReading, Shot,
+};
+
+use super::error::TuneError;
+
+/// The state of a session at one frame, as JSON for the page.
+#[derive(Clone, Debug, Serialize)]
+pub struct StateView {
+    /// Grows with every change of the file, by the page or elsewhere.
+    pub version: u64,
+    /// The shot file.
+    pub file: String,
+    pub frame: f64,
+    /// The first and last frame.
+    pub frames: [i64; 2],
+    pub fps: f64,
+    /// The preview's size in pixels.
+    pub size: [u32; 2],
+    /// How many changes can be undone and redone.
+    pub undo: usize,
+    pub redo: usize,
+    /// The last edit of the file made elsewhere that does not load, if the file is in that
+    /// state now (the page keeps the last good state and shows this).
+    pub disk_error: Option<String>,
+    pub highlights: Vec<HighlightView>,
+    /// The operation kinds a layer can be given.
+    pub op_kinds: [&'static str; 5],
+}
+
+/// One highlight entry of the shot.
+#[derive(Clone, Debug, Serialize)]
+pub struct HighlightView {
+    /// Its index among the shot's entries (includes first), as `pick` names it.
+    pub entry: usize,
+    /// Its index in the shot file's own `highlights`, which changes name; `None` for an entry
+    /// written in an include, which the page shows but does not change.
+    pub file_index: Option<usize>,
+    /// The file it is written in.
+    pub written_in: String,
+    /// Its patch selectors.
+    pub patches: Vec<String>,
+    pub layers: Vec<LayerView>,
+}
+
+/// One layer of a highlight entry.
+#[derive(Clone, Debug, Serialize)]
+pub struct LayerView {
+    pub index: usize,
+    pub ops: Vec<OpView>,
+    /// ε, colour, opacity, feather, and the mask's and pin's numbers where it has them.
+    pub params: Vec<ParamView>,
+    pub has_mask: bool,
+    /// The patch the layer is pinned to, if pinned.
+    pub pinned_to: Option<String>,
+}
+
+/// One operation of a layer's stack.
+#[derive(Clone, Debug, Serialize)]
+pub struct OpView {
+    pub index: usize,
+    pub name: &'static str,
+    pub params: Vec<ParamView>,
+}
+
+/// One animatable number (or colour) of a layer.
+#[derive(Clone, Debug, Serialize)]
+pub struct ParamView {
+    /// Its parameter path in the shot file.
+    pub path: String,
+    /// Its name as written (`alpha`, `epsilon`, `mask.u[0]`).
+    pub name: String,
+    /// Its value at the frame, component by component; empty for a feather left out.
+    pub value: Vec<f32>,
+    /// The frames of its keys; empty for a constant.
+    pub keys: Vec<f64>,
+    /// The range it must lie in (`None`: unbounded on that side) and whether each end is
+    /// excluded.
+    pub min: Option<f32>,
+    pub max: Option<f32>,
+    pub min_open: bool,
+    pub max_open: bool,
+    /// The span its slider covers: the useful values, widened to hold its value now.
+    pub slider: [f32; 2],
+}
+
+/// The span of a parameter's slider: where its useful values lie. Translations past ±1 make H
+/// nearly tangent; a split past 1 pushes the pieces off a sphere; ε past 0.5 covers a quarter of
+/// it.
+#[must_use]
+pub fn slider_span(param: LayerParam) -> [f32; 2] {
+    match param {
+        LayerParam::Epsilon => [0.001, 0.5],
+        LayerParam::Colour(_) | LayerParam::Opacity => [0.0, 1.0],
+        LayerParam::Feather => [0.0, 0.05],
+        LayerParam::MaskU(_) | LayerParam::MaskV(_) | LayerParam::PinU | LayerParam::PinV => {
+            [0.0, 1.0]
+        }
+        LayerParam::MaskFeather => [0.0, 0.5],
+        LayerParam::Op { param, .. } => match param {
+            OpParam::Alpha | OpParam::Beta => [-1.0, 1.0],
+            OpParam::Degrees | OpParam::Axis => [-180.0, 180.0],
+            OpParam::Delta | OpParam::Sigma => [0.0, 1.0],
+            OpParam::GammaU | OpParam::GammaV => [0.0, 1.0],
+            OpParam::N => [0.25, 8.0],
+        },
+    }
+}
+
+/// The name a layer parameter is written with inside its layer or operation.
+fn param_name(param: LayerParam) -> String {
+    match param {
+        LayerParam::Epsilon => "epsilon".to_string(),
+        LayerParam::Colour(None) => "colour".to_string(),
+        LayerParam::Colour(Some(c)) => format!("colour[{c}]"),
+        LayerParam::Opacity => "opacity".to_string(),
+        LayerParam::Feather => "feather".to_string(),
+        LayerParam::MaskU(i) => format!("mask.u[{i}]"),
+        LayerParam::MaskV(i) => format!("mask.v[{i}]"),
+        LayerParam::MaskFeather => "mask.feather".to_string(),
+        LayerParam::PinU => "pin.u".to_string(),
+        LayerParam::PinV => "pin.v".to_string(),
+        LayerParam::Op { param, .. } => param.name().to_string(),
+    }
+}
+
+fn param_view(param: LayerParam, reading: &ParamReading) -> ParamView {
+    let bounds = param.bounds();
+    let mut slider = slider_span(param);
+    for &v in &reading.value {
+        slider = [slider[0].min(v), slider[1].max(v)];
+    }
+    ParamView {
+        path: reading.path.to_string(),
+        name: param_name(param),
+        value: reading.value.clone(),
+        keys: reading.keys.clone(),
+        min: bounds.min.is_finite().then_some(bounds.min),
+        max: bounds.max.is_finite().then_some(bounds.max),
+        min_open: bounds.min_open,
+        max_open: bounds.max_open,
+        slider,
+    }
+}
+
+/// Everything the page shows of `shot`, whose file's text is `text`, at `frame`.
+pub fn highlight_views(
+    shot: &Shot,
+    text: &str,
+    frame: f64,
+) -> Result<Vec<HighlightView>, TuneError> {
+    let readings = param_readings(text, frame)
+        .map_err(|e| TuneError::Bad(e.in_file(&shot.path).to_string()))?;
+    let own = std::fs::canonicalize(&shot.path).unwrap_or_else(|_| shot.path.clone());
+    let selectors: Vec<&[String]> = shot.highlight_selectors().collect();
+    let mut views = Vec::new();
+    for entry in 0..shot.highlight_count() {
+        let (written_in, file_index) = match shot.highlight_written(entry) {
+            Some((file, index)) => {
+                let same = std::fs::canonicalize(file).is_ok_and(|f| f == own);
+                (file.display().to_string(), same.then_some(index))
+            }
+            None => (shot.path.display().to_string(), None),
+        };
+        let layers = shot
+            .highlight_layers(entry)
+            .into_iter()
+            .enumerate()
+            .map(|(k, layer)| {
+                let mine = |reading: &&ParamReading| match &reading.path {
+                    ParamPath::Highlight {
+                        entry: HighlightRef::Index(i),
+                        layer,
+                        ..
+                    } => Some(*i) == file_index && *layer == k,
+                    _ => false,
+                };
+                let params_of = |keep: &dyn Fn(LayerParam) -> bool| -> Vec<ParamView> {
+                    readings
+                        .iter()
+                        .filter(mine)
+                        .filter_map(|r| match r.path {
+                            ParamPath::Highlight { param, .. } if keep(param) => {
+                                Some(param_view(param, r))
+                            }
+                            _ => None,
+                        })
+                        .collect()
+                };
+                let ops = layer
+                    .stack
+                    .iter()
+                    .enumerate()
+                    .map(|(j, op)| OpView {
+                        index: j,
+                        name: op.name(),
+                        params: params_of(
+                            &|p| matches!(p, LayerParam::Op { index, .. } if index == j),
+                        ),
+                    })
+                    .collect();
+                let params = params_of(&|p| {
+                    !matches!(p, LayerParam::Op { .. } | LayerParam::Colour(Some(_)))
+                });
+                LayerView {
+                    index: k,
+                    ops,
+                    params,
+                    has_mask: layer.mask.is_some(),
+                    pinned_to: shot
+                        .pinned_patch(entry, k)
+                        .map(|p| shot.library.patches[p].name.clone()),
+                }
+            })
+            .collect();
+        views.push(HighlightView {
+            entry,
+            file_index,
+            written_in,
+            patches: selectors.get(entry).map(|s| s.to_vec()).unwrap_or_default(),
+            layers,
+        });
+    }
+    Ok(views)
+}
+
+/// The value a pinned layer's pin has at `frame`: `(u, v)`.
+#[must_use]
+pub fn pin_at(layer: &crate::highlight::Layer<Track<f32>>, frame: f64) -> Option<(f64, f64)> {
+    let pin = layer.pin.as_ref()?;
+    Some((f64::from(pin.u.at(frame)), f64::from(pin.v.at(frame))))
+}

@@ -1,0 +1,147 @@
+// The tuning page end to end in headless Chromium: a copy of shots/sphere_ops.ron is opened
+// with `glint tune`, the highlight dragged on the sphere and released, a slider moved, the
+// timeline scrubbed and a change undone — each checked in the shot file on disk and in the
+// image. Screenshots go to target/page-tests/.
+
+import { readFileSync, rmSync } from "node:fs";
+import { join } from "node:path";
+import { artefacts, check, copyShot, launchBrowser, readPng, runGlint, startTune, until } from "./common.mjs";
+
+const SIZE = 240;
+const { folder, shot } = copyShot("sphere_ops.ron", ["sphere.ron"]);
+const original = readFileSync(shot, "utf8");
+const tune = await startTune(shot, ["--size", `${SIZE}x${SIZE}`]);
+const browser = await launchBrowser();
+let failed = false;
+
+const canvasHash = (page) => page.evaluate(() => {
+  const c = document.getElementById("view");
+  const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+  let h = 0;
+  for (let i = 0; i < d.length; i++) h = (Math.imul(h, 31) + d[i]) >>> 0;
+  return h;
+});
+
+/** The page position of image pixel (x, y)'s centre. */
+async function pagePoint(page, x, y) {
+  const box = await page.locator("#view").boundingBox();
+  return { x: box.x + (x + 0.5) * box.width / SIZE, y: box.y + (y + 0.5) * box.height / SIZE };
+}
+
+async function waitForFile(predicate, what) {
+  for (let i = 0; i < 300; i++) {
+    const text = readFileSync(shot, "utf8");
+    if (predicate(text)) return text;
+    await new Promise((r) => setTimeout(r, 50));
+  }
+  throw new Error(`timed out waiting for the shot file to ${what}`);
+}
+
+async function settle(page, paints) {
+  await until(page, (n) => window.glintTune.paints > n, paints, "a new frame on the page");
+}
+
+try {
+  const page = await browser.newPage({ viewport: { width: 1200, height: 720 } });
+  page.on("pageerror", (e) => { throw e; });
+  await page.goto(tune.url);
+  await until(page, () => window.glintTune.paints >= 1, undefined, "the first frame");
+  await page.screenshot({ path: join(artefacts, "01-open.png") });
+
+  // A request without the token is refused, and the page's own requests carry it.
+  const refused = await page.evaluate(() => fetch("/api/state").then((r) => r.status));
+  check(refused === 401, `a request without the token answered ${refused}, not 401`);
+
+  // Drag the highlight from the sphere's centre to the drop point and release.
+  const drop = { x: 150, y: 100 };
+  let paints = await page.evaluate(() => window.glintTune.paints);
+  const start = await pagePoint(page, 120, 120);
+  await page.mouse.move(start.x, start.y);
+  await page.mouse.down();
+  for (let i = 1; i <= 8; i++) {
+    const p = await pagePoint(page, 120 + (drop.x - 120) * i / 8, 120 + (drop.y - 120) * i / 8);
+    await page.mouse.move(p.x, p.y);
+    await new Promise((r) => setTimeout(r, 30));
+  }
+  await page.mouse.up();
+  const dragged = await waitForFile((t) => t !== original, "change after the drop");
+  await settle(page, paints);
+  await page.screenshot({ path: join(artefacts, "02-dragged.png") });
+
+  // The file holds keys of the translation at frame 1 ...
+  const listed = runGlint(["key", shot, "--list"]);
+  const alpha = listed.split("\n").find((l) => l.startsWith("highlights[0].layers[0].stack[0].alpha"));
+  const beta = listed.split("\n").find((l) => l.startsWith("highlights[0].layers[0].stack[0].beta"));
+  check(alpha && /\(1, -?[0-9.e-]+\)/.test(alpha), `no key of alpha at frame 1: ${alpha}`);
+  check(beta && /\(1, -?[0-9.e-]+\)/.test(beta), `no key of beta at frame 1: ${beta}`);
+  // ... whose render puts the highlight's matte centroid on the drop point.
+  const out = join(folder, "check", "c.####.png");
+  runGlint(["render", shot, "--frames", "1", "--size", `${SIZE}x${SIZE}`, "--aov", "matte", "--out", out]);
+  const matte = readPng(join(folder, "check", "c.0001.matte.png"));
+  let [sum, sx, sy] = [0, 0, 0];
+  for (let y = 0; y < matte.height; y++) {
+    for (let x = 0; x < matte.width; x++) {
+      const m = matte.data[(y * matte.width + x) * matte.channels] / 255;
+      sum += m; sx += m * x; sy += m * y;
+    }
+  }
+  check(sum > 20, `the rendered highlight covers only ${sum} pixels`);
+  const centroid = { x: sx / sum, y: sy / sum };
+  const miss = Math.hypot(centroid.x - drop.x, centroid.y - drop.y);
+  console.log(`drop at (${drop.x}, ${drop.y}); matte centroid (${centroid.x.toFixed(2)}, ${centroid.y.toFixed(2)}), ${miss.toFixed(2)} px away`);
+  check(miss <= 2, `the matte centroid is ${miss.toFixed(2)} px from the drop point`);
+
+  // Move the ε slider: the file and the image change.
+  const before = await canvasHash(page);
+  paints = await page.evaluate(() => window.glintTune.paints);
+  const epsilon = page.locator('input[type=range][data-path="highlights[0].layers[0].epsilon"]');
+  await epsilon.evaluate((el) => {
+    el.value = "0.06";
+    el.dispatchEvent(new Event("input", { bubbles: true }));
+    el.dispatchEvent(new Event("change", { bubbles: true }));
+  });
+  const widened = await waitForFile((t) => /epsilon: 0\.06\b/.test(t), "hold epsilon: 0.06");
+  await settle(page, paints);
+  await until(page, () => !document.getElementById("status").textContent, undefined, "no error shown");
+  const after = await canvasHash(page);
+  check(after !== before, "the image did not change when epsilon moved");
+  check(widened.replace("epsilon: 0.06", "epsilon: 0.025") === dragged, "the slider changed more than epsilon");
+  await page.screenshot({ path: join(artefacts, "03-slider.png") });
+
+  // Scrub the timeline to frame 12: a new image, and the selected parameter's keys marked.
+  await page.locator('input[type=range][data-path="highlights[0].layers[0].stack[0].alpha"]').focus();
+  const keys = await page.locator("#keys span").count();
+  check(keys === 3, `the timeline marks ${keys} keys of alpha, not 3`);
+  paints = await page.evaluate(() => window.glintTune.paints);
+  await page.locator("#frame").evaluate((el) => {
+    el.value = "12";
+    el.dispatchEvent(new Event("input", { bubbles: true }));
+  });
+  await settle(page, paints);
+  await until(page, () => document.getElementById("frame-number").value === "12", undefined, "frame 12");
+  check((await canvasHash(page)) !== after, "frame 12 looks like frame 1");
+  await page.locator("#next-key").click();
+  await until(page, () => document.getElementById("frame-number").value === "24", undefined, "the next key, 24");
+  await page.screenshot({ path: join(artefacts, "04-timeline.png") });
+
+  // Undo the slider: the file is as it was after the drag.
+  await page.locator("#undo").click();
+  await waitForFile((t) => t === dragged, "be as it was after the drag");
+
+  // Overlays for the docs.
+  await page.locator("#overlay-seams").check();
+  await page.locator("#overlay-matte").check();
+  paints = await page.evaluate(() => window.glintTune.paints);
+  await settle(page, paints);
+  await page.screenshot({ path: join(artefacts, "05-overlays.png") });
+  console.log("page test passed: drag, slider, timeline, undo");
+} catch (error) {
+  failed = true;
+  console.error("page test failed: " + error.message);
+  console.error(tune.stderr());
+} finally {
+  await browser.close();
+  tune.child.kill();
+  rmSync(folder, { recursive: true, force: true });
+}
+process.exit(failed ? 1 : 0);

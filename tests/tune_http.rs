@@ -1,0 +1,759 @@
+//! `glint tune`'s server over real HTTP: every endpoint with good and bad input, the token,
+//! Host and Origin checks, and the shot file — the one file it writes — unchanged after every
+//! refused request.
+
+use std::net::SocketAddr;
+use std::path::{Path, PathBuf};
+
+use glint::job::{Overrides, RenderJob};
+use glint::shot::Aov;
+use glint::tune::{ServerOptions, Session, TuneServer};
+use serde_json::{json, Value};
+
+use crate::common::http::{request, Reply};
+use crate::common::{glint, repo_file, stderr};
+
+const SIZE: u32 = 160;
+
+/// A copy of `shots/sphere_ops.ron` and its sphere, served.
+struct Served {
+    _dir: tempfile::TempDir,
+    shot: PathBuf,
+    server: TuneServer,
+}
+
+fn copy_sphere_ops(dir: &Path) -> PathBuf {
+    std::fs::create_dir_all(dir.join("shots")).unwrap();
+    std::fs::create_dir_all(dir.join("patches")).unwrap();
+    std::fs::copy(
+        repo_file("patches/sphere.ron"),
+        dir.join("patches/sphere.ron"),
+    )
+    .unwrap();
+    let shot = dir.join("shots/sphere_ops.ron");
+    std::fs::copy(repo_file("shots/sphere_ops.ron"), &shot).unwrap();
+    shot
+}
+
+fn serve(shot: &Path) -> TuneServer {
+    let session = Session::open(shot, Some((SIZE, SIZE))).expect("the shot opens");
+    TuneServer::start(session, &ServerOptions::default()).expect("the server starts")
+}
+
+impl Served {
+    fn new() -> Self {
+        let dir = tempfile::tempdir().unwrap();
+        let shot = copy_sphere_ops(dir.path());
+        let server = serve(&shot);
+        Self {
+            _dir: dir,
+            shot,
+            server,
+        }
+    }
+
+    fn address(&self) -> SocketAddr {
+        self.server.address()
+    }
+
+    fn text(&self) -> String {
+        std::fs::read_to_string(&self.shot).unwrap()
+    }
+
+    fn get(&self, target: &str) -> Reply {
+        let token = self.server.token().to_string();
+        request(
+            self.address(),
+            "GET",
+            target,
+            &[("X-Glint-Token", &token)],
+            b"",
+        )
+    }
+
+    fn post(&self, target: &str, body: &Value) -> Reply {
+        let token = self.server.token().to_string();
+        let body = serde_json::to_vec(body).unwrap();
+        request(
+            self.address(),
+            "POST",
+            target,
+            &[
+                ("X-Glint-Token", &token),
+                ("Content-Type", "application/json"),
+            ],
+            &body,
+        )
+    }
+}
+
+fn assert_status(reply: &Reply, status: u16) {
+    assert_eq!(reply.status, status, "{}", reply.text());
+}
+
+/// The one-line error of a refused request.
+fn error_of(reply: &Reply) -> String {
+    let error = reply.json()["error"]
+        .as_str()
+        .unwrap_or_default()
+        .to_string();
+    assert!(
+        !error.is_empty() && !error.contains('\n'),
+        "{}",
+        reply.text()
+    );
+    error
+}
+
+const ALPHA: &str = "highlights[0].layers[0].stack[0].alpha";
+const EPSILON: &str = "highlights[0].layers[0].epsilon";
+
+fn every_endpoint() -> Vec<(&'static str, &'static str, Value)> {
+    let key = json!({"changes": [{"kind": "key", "path": ALPHA, "frame": 1, "value": [0.2]}]});
+    vec![
+        ("GET", "/", Value::Null),
+        ("GET", "/api/state?frame=1", Value::Null),
+        ("POST", "/api/frame", json!({"frame": 1})),
+        ("POST", "/api/pick", json!({"frame": 1, "x": 80, "y": 80})),
+        (
+            "POST",
+            "/api/drag",
+            json!({"frame": 1, "x": 90, "y": 70, "highlight": 0, "layer": 0}),
+        ),
+        ("POST", "/api/commit", key),
+        ("POST", "/api/undo", Value::Null),
+        ("POST", "/api/redo", Value::Null),
+        ("GET", "/api/wait?version=0", Value::Null),
+        ("GET", "/no/such/page", Value::Null),
+    ]
+}
+
+#[test]
+fn every_request_needs_the_token_and_the_server_s_own_host_and_origin() {
+    let served = Served::new();
+    let mut before = served.text();
+    let address = served.address();
+    let token = served.server.token().to_string();
+    let own_host = format!("127.0.0.1:{}", address.port());
+    let own_origin = format!("http://127.0.0.1:{}", address.port());
+    let rebound_host = format!("attacker.example:{}", address.port());
+    for (method, target, body) in every_endpoint() {
+        let body = if body.is_null() {
+            Vec::new()
+        } else {
+            serde_json::to_vec(&body).unwrap()
+        };
+        let cases: [(&[(&str, &str)], u16); 6] = [
+            (&[], 401),
+            (
+                &[("X-Glint-Token", "0123456789abcdef0123456789abcdef")],
+                401,
+            ),
+            (&[("X-Glint-Token", &token[..31])], 401),
+            (&[("X-Glint-Token", &token), ("Host", &rebound_host)], 403),
+            (&[("X-Glint-Token", &token), ("Host", "127.0.0.1:1")], 403),
+            (
+                &[
+                    ("X-Glint-Token", &token),
+                    ("Host", &own_host),
+                    ("Origin", "http://attacker.example"),
+                ],
+                403,
+            ),
+        ];
+        for (headers, status) in cases {
+            let reply = request(address, method, target, headers, &body);
+            assert_eq!(
+                reply.status,
+                status,
+                "{method} {target} {headers:?}: {}",
+                reply.text()
+            );
+            error_of(&reply);
+            assert_eq!(
+                served.text(),
+                before,
+                "{method} {target} {headers:?} changed the file"
+            );
+        }
+        // The server's own origin passes the check (the answer is the endpoint's own).
+        let reply = request(
+            address,
+            method,
+            &format!(
+                "{target}{}token={token}",
+                if target.contains('?') { '&' } else { '?' }
+            ),
+            &[("Origin", &own_origin)],
+            &body,
+        );
+        assert!(
+            ![401, 403].contains(&reply.status),
+            "{method} {target}: {}",
+            reply.text()
+        );
+        before = served.text();
+    }
+}
+
+#[test]
+fn the_page_is_served_with_a_policy_that_keeps_other_sites_out() {
+    let served = Served::new();
+    let reply = served.get("/");
+    assert_status(&reply, 200);
+    assert!(
+        reply.text().contains("<canvas id=\"view\""),
+        "the page has its image"
+    );
+    let policy = reply.header("content-security-policy").unwrap_or_default();
+    assert!(policy.contains("frame-ancestors 'none'"), "{policy}");
+    assert_eq!(reply.header("cache-control"), Some("no-store"));
+}
+
+#[test]
+fn the_state_has_each_parameter_s_value_keys_and_range() {
+    let served = Served::new();
+    let reply = served.get("/api/state?frame=12");
+    assert_status(&reply, 200);
+    let state = reply.json();
+    assert_eq!(state["frames"], json!([1, 120]));
+    assert_eq!(state["size"], json!([SIZE, SIZE]));
+    let layer = &state["highlights"][0]["layers"][0];
+    let names: Vec<&str> = (layer["ops"].as_array().unwrap().iter())
+        .map(|op| op["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["Translate", "Rotate", "Scale", "Split", "Square"]);
+    // The file keys alpha [(1, 0.0), (12, 0.35), (24, 0.0)].
+    let alpha = &layer["ops"][0]["params"][0];
+    assert_eq!(alpha["path"], ALPHA);
+    assert!(
+        (alpha["value"][0].as_f64().unwrap() - 0.35).abs() < 1e-6,
+        "{alpha}"
+    );
+    assert_eq!(alpha["keys"], json!([1.0, 12.0, 24.0]));
+    assert_eq!(
+        (alpha["min"].as_f64(), alpha["max"].as_f64()),
+        (Some(-1e6), Some(1e6))
+    );
+    let epsilon = layer["params"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "epsilon")
+        .unwrap();
+    assert_eq!(epsilon["min_open"], true);
+    assert_eq!(epsilon["max"].as_f64(), Some(2.0));
+    // Between keys the value is interpolated.
+    let reply = served.get("/api/state?frame=6.5");
+    let alpha = &reply.json()["highlights"][0]["layers"][0]["ops"][0]["params"][0];
+    assert!(
+        (alpha["value"][0].as_f64().unwrap() - 0.175).abs() < 1e-6,
+        "{alpha}"
+    );
+
+    for bad in ["/api/state?frame=soon", "/api/state?frame=1&colour=red"] {
+        let reply = served.get(bad);
+        assert_status(&reply, 400);
+        error_of(&reply);
+    }
+}
+
+fn pixels(reply: &Reply) -> Vec<u8> {
+    assert_status(reply, 200);
+    match reply.header("content-type") {
+        Some("image/png") => image::load_from_memory(&reply.body)
+            .unwrap()
+            .to_rgba8()
+            .into_raw(),
+        _ => reply.body.clone(),
+    }
+}
+
+#[test]
+fn frames_arrive_raw_or_as_png_with_unsaved_changes_shown_but_not_written() {
+    let served = Served::new();
+    let before = served.text();
+    let raw = served.post("/api/frame", &json!({"frame": 1}));
+    assert_eq!(raw.header("x-glint-width"), Some("160"));
+    assert_eq!(raw.body.len(), (SIZE * SIZE * 4) as usize);
+    let png = served.post("/api/frame?format=png", &json!({"frame": 1}));
+    assert_eq!(png.header("content-type"), Some("image/png"));
+    assert_eq!(
+        pixels(&png),
+        pixels(&raw),
+        "PNG and raw carry the same pixels"
+    );
+    // A second frame with nothing changed reuses the surfaces.
+    let again = served.post("/api/frame", &json!({"frame": 1}));
+    let stages = again
+        .header("x-glint-stages")
+        .unwrap_or_default()
+        .to_string();
+    assert!(
+        !stages.contains("tessellate") && !stages.contains("gbuffer"),
+        "{stages}"
+    );
+
+    let wider = json!({"frame": 1, "changes": [{"kind": "set", "path": EPSILON, "value": [0.2]}]});
+    let changed = served.post("/api/frame", &wider);
+    assert_ne!(pixels(&changed), pixels(&raw), "ε 0.2 shows");
+    assert_eq!(served.text(), before, "a frame with changes writes nothing");
+    let stages = changed
+        .header("x-glint-stages")
+        .unwrap_or_default()
+        .to_string();
+    assert!(
+        !stages.contains("tessellate"),
+        "a highlight change keeps the mesh: {stages}"
+    );
+
+    let overlays = served.post(
+        "/api/frame",
+        &json!({"frame": 1, "overlays": {"seams": true, "matte": true, "pins": true}}),
+    );
+    assert_ne!(pixels(&overlays), pixels(&raw), "the overlays are drawn");
+
+    for (body, says) in [
+        (
+            json!({"frame": 1, "changes": [{"kind": "set", "path": EPSILON, "value": [3.0]}]}),
+            "sphere_ops.ron:",
+        ),
+        (
+            json!({"frame": 1, "changes": [{"kind": "set", "path": "highlights[0].layers[0].epsilom", "value": [0.1]}]}),
+            "epsilon",
+        ),
+        (
+            json!({"frame": 1, "changes": [{"kind": "set", "path": EPSILON, "value": [0.1, 0.2]}]}),
+            "epsilon",
+        ),
+        (json!({"frame": 1, "quality": "ultra"}), "ultra"),
+        (json!({"frame": "one"}), "expected f64"),
+        (json!({"frame": 1, "zoom": 2}), "zoom"),
+    ] {
+        let reply = served.post("/api/frame", &body);
+        assert_status(&reply, 400);
+        let error = error_of(&reply);
+        assert!(error.contains(says), "{body}: {error}");
+    }
+    let reply = served.post("/api/frame?format=jpeg", &json!({"frame": 1}));
+    assert_status(&reply, 400);
+    let token = served.server.token().to_string();
+    let reply = request(
+        served.address(),
+        "POST",
+        "/api/frame",
+        &[("X-Glint-Token", &token)],
+        b"{\"frame\": 1",
+    );
+    assert_status(&reply, 400);
+    assert_eq!(served.text(), before);
+}
+
+#[test]
+fn pick_names_the_patch_and_the_layers_under_a_pixel() {
+    let served = Served::new();
+    let reply = served.post("/api/pick", &json!({"frame": 1, "x": 80, "y": 80}));
+    assert_status(&reply, 200);
+    let pick = reply.json();
+    assert_eq!(pick["patch"], "ball/sphere");
+    assert_eq!(pick["highlight"], 0);
+    // At frame 1 the highlight sits where H = N: toward the light's reflection, which the
+    // sphere's centre pixel lies outside of unless the light is behind the camera.
+    assert!(pick["covering"].is_array());
+    for (x, y, says) in [
+        (-3.0, 80.0, "outside"),
+        (80.0, 500.0, "outside"),
+        (1.0, 1.0, "no patch"),
+    ] {
+        let reply = served.post("/api/pick", &json!({"frame": 1, "x": x, "y": y}));
+        assert_status(&reply, 400);
+        assert!(
+            error_of(&reply).contains(says),
+            "({x}, {y}): {}",
+            reply.text()
+        );
+    }
+}
+
+/// The centroid of the highlight matte of `shot` at `frame`, rendered at `SIZE`².
+fn matte_centroid(shot: &Path, frame: f64) -> (f64, f64) {
+    let overrides = Overrides {
+        size: Some((SIZE, SIZE)),
+        aovs: Some(vec![Aov::Matte]),
+        ..Overrides::default()
+    };
+    let mut job = RenderJob::load(shot, &overrides).unwrap();
+    let image = job.render_frame(frame).unwrap();
+    let matte = image.aovs.matte.unwrap();
+    let (mut sum, mut sx, mut sy) = (0.0, 0.0, 0.0);
+    for (i, &m) in matte.iter().enumerate() {
+        let (x, y) = ((i as u32 % SIZE) as f64, (i as u32 / SIZE) as f64);
+        sum += f64::from(m);
+        sx += f64::from(m) * x;
+        sy += f64::from(m) * y;
+    }
+    assert!(sum > 10.0, "the highlight shows");
+    (sx / sum, sy / sum)
+}
+
+#[test]
+fn a_drag_places_the_highlight_and_its_commit_keys_it_at_the_frame() {
+    let served = Served::new();
+    let before = served.text();
+    let drop = (100.0, 65.0);
+    let drag = json!({"frame": 5, "x": drop.0, "y": drop.1, "highlight": 0, "layer": 0});
+    let reply = served.post("/api/drag", &drag);
+    assert_status(&reply, 200);
+    assert_eq!(
+        served.text(),
+        before,
+        "a drag writes nothing until it is released"
+    );
+    let changes: Value = serde_json::from_str(reply.header("x-glint-changes").unwrap()).unwrap();
+    let paths: Vec<&str> = (changes.as_array().unwrap().iter())
+        .map(|c| c["path"].as_str().unwrap())
+        .collect();
+    assert_eq!(paths, [ALPHA, "highlights[0].layers[0].stack[0].beta"]);
+    assert!(changes
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|c| c["kind"] == "key" && c["frame"] == 5.0));
+
+    let reply = served.post("/api/commit", &json!({ "changes": changes }));
+    assert_status(&reply, 200);
+    let written = served.text();
+    assert_ne!(written, before);
+    let (x, y) = matte_centroid(&served.shot, 5.0);
+    let miss = (x - drop.0).hypot(y - drop.1);
+    assert!(
+        miss <= 2.0,
+        "the highlight's centroid ({x}, {y}) is {miss} px from the drop"
+    );
+
+    // Off the model, or a layer that does not exist: refused, the file as it was.
+    for (body, says) in [
+        (
+            json!({"frame": 5, "x": 2, "y": 2, "highlight": 0, "layer": 0}),
+            "no patch",
+        ),
+        (
+            json!({"frame": 5, "x": 80, "y": 80, "highlight": 0, "layer": 4}),
+            "no layer 4",
+        ),
+        (
+            json!({"frame": 5, "x": 80, "y": 80, "highlight": 3, "layer": 0}),
+            "entry 3",
+        ),
+    ] {
+        let reply = served.post("/api/drag", &body);
+        assert_status(&reply, 400);
+        assert!(error_of(&reply).contains(says), "{body}: {}", reply.text());
+        assert_eq!(served.text(), written);
+    }
+}
+
+#[test]
+fn commits_are_checked_like_the_file_and_refused_ones_write_nothing() {
+    let served = Served::new();
+    let before = served.text();
+    let refused = [
+        (
+            json!({"kind": "set", "path": "highlights[0].layers[0].stack[2].delta", "value": [3.0]}),
+            "[0, 1]",
+        ),
+        (
+            json!({"kind": "key", "path": ALPHA, "frame": 1, "value": [1e7]}),
+            "alpha",
+        ),
+        (
+            json!({"kind": "set", "path": "highlights[1].layers[0].epsilon", "value": [0.1]}),
+            "highlights[1]",
+        ),
+        (
+            json!({"kind": "delete", "path": EPSILON, "frame": 4}),
+            "no key",
+        ),
+        (
+            json!({"kind": "remove_op", "highlight": 0, "layer": 0, "index": 9}),
+            "no operation 9",
+        ),
+        (
+            json!({"kind": "insert_op", "highlight": 0, "layer": 0, "index": 0, "op": "Shear"}),
+            "Shear",
+        ),
+        (
+            json!({"kind": "pin_to", "highlight": 0, "layer": 0, "patch": "ball/nothing"}),
+            "no pin",
+        ),
+        (
+            json!({"kind": "add_mask", "highlight": 0, "layer": 0, "extra": 1}),
+            "extra",
+        ),
+    ];
+    for (change, says) in refused {
+        let reply = served.post("/api/commit", &json!({ "changes": [change] }));
+        assert_status(&reply, 400);
+        let error = error_of(&reply);
+        assert!(error.contains(says), "{change}: {error}");
+        assert_eq!(served.text(), before, "{change} changed the file");
+    }
+    // Changes in one commit are all made or none: the second is bad.
+    let both = json!({"changes": [
+        {"kind": "set", "path": EPSILON, "value": [0.05]},
+        {"kind": "set", "path": EPSILON, "value": [-1.0]},
+    ]});
+    assert_status(&served.post("/api/commit", &both), 400);
+    assert_eq!(served.text(), before);
+
+    // Structure: an operation added, moved and removed, a mask added — comments kept.
+    let steps = [
+        json!({"kind": "insert_op", "highlight": 0, "layer": 0, "index": 5, "op": "Rotate"}),
+        json!({"kind": "move_op", "highlight": 0, "layer": 0, "from": 5, "to": 0}),
+        json!({"kind": "add_mask", "highlight": 0, "layer": 0}),
+    ];
+    for step in &steps {
+        assert_status(
+            &served.post("/api/commit", &json!({ "changes": [step] })),
+            200,
+        );
+    }
+    let state = served.get("/api/state?frame=1").json();
+    let layer = &state["highlights"][0]["layers"][0];
+    assert_eq!(layer["ops"][0]["name"], "Rotate");
+    assert_eq!(layer["ops"].as_array().unwrap().len(), 6);
+    assert_eq!(layer["has_mask"], true);
+    let text = served.text();
+    assert!(
+        text.starts_with("// Each highlight operation of Anjyo"),
+        "the comments are kept"
+    );
+    let remove = json!({"changes": [{"kind": "remove_op", "highlight": 0, "layer": 0, "index": 0}, {"kind": "remove_mask", "highlight": 0, "layer": 0}]});
+    assert_status(&served.post("/api/commit", &remove), 200);
+    assert_eq!(
+        served.text(),
+        before,
+        "removing what was added gives the file back"
+    );
+}
+
+#[test]
+fn undo_and_redo_write_the_file_back_and_an_outside_edit_wins() {
+    let served = Served::new();
+    let before = served.text();
+    let set = |v: f64| json!({"changes": [{"kind": "set", "path": EPSILON, "value": [v]}]});
+    assert_status(&served.post("/api/commit", &set(0.05)), 200);
+    let first = served.text();
+    assert_status(&served.post("/api/commit", &set(0.07)), 200);
+    let second = served.text();
+    assert_status(&served.post("/api/undo", &Value::Null), 200);
+    assert_eq!(served.text(), first);
+    assert_status(&served.post("/api/undo", &Value::Null), 200);
+    assert_eq!(served.text(), before);
+    assert_status(&served.post("/api/undo", &Value::Null), 409);
+    assert_status(&served.post("/api/redo", &Value::Null), 200);
+    assert_eq!(served.text(), first);
+    let version = served.get("/api/state?frame=1").json()["version"]
+        .as_u64()
+        .unwrap();
+
+    // A text editor saves the file: the next change is refused (409) and the page told.
+    let outside = second.replace("colour: (1.0, 1.0, 0.92)", "colour: (1.0, 0.5, 0.5)");
+    std::fs::write(&served.shot, &outside).unwrap();
+    let reply = served.post("/api/commit", &set(0.09));
+    assert_status(&reply, 409);
+    assert_eq!(served.text(), outside, "the outside edit is kept");
+    let state = served.get("/api/state?frame=1").json();
+    assert!(state["version"].as_u64().unwrap() > version);
+    assert_eq!(state["undo"], 0, "the history no longer applies");
+    assert_status(&served.post("/api/undo", &Value::Null), 409);
+    assert_status(&served.post("/api/commit", &set(0.09)), 200);
+    assert!(served.text().contains("colour: (1.0, 0.5, 0.5)"));
+}
+
+#[test]
+fn a_waiting_page_hears_of_a_change() {
+    let served = Served::new();
+    let version = served.get("/api/state?frame=1").json()["version"]
+        .as_u64()
+        .unwrap();
+    let address = served.address();
+    let token = served.server.token().to_string();
+    let waiter = std::thread::spawn(move || {
+        let target = format!("/api/wait?version={version}");
+        request(address, "GET", &target, &[("X-Glint-Token", &token)], b"")
+    });
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    let set = json!({"changes": [{"kind": "set", "path": EPSILON, "value": [0.05]}]});
+    let committed = served.post("/api/commit", &set).json()["version"]
+        .as_u64()
+        .unwrap();
+    let heard = waiter.join().unwrap().json()["version"].as_u64().unwrap();
+    assert_eq!(heard, committed);
+    assert!(heard > version);
+    // An edit made elsewhere reaches the page the same way.
+    std::fs::write(
+        &served.shot,
+        served.text().replace("epsilon: 0.05", "epsilon: 0.04"),
+    )
+    .unwrap();
+    served.server.inputs_changed();
+    let state = served.get("/api/state?frame=1").json();
+    assert!(state["version"].as_u64().unwrap() > committed);
+    let epsilon = (state["highlights"][0]["layers"][0]["params"]
+        .as_array()
+        .unwrap()
+        .iter())
+    .find(|p| p["name"] == "epsilon")
+    .unwrap()["value"][0]
+        .as_f64()
+        .unwrap();
+    assert!((epsilon - 0.04).abs() < 1e-6);
+}
+
+#[test]
+fn nothing_but_the_shot_file_is_written_and_includes_are_left_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("patches")).unwrap();
+    std::fs::copy(
+        repo_file("patches/sphere.ron"),
+        dir.path().join("patches/sphere.ron"),
+    )
+    .unwrap();
+    let looks = r#"Looks(highlights: [(patches: "ball/*", expr: Layer((stack: [Translate(alpha: 0.1, beta: 0.0)], epsilon: 0.05, colour: (1.0, 1.0, 1.0))))])"#;
+    std::fs::write(dir.path().join("looks.ron"), looks).unwrap();
+    let shot = dir.path().join("shot.ron");
+    let text = std::fs::read_to_string(repo_file("shots/sphere_ops.ron"))
+        .unwrap()
+        .replace("../patches/", "patches/")
+        .replace(
+            "    instances: [",
+            "    includes: [\"looks.ron\"],\n    instances: [",
+        );
+    let start = text.find("    highlights: [").unwrap();
+    let end = text.find("    render: (").unwrap();
+    let text = format!("{}{}", &text[..start], &text[end..]);
+    std::fs::write(&shot, &text).unwrap();
+    let listing = |dir: &Path| {
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    };
+    let files_before = listing(dir.path());
+    let server = serve(&shot);
+    let token = server.token().to_string();
+    let post = |target: &str, body: Value| {
+        request(
+            server.address(),
+            "POST",
+            target,
+            &[("X-Glint-Token", &token)],
+            &serde_json::to_vec(&body).unwrap(),
+        )
+    };
+    let state = request(
+        server.address(),
+        "GET",
+        "/api/state?frame=1",
+        &[("X-Glint-Token", &token)],
+        b"",
+    )
+    .json();
+    assert_eq!(
+        state["highlights"][0]["file_index"],
+        Value::Null,
+        "the include's highlight is shown, not editable"
+    );
+    let reply = post(
+        "/api/drag",
+        json!({"frame": 1, "x": 80, "y": 80, "highlight": 0, "layer": 0}),
+    );
+    assert_status(&reply, 400);
+    assert!(error_of(&reply).contains("looks.ron"), "{}", reply.text());
+    let reply = post(
+        "/api/commit",
+        json!({"changes": [{"kind": "set", "path": EPSILON, "value": [0.1]}]}),
+    );
+    assert_status(&reply, 400);
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("looks.ron")).unwrap(),
+        looks
+    );
+    // An accepted change writes the shot file and nothing else, no temporary left behind.
+    let reply = post(
+        "/api/commit",
+        json!({"changes": [{"kind": "set", "path": "camera.eye", "value": [0.0, -7.0, 0.0]}]}),
+    );
+    assert_status(&reply, 200);
+    assert!(std::fs::read_to_string(&shot)
+        .unwrap()
+        .contains("eye: (0.0, -7.0, 0.0)"));
+    assert_eq!(listing(dir.path()), files_before);
+    server.stop();
+}
+
+#[test]
+fn the_command_listens_on_loopback_and_refuses_a_bad_shot_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.ron");
+    std::fs::write(&bad, "Shot(frames: (1, 2)").unwrap();
+    let out = glint()
+        .args(["tune", bad.to_str().unwrap(), "--no-open"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert_eq!(stderr(&out).lines().count(), 1, "{}", stderr(&out));
+    assert!(stderr(&out).contains("bad.ron:1:"), "{}", stderr(&out));
+
+    let shot = copy_sphere_ops(dir.path());
+    let mut child = glint()
+        .args([
+            "tune",
+            shot.to_str().unwrap(),
+            "--no-open",
+            "--size",
+            "64x64",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    let mut stdout = std::io::BufReader::new(child.stdout.take().unwrap());
+    std::io::BufRead::read_line(&mut stdout, &mut line).unwrap();
+    let url = line
+        .trim()
+        .strip_prefix("glint tune: ")
+        .unwrap_or_default()
+        .to_string();
+    assert!(url.starts_with("http://127.0.0.1:"), "{line}");
+    let (address, token) = url
+        .trim_start_matches("http://")
+        .split_once("/?token=")
+        .unwrap();
+    let address: SocketAddr = address.parse().unwrap();
+    assert!(address.ip().is_loopback());
+    // The same port again is refused at once.
+    let again = glint()
+        .args([
+            "tune",
+            shot.to_str().unwrap(),
+            "--no-open",
+            "--port",
+            &address.port().to_string(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(again.status.code(), Some(2), "{}", stderr(&again));
+    assert!(
+        stderr(&again).contains("cannot listen"),
+        "{}",
+        stderr(&again)
+    );
+    let reply = request(address, "GET", &format!("/?token={token}"), &[], b"");
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert_status(&reply, 200);
+}
