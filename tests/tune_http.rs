@@ -273,10 +273,10 @@ fn pixels(reply: &Reply) -> Vec<u8> {
 fn frames_arrive_raw_or_as_png_with_unsaved_changes_shown_but_not_written() {
     let served = Served::new();
     let before = served.text();
-    let raw = served.post("/api/frame", &json!({"frame": 1}));
+    let raw = served.post("/api/frame?format=raw", &json!({"frame": 1}));
     assert_eq!(raw.header("x-glint-width"), Some("160"));
     assert_eq!(raw.body.len(), (SIZE * SIZE * 4) as usize);
-    let png = served.post("/api/frame?format=png", &json!({"frame": 1}));
+    let png = served.post("/api/frame", &json!({"frame": 1}));
     assert_eq!(png.header("content-type"), Some("image/png"));
     assert_eq!(
         pixels(&png),
@@ -451,6 +451,72 @@ fn a_drag_places_the_highlight_and_its_commit_keys_it_at_the_frame() {
         assert!(error_of(&reply).contains(says), "{body}: {}", reply.text());
         assert_eq!(served.text(), written);
     }
+}
+
+/// Drags layer 0 of highlight 0 to `drop` at `frame`, commits what the drag showed, and checks
+/// that the highlight's centroid lands there; returns the changes.
+fn drag_and_commit(served: &Served, frame: f64, drop: (f64, f64)) -> Vec<Value> {
+    let drag = json!({"frame": frame, "x": drop.0, "y": drop.1, "highlight": 0, "layer": 0});
+    let reply = served.post("/api/drag", &drag);
+    assert_status(&reply, 200);
+    let changes: Vec<Value> =
+        serde_json::from_str(reply.header("x-glint-changes").unwrap()).unwrap();
+    assert_status(
+        &served.post("/api/commit", &json!({ "changes": changes })),
+        200,
+    );
+    let (x, y) = matte_centroid(&served.shot, frame);
+    let miss = (x - drop.0).hypot(y - drop.1);
+    assert!(
+        miss <= 2.0,
+        "the highlight's centroid ({x}, {y}) is {miss} px from the drop"
+    );
+    changes
+}
+
+#[test]
+fn a_layer_without_a_translation_gets_one_and_a_pinned_layer_moves_its_pin() {
+    let served = Served::new();
+    let remove =
+        json!({"changes": [{"kind": "remove_op", "highlight": 0, "layer": 0, "index": 0}]});
+    assert_status(&served.post("/api/commit", &remove), 200);
+    let changes = drag_and_commit(&served, 30.0, (70.0, 95.0));
+    let kinds: Vec<&str> = changes
+        .iter()
+        .map(|c| c["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["insert_op", "key", "key"]);
+    assert!(
+        served.text().contains("Translate(alpha: [(30, "),
+        "{}",
+        served.text()
+    );
+
+    let pinned = served.text().replace(
+        "colour: (1.0, 1.0, 0.92),",
+        "colour: (1.0, 1.0, 0.92),\n                pin: (patch: \"ball/sphere\", u: 0.7, v: 0.5),",
+    );
+    std::fs::write(&served.shot, pinned).unwrap();
+    served.server.inputs_changed();
+    let changes = drag_and_commit(&served, 30.0, (95.0, 60.0));
+    let paths: Vec<&str> = changes
+        .iter()
+        .map(|c| c["path"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        paths,
+        [
+            "highlights[0].layers[0].pin.u",
+            "highlights[0].layers[0].pin.v"
+        ]
+    );
+    assert!(
+        served
+            .text()
+            .contains("pin: (patch: \"ball/sphere\", u: [(30, "),
+        "{}",
+        served.text()
+    );
 }
 
 #[test]

@@ -82,6 +82,21 @@ pub enum OpKind {
 }
 
 impl OpKind {
+    /// Every kind, in the order the page offers them.
+    pub const ALL: [OpKind; 5] = [
+        OpKind::Translate,
+        OpKind::Rotate,
+        OpKind::Scale,
+        OpKind::Split,
+        OpKind::Square,
+    ];
+
+    /// The operation's name as a file writes it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        self.identity().name()
+    }
+
     /// The operation of this kind that leaves H as it is: no step, no turn, no stretch (δ = 0),
     /// no split, no squaring (σ = 0, n = 1) — so that inserting it changes no pixel until a
     /// parameter is moved.
@@ -211,13 +226,7 @@ mod tests {
         use glam::Vec3;
         let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
         let h = Vec3::new(0.3, -0.2, 0.9).normalize();
-        for kind in [
-            OpKind::Translate,
-            OpKind::Rotate,
-            OpKind::Scale,
-            OpKind::Split,
-            OpKind::Square,
-        ] {
+        for kind in OpKind::ALL {
             let op = kind.identity().prepare().unwrap();
             let out = op.apply(&frame, h);
             assert!((out - h).length() < 1e-6, "{kind:?}: {out} for {h}");

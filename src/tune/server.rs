@@ -5,15 +5,17 @@
 //! | --- | --- | --- |
 //! | `GET /?token=T` | | the page |
 //! | `GET /api/state?frame=F` | | [`StateView`](super::StateView) as JSON |
-//! | `POST /api/frame?format=raw\|png` | [`FrameRequest`] | the frame's pixels |
+//! | `POST /api/frame?format=png\|raw` | [`FrameRequest`] | the frame's pixels |
 //! | `POST /api/pick` | `{frame, x, y}` | [`Pick`](super::Pick) |
 //! | `POST /api/drag?format=…` | [`DragRequest`] | the frame with the layer placed; the changes in `X-Glint-Changes` |
 //! | `POST /api/commit` | `{changes: [Change]}` | `{version}` once written |
 //! | `POST /api/undo`, `/api/redo` | | `{version}` |
 //! | `GET /api/wait?version=V` | | `{version}` when it is no longer V, or after 20 s |
 //!
-//! Pixels travel raw (`format=raw`, the default: RGBA8 rows from the top, the size in
-//! `X-Glint-Width` and `X-Glint-Height`) or as PNG. Errors are `{"error": "one line"}` with
+//! Pixels travel as PNG (the default: compressed for speed, decoded by the browser off its main
+//! thread, about 10% sooner on the screen than raw for a 640×360 teapot, docs/tune.md) or raw
+//! (`format=raw`: RGBA8 rows from the top); the size is in `X-Glint-Width` and
+//! `X-Glint-Height`. Errors are `{"error": "one line"}` with
 //! status 400 (bad input), 401 (token), 403 (host or origin), 409 (file changed elsewhere) or
 //! 500.
 
@@ -359,8 +361,8 @@ async fn state(
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 enum Format {
-    #[default]
     Raw,
+    #[default]
     Png,
 }
 

@@ -8,12 +8,13 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use super::change::{apply_changes, Change};
+use super::change::{apply_changes, Change, OpKind};
 use super::error::TuneError;
 use super::history::History;
 use super::view::{highlight_views, pin_at, StateView};
 use crate::formats::image_encoding::colour_rgba8;
 use crate::formats::replace_text::replace_text;
+use crate::highlight::Op;
 use crate::job::{JobError, LayerChoice, Overrides, PlaceError, RenderJob};
 use crate::picture::overlay::{draw_matte, draw_pin, draw_seams};
 use crate::render::{Stage, SurfacePoint};
@@ -210,7 +211,7 @@ impl Session {
             redo,
             disk_error: self.disk_error.clone(),
             highlights: highlight_views(shot, &text, frame)?,
-            op_kinds: ["Translate", "Rotate", "Scale", "Split", "Square"],
+            op_kinds: OpKind::ALL.map(OpKind::name),
         })
     }
 
@@ -272,8 +273,10 @@ impl Session {
     }
 
     /// The changes that put the centre of the layer `request` names on the surface point under
-    /// its pixel, keyed at its frame: the layer's placing translation (`glint place`), or, for
-    /// a pinned layer, its pin's (u, v) — the pointer must then be on the pinned patch.
+    /// its pixel, keyed at its frame: the layer's placing translation (`glint place`); a stack
+    /// without one gets a translation at its start; a pinned layer has its pin's (u, v) keyed,
+    /// and moved to the patch under the pointer when that patch has the same highlight and the
+    /// pin has no keys at other frames.
     pub fn drag_changes(&mut self, request: &DragRequest) -> Result<Vec<Change>, TuneError> {
         check_frame(request.frame)?;
         let text = self.text.clone();
@@ -330,6 +333,50 @@ impl Session {
             }
             changes.extend([key(LayerParam::PinU, uv.0), key(LayerParam::PinV, uv.1)]);
             return Ok(changes);
+        }
+        let state = job.shot().at(frame);
+        let chosen = state
+            .highlights
+            .get(entry)
+            .and_then(|expr| expr.layers().get(layer).map(|l| (*l).clone()))
+            .ok_or_else(|| {
+                TuneError::Bad(format!(
+                    "highlight {entry} has no layer {layer} (layers are numbered from 0)"
+                ))
+            })?;
+        if chosen.placing_translation().is_none() {
+            // A stack without a translation gets one at its start, solved as a pin solves it.
+            let (patch, uv) = job
+                .point_under(frame, (request.x, request.y))
+                .map_err(place_error)?;
+            let shot = job.shot();
+            if shot.highlight_of(patch) != Some(entry) {
+                return Err(TuneError::Bad(format!(
+                    "{}, under the pointer, does not have highlight {entry}",
+                    shot.library.patches[patch].name
+                )));
+            }
+            let surface = &shot.library.patches[patch].surface;
+            let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
+            let centred = chosen
+                .centred_on(point.local_half_vector())
+                .map_err(|e| TuneError::Bad(format!("layer {layer} of highlight {entry}: {e}")))?;
+            let Some(Op::Translate { alpha, beta }) = centred.stack.first() else {
+                return Err(TuneError::Failed(
+                    "the centred layer does not start with its translation".to_string(),
+                ));
+            };
+            let op = |param| LayerParam::Op { index: 0, param };
+            return Ok(vec![
+                Change::InsertOp {
+                    highlight: file_index,
+                    layer,
+                    index: 0,
+                    op: OpKind::Translate,
+                },
+                key(op(OpParam::Alpha), f64::from(*alpha)),
+                key(op(OpParam::Beta), f64::from(*beta)),
+            ]);
         }
         let choice = LayerChoice {
             highlight: Some(entry),

@@ -11,7 +11,7 @@ import { artefacts, copyShot, launchBrowser, root, startTune, until } from "./co
 
 const perBlock = Number(process.argv[2] || 25);
 const blocks = Number(process.argv[3] || 4);
-const { folder, shot } = copyShot("teapot_turntable.ron", ["teapot.bpt"]);
+const { folder, shot } = copyShot("teapot_turntable.ron", ["teapot.bpt", "teapot.parts.ron"]);
 mkdirSync(join(folder, "shots", "looks"));
 copyFileSync(join(root, "shots/looks/studio.ron"), join(folder, "shots/looks/studio.ron"));
 const tune = await startTune(shot, ["--size", "640x360"]);
@@ -27,8 +27,9 @@ try {
   const pages = {};
   for (const format of ["raw", "png"]) {
     const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    await page.goto(tune.url + (format === "png" ? "&format=png" : ""));
+    await page.goto(tune.url + "&format=" + format);
     await until(page, () => window.glintTune.paints >= 1, undefined, "the first frame");
+    await page.locator("#highlight-choice").selectOption("1");
     await page.locator(SLIDER).waitFor();
     pages[format] = { page, latencies: [], renders: [] };
   }

@@ -14,7 +14,7 @@ const page = {
   highlight: null, // a shot entry index (includes first)
   layer: 0,
   param: null, // the parameter path whose keys the timeline shows
-  format: new URLSearchParams(location.search).get("format") === "png" ? "png" : "raw",
+  format: new URLSearchParams(location.search).get("format") === "raw" ? "raw" : "png",
   playing: false,
   finalTimer: null,
 };
@@ -71,6 +71,7 @@ async function pump() {
     const height = Number(response.headers.get("X-Glint-Height"));
     const renderMs = Number(response.headers.get("X-Glint-Render-Ms"));
     const changes = response.headers.get("X-Glint-Changes");
+    const stages = (response.headers.get("X-Glint-Stages") || "").split(",").join(", ");
     if (changes && job.onChanges) job.onChanges(JSON.parse(changes));
     await paint(response, width, height);
     const total = performance.now() - job.asked;
@@ -78,7 +79,7 @@ async function pump() {
     window.glintTune.paints += 1;
     window.glintTune.last = { quality, renderMs, totalMs: total, at: performance.now() };
     if (quality === "preview") window.glintTune.latencies.push(total);
-    $("frame-time").textContent = `${quality} ${width}×${height}: render ${renderMs.toFixed(1)} ms, on screen ${total.toFixed(1)} ms`;
+    $("frame-time").textContent = `${quality} ${width}×${height}: render ${renderMs.toFixed(1)} ms (${stages}), on screen ${total.toFixed(1)} ms`;
     showError("");
     if (quality === "preview") scheduleFinal();
   } catch (error) {
@@ -91,6 +92,7 @@ async function pump() {
 
 // The canvas as large as the stage allows, its aspect kept.
 function fitCanvas() {
+  if (!canvas.width) return;
   const stage = $("stage").getBoundingClientRect();
   const scale = Math.min((stage.width - 20) / canvas.width, (stage.height - 60) / canvas.height);
   canvas.style.width = Math.max(1, Math.floor(canvas.width * scale)) + "px";
@@ -101,8 +103,8 @@ async function paint(response, width, height) {
   if (canvas.width !== width || canvas.height !== height) {
     canvas.width = width;
     canvas.height = height;
-    fitCanvas();
   }
+  fitCanvas();
   if (page.format === "png") {
     const bitmap = await createImageBitmap(await response.blob());
     context.clearRect(0, 0, width, height);
@@ -215,8 +217,10 @@ function paramRow(param, editable) {
     type: "range", min: param.slider[0], max: param.slider[1], step, value,
     dataset: { path: param.path }, disabled: !editable,
   });
+  const legal = `${param.min_open ? "(" : "["}${param.min ?? "-inf"}, ${param.max ?? "inf"}${param.max_open ? ")" : "]"}`;
   const number = element("input", {
     type: "number", value: param.value.length > 0 ? String(value) : "", placeholder: "none",
+    title: `${param.name}: any value in ${legal}`,
     step: "any", min: param.min ?? null, max: param.max ?? null,
     dataset: { number: param.path }, disabled: !editable,
   });
@@ -276,9 +280,11 @@ function renderPanel() {
   if (!h) return;
   const editable = h.file_index !== null;
   const fileIndex = h.file_index;
+  const pickHighlight = element("select", { id: "highlight-choice", onchange: (e) => { page.highlight = Number(e.target.value); page.layer = 0; page.param = null; renderPanel(); renderKeys(); } },
+    ...page.state.highlights.map((x) => element("option", { value: x.entry, selected: x.entry === h.entry }, `highlight ${x.entry}: ${x.patches.join(", ")}`)));
   const choose = element("select", { id: "layer-choice", onchange: (e) => { page.layer = Number(e.target.value); renderPanel(); renderKeys(); } },
     ...h.layers.map((l) => element("option", { value: l.index, selected: l.index === page.layer }, "layer " + l.index)));
-  box.append(element("h3", {}, `highlight ${h.entry} on ${h.patches.join(", ")} `), choose);
+  box.append(element("h3", {}, "highlight"), pickHighlight, " ", choose);
   if (!editable) box.append(element("p", {}, `written in ${h.written_in}: edit it there (tune changes only the shot file)`));
   const layer = currentLayer();
   if (!layer) return;
@@ -380,13 +386,14 @@ function imagePosition(event) {
 
 canvas.addEventListener("pointerdown", async (event) => {
   const at = imagePosition(event);
-  pressed = { x: at.x, y: at.y, picked: null };
+  const press = { x: at.x, y: at.y, picked: null };
+  pressed = press;
   canvas.setPointerCapture(event.pointerId);
   try {
     const response = await api("POST", "/api/pick", { frame: page.frame, x: at.x, y: at.y });
     const pick = await response.json();
-    if (!pressed) return;
-    pressed.picked = pick;
+    // A click is over before its pick arrives: the pick still selects.
+    press.picked = pick;
     const parts = pick.parts.length ? ` (${pick.parts.join(", ")})` : "";
     const where = `${pick.patch}${parts} at u ${pick.uv[0].toFixed(3)}, v ${pick.uv[1].toFixed(3)}`;
     if (pick.highlight === null) {
