@@ -604,6 +604,54 @@ fn commits_are_checked_like_the_file_and_refused_ones_write_nothing() {
 }
 
 #[test]
+fn hostile_bodies_are_refused_in_one_line_and_change_nothing() {
+    let served = Served::new();
+    let before = served.text();
+    let key = |frame: Value, value: Value| json!({"kind": "key", "path": ALPHA, "frame": frame, "value": value});
+    let many: Vec<Value> = (0..65).map(|_| key(json!(1), json!([0.1]))).collect();
+    let deep = format!("{}1{}", "[".repeat(5000), "]".repeat(5000));
+    let bodies = [
+        json!({"changes": many}),
+        json!({"changes": [key(json!("NaN"), json!([0.1]))]}),
+        json!({"changes": [key(json!(1), json!([1e39]))]}),
+        json!({"changes": [key(json!(1), json!([]))]}),
+        json!({"changes": [key(json!(1), json!(["0.1"]))]}),
+        json!({"changes": [{"kind": "set", "path": "x".repeat(100_000), "value": [0.1]}]}),
+        json!({"changes": [{"kind": "set", "path": "highlights[99999999999999999999].layers[0].epsilon", "value": [0.1]}]}),
+        json!({"changes": [{"kind": "remove_op", "highlight": 0, "layer": 0, "index": -1}]}),
+        json!({"changes": [{"kind": "pin_to", "highlight": 0, "layer": 0, "patch": "\"), evil: ("}]}),
+        json!({"changes": "all of them"}),
+        json!([1, 2, 3]),
+    ];
+    for body in bodies {
+        let reply = served.post("/api/commit", &body);
+        assert_status(&reply, 400);
+        error_of(&reply);
+        assert_eq!(served.text(), before, "{body}");
+    }
+    let token = served.server.token().to_string();
+    for raw in [
+        deep.as_bytes(),
+        b"\xff\xfe",
+        b"",
+        b"{\"changes\": [{\"kind\": \"set\", \"path\": \"\\u0000\"}]}",
+    ] {
+        let reply = request(
+            served.address(),
+            "POST",
+            "/api/commit",
+            &[("X-Glint-Token", &token)],
+            raw,
+        );
+        assert_status(&reply, 400);
+        error_of(&reply);
+    }
+    assert_eq!(served.text(), before);
+    // The server still answers.
+    assert_status(&served.get("/api/state?frame=1"), 200);
+}
+
+#[test]
 fn undo_and_redo_write_the_file_back_and_an_outside_edit_wins() {
     let served = Served::new();
     let before = served.text();

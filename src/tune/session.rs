@@ -115,6 +115,20 @@ pub struct Session {
     disk_error: Option<String>,
 }
 
+/// The most changes one request may carry: a drag makes three, a slider one.
+pub const MAX_CHANGES: usize = 64;
+
+/// Refuses more changes than [`MAX_CHANGES`] in one request.
+fn check_changes(changes: &[Change]) -> Result<(), TuneError> {
+    if changes.len() > MAX_CHANGES {
+        return Err(TuneError::Bad(format!(
+            "{} changes in one request; at most {MAX_CHANGES} are taken",
+            changes.len()
+        )));
+    }
+    Ok(())
+}
+
 /// The AOVs every frame of a session is rendered with: the patch under each pixel for picking
 /// and seams, the matte for its overlay.
 const SESSION_AOVS: [Aov; 2] = [Aov::PatchId, Aov::Matte];
@@ -425,6 +439,7 @@ impl Session {
     /// Makes `changes` and writes the file: each is checked as `glint key` checks it, and the
     /// result must load as the shot; otherwise nothing is written. Returns the new version.
     pub fn commit(&mut self, changes: &[Change]) -> Result<u64, TuneError> {
+        check_changes(changes)?;
         self.adopt_disk()?;
         let edited = apply_changes(&self.text, changes).map_err(|e| bad(e.in_file(&self.path)))?;
         if edited == self.text {

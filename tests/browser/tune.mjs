@@ -1,9 +1,9 @@
 // The tuning page end to end in headless Chromium: a copy of shots/sphere_ops.ron is opened
 // with `glint tune`, the highlight dragged on the sphere and released, a slider moved, the
-// timeline scrubbed and a change undone — each checked in the shot file on disk and in the
-// image. Screenshots go to target/page-tests/.
+// timeline scrubbed, a change undone and the file edited from outside — each checked in the
+// shot file on disk and on the page. Screenshots go to target/page-tests/.
 
-import { readFileSync, rmSync } from "node:fs";
+import { readFileSync, rmSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { artefacts, check, copyShot, launchBrowser, readPng, runGlint, startTune, until } from "./common.mjs";
 
@@ -128,13 +128,20 @@ try {
   await page.locator("#undo").click();
   await waitForFile((t) => t === dragged, "be as it was after the drag");
 
-  // Overlays for the docs.
+  // An edit saved from a text editor reaches the page.
+  writeFileSync(shot, dragged.replace("epsilon: 0.025", "epsilon: 0.03"));
+  await until(page, () => {
+    const field = document.querySelector('input[data-number="highlights[0].layers[0].epsilon"]');
+    return field && field.value === "0.03";
+  }, undefined, "the page to show the file's new epsilon");
+
+  // Overlays.
   await page.locator("#overlay-seams").check();
   await page.locator("#overlay-matte").check();
   paints = await page.evaluate(() => window.glintTune.paints);
   await settle(page, paints);
   await page.screenshot({ path: join(artefacts, "05-overlays.png") });
-  console.log("page test passed: drag, slider, timeline, undo");
+  console.log("page test passed: drag, slider, timeline, undo, an outside edit");
 } catch (error) {
   failed = true;
   console.error("page test failed: " + error.message);
