@@ -97,7 +97,7 @@ fn main() -> anyhow::Result<()> {
     for path in write_pngs(&frame, &out.join("teapot.png"))? {
         println!("wrote {}", path.display());
     }
-    write_frame_exr(&frame, &out.join("teapot.exr"))?;
+    write_frame_exr(&frame, &out.join("teapot.exr"), &[])?;
     println!("{}", serde_json::to_string_pretty(&frame.stats)?);
     println!("wrote {}", out.join("teapot.exr").display());
     Ok(())

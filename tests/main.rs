@@ -11,6 +11,7 @@ mod cli_key;
 mod cli_probe;
 mod cli_render;
 mod cli_watch;
+mod farm_verify;
 mod geometry_derivatives;
 mod geometry_sphere;
 mod geometry_stability;

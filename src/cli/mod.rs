@@ -10,9 +10,11 @@ mod patches;
 mod place;
 mod probe;
 mod render;
+mod report;
 mod sheet;
 mod tune;
 mod vary;
+mod verify;
 mod watch;
 mod watched;
 
@@ -39,6 +41,7 @@ enum Command {
     Place(place::PlaceArgs),
     Sheet(sheet::SheetArgs),
     Tune(tune::TuneArgs),
+    Verify(verify::VerifyArgs),
     Bench(bench::BenchArgs),
 }
 
@@ -83,6 +86,7 @@ pub fn main() -> ExitCode {
         Command::Place(args) => place::run(&args),
         Command::Sheet(args) => sheet::run(&args),
         Command::Tune(args) => tune::run(&args),
+        Command::Verify(args) => verify::run(&args),
         Command::Bench(args) => bench::run(&args),
     };
     match result {

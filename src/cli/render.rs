@@ -9,7 +9,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::CliError;
-use crate::job::{parse_frames, JobError, Overrides, RenderJob};
+use crate::job::{parse_frames, JobError, Overrides, RenderJob, Scrutiny};
 use crate::render::{RenderStats, Stage};
 use crate::shot::{Aov, Preset};
 
@@ -34,8 +34,8 @@ pub struct RenderArgs {
     /// The shot file (RON)
     shot: PathBuf,
     /// Frames to render [default: the shot's whole range]
-    #[arg(long, value_name = "SPEC", value_parser = frame_list)]
-    frames: Option<FrameList>,
+    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg)]
+    frames: Option<FrameListArg>,
     /// Output path pattern; a run of # becomes the zero-padded frame number. Relative to the
     /// shot file's folder unless absolute [default: the shot's `output`]
     #[arg(long, value_name = "PATTERN")]
@@ -49,15 +49,22 @@ pub struct RenderArgs {
     /// Worker threads [default: one per core]
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
-    /// Leave frames whose file already exists (resume an interrupted render)
-    #[arg(long)]
-    skip_existing: bool,
+    /// Leave frames already rendered (resume an interrupted render): `current` (the default)
+    /// skips a frame only when each of its files is a regular file stamped with the frame's
+    /// fingerprint — made from the shot's inputs as they are now — so an edited key renders
+    /// again exactly the frames it changes; `any` skips every frame whose colour file exists
+    #[arg(long, value_name = "WHICH", num_args = 0..=1, require_equals = true, default_missing_value = "current", value_enum)]
+    skip_existing: Option<SkipExisting>,
+    /// Append one JSON line per frame written to FILE: frame, path, fingerprint, seconds by
+    /// stage, peak memory of the process so far, host
+    #[arg(long, value_name = "FILE.jsonl")]
+    report: Option<PathBuf>,
     /// Print per-stage statistics (pixels and time) for every frame
     #[arg(long)]
     stats: bool,
     /// Extra images instead of the shot's list, comma-separated: matte, patch_id, depth,
     /// normal, uv, n_dot_h (or none). Written as PNGs beside the frame and as layers of one EXR
-    #[arg(long, value_name = "LIST", value_parser = parse_aovs)]
+    #[arg(long, value_name = "LIST", value_parser = parse_aov_list)]
     aov: Option<AovList>,
     /// Print nothing but errors
     #[arg(long)]
@@ -66,8 +73,17 @@ pub struct RenderArgs {
     /// changes, until Ctrl-C: one line per render, one error line for a broken edit (the next
     /// good save renders). An edit that keeps the camera and settings re-runs only the stages
     /// it touches
-    #[arg(long, conflicts_with = "skip_existing")]
+    #[arg(long, conflicts_with_all = ["skip_existing", "report"])]
     watch: bool,
+}
+
+/// Which frames `--skip-existing` leaves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum SkipExisting {
+    /// Frames whose files are all there, whole, and made from the current inputs
+    Current,
+    /// Frames whose colour file exists, whatever made it
+    Any,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -96,17 +112,17 @@ pub(super) fn parse_size(text: &str) -> Result<(u32, u32), String> {
 
 /// Frames as `--frames` lists them.
 #[derive(Clone, Debug)]
-struct FrameList(Vec<i64>);
+pub(super) struct FrameListArg(pub Vec<i64>);
 
-fn frame_list(text: &str) -> Result<FrameList, String> {
-    parse_frames(text).map(FrameList)
+pub(super) fn frame_list_arg(text: &str) -> Result<FrameListArg, String> {
+    parse_frames(text).map(FrameListArg)
 }
 
 /// AOVs as `--aov` lists them.
 #[derive(Clone, Debug)]
-struct AovList(Vec<Aov>);
+pub(super) struct AovList(pub Vec<Aov>);
 
-fn parse_aovs(text: &str) -> Result<AovList, String> {
+pub(super) fn parse_aov_list(text: &str) -> Result<AovList, String> {
     if text.trim() == "none" {
         return Ok(AovList(Vec::new()));
     }
@@ -148,7 +164,12 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
     let started = Instant::now();
     for frame in frames {
         let path = job.frame_path(frame);
-        if args.skip_existing && path.exists() {
+        let done = match args.skip_existing {
+            None => false,
+            Some(SkipExisting::Any) => path.exists(),
+            Some(SkipExisting::Current) => job.frame_problems(frame, Scrutiny::Stamp).is_empty(),
+        };
+        if done {
             skipped += 1;
             log.frame(format!("frame {frame}: {} exists, skipped", path.display()));
             continue;
@@ -157,6 +178,10 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         let image = job.render_frame(frame as f64).map_err(failed)?;
         job.write_frame(frame, &image).map_err(failed)?;
         written += 1;
+        if let Some(report) = &args.report {
+            super::report::append(report, &job, frame, &image.stats, frame_started.elapsed())
+                .map_err(CliError::Failed)?;
+        }
         let seconds = frame_started.elapsed().as_secs_f64();
         log.frame(format!(
             "frame {frame}: {} ({:.0} ms)",

@@ -7,12 +7,12 @@ use anyhow::anyhow;
 use clap::{ArgGroup, Args};
 use image::RgbaImage;
 
-use super::render::{parse_size, PresetArg};
+use super::render::{frame_list_arg, parse_size, FrameListArg, PresetArg};
 use super::vary::{combination_count, combinations, parse_vary, short_names, variant_label, Vary};
 use super::CliError;
 use crate::formats::image_encoding::colour_rgba8;
 use crate::formats::png::{write_png, PngLayout};
-use crate::job::{parse_frames, JobError, Overrides, RenderJob};
+use crate::job::{JobError, Overrides, RenderJob};
 use crate::picture::{Sheet, SheetError, SheetLayout, MAX_TILES};
 use crate::shot::{
     edit_text, load_shot, load_shot_text, parse_param_path, EditError, Preset, Shot, TrackEdit,
@@ -48,8 +48,8 @@ pub struct SheetArgs {
     /// The shot file (RON)
     shot: PathBuf,
     /// The frames to show, one tile each, as `glint render --frames` lists them
-    #[arg(long, value_name = "SPEC", value_parser = frame_list, conflicts_with_all = ["frame", "vary"])]
-    frames: Option<FrameList>,
+    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg, conflicts_with_all = ["frame", "vary"])]
+    frames: Option<FrameListArg>,
     /// The frame the variants show (fractional frames allowed) [default: the shot's first frame]
     #[arg(long, value_name = "F", requires = "vary")]
     frame: Option<f64>,
@@ -68,14 +68,6 @@ pub struct SheetArgs {
     /// The sheet's PNG file
     #[arg(long, value_name = "SHEET.png")]
     out: PathBuf,
-}
-
-/// Frames as `--frames` lists them.
-#[derive(Clone, Debug)]
-struct FrameList(Vec<i64>);
-
-fn frame_list(text: &str) -> Result<FrameList, String> {
-    parse_frames(text).map(FrameList)
 }
 
 /// One tile of a sheet: the shot text it is rendered from, the frame it shows, its caption.
@@ -185,7 +177,7 @@ pub fn run(args: &SheetArgs) -> Result<(), CliError> {
 /// one per combination of the --vary values at --frame (default the shot's first), at most
 /// [`MAX_TILES`].
 fn plan(args: &SheetArgs, shot: &Shot) -> Result<Plan, String> {
-    if let Some(FrameList(frames)) = &args.frames {
+    if let Some(FrameListArg(frames)) = &args.frames {
         if frames.len() > MAX_TILES {
             return Err(SheetError::TooManyTiles {
                 count: frames.len(),

@@ -3,17 +3,21 @@
 
 use std::path::Path;
 
-use exr::prelude::{AnyChannel, AnyChannels, FlatSamples, Image, SmallVec, WritableImage};
+use exr::prelude::{
+    AnyChannel, AnyChannels, AttributeValue, FlatSamples, Image, SmallVec, Text, WritableImage,
+};
 
 use super::atomic::{write_atomically, WriteError};
 
-/// Writes `channels` (name, one value per pixel, rows from the top) as a `width × height` EXR.
-/// Channel names with a dot are read as `layer.channel` by compositing software.
+/// Writes `channels` (name, one value per pixel, rows from the top) as a `width × height` EXR,
+/// with a text attribute in its header for each `(name, text)` of `text`. Channel names with a
+/// dot are read as `layer.channel` by compositing software.
 pub fn write_exr(
     path: &Path,
     width: u32,
     height: u32,
     channels: Vec<(String, Vec<f32>)>,
+    text: &[(&str, &str)],
 ) -> Result<(), WriteError> {
     let pixels = width as usize * height as usize;
     if let Some((name, values)) = channels.iter().find(|(_, v)| v.len() != pixels) {
@@ -29,10 +33,36 @@ pub fn write_exr(
         .into_iter()
         .map(|(name, values)| AnyChannel::new(name.as_str(), FlatSamples::F32(values)))
         .collect();
-    let image = Image::from_channels((width as usize, height as usize), AnyChannels::sort(list));
+    let mut image =
+        Image::from_channels((width as usize, height as usize), AnyChannels::sort(list));
+    for (name, value) in text {
+        image
+            .attributes
+            .other
+            .insert(Text::from(*name), AttributeValue::Text(Text::from(*value)));
+    }
     write_atomically(path, |out| {
         image.write().to_buffered(out).map_err(|e| e.to_string())
     })
+}
+
+/// The text attribute `name` in the header of the EXR file at `path`: `Ok(None)` when it has
+/// none, `Err` when the file cannot be read as an EXR.
+pub fn try_read_exr_text(path: &Path, name: &str) -> Result<Option<String>, String> {
+    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| e.to_string())?;
+    let found = meta.headers.iter().find_map(|header| {
+        let attributes = [
+            &header.shared_attributes.other,
+            &header.own_attributes.other,
+        ];
+        attributes
+            .into_iter()
+            .find_map(|other| match other.get(&Text::from(name)) {
+                Some(AttributeValue::Text(text)) => Some(text.to_string()),
+                _ => None,
+            })
+    });
+    Ok(found)
 }
 
 #[cfg(test)]
@@ -51,7 +81,19 @@ mod tests {
                 vec![0.1, 0.2, 0.3, 0.4, 0.5, f32::INFINITY],
             ),
         ];
-        write_exr(&path, 3, 2, channels.clone()).unwrap();
+        write_exr(
+            &path,
+            3,
+            2,
+            channels.clone(),
+            &[("glint:fingerprint", "abc")],
+        )
+        .unwrap();
+        assert_eq!(
+            try_read_exr_text(&path, "glint:fingerprint"),
+            Ok(Some("abc".to_string()))
+        );
+        assert_eq!(try_read_exr_text(&path, "other"), Ok(None));
         let image = read_all_flat_layers_from_file(&path).unwrap();
         let layer = &image.layer_data[0];
         for (name, values) in channels {
@@ -71,7 +113,7 @@ mod tests {
     fn a_short_channel_is_refused_before_writing() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("b.exr");
-        let e = write_exr(&path, 2, 2, vec![("Y".into(), vec![0.0; 3])]).unwrap_err();
+        let e = write_exr(&path, 2, 2, vec![("Y".into(), vec![0.0; 3])], &[]).unwrap_err();
         assert!(e.to_string().contains("3 values for 4 pixels"), "{e}");
         assert!(!path.exists());
     }

@@ -11,7 +11,7 @@ use super::image_encoding::{
     colour_rgba8, depth16, grey8, heat_rgba8, normal_rgba8, patch_colours_rgba8, patch_ids16,
     uv_rgba8, HEAT_RANGE,
 };
-use super::png::{write_png_with, PngLayout};
+use super::png::{write_png_tagged, PngLayout};
 use crate::render::RenderedFrame;
 
 /// The file beside the frame file `path` that holds its AOV `name`: `shot.0001.png` gives
@@ -38,6 +38,16 @@ pub fn write_pngs_with(
     frame: &RenderedFrame,
     path: &Path,
     durability: Durability,
+) -> Result<Vec<PathBuf>, WriteError> {
+    write_pngs_tagged(frame, path, durability, &[])
+}
+
+/// [`write_pngs_with`], each file with a `tEXt` chunk for each `(keyword, text)` of `text`.
+pub fn write_pngs_tagged(
+    frame: &RenderedFrame,
+    path: &Path,
+    durability: Durability,
+    text: &[(&str, &str)],
 ) -> Result<Vec<PathBuf>, WriteError> {
     let (w, h) = (frame.width, frame.height);
     let aov_file = |name: &str| beside(path, name);
@@ -78,7 +88,7 @@ pub fn write_pngs_with(
     ));
     let mut written = Vec::with_capacity(images.len());
     for (file, layout, pixels) in images {
-        write_png_with(&file, (w, h), layout, &pixels, durability)?;
+        write_png_tagged(&file, (w, h), layout, &pixels, durability, text)?;
         written.push(file);
     }
     Ok(written)
@@ -86,8 +96,12 @@ pub fn write_pngs_with(
 
 /// Writes the frame as one EXR: linear `R G B A` and the AOVs as `matte.Y`, `patch_id.Y`
 /// (−1 on the background), `depth.Z` (NDC, +∞ on the background), `normal.X/Y/Z`, `uv.U/V` and
-/// `n_dot_h.Y`.
-pub fn write_frame_exr(frame: &RenderedFrame, path: &Path) -> Result<(), WriteError> {
+/// `n_dot_h.Y`; a text attribute in its header for each `(name, text)` of `text`.
+pub fn write_frame_exr(
+    frame: &RenderedFrame,
+    path: &Path,
+    text: &[(&str, &str)],
+) -> Result<(), WriteError> {
     let plane = |f: &dyn Fn(&Vec4) -> f32| frame.colour.iter().map(f).collect::<Vec<f32>>();
     let mut channels = vec![
         ("R".to_string(), plane(&|c| c.x)),
@@ -121,5 +135,5 @@ pub fn write_frame_exr(frame: &RenderedFrame, path: &Path) -> Result<(), WriteEr
     if let Some(nh) = &a.n_dot_h {
         channels.push(("n_dot_h.Y".into(), nh.clone()));
     }
-    write_exr(path, frame.width, frame.height, channels)
+    write_exr(path, frame.width, frame.height, channels, text)
 }

@@ -16,6 +16,32 @@ pub fn parse_frames(spec: &str) -> Result<Vec<i64>, String> {
     Ok(frames)
 }
 
+/// `frames` as a frame list [`parse_frames`] reads back: sorted, runs of consecutive frames as
+/// `first-last`, joined by commas (`3,7-9,12`); empty for no frames.
+#[must_use]
+pub fn frame_spec(frames: &[i64]) -> String {
+    let mut sorted = frames.to_vec();
+    sorted.sort_unstable();
+    sorted.dedup();
+    let mut parts: Vec<String> = Vec::new();
+    let mut at = 0;
+    while at < sorted.len() {
+        let first = sorted[at];
+        let mut last = first;
+        while at + 1 < sorted.len() && sorted[at + 1] == last + 1 {
+            at += 1;
+            last = sorted[at];
+        }
+        parts.push(if first == last {
+            first.to_string()
+        } else {
+            format!("{first}-{last}")
+        });
+        at += 1;
+    }
+    parts.join(",")
+}
+
 fn parse_part(part: &str) -> Result<Vec<i64>, String> {
     let bad = || {
         format!(
@@ -70,6 +96,19 @@ mod tests {
         assert_eq!(parse_frames("3, 1-3").unwrap(), vec![3, 1, 2]);
         assert_eq!(parse_frames("-3--1").unwrap(), vec![-3, -2, -1]);
         assert_eq!(parse_frames("-2-1").unwrap(), vec![-2, -1, 0, 1]);
+    }
+
+    #[test]
+    fn a_spec_of_frames_reads_back_as_them() {
+        assert_eq!(frame_spec(&[12, 3, 7, 8, 9, -2, -1]), "-2--1,3,7-9,12");
+        assert_eq!(frame_spec(&[]), "");
+        for frames in [
+            vec![5],
+            vec![1, 2, 3, 10, 11, 20],
+            vec![-5, -4, -3, 0, 2, 3],
+        ] {
+            assert_eq!(parse_frames(&frame_spec(&frames)).unwrap(), frames);
+        }
     }
 
     #[test]

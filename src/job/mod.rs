@@ -17,6 +17,8 @@
 //! # Ok::<(), glint::job::JobError>(())
 //! ```
 
+mod fingerprint;
+mod frame_check;
 mod frame_list;
 mod place;
 mod write;
@@ -26,7 +28,9 @@ use std::sync::Arc;
 
 use thiserror::Error;
 
-pub use frame_list::parse_frames;
+pub use fingerprint::{Fingerprint, FINGERPRINT_KEY};
+pub use frame_check::{aov_file_names, FileProblem, Scrutiny};
+pub use frame_list::{frame_spec, parse_frames};
 pub use place::{LayerChoice, PlaceError, Placement, Residual};
 
 use crate::formats::atomic::{Durability, WriteError};
@@ -123,6 +127,8 @@ pub struct RenderJob {
     frames: Vec<i64>,
     renderer: Renderer,
     durability: Durability,
+    /// What every frame's fingerprint shares, made when first asked for.
+    digest: std::sync::OnceLock<Option<sha2::Sha256>>,
 }
 
 /// What [`RenderJob::reload`] did with the model.
@@ -154,6 +160,7 @@ impl RenderJob {
             frames,
             renderer,
             durability: Durability::Synced,
+            digest: std::sync::OnceLock::new(),
         })
     }
 
@@ -182,6 +189,7 @@ impl RenderJob {
             self.renderer = Renderer::new(Arc::clone(&shot.library));
         }
         (self.shot, self.settings, self.frames) = (shot, settings, frames);
+        self.digest = std::sync::OnceLock::new();
         Ok(reloaded)
     }
 
@@ -246,17 +254,20 @@ impl RenderJob {
         self.durability = durability;
     }
 
-    /// Writes `image`, rendered for `frame`, to its files: stale temporaries of earlier, killed
+    /// Writes `image`, rendered for `frame`, to its files, each stamped with the frame's
+    /// [`fingerprint`](RenderJob::fingerprint): stale temporaries of earlier, killed
     /// runs cleared, each file written atomically, the EXR (when there are AOVs) and the AOV
     /// PNGs first and the colour PNG last, so that once the colour exists the whole frame does.
     /// Returns the paths written.
     pub fn write_frame(&self, frame: i64, image: &RenderedFrame) -> Result<Vec<PathBuf>, JobError> {
         let exr = !self.shot.aovs.is_empty();
+        let fingerprint = self.fingerprint(frame);
         Ok(write::write_frame(
             image,
             &self.frame_path(frame),
             exr,
             self.durability,
+            fingerprint.as_ref(),
         )?)
     }
 }

@@ -3,20 +3,26 @@
 
 use std::path::{Path, PathBuf};
 
+use super::fingerprint::{Fingerprint, FINGERPRINT_KEY};
 use crate::formats::atomic::{remove_stale_temporaries, Durability, WriteError};
-use crate::formats::{write_frame_exr, write_pngs_with};
+use crate::formats::{write_frame_exr, write_pngs_tagged};
 use crate::render::RenderedFrame;
 
 /// Writes `image` to `path` and its AOVs beside it: stale temporaries of earlier, killed runs
 /// removed; the EXR (with `exr`, when there are AOVs) and the AOV PNGs first, the colour PNG
 /// last, so that once the colour exists the whole frame does; the PNGs synced as `durability`
-/// says. Returns the paths written.
+/// says; each file stamped with `fingerprint` ([`FINGERPRINT_KEY`]). Returns the paths written.
 pub(super) fn write_frame(
     image: &RenderedFrame,
     path: &Path,
     exr: bool,
     durability: Durability,
+    fingerprint: Option<&Fingerprint>,
 ) -> Result<Vec<PathBuf>, WriteError> {
+    let tag: Vec<(&str, &str)> = fingerprint
+        .map(|f| (FINGERPRINT_KEY, f.0.as_str()))
+        .into_iter()
+        .collect();
     let exr_path = path.with_extension("exr");
     for target in [path, exr_path.as_path()] {
         remove_stale_temporaries(target).map_err(|e| WriteError {
@@ -26,10 +32,10 @@ pub(super) fn write_frame(
     }
     let mut written = Vec::new();
     if exr {
-        write_frame_exr(image, &exr_path)?;
+        write_frame_exr(image, &exr_path, &tag)?;
         written.push(exr_path);
     }
-    written.extend(write_pngs_with(image, path, durability)?);
+    written.extend(write_pngs_tagged(image, path, durability, &tag)?);
     Ok(written)
 }
 

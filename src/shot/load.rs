@@ -91,10 +91,12 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
         .map(|w: &Written| (sources[w.source].path.clone(), w.index))
         .collect();
     let mut files = sources.iter().map(|s| s.path.clone()).collect::<Vec<_>>();
+    let shot_files = files.len();
     files.extend(inputs.0);
     let shot = Shot {
         path: path.to_path_buf(),
         inputs: files,
+        shot_files,
         frames: file.frames,
         fps: file.fps,
         output,

@@ -30,6 +30,8 @@ pub struct Shot {
     /// Every file the shot was made from: the shot file, its includes, patch files and toon
     /// textures, each once, in the order they were read.
     pub inputs: Vec<PathBuf>,
+    /// How many of `inputs`, from the first, are the shot file and its includes.
+    pub(super) shot_files: usize,
     pub instances: Vec<Instance>,
     /// Image size, accuracy and threads as the shot asks for them.
     pub settings: Settings,
@@ -135,6 +137,13 @@ impl Shot {
         self.highlights_written
             .get(entry)
             .map(|(path, index)| (path.as_path(), *index))
+    }
+
+    /// The files the shot's model and textures were read from: its inputs but the shot file and
+    /// its includes, whose values each frame reads ([`Shot::at`]).
+    #[must_use]
+    pub fn asset_inputs(&self) -> &[PathBuf] {
+        &self.inputs[self.shot_files.min(self.inputs.len())..]
     }
 
     /// How many highlight entries the shot has (includes first).
