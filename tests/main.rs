@@ -7,6 +7,7 @@ mod accuracy_cli;
 mod accuracy_ladder;
 mod anim_tracks;
 mod cli_bench_loop;
+mod cli_farm;
 mod cli_key;
 mod cli_probe;
 mod cli_render;

@@ -3,6 +3,7 @@
 
 mod bench;
 mod bench_loop;
+mod farm;
 mod inspect;
 mod key;
 mod patch_map;
@@ -43,6 +44,7 @@ enum Command {
     Tune(tune::TuneArgs),
     Verify(verify::VerifyArgs),
     Bench(bench::BenchArgs),
+    Farm(farm::FarmArgs),
 }
 
 /// Why a command stopped.
@@ -88,6 +90,7 @@ pub fn main() -> ExitCode {
         Command::Tune(args) => tune::run(&args),
         Command::Verify(args) => verify::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::Farm(args) => farm::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -20,6 +20,7 @@
 mod fingerprint;
 mod frame_check;
 mod frame_list;
+mod memory;
 mod place;
 mod write;
 
@@ -31,6 +32,7 @@ use thiserror::Error;
 pub use fingerprint::{Fingerprint, FINGERPRINT_KEY};
 pub use frame_check::{aov_file_names, FileProblem, Scrutiny};
 pub use frame_list::{frame_spec, parse_frames};
+pub use memory::estimate_peak_bytes;
 pub use place::{LayerChoice, PlaceError, Placement, Residual};
 
 use crate::formats::atomic::{Durability, WriteError};

@@ -1,0 +1,140 @@
+//! `glint farm slurm --print`: the job array's script — its chunks, memory, requeue and paths —
+//! run here by bash as one Slurm task would run it (the scheduler itself is exercised by
+//! tests/farm/slurm.sh).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::common::{glint, repo_file, stderr};
+
+/// A copy of `shots/sphere_ops.ron` and its sphere in a folder whose name has a quote and a
+/// space.
+fn project() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let root = dir.path().join("it's a shot");
+    std::fs::create_dir_all(root.join("shots")).unwrap();
+    std::fs::create_dir_all(root.join("patches")).unwrap();
+    std::fs::copy(
+        repo_file("patches/sphere.ron"),
+        root.join("patches/sphere.ron"),
+    )
+    .unwrap();
+    let shot = root.join("shots/sphere_ops.ron");
+    std::fs::copy(repo_file("shots/sphere_ops.ron"), &shot).unwrap();
+    (dir, shot)
+}
+
+fn script(shot: &Path, extra: &[&str]) -> String {
+    let mut args = vec![
+        "farm",
+        "slurm",
+        shot.to_str().unwrap(),
+        "--frames",
+        "1-30",
+        "--chunk",
+        "8",
+    ];
+    args.extend_from_slice(extra);
+    let out = glint().args(&args).output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    String::from_utf8(out.stdout).unwrap()
+}
+
+#[test]
+fn the_script_cuts_the_frames_into_chunks_and_requeues_a_failed_task() {
+    let (_dir, shot) = project();
+    let text = script(
+        &shot,
+        &[
+            "--cpus",
+            "4",
+            "--retries",
+            "3",
+            "--preset",
+            "preview",
+            "--size",
+            "64x64",
+        ],
+    );
+    assert!(text.starts_with("#!/bin/bash\n"), "{text}");
+    for line in [
+        "#SBATCH --array=0-3",
+        "#SBATCH --cpus-per-task=4",
+        "#SBATCH --requeue",
+        "chunks=('1-8' '9-16' '17-24' '25-30')",
+        "-lt 3 ]; then",
+        "--skip-existing --size 64x64 --preset preview",
+    ] {
+        assert!(text.contains(line), "no {line:?} in\n{text}");
+    }
+    // The estimate for a 64×64 preview frame, and a quarter more: 64 MiB and a little.
+    let mem = text
+        .lines()
+        .find_map(|l| l.strip_prefix("#SBATCH --mem="))
+        .unwrap();
+    let mib: u64 = mem.trim_end_matches('M').parse().unwrap();
+    assert!((80..=81).contains(&mib), "{mem}");
+    let given = script(&shot, &["--mem", "6g"]);
+    assert!(given.contains("#SBATCH --mem=6G"), "{given}");
+    assert!(
+        given.contains("verify '\\''"),
+        "the verification is printed, quoted: {given}"
+    );
+}
+
+#[test]
+fn a_task_of_the_script_renders_its_chunk() {
+    let (dir, shot) = project();
+    let text = script(&shot, &["--preset", "preview", "--size", "32x32"]);
+    let file = dir.path().join("array.sh");
+    std::fs::write(&file, &text).unwrap();
+    let out = Command::new("bash")
+        .arg(&file)
+        .env("SLURM_ARRAY_TASK_ID", "1")
+        .env("SLURM_ARRAY_JOB_ID", "7")
+        .env("SLURM_CPUS_PER_TASK", "1")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let frames = shot
+        .parent()
+        .unwrap()
+        .parent()
+        .unwrap()
+        .join("out/sphere_ops");
+    let mut written: Vec<String> = std::fs::read_dir(&frames)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    written.sort();
+    let expected: Vec<String> = (9..=16).map(|f| format!("sphere_ops.{f:04}.png")).collect();
+    assert_eq!(written, expected);
+}
+
+#[test]
+fn bad_options_are_refused_in_one_line() {
+    let (_dir, shot) = project();
+    for (flag, value) in [
+        ("--mem", "lots"),
+        ("--mem", "4GB"),
+        ("--chunk", "0"),
+        ("--cpus", "0"),
+    ] {
+        let out = glint()
+            .args(["farm", "slurm", shot.to_str().unwrap(), flag, value])
+            .output()
+            .unwrap();
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "{flag} {value}: {}",
+            stderr(&out)
+        );
+    }
+    let out = glint()
+        .args(["farm", "slurm", "no/such/shot.ron"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(stderr(&out).lines().count(), 1, "{}", stderr(&out));
+}

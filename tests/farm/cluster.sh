@@ -1,0 +1,72 @@
+# A single-node Slurm cluster for the farm tests, in a temporary folder: munged, slurmctld and
+# slurmd started there with their own socket, ports and state, and stopped by pid.
+#
+#   source tests/farm/cluster.sh; start_cluster; …; stop_cluster
+# start_cluster sets `work` (a temporary folder, removed by stop_cluster) and exports SLURM_CONF.
+
+require_slurm() {
+    for tool in munged slurmctld slurmd sbatch squeue scontrol sinfo; do
+        command -v "$tool" >/dev/null || { echo "$tool is missing: apt-get install slurm-wlm munge" >&2; exit 2; }
+    done
+}
+
+stop_cluster() {
+    for daemon in slurmd slurmctld munged; do
+        if [ -f "$cluster/$daemon.pid" ]; then
+            kill "$(cat "$cluster/$daemon.pid")" 2>/dev/null || true
+        fi
+    done
+    sleep 1
+    rm -rf "$work"
+}
+
+start_cluster() {
+    require_slurm
+    work="$(mktemp -d)"
+    cluster="$work/cluster"
+    mkdir -p "$cluster/state" "$cluster/spool" "$cluster/log"
+
+    host="$(hostname)"
+    port=$((20000 + RANDOM % 20000))
+    head -c 1024 /dev/urandom > "$cluster/munge.key"
+    chmod 600 "$cluster/munge.key"
+    munged -S "$cluster/munge.socket" --key-file "$cluster/munge.key" --pid-file "$cluster/munged.pid" \
+        --log-file "$cluster/log/munged.log" --seed-file "$cluster/munge.seed" -f
+    cat > "$cluster/slurm.conf" <<CONF
+ClusterName=glinttest
+SlurmctldHost=$host(127.0.0.1)
+SlurmctldPort=$port
+SlurmdPort=$((port + 1))
+AuthType=auth/munge
+AuthInfo=socket=$cluster/munge.socket
+CredType=cred/munge
+SlurmUser=$(id -un)
+SlurmdUser=$(id -un)
+StateSaveLocation=$cluster/state
+SlurmdSpoolDir=$cluster/spool
+SlurmctldPidFile=$cluster/slurmctld.pid
+SlurmdPidFile=$cluster/slurmd.pid
+SlurmctldLogFile=$cluster/log/slurmctld.log
+SlurmdLogFile=$cluster/log/slurmd.log
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU_Memory
+JobRequeue=1
+ReturnToService=2
+MpiDefault=none
+SwitchType=switch/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) RealMemory=4000 State=UNKNOWN
+PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
+CONF
+    export SLURM_CONF="$cluster/slurm.conf"
+    slurmctld -f "$SLURM_CONF"
+    slurmd -f "$SLURM_CONF"
+    for _ in $(seq 100); do
+        sinfo -h -o %T 2>/dev/null | grep -q idle && break
+        sleep 0.2
+    done
+    sinfo -h -o %T | grep -q idle || { echo "the cluster did not come up" >&2; cat "$cluster/log/"*.log >&2; exit 1; }
+}
