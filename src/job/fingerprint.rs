@@ -49,8 +49,10 @@ pub(super) fn job_digest(job: &RenderJob) -> Option<Sha256> {
 }
 
 impl RenderJob {
-    /// The fingerprint of frame `frame`: the job's digest ([`job_digest`]) and every value the
-    /// shot has at that frame ([`crate::shot::Shot::at`]). Two frames share it only when they
+    /// The fingerprint of frame `frame`: what the whole job shares (glint's version, the
+    /// settings but the thread count, the AOVs and outlines, the model as placed, the bytes of
+    /// every patch file and texture) and every value the shot has at that frame
+    /// ([`crate::shot::Shot::at`]). `None` when an asset cannot be read. Two frames share it only when they
     /// would be rendered from the same values, so an edit of one key changes the fingerprints
     /// of exactly the frames it changes.
     #[must_use]
