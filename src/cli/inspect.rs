@@ -8,9 +8,9 @@ use clap::Args;
 use glam::Vec3;
 
 use super::CliError;
-use crate::highlight::{Axis, Expr, Layer, Light, Op};
+use crate::highlight::{Expr, Layer, Light};
 use crate::render::Projection;
-use crate::shot::{load_shot, rounded_number_text, MaterialState, Shot};
+use crate::shot::{load_shot, op_text, rounded_number_text, MaterialState, Shot};
 use crate::toon::{Abstraction, DetailMap, HighlightFrame, ShapeDetail, XToon};
 
 /// Print the value of every track of a shot at one frame.
@@ -172,7 +172,7 @@ fn describe(expr: &Expr, depth: usize, layers: &mut usize, out: &mut String) {
             *layers += 1;
             let _ = writeln!(out, "{pad}layer {layers}: {}", layer_fields(layer));
             for (i, op) in layer.stack.iter().enumerate() {
-                let _ = writeln!(out, "{pad}  op {}: {}", i + 1, op_text(op));
+                let _ = writeln!(out, "{pad}  op {}: {}", i + 1, op_text(op, number));
             }
             return;
         }
@@ -218,38 +218,6 @@ fn layer_fields(layer: &Layer) -> String {
         ));
     }
     fields
-}
-
-/// An operation as written in a stack, e.g. `Translate(alpha: 0.2, beta: 0.0)`.
-fn op_text(op: &Op) -> String {
-    match op {
-        Op::Translate { alpha, beta } => {
-            format!(
-                "Translate(alpha: {}, beta: {})",
-                number(*alpha),
-                number(*beta)
-            )
-        }
-        Op::Rotate { degrees } => format!("Rotate(degrees: {})", number(*degrees)),
-        Op::Scale { delta, axis } => {
-            let axis = match axis {
-                Axis::U => "U".to_string(),
-                Axis::V => "V".to_string(),
-                Axis::Angle(phi) => format!("Angle({})", number(*phi)),
-            };
-            format!("Scale(delta: {}, axis: {axis})", number(*delta))
-        }
-        Op::Split { gamma_u, gamma_v } => format!(
-            "Split(gamma_u: {}, gamma_v: {})",
-            number(*gamma_u),
-            number(*gamma_v)
-        ),
-        Op::Square { sigma, n, style } => format!(
-            "Square(sigma: {}, n: {}, style: {style:?})",
-            number(*sigma),
-            number(*n)
-        ),
-    }
 }
 
 /// An X-Toon material without its texture, e.g.

@@ -33,19 +33,8 @@ Frame lists: 12 | 1-48 | 1-48x2 (every second frame) | 1,5,9-12.")]
 pub struct RenderArgs {
     /// The shot file (RON)
     shot: PathBuf,
-    /// Frames to render [default: the shot's whole range]
-    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg)]
-    frames: Option<FrameListArg>,
-    /// Output path pattern; a run of # becomes the zero-padded frame number. Relative to the
-    /// shot file's folder unless absolute [default: the shot's `output`]
-    #[arg(long, value_name = "PATTERN")]
-    out: Option<PathBuf>,
-    /// Image size instead of the shot's resolution
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    size: Option<(u32, u32)>,
-    /// Accuracy preset instead of the shot's; the shot's explicit settings still refine it
-    #[arg(long, value_enum)]
-    preset: Option<PresetArg>,
+    #[command(flatten)]
+    target: Target,
     /// Worker threads [default: one per core]
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -62,10 +51,6 @@ pub struct RenderArgs {
     /// Print per-stage statistics (pixels and time) for every frame
     #[arg(long)]
     stats: bool,
-    /// Extra images instead of the shot's list, comma-separated: matte, patch_id, depth,
-    /// normal, uv, n_dot_h (or none). Written as PNGs beside the frame and as layers of one EXR
-    #[arg(long, value_name = "LIST", value_parser = parse_aov_list)]
-    aov: Option<AovList>,
     /// Print nothing but errors
     #[arg(long)]
     quiet: bool,
@@ -75,6 +60,43 @@ pub struct RenderArgs {
     /// it touches
     #[arg(long, conflicts_with_all = ["skip_existing", "report"])]
     watch: bool,
+}
+
+/// What is rendered: the frames, where they go, their size, preset and AOVs — the options
+/// `glint render` and `glint verify` share, so that a check looks at what a render wrote.
+#[derive(Debug, Args)]
+pub(super) struct Target {
+    /// Frames to render [default: the shot's whole range]
+    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg)]
+    frames: Option<FrameListArg>,
+    /// Output path pattern; a run of # becomes the zero-padded frame number. Relative to the
+    /// shot file's folder unless absolute [default: the shot's `output`]
+    #[arg(long, value_name = "PATTERN")]
+    out: Option<PathBuf>,
+    /// Image size instead of the shot's resolution
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Accuracy preset instead of the shot's; the shot's explicit settings still refine it
+    #[arg(long, value_enum)]
+    preset: Option<PresetArg>,
+    /// Extra images instead of the shot's list, comma-separated: matte, patch_id, depth,
+    /// normal, uv, n_dot_h (or none). Written as PNGs beside the frame and as layers of one EXR
+    #[arg(long, value_name = "LIST", value_parser = parse_aov_list)]
+    aov: Option<AovList>,
+}
+
+impl Target {
+    /// The job's overrides for these options, with `threads` worker threads.
+    pub(super) fn overrides(&self, threads: Option<usize>) -> Overrides {
+        Overrides {
+            frames: self.frames.as_ref().map(|f| f.0.clone()),
+            size: self.size,
+            preset: self.preset.map(Preset::from),
+            aovs: self.aov.as_ref().map(|a| a.0.clone()),
+            threads,
+            output: self.out.clone(),
+        }
+    }
 }
 
 /// Which frames `--skip-existing` leaves.
@@ -133,14 +155,7 @@ pub(super) fn parse_aov_list(text: &str) -> Result<AovList, String> {
 }
 
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
-    let overrides = Overrides {
-        frames: args.frames.as_ref().map(|f| f.0.clone()),
-        size: args.size,
-        preset: args.preset.map(Preset::from),
-        aovs: args.aov.as_ref().map(|a| a.0.clone()),
-        threads: args.threads,
-        output: args.out.clone(),
-    };
+    let overrides = args.target.overrides(args.threads);
     if args.watch {
         let printing = super::watch::Printing {
             stats: args.stats,

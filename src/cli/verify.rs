@@ -5,10 +5,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::render::{frame_list_arg, parse_aov_list, parse_size, FrameListArg, PresetArg};
+use super::render::Target;
 use super::{write_stdout, CliError};
-use crate::job::{frame_spec, JobError, Overrides, RenderJob, Scrutiny};
-use crate::shot::Preset;
+use crate::job::{frame_spec, JobError, RenderJob, Scrutiny};
 
 /// Check that every frame of a shot was rendered, whole, from the shot's inputs as they are now.
 ///
@@ -29,35 +28,16 @@ use crate::shot::Preset;
 pub struct VerifyArgs {
     /// The shot file (RON)
     shot: PathBuf,
-    /// Frames to check [default: the shot's whole range]
-    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg)]
-    frames: Option<FrameListArg>,
-    /// Output path pattern, as given to the render
-    #[arg(long, value_name = "PATTERN")]
-    out: Option<PathBuf>,
-    /// Image size, as given to the render
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    size: Option<(u32, u32)>,
-    /// Accuracy preset, as given to the render
-    #[arg(long, value_enum)]
-    preset: Option<PresetArg>,
-    /// AOVs, as given to the render
-    #[arg(long, value_name = "LIST", value_parser = parse_aov_list)]
-    aov: Option<super::render::AovList>,
+    /// The frames, output pattern, size, preset and AOVs, as given to the render
+    #[command(flatten)]
+    target: Target,
     /// Print only the frame list to render again (empty when complete)
     #[arg(long)]
     spec_only: bool,
 }
 
 pub fn run(args: &VerifyArgs) -> Result<(), CliError> {
-    let overrides = Overrides {
-        frames: args.frames.as_ref().map(|f| f.0.clone()),
-        size: args.size,
-        preset: args.preset.map(Preset::from),
-        aovs: args.aov.as_ref().map(|a| a.0.clone()),
-        threads: None,
-        output: args.out.clone(),
-    };
+    let overrides = args.target.overrides(None);
     let job = RenderJob::load(&args.shot, &overrides).map_err(|e: JobError| {
         if e.is_bad_input() {
             CliError::BadInput(e.into())

@@ -69,11 +69,12 @@ fn unit_mask() -> Mask<f32> {
     }
 }
 
-/// An operation as a file writes it: `Translate(alpha: 0.2, beta: 0.0)`, `Scale(delta: 0.5,
-/// axis: Angle(30.0))`, `Square(sigma: 0.2, n: 2.0, style: PerAxis)`.
+/// An operation as a file writes it, each number written by `number` ([`number_text`] to read
+/// back exactly, `rounded_number_text` for people): `Translate(alpha: 0.2, beta: 0.0)`,
+/// `Scale(delta: 0.5, axis: Angle(30.0))`, `Square(sigma: 0.2, n: 2.0, style: PerAxis)`.
 #[must_use]
-pub fn op_text(op: &Op<f32>) -> String {
-    let n = |x: f32| number_text(x);
+pub fn op_text(op: &Op<f32>, number: fn(f32) -> String) -> String {
+    let n = number;
     match op {
         Op::Translate { alpha, beta } => {
             format!("Translate(alpha: {}, beta: {})", n(*alpha), n(*beta))
@@ -185,7 +186,7 @@ pub fn edit_layer(
     let splices = match edit {
         LayerEdit::InsertOp { index, op } => {
             let items = try_item_spans(text, &stack_steps);
-            let item = op_text(op);
+            let item = op_text(op, number_text);
             match items {
                 Some(items) if !items.is_empty() => {
                     let before = (*index < items.len()).then_some(*index);

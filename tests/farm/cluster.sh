@@ -4,6 +4,14 @@
 #   source tests/farm/cluster.sh; start_cluster; …; stop_cluster
 # start_cluster sets `work` (a temporary folder, removed by stop_cluster) and exports SLURM_CONF.
 
+# The teapot turntable shot with the files it reads, copied into the folder $1 (from $root).
+copy_turntable() {
+    mkdir -p "$1/shots/looks" "$1/patches"
+    cp "$root/shots/teapot_turntable.ron" "$1/shots/"
+    cp "$root/shots/looks/studio.ron" "$1/shots/looks/"
+    cp "$root/patches/teapot.bpt" "$root/patches/teapot.parts.ron" "$1/patches/"
+}
+
 require_slurm() {
     for tool in munged slurmctld slurmd sbatch squeue scontrol sinfo; do
         command -v "$tool" >/dev/null || { echo "$tool is missing: apt-get install slurm-wlm munge" >&2; exit 2; }

@@ -18,10 +18,7 @@ trap stop_cluster EXIT
 
 # The shot, in a folder of its own.
 project="$work/project"
-mkdir -p "$project/shots/looks" "$project/patches"
-cp "$root/shots/teapot_turntable.ron" "$project/shots/"
-cp "$root/shots/looks/studio.ron" "$project/shots/looks/"
-cp "$root/patches/teapot.bpt" "$root/patches/teapot.parts.ron" "$project/patches/"
+copy_turntable "$project"
 shot="$project/shots/teapot_turntable.ron"
 options=(--frames 1-96 --size 320x180 --preset final)
 

@@ -14,10 +14,7 @@ start_cluster
 trap stop_cluster EXIT
 
 project="$work/project"
-mkdir -p "$project/shots/looks" "$project/patches"
-cp "$root/shots/teapot_turntable.ron" "$project/shots/"
-cp "$root/shots/looks/studio.ron" "$project/shots/looks/"
-cp "$root/patches/teapot.bpt" "$root/patches/teapot.parts.ron" "$project/patches/"
+copy_turntable "$project"
 shot="$project/shots/teapot_turntable.ron"
 cpus=$(nproc)
 
