@@ -33,6 +33,16 @@ pub enum ParamError {
 /// squared length finite.
 pub const MAX_STEP: f32 = 1e6;
 
+/// The largest component of a linear colour: far above any display's white, and small enough
+/// that sums of many samples (a 64-sample pixel, blended layers) stay finite in f32.
+pub const MAX_COLOUR: f32 = 1e4;
+
+/// Whether `c` is a usable linear colour component: finite, in `[0, MAX_COLOUR]`.
+#[must_use]
+pub fn is_colour_component(c: f32) -> bool {
+    (0.0..=MAX_COLOUR).contains(&c)
+}
+
 /// The shape of an allowed range; [`check`] turns a violation into a [`ParamError`].
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Range {
@@ -48,6 +58,8 @@ pub(crate) enum Range {
     AtLeastOne,
     /// `[0, 1]`.
     Unit,
+    /// `[0, MAX_COLOUR]`: a linear colour component.
+    Colour,
     /// `(0, 2]`: a highlight's ε.
     Epsilon,
     /// `[−MAX_STEP, MAX_STEP]`.
@@ -97,6 +109,7 @@ impl Range {
             Range::AboveOne => (1.0, f32::INFINITY, true, true),
             Range::AtLeastOne => (1.0, f32::INFINITY, false, true),
             Range::Unit => (0.0, 1.0, false, false),
+            Range::Colour => (0.0, MAX_COLOUR, false, false),
             Range::Epsilon => (0.0, 2.0, true, false),
             Range::Step => (-MAX_STEP, MAX_STEP, false, false),
             Range::NonNegativeStep => (0.0, MAX_STEP, false, false),
@@ -117,6 +130,7 @@ impl Range {
             Range::AboveOne => x > 1.0,
             Range::AtLeastOne => x >= 1.0,
             Range::Unit => (0.0..=1.0).contains(&x),
+            Range::Colour => is_colour_component(x),
             Range::Epsilon => x > 0.0 && x <= 2.0,
             Range::Step => x.abs() <= MAX_STEP,
             Range::NonNegativeStep => (0.0..=MAX_STEP).contains(&x),
@@ -131,6 +145,7 @@ impl Range {
             Range::AboveOne => "(1, inf)",
             Range::AtLeastOne => "[1, inf)",
             Range::Unit => "[0, 1]",
+            Range::Colour => "[0, 1e4]",
             Range::Epsilon => "(0, 2]",
             Range::Step => "[-1e6, 1e6]",
             Range::NonNegativeStep => "[0, 1e6]",
@@ -173,6 +188,7 @@ mod tests {
             Range::AboveOne,
             Range::AtLeastOne,
             Range::Unit,
+            Range::Colour,
             Range::Epsilon,
             Range::Step,
             Range::NonNegativeStep,

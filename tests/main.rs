@@ -17,6 +17,7 @@ mod geometry_derivatives;
 mod geometry_sphere;
 mod geometry_stability;
 mod geometry_teapot;
+mod hardening;
 mod highlight_place;
 mod highlight_serde;
 mod highlight_sphere;

@@ -54,12 +54,14 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
             patch.is_none_or(|p| crate::shot::matches_patch(p, &shot.library.patches[i].name))
         })
         .collect();
-    if patches.is_empty() {
+    if let (Some(pattern), true) = (patch, patches.is_empty()) {
+        let example = match shot.library.patches.first() {
+            Some(first) => format!("patches are named INSTANCE/PATCH, e.g. \"{}\"", first.name),
+            None => "the shot has no patches".to_string(),
+        };
         return Err(anyhow!(
-            "--patch {} picks no patch of {}; patches are named INSTANCE/PATCH, e.g. \"{}\"",
-            patch.unwrap_or_default(),
-            shot.path.display(),
-            shot.library.patches[0].name
+            "--patch {pattern} picks no patch of {}; {example}",
+            shot.path.display()
         ));
     }
     let mut out = String::new();

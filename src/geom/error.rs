@@ -40,9 +40,9 @@ pub enum GeomError {
         expected_rows: usize,
         expected_columns: usize,
     },
-    #[error("control point [{i}][{j}] is not finite")]
+    #[error("control point [{i}][{j}] is not finite, or has a coordinate beyond ±1e6 (the largest glint draws)")]
     PointNotFinite { i: usize, j: usize },
-    #[error("weight [{i}][{j}] is {weight}; weights must be finite and greater than 0")]
+    #[error("weight [{i}][{j}] is {weight}; weights must lie in [1e-6, 1e6]")]
     Weight { i: usize, j: usize, weight: f64 },
     #[error("a torus needs minor_radius < major_radius, got minor_radius {minor} with major_radius {major}")]
     TorusTube { major: f64, minor: f64 },
@@ -51,7 +51,7 @@ pub enum GeomError {
         direction: &'static str,
         source: Box<GeomError>,
     },
-    #[error("{name} must be finite and greater than 0, got {value}")]
+    #[error("{name} must be greater than 0 and at most 1e6, got {value}")]
     NotPositive { name: &'static str, value: f64 },
 }
 

@@ -19,4 +19,4 @@ pub use grid::GridEvaluator;
 pub use knots::KnotVector;
 pub use library::{NamedPatch, PatchGroup, PatchLibrary, PatchNotFound};
 pub use on_ray::REFINE_STEPS;
-pub use surface::{Domain, NurbsSurface, SurfaceDerivs};
+pub use surface::{Domain, NurbsSurface, SurfaceDerivs, MAX_COORDINATE, MAX_WEIGHT, MIN_WEIGHT};

@@ -8,6 +8,7 @@ use std::f64::consts::FRAC_1_SQRT_2;
 
 use glam::{DVec2, DVec3};
 
+use super::surface::MAX_COORDINATE;
 use super::{GeomError, NurbsSurface};
 
 /// The full circle's knots (degree 2, nine control points).
@@ -63,7 +64,7 @@ fn revolve(profile: &[(DVec2, f64)], profile_knots: &[f64]) -> NurbsSurface {
 }
 
 fn check_positive(name: &'static str, value: f64) -> Result<(), GeomError> {
-    if value.is_finite() && value > 0.0 {
+    if value > 0.0 && value <= MAX_COORDINATE {
         Ok(())
     } else {
         Err(GeomError::NotPositive { name, value })

@@ -6,6 +6,18 @@ use glam::{DVec3, DVec4};
 use super::knots::{BasisDerivs, KnotVector, MAX_BASIS, MAX_ORDER};
 use super::GeomError;
 
+/// The largest magnitude of a control point's coordinate (and of a shape's size): a model a
+/// million units across, far beyond any scene, with every product and sum of the evaluation
+/// finite and f32 pixels still precise.
+pub const MAX_COORDINATE: f64 = 1e6;
+
+/// The smallest weight of a control point.
+pub const MIN_WEIGHT: f64 = 1e-6;
+
+/// The largest weight of a control point: with [`MIN_WEIGHT`], weights within twelve orders of
+/// magnitude of each other.
+pub const MAX_WEIGHT: f64 = 1e6;
+
 /// A NURBS surface `S(u,v) = Σ N_i,p(u) N_j,q(v) w_ij P_ij / Σ N_i,p(u) N_j,q(v) w_ij`.
 ///
 /// The control net has `count_u` rows (index i, along u) of `count_v` points (index j, along v).
@@ -137,7 +149,8 @@ impl Domain {
 impl NurbsSurface {
     /// Builds a surface from degrees, knot vectors, the control net `points[i][j]` (i along u,
     /// j along v) and optional weights of the same shape (all 1 when `None`: a non-rational
-    /// B-spline).
+    /// B-spline). Coordinates must lie within ±[`MAX_COORDINATE`] and weights in
+    /// `[MIN_WEIGHT, MAX_WEIGHT]`, so that every homogeneous sum stays finite and precise.
     pub fn new(
         degree_u: usize,
         degree_v: usize,
@@ -170,11 +183,11 @@ impl NurbsSurface {
         let mut net = Vec::with_capacity(count_u * count_v);
         for (i, row) in points.iter().enumerate() {
             for (j, p) in row.iter().enumerate() {
-                if !p.is_finite() {
+                if !(p.is_finite() && p.abs().max_element() <= MAX_COORDINATE) {
                     return Err(GeomError::PointNotFinite { i, j });
                 }
                 let weight = weights.map_or(1.0, |w| w[i][j]);
-                if !(weight.is_finite() && weight > 0.0) {
+                if !(MIN_WEIGHT..=MAX_WEIGHT).contains(&weight) {
                     return Err(GeomError::Weight { i, j, weight });
                 }
                 net.push((*p * weight).extend(weight));

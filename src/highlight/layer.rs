@@ -142,7 +142,7 @@ impl Mask<f32> {
 }
 
 impl Layer<f32> {
-    /// Checks ε ∈ (0, 2], colour finite, opacity ∈ [0, 1], feather ≥ 0, the mask ordered, and
+    /// Checks ε ∈ (0, 2], colour components in [0, 1e4], opacity ∈ [0, 1], feather ≥ 0, the mask ordered, and
     /// every op; errors say which op.
     pub fn validate(&self) -> Result<(), HighlightError> {
         for (i, op) in self.stack.iter().enumerate() {
@@ -156,7 +156,12 @@ impl Layer<f32> {
             "; the highlight covers the fraction ε/2 of a sphere, so 0.01 is a small spot and 2 the whole sphere",
         )?;
         for c in self.colour {
-            check("colour component", c, Range::Finite, "")?;
+            check(
+                "colour component",
+                c,
+                Range::Colour,
+                "; colours are linear RGB, 1 the display's white",
+            )?;
         }
         check(
             "opacity",

@@ -429,6 +429,16 @@ fn render_settings(
         .validate()
         .map_err(|e| source.error_at(&[Field("resolution")], e.to_string()))?;
     if let Some(o) = &render.outlines {
+        let (r, g, b) = o.colour;
+        if ![r, g, b].into_iter().all(crate::param::is_colour_component) {
+            return Err(source.error_at(
+                &[Field("render"), Field("outlines"), Field("colour")],
+                format!(
+                    "the outline colour ({r}, {g}, {b}) must have components from 0 to 1e4 \
+                     (linear RGB, 1 the display's white)"
+                ),
+            ));
+        }
         if !((1.0..=64.0).contains(&o.width) && o.crease_degrees.is_finite()) {
             return Err(source.error_at(
                 &[Field("render"), Field("outlines")],

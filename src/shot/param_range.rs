@@ -11,11 +11,10 @@ impl LayerParam {
     pub fn bounds(self) -> Bounds {
         let range = match self {
             LayerParam::Epsilon => Range::Epsilon,
-            LayerParam::Colour(_)
-            | LayerParam::MaskU(_)
-            | LayerParam::MaskV(_)
-            | LayerParam::PinU
-            | LayerParam::PinV => Range::Finite,
+            LayerParam::Colour(_) => Range::Colour,
+            LayerParam::MaskU(_) | LayerParam::MaskV(_) | LayerParam::PinU | LayerParam::PinV => {
+                Range::Finite
+            }
             LayerParam::Opacity => Range::Unit,
             LayerParam::Feather | LayerParam::MaskFeather => Range::NonNegative,
             LayerParam::Op { param, .. } => match param {

@@ -4,6 +4,8 @@ use glam::Vec3;
 use serde::Deserialize;
 use thiserror::Error;
 
+use crate::param::is_colour_component;
+
 /// Flat colour bands over `n·l ∈ [−1, 1]`: the colour of the band with the highest threshold not
 /// above `n·l`, or `base` below every threshold. For the classic two-tone look, a shadow colour
 /// as `base` and one band `(0.0, lit colour)`.
@@ -24,7 +26,9 @@ pub enum ToneError {
     ThresholdOrder { threshold: f32, previous: f32 },
     #[error("band threshold {threshold} is outside [-1, 1], the range of n·l")]
     ThresholdRange { threshold: f32 },
-    #[error("colour {colour:?} must have finite components of at least 0")]
+    #[error(
+        "colour {colour:?} must have components from 0 to 1e4 (linear RGB, 1 the display's white)"
+    )]
     Colour { colour: [f32; 3] },
 }
 
@@ -37,11 +41,12 @@ impl CelRamp {
         }
     }
 
-    /// Checks thresholds (in [−1, 1], increasing) and colours (finite, ≥ 0).
+    /// Checks thresholds (in [−1, 1], increasing) and colours (each component in
+    /// `[0, MAX_COLOUR]`).
     pub fn validate(&self) -> Result<(), ToneError> {
         let colours = std::iter::once(self.base).chain(self.bands.iter().map(|b| b.1));
         for colour in colours {
-            if !(colour.is_finite() && colour.min_element() >= 0.0) {
+            if !colour.to_array().into_iter().all(is_colour_component) {
                 return Err(ToneError::Colour {
                     colour: colour.to_array(),
                 });

@@ -1,0 +1,152 @@
+//! Hostile and degenerate input refused or handled at its cause: a shot with no patches, colours
+//! and geometry outside the ranges that keep the arithmetic finite — each one line with its
+//! place, exit 2, nothing written; never a panic.
+
+use std::path::Path;
+use std::process::Output;
+
+use crate::common::{glint, stderr};
+
+fn shot(dir: &Path, instances: &str, extra: &str) -> std::path::PathBuf {
+    let text = format!(
+        r#"Shot(
+    resolution: (16, 16),
+    frames: (1, 2),
+    fps: 24,
+    output: "out/s.####.png",
+    instances: [{instances}],
+    materials: {{"m": Cel(base: (0.1, 0.1, 0.1), bands: [(0.0, (0.5, 0.5, 0.5))])}},
+    camera: (eye: (0.0, -6.0, 0.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4)),
+    light: Directional(towards: (0.0, 1.0, 0.0)),
+    highlights: [],{extra}
+)"#
+    );
+    let path = dir.join("shot.ron");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn run(dir: &Path, args: &[&str]) -> Output {
+    glint().current_dir(dir).args(args).output().unwrap()
+}
+
+/// One line naming `file:line:`, exit 2, and no frame written.
+fn assert_refused(dir: &Path, out: &Output, file: &str, says: &str) {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains(file) && err.contains(says), "{err}");
+    assert!(!dir.join("out").exists(), "nothing is written");
+}
+
+#[test]
+fn a_shot_without_patches_is_inspected_without_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = shot(dir.path(), "", "");
+    let out = run(
+        dir.path(),
+        &["inspect", path.to_str().unwrap(), "--frame", "1"],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let out = run(
+        dir.path(),
+        &[
+            "inspect",
+            path.to_str().unwrap(),
+            "--frame",
+            "1",
+            "--patch",
+            "a/*",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("the shot has no patches"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn colours_beyond_their_range_are_refused_where_they_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("ball.ron"),
+        "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])",
+    )
+    .unwrap();
+    let ball = r#"(name: "ball", file: "ball.ron", material: "m")"#;
+    for colour in [
+        "(NaN, 0.0, 0.0)",
+        "(-1.0, 0.0, 0.0)",
+        "(1e5, 0.0, 0.0)",
+        "(0.0, inf, 0.0)",
+    ] {
+        let extra = format!("\n    render: (outlines: (colour: {colour})),");
+        let path = shot(dir.path(), ball, &extra);
+        let out = run(dir.path(), &["render", path.to_str().unwrap()]);
+        assert_refused(dir.path(), &out, "shot.ron:", "outline colour");
+    }
+    let layer = r#"
+    highlights: [(patches: "*", expr: Layer((stack: [], epsilon: 0.1, colour: (2e4, 1.0, 1.0))))],"#;
+    let path = shot(dir.path(), ball, "").to_str().unwrap().to_string();
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("\n    highlights: [],", layer);
+    std::fs::write(&path, text).unwrap();
+    let out = run(dir.path(), &["render", &path]);
+    assert_refused(dir.path(), &out, "shot.ron:", "colour component");
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("(2e4, 1.0, 1.0)", "(1.0, 1.0, 1.0)")
+        .replace("base: (0.1, 0.1, 0.1)", "base: (-0.1, 0.1, 0.1)");
+    std::fs::write(&path, text).unwrap();
+    let out = run(dir.path(), &["render", &path]);
+    assert_refused(dir.path(), &out, "shot.ron:", "from 0 to 1e4");
+}
+
+#[test]
+fn geometry_too_large_to_evaluate_is_refused_where_it_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = shot(
+        dir.path(),
+        r#"(name: "ball", file: "ball.ron", material: "m")"#,
+        "",
+    );
+    let nurbs = |points: &str, weights: &str| {
+        format!(
+            "(patches: [(name: \"p\", surface: Nurbs(degree: (1, 1), knots_u: [0.0, 0.0, 1.0, 1.0], \
+             knots_v: [0.0, 0.0, 1.0, 1.0], points: {points}, weights: Some({weights})))])"
+        )
+    };
+    let square = "[[(0.0, 0.0, 0.0), (0.0, 1.0, 0.0)], [(1.0, 0.0, 0.0), (1.0, 1.0, 0.0)]]";
+    for (model, says) in [
+        (
+            "(patches: [(name: \"s\", surface: Sphere(radius: 1e300))])".to_string(),
+            "radius",
+        ),
+        (
+            "(patches: [(name: \"t\", surface: Torus(major_radius: 1e308, minor_radius: 1.0))])"
+                .to_string(),
+            "major_radius",
+        ),
+        (nurbs(square, "[[1.0, 1e308], [1.0, 1.0]]"), "weight"),
+        (nurbs(square, "[[1.0, 1e-9], [1.0, 1.0]]"), "weight"),
+        (
+            nurbs(
+                "[[(0.0, 0.0, 0.0), (0.0, 1e308, 0.0)], [(1.0, 0.0, 0.0), (1.0, 1.0, 0.0)]]",
+                "[[1.0, 1.0], [1.0, 1.0]]",
+            ),
+            "control point",
+        ),
+    ] {
+        std::fs::write(dir.path().join("ball.ron"), &model).unwrap();
+        let out = run(dir.path(), &["render", path.to_str().unwrap()]);
+        assert_refused(dir.path(), &out, "ball.ron:", says);
+        let probe = run(
+            dir.path(),
+            &["probe", "ball.ron", "--patch", "0", "--uv", "0.5,0.5"],
+        );
+        assert_eq!(probe.status.code(), Some(2), "{model}: {}", stderr(&probe));
+    }
+}
