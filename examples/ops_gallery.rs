@@ -47,7 +47,7 @@ fn shade(expr: &PreparedExpr, x: f64, y: f64) -> Option<Vec3> {
     } else {
         Vec3::new(0.30, 0.07, 0.10)
     };
-    let hl = expr.eval(&frame, uv, half_vector(l, v, frame.n), 0.0);
+    let hl = expr.eval(&frame, uv, half_vector(l, v), 0.0);
     Some(base.lerp(hl.colour, hl.coverage))
 }
 

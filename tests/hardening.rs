@@ -150,3 +150,65 @@ fn geometry_too_large_to_evaluate_is_refused_where_it_is_written() {
         assert_eq!(probe.status.code(), Some(2), "{model}: {}", stderr(&probe));
     }
 }
+
+#[test]
+fn a_light_passing_straight_behind_the_model_does_not_flash() {
+    // Orthographic view from −y: V = −y everywhere, so a light toward +y is exactly L = −V.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("ball.ron"),
+        "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])",
+    )
+    .unwrap();
+    let layer = r#"
+    highlights: [(patches: "*", expr: Layer((stack: [], epsilon: 0.05, colour: (1.0, 1.0, 1.0))))],"#;
+    let mut counts = Vec::new();
+    for towards in [
+        "(0.0, 1.0, 0.0)",
+        "(0.001, 1.0, 0.0)",
+        "(0.0, 1.0, -0.002)",
+        "(-0.003, 1.0, 0.001)",
+    ] {
+        let path = shot(
+            dir.path(),
+            r#"(name: "ball", file: "ball.ron", material: "m")"#,
+            "",
+        );
+        let text = std::fs::read_to_string(&path)
+            .unwrap()
+            .replace("\n    highlights: [],", layer)
+            .replace("towards: (0.0, 1.0, 0.0)", &format!("towards: {towards}"));
+        std::fs::write(&path, text).unwrap();
+        let out = run(
+            dir.path(),
+            &[
+                "render",
+                path.to_str().unwrap(),
+                "--size",
+                "64x64",
+                "--aov",
+                "matte",
+                "--frames",
+                "1",
+                "--quiet",
+            ],
+        );
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        let matte = image::open(dir.path().join("out/s.0001.matte.png"))
+            .unwrap()
+            .to_luma8();
+        let colour = image::open(dir.path().join("out/s.0001.png"))
+            .unwrap()
+            .to_rgba8();
+        let lit = matte.pixels().filter(|p| p.0[0] > 127).count();
+        let covered = colour.pixels().filter(|p| p.0[3] > 0).count();
+        assert!(
+            lit * 20 < covered,
+            "{towards}: {lit} of {covered} pixels are highlight"
+        );
+        counts.push(lit);
+        std::fs::remove_dir_all(dir.path().join("out")).unwrap();
+    }
+    let (least, most) = (counts.iter().min().unwrap(), counts.iter().max().unwrap());
+    assert!(most <= &(2 * least.max(&1)), "{counts:?}");
+}

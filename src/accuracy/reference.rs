@@ -110,7 +110,7 @@ impl AnalyticSphere {
         let north = n.cross(east);
         let frame = TangentFrame::new(east.as_vec3(), north.as_vec3(), n.as_vec3());
         let v = self.camera.toward_eye(p.as_vec3());
-        let h = half_vector(self.light, v, n.as_vec3());
+        let h = half_vector(self.light, v);
         highlight.eval(&frame, Vec2::ZERO, h, 0.0).coverage > 0.5
     }
 

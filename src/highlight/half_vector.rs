@@ -67,19 +67,21 @@ impl View {
 /// Blinn's half vector `H = (L + V) / ‖L + V‖` for unit L and V, the paper's original
 /// highlight vector.
 ///
-/// When `L = −V` (light straight behind the surface point as seen from the eye) `L + V` vanishes
-/// and no half vector exists; `n` is returned, which puts the highlight centre on the point. It
-/// is finite, and such a configuration only occurs at grazing points that face neither.
+/// When `L = −V` (the light straight behind the point as seen from the eye) `L + V` vanishes
+/// and no half vector exists. As L approaches −V from any side, H turns perpendicular to V, which
+/// puts the highlight on the silhouette; the fallback keeps it there: a fixed unit vector
+/// perpendicular to V (`V.any_orthonormal_vector()`). A light passing behind the model so never
+/// lights the whole model for a frame, as taking H = N there would.
 #[inline]
 #[must_use]
-pub fn half_vector(l: Vec3, v: Vec3, n: Vec3) -> Vec3 {
-    normalize_or(l + v, n)
+pub fn half_vector(l: Vec3, v: Vec3) -> Vec3 {
+    normalize_or(l + v, v.any_orthonormal_vector())
 }
 
 /// The half vector for a light and a view at a surface point with normal `n`.
 #[must_use]
 pub fn blinn_half_vector(light: &Light, view: &View, point: Vec3, n: Vec3) -> Vec3 {
-    half_vector(light.direction(point, n), view.direction(point), n)
+    half_vector(light.direction(point, n), view.direction(point))
 }
 
 /// The virtual light of a highlight vector (paper: "once H is specified, it follows that
@@ -97,7 +99,7 @@ mod tests {
     #[test]
     fn half_vector_bisects() {
         let l = Vec3::new(1.0, 0.0, 1.0).normalize();
-        let h = half_vector(l, Vec3::Z, Vec3::Y);
+        let h = half_vector(l, Vec3::Z);
         let want = Vec3::new(
             (22.5_f32).to_radians().sin(),
             0.0,
@@ -107,16 +109,23 @@ mod tests {
     }
 
     #[test]
-    fn opposite_light_and_view_fall_back_to_normal() {
-        let n = Vec3::new(0.0, 1.0, 0.0);
-        assert_eq!(half_vector(Vec3::X, -Vec3::X, n), n);
+    fn opposite_light_and_view_put_the_highlight_on_the_silhouette_as_nearby_lights_do() {
+        let v = Vec3::new(0.2, -0.3, 0.93).normalize();
+        let h = half_vector(-v, v);
+        assert!(
+            (h.length() - 1.0).abs() < 1e-6 && h.dot(v).abs() < 1e-6,
+            "{h}"
+        );
+        // Lights a thousandth of a radian away from −V give an H perpendicular to V too.
+        let aside = (-v + 1e-3 * v.any_orthonormal_vector().cross(v)).normalize();
+        assert!(half_vector(aside, v).dot(v).abs() < 2e-3);
     }
 
     #[test]
     fn virtual_light_inverts_half_vector() {
         let l = Vec3::new(0.3, 0.5, 0.8).normalize();
         let v = Vec3::new(-0.2, 0.1, 0.97).normalize();
-        let back = virtual_light(half_vector(l, v, Vec3::Z), v);
+        let back = virtual_light(half_vector(l, v), v);
         assert!((back - l).length() < 1e-6);
     }
 

@@ -16,7 +16,6 @@ pub(super) fn initial_half_vector(scene: &Scene, t: &Texel) -> Vec3 {
     half_vector(
         scene.light.direction(t.position, n),
         scene.camera.toward_eye(t.position),
-        n,
     )
 }
 
