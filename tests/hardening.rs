@@ -212,3 +212,100 @@ fn a_light_passing_straight_behind_the_model_does_not_flash() {
     let (least, most) = (counts.iter().min().unwrap(), counts.iter().max().unwrap());
     assert!(most <= &(2 * least.max(&1)), "{counts:?}");
 }
+
+#[test]
+fn command_line_mistakes_are_one_line_and_negative_frame_lists_read() {
+    for args in [
+        &["render", "shots/sphere_ops.ron", "--aovs", "matte"][..],
+        &["rendr"],
+        &["render", "shots/sphere_ops.ron", "--size", "big"],
+        &["render"],
+    ] {
+        let out = glint().args(args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert_eq!(
+            stderr(&out).lines().count(),
+            1,
+            "{args:?}: {}",
+            stderr(&out)
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("ball.ron"),
+        "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])",
+    )
+    .unwrap();
+    let path = shot(
+        dir.path(),
+        r#"(name: "ball", file: "ball.ron", material: "m")"#,
+        "",
+    );
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("frames: (1, 2)", "frames: (-5, 5)");
+    std::fs::write(&path, text).unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            path.to_str().unwrap(),
+            "--frames",
+            "-5--4",
+            "--quiet",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let written = std::fs::read_dir(dir.path().join("out")).unwrap().count();
+    assert_eq!(written, 2, "frames -5 and -4");
+}
+
+#[test]
+fn names_with_line_breaks_and_nul_cannot_split_an_error_line() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("ball.ron"),
+        "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])",
+    )
+    .unwrap();
+    let path = shot(
+        dir.path(),
+        r#"(name: "ball", file: "ball.ron", material: "m")"#,
+        "",
+    );
+    let text = std::fs::read_to_string(&path).unwrap().replace(
+        "\n    highlights: [],",
+        "\n    highlights: [(patches: \"no\\nsuch\\u{0}patch\", expr: Layer((stack: [], epsilon: 0.1, colour: (1.0, 1.0, 1.0))))],",
+    );
+    std::fs::write(&path, text).unwrap();
+    let out = run(dir.path(), &["render", path.to_str().unwrap()]);
+    assert_refused(dir.path(), &out, "shot.ron:", "no\\nsuch\\u{0}patch");
+    let out = run(
+        dir.path(),
+        &[
+            "inspect",
+            path.to_str().unwrap(),
+            "--frame",
+            "1",
+            "--patch",
+            "a\nb",
+        ],
+    );
+    assert_eq!(stderr(&out).lines().count(), 1, "{}", stderr(&out));
+}
+
+#[test]
+fn a_file_that_is_not_text_is_refused_at_its_first_bad_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("shot.ron");
+    std::fs::write(&path, b"Shot(\n    frames: (1, 2), \xff\n)").unwrap();
+    let out = run(dir.path(), &["render", path.to_str().unwrap()]);
+    assert_refused(dir.path(), &out, "shot.ron:2:21:", "not UTF-8");
+    std::fs::write(dir.path().join("m.ron"), b"(patches: [\xc0])").unwrap();
+    let out = run(
+        dir.path(),
+        &["probe", "m.ron", "--patch", "0", "--uv", "0,0"],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("m.ron:1:12:"), "{}", stderr(&out));
+}

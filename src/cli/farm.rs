@@ -48,7 +48,7 @@ struct SlurmArgs {
     /// The shot file (RON)
     shot: PathBuf,
     /// Frames to render [default: the shot's whole range]
-    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg)]
+    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg, allow_hyphen_values = true)]
     frames: Option<FrameListArg>,
     /// Frames per array task
     #[arg(long, value_name = "N", default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..))]

@@ -78,7 +78,10 @@ pub(crate) fn write_stdout(
 
 /// Parses the process arguments, runs the command and returns its exit code.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(&e),
+    };
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Inspect(args) => inspect::run(&args),
@@ -99,8 +102,74 @@ pub fn main() -> ExitCode {
                 CliError::BadInput(_) => 2,
                 CliError::Failed(_) => 1,
             };
-            eprintln!("error: {error:#}");
+            eprintln!("error: {}", one_line(&format!("{error:#}")));
             ExitCode::from(code)
         }
+    }
+}
+
+/// Answers a command line that does not parse: help and the version as clap prints them
+/// (exit 0, or 2 for help shown because nothing was asked), anything else as one line — the
+/// problem, clap's tip if it has one, and where to look — with exit code 2.
+fn usage_error(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2))
+        }
+        _ => {
+            let text = e.render().to_string();
+            let mut problem: Vec<&str> = Vec::new();
+            let mut tips: Vec<&str> = Vec::new();
+            for line in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+                if line.starts_with("Usage:") || line.starts_with("For more information") {
+                    break;
+                }
+                match line.strip_prefix("tip: ") {
+                    Some(tip) => tips.push(tip),
+                    None => problem.push(line.trim_start_matches("error: ")),
+                }
+            }
+            let problem = problem.join(" ");
+            let tip = if tips.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", tips.join("; "))
+            };
+            eprintln!(
+                "error: {}{}; see --help",
+                one_line(&problem),
+                one_line(&tip)
+            );
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// `text` on one line: line breaks and other control characters written as escapes (`\n`,
+/// `\u{0}`), so that a name holding them cannot split an error line or reach the terminal raw.
+#[must_use]
+pub fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn control_characters_are_escaped_onto_one_line() {
+        assert_eq!(one_line("a\nb\u{0}c\td é"), "a\\nb\\u{0}c\\td é");
     }
 }

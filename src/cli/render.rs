@@ -67,7 +67,7 @@ pub struct RenderArgs {
 #[derive(Debug, Args)]
 pub(super) struct Target {
     /// Frames to render [default: the shot's whole range]
-    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg)]
+    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg, allow_hyphen_values = true)]
     frames: Option<FrameListArg>,
     /// Output path pattern; a run of # becomes the zero-padded frame number. Relative to the
     /// shot file's folder unless absolute [default: the shot's `output`]

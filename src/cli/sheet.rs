@@ -48,7 +48,7 @@ pub struct SheetArgs {
     /// The shot file (RON)
     shot: PathBuf,
     /// The frames to show, one tile each, as `glint render --frames` lists them
-    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg, conflicts_with_all = ["frame", "vary"])]
+    #[arg(long, value_name = "SPEC", value_parser = frame_list_arg, allow_hyphen_values = true, conflicts_with_all = ["frame", "vary"])]
     frames: Option<FrameListArg>,
     /// The frame the variants show (fractional frames allowed) [default: the shot's first frame]
     #[arg(long, value_name = "F", requires = "vary")]

@@ -13,6 +13,7 @@ pub mod replace_text;
 pub mod ron_location;
 pub mod ron_paths;
 mod srgb;
+pub mod text_file;
 mod texture;
 
 use std::path::Path;
@@ -109,9 +110,17 @@ pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
         Some("bpt") => parse_bpt,
         _ => return Err(FormatError::UnknownKind { path: shown }),
     };
-    let text = std::fs::read_to_string(path).map_err(|source| FormatError::Io {
-        path: shown.clone(),
-        source,
+    let text = text_file::read_text(path).map_err(|e| match e {
+        text_file::TextError::Io(source) => FormatError::Io {
+            path: shown.clone(),
+            source,
+        },
+        text_file::TextError::NotUtf8 { line, col } => FormatError::Ron {
+            path: shown.clone(),
+            line,
+            col,
+            message: "the file is not UTF-8 text: these bytes do not read as UTF-8".to_string(),
+        },
     })?;
     let mut library = parse(&text, &shown)?;
     let parts = parts::parts_file(path);

@@ -8,6 +8,7 @@ use serde::de::DeserializeOwned;
 use super::ShotError;
 use crate::formats::ron_location::{explain_at, position_of};
 use crate::formats::ron_paths::{locate_or_nearest, Step};
+use crate::formats::text_file::{read_text, TextError};
 
 /// A file read for the shot: its path, its name as shown in messages, its folder and its text.
 pub(super) struct Source {
@@ -19,9 +20,18 @@ pub(super) struct Source {
 
 impl Source {
     pub fn read(path: &Path) -> Result<Self, ShotError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ShotError::File {
-            path: path.display().to_string(),
-            message: format!("cannot read the file: {e}"),
+        let shown = path.display().to_string();
+        let text = read_text(path).map_err(|e| match e {
+            TextError::Io(e) => ShotError::File {
+                path: shown.clone(),
+                message: format!("cannot read the file: {e}"),
+            },
+            TextError::NotUtf8 { line, col } => ShotError::At {
+                path: shown.clone(),
+                line,
+                col,
+                message: "the file is not UTF-8 text: these bytes do not read as UTF-8".to_string(),
+            },
         })?;
         Ok(Self::new(path, text))
     }
