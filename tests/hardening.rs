@@ -309,3 +309,125 @@ fn a_file_that_is_not_text_is_refused_at_its_first_bad_byte() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("m.ron:1:12:"), "{}", stderr(&out));
 }
+
+/// Renders frames 1-24 of a copy of `shots/sphere_ops.ron` twice at once into one folder,
+/// `trials` times; both renders must succeed and leave the bytes one render alone leaves.
+fn concurrent_renders(trials: usize) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("shots")).unwrap();
+    std::fs::create_dir_all(dir.path().join("patches")).unwrap();
+    std::fs::copy(
+        crate::common::repo_file("patches/sphere.ron"),
+        dir.path().join("patches/sphere.ron"),
+    )
+    .unwrap();
+    let shot = dir.path().join("shots/sphere_ops.ron");
+    std::fs::copy(crate::common::repo_file("shots/sphere_ops.ron"), &shot).unwrap();
+    let render = |out: &str| {
+        glint()
+            .args([
+                "render",
+                shot.to_str().unwrap(),
+                "--frames",
+                "1-24",
+                "--preset",
+                "preview",
+                "--size",
+                "48x48",
+                "--aov",
+                "matte",
+                "--quiet",
+                "--out",
+                out,
+            ])
+            .spawn()
+            .unwrap()
+    };
+    let alone = dir.path().join("alone/s.####.png");
+    assert!(render(alone.to_str().unwrap()).wait().unwrap().success());
+    for trial in 0..trials {
+        let both = dir.path().join(format!("both{trial}/s.####.png"));
+        let (mut a, mut b) = (
+            render(both.to_str().unwrap()),
+            render(both.to_str().unwrap()),
+        );
+        let (a, b) = (a.wait().unwrap(), b.wait().unwrap());
+        assert!(a.success() && b.success(), "trial {trial}: {a:?} {b:?}");
+        let folder = both.parent().unwrap();
+        let mut names: Vec<String> = std::fs::read_dir(folder)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(
+            names.len(),
+            24 * 3,
+            "trial {trial}: colour, matte and EXR, no temporary: {names:?}"
+        );
+        for name in names {
+            let together = std::fs::read(folder.join(&name)).unwrap();
+            let single = std::fs::read(alone.parent().unwrap().join(&name)).unwrap();
+            assert!(together == single, "trial {trial}: {name} differs");
+        }
+    }
+}
+
+#[test]
+fn two_renders_of_the_same_frames_at_once_both_succeed_with_the_same_bytes() {
+    concurrent_renders(3);
+}
+
+#[test]
+fn skip_existing_clears_a_killed_run_s_temporaries_of_every_file_but_a_running_one_s() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("ball.ron"),
+        "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])",
+    )
+    .unwrap();
+    let path = shot(
+        dir.path(),
+        r#"(name: "ball", file: "ball.ron", material: "m")"#,
+        "",
+    );
+    let out_dir = dir.path().join("out");
+    std::fs::create_dir_all(&out_dir).unwrap();
+    let mut child = std::process::Command::new("true").spawn().unwrap();
+    child.wait().unwrap();
+    let host = glint::formats::atomic::host_name()
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect::<String>();
+    let dead = format!(".s.0001.matte.png.{host}.{}.tmp", child.id());
+    let running = format!(".s.0001.matte.png.{host}.1.tmp");
+    for name in [&dead, &running] {
+        std::fs::write(out_dir.join(name), b"half").unwrap();
+    }
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            path.to_str().unwrap(),
+            "--aov",
+            "matte",
+            "--skip-existing",
+            "--quiet",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        !out_dir.join(&dead).exists(),
+        "a killed run's temporary goes"
+    );
+    assert!(
+        out_dir.join(&running).exists(),
+        "pid 1 is running: its temporary stays"
+    );
+    assert!(out_dir.join("s.0001.matte.png").is_file());
+}

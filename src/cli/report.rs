@@ -48,7 +48,7 @@ pub(super) fn append(
             .map(|(stage, s)| (stage.name(), s.seconds))
             .collect(),
         peak_memory_bytes: peak_memory_bytes(),
-        host: host_name(),
+        host: crate::formats::atomic::host_name(),
     };
     let mut text = serde_json::to_string(&line)?;
     text.push('\n');
@@ -67,15 +67,4 @@ fn peak_memory_bytes() -> Option<u64> {
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
-}
-
-/// This machine's name: the kernel's (Linux), or `HOSTNAME`/`COMPUTERNAME`, or `unknown`.
-fn host_name() -> String {
-    std::fs::read_to_string("/proc/sys/kernel/hostname")
-        .ok()
-        .map(|h| h.trim().to_string())
-        .filter(|h| !h.is_empty())
-        .or_else(|| std::env::var("HOSTNAME").ok())
-        .or_else(|| std::env::var("COMPUTERNAME").ok())
-        .unwrap_or_else(|| "unknown".to_string())
 }

@@ -17,12 +17,58 @@ pub struct WriteError {
 }
 
 /// The temporary file a write to `path` goes through: hidden, in the same directory (so the
-/// rename is atomic), and named after the target and this process.
+/// rename is atomic), and named after the target, this machine and this process
+/// (`.NAME.HOST.PID.tmp`), so that a writer knows its own and can tell whether another's is
+/// still being written ([`remove_stale_temporaries`]).
 pub fn temporary_path(path: &Path) -> PathBuf {
     let name = path
         .file_name()
         .map_or_else(Default::default, |n| n.to_string_lossy().into_owned());
-    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+    path.with_file_name(format!(
+        ".{name}.{}.{}.tmp",
+        host_token(),
+        std::process::id()
+    ))
+}
+
+/// This machine's name: the kernel's (Linux), or `HOSTNAME`/`COMPUTERNAME`, or `unknown`.
+#[must_use]
+pub fn host_name() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .ok()
+        .map(|h| h.trim().to_string())
+        .filter(|h| !h.is_empty())
+        .or_else(|| std::env::var("HOSTNAME").ok())
+        .or_else(|| std::env::var("COMPUTERNAME").ok())
+        .unwrap_or_else(|| "unknown".to_string())
+}
+
+/// The host name as it goes into a temporary's name: letters, digits and `-` only.
+fn host_token() -> String {
+    host_name()
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect()
+}
+
+/// Whether the process `pid` of this machine is still running: `/proc/PID` exists (Linux).
+/// Where that cannot be known, every other process counts as running, so that no temporary
+/// another writer may still need is taken from it.
+fn is_running(pid: u32) -> bool {
+    if pid == std::process::id() {
+        return true;
+    }
+    if Path::new("/proc/self").exists() {
+        Path::new(&format!("/proc/{pid}")).exists()
+    } else {
+        true
+    }
 }
 
 /// Whether a written file is synced to the disk before it is renamed into place.
@@ -52,6 +98,16 @@ pub fn write_atomically_with(
     durability: Durability,
     write: impl FnOnce(&mut BufWriter<File>) -> Result<(), String>,
 ) -> Result<(), WriteError> {
+    if let Ok(meta) = std::fs::metadata(path) {
+        if !meta.is_file() {
+            return Err(WriteError {
+                path: path.display().to_string(),
+                reason: "something that is not a regular file is there (a folder, a device); \
+                         glint replaces only regular files"
+                    .to_string(),
+            });
+        }
+    }
     let temporary = temporary_path(path);
     let written = (|| -> Result<(), String> {
         let file = File::create(&temporary).map_err(|e| e.to_string())?;
@@ -75,7 +131,10 @@ pub fn write_atomically_with(
 }
 
 /// Removes the temporary files earlier writes to `path` left behind when their process was
-/// killed (`.NAME.PID.tmp` beside it). Returns how many were removed.
+/// killed: `.NAME.HOST.PID.tmp` beside it (or `.NAME.PID.tmp`, as older versions named them)
+/// whose process, on this machine, is no longer running. A temporary of a running process — a
+/// retry of the same frame still at work — is left to it, and so is one from another machine,
+/// whose processes cannot be seen from here. Returns how many were removed.
 pub fn remove_stale_temporaries(path: &Path) -> std::io::Result<usize> {
     let (Some(folder), Some(name)) = (path.parent(), path.file_name()) else {
         return Ok(0);
@@ -86,6 +145,7 @@ pub fn remove_stale_temporaries(path: &Path) -> std::io::Result<usize> {
         folder
     };
     let prefix = format!(".{}.", name.to_string_lossy());
+    let here = host_token();
     let mut removed = 0;
     let entries = match std::fs::read_dir(folder) {
         Ok(entries) => entries,
@@ -95,12 +155,27 @@ pub fn remove_stale_temporaries(path: &Path) -> std::io::Result<usize> {
     for entry in entries {
         let entry = entry?;
         let file = entry.file_name().to_string_lossy().into_owned();
-        let pid = file
+        let Some(rest) = file
             .strip_prefix(&prefix)
-            .and_then(|rest| rest.strip_suffix(".tmp"));
-        if pid.is_some_and(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit())) {
-            std::fs::remove_file(entry.path())?;
-            removed += 1;
+            .and_then(|r| r.strip_suffix(".tmp"))
+        else {
+            continue;
+        };
+        let (host, pid) = match rest.rsplit_once('.') {
+            Some((host, pid)) => (host, pid),
+            None => (here.as_str(), rest),
+        };
+        let Ok(pid) = pid.parse::<u32>() else {
+            continue;
+        };
+        if host != here || is_running(pid) {
+            continue;
+        }
+        match std::fs::remove_file(entry.path()) {
+            Ok(()) => removed += 1,
+            // Its writer renamed it into place meanwhile.
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(e),
         }
     }
     Ok(removed)
@@ -135,13 +210,20 @@ mod tests {
     fn stale_temporaries_of_one_target_go_and_nothing_else() {
         let dir = tempfile::tempdir().unwrap();
         let target = dir.path().join("shot.0001.png");
-        for name in [
-            ".shot.0001.png.123.tmp",
-            ".shot.0001.png.99.tmp",
-            ".shot.0002.png.123.tmp",
-            ".shot.0001.png.x.tmp",
-            "shot.0001.png",
-        ] {
+        // A process that has ended, and this one, which is running.
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        child.wait().unwrap();
+        let (dead, alive, host) = (child.id(), std::process::id(), host_token());
+        let names = [
+            format!(".shot.0001.png.{host}.{dead}.tmp"),
+            format!(".shot.0001.png.{dead}.tmp"),
+            format!(".shot.0001.png.{host}.{alive}.tmp"),
+            format!(".shot.0001.png.other-machine.{dead}.tmp"),
+            format!(".shot.0002.png.{host}.{dead}.tmp"),
+            ".shot.0001.png.x.tmp".to_string(),
+            "shot.0001.png".to_string(),
+        ];
+        for name in &names {
             std::fs::write(dir.path().join(name), b"x").unwrap();
         }
         assert_eq!(remove_stale_temporaries(&target).unwrap(), 2);
@@ -150,13 +232,25 @@ mod tests {
             .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
             .collect();
         left.sort();
+        let mut kept = names[2..].to_vec();
+        kept.sort();
         assert_eq!(
-            left,
-            [
-                ".shot.0001.png.x.tmp",
-                ".shot.0002.png.123.tmp",
-                "shot.0001.png"
-            ]
+            left, kept,
+            "a running writer's, another machine's and other targets' stay"
         );
+    }
+
+    #[test]
+    fn only_regular_files_are_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        let folder = dir.path().join("frame.png");
+        std::fs::create_dir(&folder).unwrap();
+        let e = write_atomically(&folder, |_| Ok(())).unwrap_err();
+        assert!(e.to_string().contains("not a regular file"), "{e}");
+        assert!(folder.is_dir());
+        if Path::new("/dev/null").exists() {
+            let e = write_atomically(Path::new("/dev/null"), |_| Ok(())).unwrap_err();
+            assert!(e.to_string().contains("not a regular file"), "{e}");
+        }
     }
 }

@@ -14,6 +14,11 @@ use super::image_encoding::{
 use super::png::{write_png_tagged, PngLayout};
 use crate::render::RenderedFrame;
 
+/// The names the AOV files beside a frame add to it ([`beside`]), every one there is.
+pub const AOV_FILE_NAMES: [&str; 7] = [
+    "matte", "patch_id", "patches", "depth", "normal", "uv", "n_dot_h",
+];
+
 /// The file beside the frame file `path` that holds its AOV `name`: `shot.0001.png` gives
 /// `shot.0001.NAME.png`.
 #[must_use]

@@ -23,7 +23,9 @@ use thiserror::Error;
 use crate::geom::PatchLibrary;
 
 pub use bpt::parse_bpt;
-pub use frame_files::{beside, write_frame_exr, write_pngs, write_pngs_tagged, write_pngs_with};
+pub use frame_files::{
+    beside, write_frame_exr, write_pngs, write_pngs_tagged, write_pngs_with, AOV_FILE_NAMES,
+};
 pub use patch_ron::parse_patch_ron;
 pub use srgb::{linear_to_srgb, srgb_to_linear};
 pub use texture::{read_toon_texture, toon_texture_from_srgb8};

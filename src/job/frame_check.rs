@@ -149,3 +149,21 @@ fn decode_exr(path: &Path) -> Result<(u32, u32), String> {
     let size = layer.size;
     Ok((size.0 as u32, size.1 as u32))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::formats::AOV_FILE_NAMES;
+
+    #[test]
+    fn every_aov_s_files_are_among_those_a_frame_can_have() {
+        let mut names: Vec<&str> = Aov::ALL
+            .iter()
+            .flat_map(|&a| aov_file_names(a).iter().copied())
+            .collect();
+        names.sort_unstable();
+        let mut all = AOV_FILE_NAMES.to_vec();
+        all.sort_unstable();
+        assert_eq!(names, all);
+    }
+}

@@ -5,11 +5,11 @@ use std::path::{Path, PathBuf};
 
 use super::fingerprint::{Fingerprint, FINGERPRINT_KEY};
 use crate::formats::atomic::{remove_stale_temporaries, Durability, WriteError};
-use crate::formats::{write_frame_exr, write_pngs_tagged};
+use crate::formats::{beside, write_frame_exr, write_pngs_tagged, AOV_FILE_NAMES};
 use crate::render::RenderedFrame;
 
 /// Writes `image` to `path` and its AOVs beside it: stale temporaries of earlier, killed runs
-/// removed; the EXR (with `exr`, when there are AOVs) and the AOV PNGs first, the colour PNG
+/// removed, of every file a frame can have; the EXR (with `exr`, when there are AOVs) and the AOV PNGs first, the colour PNG
 /// last, so that once the colour exists the whole frame does; the PNGs synced as `durability`
 /// says; each file stamped with `fingerprint` ([`FINGERPRINT_KEY`]). Returns the paths written.
 pub(super) fn write_frame(
@@ -24,7 +24,11 @@ pub(super) fn write_frame(
         .into_iter()
         .collect();
     let exr_path = path.with_extension("exr");
-    for target in [path, exr_path.as_path()] {
+    let aov_paths = AOV_FILE_NAMES.map(|name| beside(path, name));
+    let targets = [path, exr_path.as_path()]
+        .into_iter()
+        .chain(aov_paths.iter().map(PathBuf::as_path));
+    for target in targets {
         remove_stale_temporaries(target).map_err(|e| WriteError {
             path: target.display().to_string(),
             reason: format!("cannot clear old temporary files beside it: {e}"),
