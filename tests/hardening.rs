@@ -26,6 +26,17 @@ fn shot(dir: &Path, instances: &str, extra: &str) -> std::path::PathBuf {
     path
 }
 
+/// A shot of a unit sphere (`ball.ron`, written beside it) with no highlight.
+fn ball_shot(dir: &Path) -> std::path::PathBuf {
+    let ball = "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])";
+    std::fs::write(dir.join("ball.ron"), ball).unwrap();
+    shot(
+        dir,
+        r#"(name: "ball", file: "ball.ron", material: "m")"#,
+        "",
+    )
+}
+
 fn run(dir: &Path, args: &[&str]) -> Output {
     glint().current_dir(dir).args(args).output().unwrap()
 }
@@ -155,11 +166,6 @@ fn geometry_too_large_to_evaluate_is_refused_where_it_is_written() {
 fn a_light_passing_straight_behind_the_model_does_not_flash() {
     // Orthographic view from −y: V = −y everywhere, so a light toward +y is exactly L = −V.
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("ball.ron"),
-        "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])",
-    )
-    .unwrap();
     let layer = r#"
     highlights: [(patches: "*", expr: Layer((stack: [], epsilon: 0.05, colour: (1.0, 1.0, 1.0))))],"#;
     let mut counts = Vec::new();
@@ -169,11 +175,7 @@ fn a_light_passing_straight_behind_the_model_does_not_flash() {
         "(0.0, 1.0, -0.002)",
         "(-0.003, 1.0, 0.001)",
     ] {
-        let path = shot(
-            dir.path(),
-            r#"(name: "ball", file: "ball.ron", material: "m")"#,
-            "",
-        );
+        let path = ball_shot(dir.path());
         let text = std::fs::read_to_string(&path)
             .unwrap()
             .replace("\n    highlights: [],", layer)
@@ -231,16 +233,7 @@ fn command_line_mistakes_are_one_line_and_negative_frame_lists_read() {
         );
     }
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("ball.ron"),
-        "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])",
-    )
-    .unwrap();
-    let path = shot(
-        dir.path(),
-        r#"(name: "ball", file: "ball.ron", material: "m")"#,
-        "",
-    );
+    let path = ball_shot(dir.path());
     let text = std::fs::read_to_string(&path)
         .unwrap()
         .replace("frames: (1, 2)", "frames: (-5, 5)");
@@ -263,16 +256,7 @@ fn command_line_mistakes_are_one_line_and_negative_frame_lists_read() {
 #[test]
 fn names_with_line_breaks_and_nul_cannot_split_an_error_line() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("ball.ron"),
-        "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])",
-    )
-    .unwrap();
-    let path = shot(
-        dir.path(),
-        r#"(name: "ball", file: "ball.ron", material: "m")"#,
-        "",
-    );
+    let path = ball_shot(dir.path());
     let text = std::fs::read_to_string(&path).unwrap().replace(
         "\n    highlights: [],",
         "\n    highlights: [(patches: \"no\\nsuch\\u{0}patch\", expr: Layer((stack: [], epsilon: 0.1, colour: (1.0, 1.0, 1.0))))],",
@@ -380,16 +364,7 @@ fn two_renders_of_the_same_frames_at_once_both_succeed_with_the_same_bytes() {
 #[test]
 fn skip_existing_clears_a_killed_run_s_temporaries_of_every_file_but_a_running_one_s() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("ball.ron"),
-        "(patches: [(name: \"s\", surface: Sphere(radius: 1.0))])",
-    )
-    .unwrap();
-    let path = shot(
-        dir.path(),
-        r#"(name: "ball", file: "ball.ron", material: "m")"#,
-        "",
-    );
+    let path = ball_shot(dir.path());
     let out_dir = dir.path().join("out");
     std::fs::create_dir_all(&out_dir).unwrap();
     let mut child = std::process::Command::new("true").spawn().unwrap();
