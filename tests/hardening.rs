@@ -406,3 +406,23 @@ fn skip_existing_clears_a_killed_run_s_temporaries_of_every_file_but_a_running_o
     );
     assert!(out_dir.join("s.0001.matte.png").is_file());
 }
+
+#[test]
+fn absurd_thread_counts_and_endless_files_are_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = ball_shot(dir.path());
+    let out = run(
+        dir.path(),
+        &["render", path.to_str().unwrap(), "--threads", "100000"],
+    );
+    assert_refused(dir.path(), &out, "shot.ron", "worker threads");
+    if Path::new("/dev/zero").exists() {
+        let text = std::fs::read_to_string(&path).unwrap().replace(
+            "    instances: [",
+            "    includes: [\"/dev/zero\"],\n    instances: [",
+        );
+        std::fs::write(&path, text).unwrap();
+        let out = run(dir.path(), &["render", path.to_str().unwrap()]);
+        assert_refused(dir.path(), &out, "/dev/zero", "not a regular file");
+    }
+}

@@ -53,6 +53,9 @@ pub enum FormatError {
     },
     #[error("{path}: {message}")]
     Image { path: String, message: String },
+    /// The file as a whole cannot be read as text (not a regular file, too large).
+    #[error("{path}: cannot read the file: {message}")]
+    File { path: String, message: String },
     #[error(
         "{path}: unknown patch file type; use .ron (a patch library) or .bpt (Bezier patches)"
     )]
@@ -117,6 +120,12 @@ pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
             path: shown.clone(),
             source,
         },
+        e @ (text_file::TextError::NotAFile | text_file::TextError::TooLarge) => {
+            FormatError::File {
+                path: shown.clone(),
+                message: e.to_string(),
+            }
+        }
         text_file::TextError::NotUtf8 { line, col } => FormatError::Ron {
             path: shown.clone(),
             line,

@@ -3,12 +3,17 @@
 
 use crate::shot::MAX_FRAMES;
 
-/// The frames of `spec` in the order written, without repeats.
+/// The frames of `spec` in the order written, without repeats: at most [`MAX_FRAMES`] in all,
+/// found in time linear in them.
 pub fn parse_frames(spec: &str) -> Result<Vec<i64>, String> {
     let mut frames = Vec::new();
+    let mut seen = std::collections::HashSet::new();
     for part in spec.split(',').map(str::trim) {
         for frame in parse_part(part)? {
-            if !frames.contains(&frame) {
+            if seen.insert(frame) {
+                if frames.len() as i64 >= MAX_FRAMES {
+                    return Err(format!("'{spec}' lists more than {MAX_FRAMES} frames"));
+                }
                 frames.push(frame);
             }
         }
@@ -96,6 +101,14 @@ mod tests {
         assert_eq!(parse_frames("3, 1-3").unwrap(), vec![3, 1, 2]);
         assert_eq!(parse_frames("-3--1").unwrap(), vec![-3, -2, -1]);
         assert_eq!(parse_frames("-2-1").unwrap(), vec![-2, -1, 0, 1]);
+    }
+
+    #[test]
+    fn long_lists_read_and_their_length_is_bounded() {
+        assert_eq!(parse_frames("1-999999").unwrap().len(), 999_999);
+        assert_eq!(parse_frames("1-999999,5,999999").unwrap().len(), 999_999);
+        let e = parse_frames("1-600000,600001-1200000").unwrap_err();
+        assert!(e.contains("more than"), "{e}");
     }
 
     #[test]

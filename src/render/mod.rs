@@ -32,7 +32,7 @@ pub use facing::facing_frame;
 pub use plan::{Plan, Surfaces};
 pub use renderer::{AovImages, RenderedFrame, Renderer};
 pub use scene::{Aovs, Outlines, PatchLook, Scene, Tone};
-pub use settings::{Antialias, FrameMode, Settings, MAX_SIDE};
+pub use settings::{Antialias, FrameMode, Settings, MAX_SIDE, MAX_THREADS};
 pub use stage::Stage;
 pub use stats::{RenderStats, StageStats};
 pub use surface_point::SurfacePoint;

@@ -68,6 +68,10 @@ pub struct Settings {
     pub threads: usize,
 }
 
+/// The most worker threads a frame may ask for: far beyond the cores of any machine, and few
+/// enough that starting them is quick.
+pub const MAX_THREADS: usize = 1024;
+
 /// The largest image side glint renders (samples included under supersampling).
 pub const MAX_SIDE: u32 = 16384;
 
@@ -106,9 +110,15 @@ impl Settings {
         }
     }
 
-    /// Checks the image size, the supersampling factor and the density.
+    /// Checks the image size, the supersampling factor, the density and the thread count.
     pub fn validate(&self) -> Result<(), RenderError> {
         let bad = |what: String| Err(RenderError::Settings(what));
+        if self.threads > MAX_THREADS {
+            return bad(format!(
+                "{} worker threads is more than the {MAX_THREADS} a frame may use (0 uses one per core)",
+                self.threads
+            ));
+        }
         if let Antialias::Supersample(k) = self.antialias {
             if !(2..=8).contains(&k) {
                 return bad(format!(
@@ -148,6 +158,10 @@ mod tests {
             Settings::preview(0, 480),
             Settings::preview(u32::MAX, 480),
             Settings::final_quality(MAX_SIDE, 16),
+            Settings {
+                threads: MAX_THREADS + 1,
+                ..Settings::preview(64, 64)
+            },
             Settings {
                 antialias: Antialias::Supersample(9),
                 ..Settings::preview(64, 64)

@@ -26,6 +26,10 @@ impl Source {
                 path: shown.clone(),
                 message: format!("cannot read the file: {e}"),
             },
+            e @ (TextError::NotAFile | TextError::TooLarge) => ShotError::File {
+                path: shown.clone(),
+                message: format!("cannot read the file: {e}"),
+            },
             TextError::NotUtf8 { line, col } => ShotError::At {
                 path: shown.clone(),
                 line,
