@@ -67,15 +67,28 @@ fn the_script_cuts_the_frames_into_chunks_and_requeues_a_failed_task() {
     ] {
         assert!(text.contains(line), "no {line:?} in\n{text}");
     }
-    // The estimate for a 64×64 preview frame, and a quarter more: 64 MiB and a little.
+    // The estimate for a 64×64 preview frame, and a quarter more (docs/limits.md: 64 MiB,
+    // 90 B a sample, 200 B a vertex of the sphere's mesh, 4 × 2 spans of at most 64 segments
+    // each).
     let mem = text
         .lines()
         .find_map(|l| l.strip_prefix("#SBATCH --mem="))
         .unwrap();
     let mib: u64 = mem.trim_end_matches('M').parse().unwrap();
-    assert!((80..=81).contains(&mib), "{mem}");
+    let image = (64u64 << 20) + 64 * 64 * 90;
+    let most_mesh = (4 * 64 + 1) * (2 * 64 + 1) * 200;
+    let requested = |bytes: u64| (bytes + bytes / 4).div_ceil(1 << 20);
+    assert!(
+        (requested(image + 9 * 5 * 200)..=requested(image + most_mesh)).contains(&mib),
+        "{mem}"
+    );
+    // Each task may use what it requests, and no more.
+    assert!(text.contains(&format!("--max-memory '{mem}'")), "{text}");
     let given = script(&shot, &["--mem", "6g"]);
     assert!(given.contains("#SBATCH --mem=6G"), "{given}");
+    assert!(given.contains("--max-memory '6G'"), "{given}");
+    let bare = script(&shot, &["--mem", "4000"]);
+    assert!(bare.contains("--max-memory '4000M'"), "{bare}");
     assert!(
         given.contains("verify '\\''"),
         "the verification is printed, quoted: {given}"

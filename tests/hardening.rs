@@ -426,3 +426,204 @@ fn absurd_thread_counts_and_endless_files_are_refused_before_any_work() {
         assert_refused(dir.path(), &out, "/dev/zero", "not a regular file");
     }
 }
+
+#[test]
+fn a_frame_needing_more_memory_than_the_ceiling_is_refused_before_rendering() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = ball_shot(dir.path());
+    let path = path.to_str().unwrap();
+    // 4096² at `final` (4 × 4 samples): about 40 GB.
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            path,
+            "--size",
+            "4096x4096",
+            "--preset",
+            "final",
+            "--max-memory",
+            "1G",
+        ],
+    );
+    assert_refused(
+        dir.path(),
+        &out,
+        "shot.ron",
+        "above 1.1 GB (the ceiling --max-memory sets)",
+    );
+    assert!(
+        stderr(&out).contains("raise the ceiling with --max-memory"),
+        "{}",
+        stderr(&out)
+    );
+    // A mesh too dense for the ceiling: 50 spheres at 256 segments per span (4 × 2 spans
+    // each, 525 k vertices a sphere).
+    let balls: Vec<String> = (0..50)
+        .map(|k| format!(r#"(name: "b{k}", file: "ball.ron", material: "m")"#))
+        .collect();
+    let dense = shot(
+        dir.path(),
+        &balls.join(", "),
+        "\n    render: (tessellation: PerSpan(u: 256, v: 256)),",
+    );
+    let dense = dense.to_str().unwrap();
+    let out = run(
+        dir.path(),
+        &["render", dense, "--size", "32x32", "--max-memory", "2G"],
+    );
+    assert_refused(
+        dir.path(),
+        &out,
+        "shot.ron",
+        "needs about 5.3 GB, above 2.1 GB",
+    );
+    // The sphere at a size and density that fit is rendered.
+    let path = ball_shot(dir.path());
+    let path = path.to_str().unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            path,
+            "--size",
+            "32x32",
+            "--frames",
+            "1",
+            "--max-memory",
+            "1G",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    for bad in ["lots", "-1G", "0"] {
+        let out = run(dir.path(), &["render", path, "--max-memory", bad]);
+        assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+        assert_eq!(stderr(&out).lines().count(), 1, "{}", stderr(&out));
+    }
+}
+
+#[test]
+fn camera_light_and_placement_beyond_their_ranges_are_refused_where_they_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let ball = r#"(name: "ball", file: "ball.ron", material: "m")"#;
+    ball_shot(dir.path());
+    let base = std::fs::read_to_string(dir.path().join("shot.ron")).unwrap();
+    let camera = "camera: (eye: (0.0, -6.0, 0.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4)),";
+    let light = "light: Directional(towards: (0.0, 1.0, 0.0)),";
+    let cases = [
+        (camera, "camera: (eye: (0.0, -2e7, 0.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4)),", "within ±1e6"),
+        (camera, "camera: (eye: (0.0, -6.0, 0.0), target: (0.0, 0.0, 0.0), up: (0.0, 0.0, 1e30), projection: Orthographic(height: 2.4)),", "within ±1e6"),
+        (camera, "camera: (eye: (0.0, -6.0, 0.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4), near: 1e-12),", "near and far"),
+        (camera, "camera: (eye: (0.0, -6.0, 0.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4), far: 1e30),", "near and far"),
+        (camera, "camera: (eye: (0.0, -6.0, 0.0), target: (0.0, 0.0, 0.0), projection: Perspective(fov_y_degrees: 179.99)),", "fov_y_degrees"),
+        (camera, "camera: (eye: (0.0, -6.0, 0.0), target: (0.0, 0.0, 0.0), projection: Perspective(fov_y_degrees: 1e-30)),", "fov_y_degrees"),
+        (camera, "camera: (eye: (0.0, -6.0, 0.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 1e30)),", "height"),
+        // Eye and target meet at frame 1 only, between two keys that are fine.
+        (camera, "camera: (eye: [(0, (0.0, -1.0, 0.0)), (2, (0.0, 1.0, 0.0))], target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4)),", "same point"),
+        (light, "light: Point(position: (0.0, -3e7, 0.0)),", "within ±1e6"),
+        (ball, r#"(name: "ball", file: "ball.ron", material: "m", transform: (scale: 1e7))"#, "scale in [1e-6, 1e6]"),
+        (ball, r#"(name: "ball", file: "ball.ron", material: "m", transform: (translate: (1e300, 0.0, 0.0)))"#, "within ±1e6"),
+        (ball, r#"(name: "ball", file: "ball.ron", material: "m", transform: (translate: (999999.5, 0.0, 0.0)))"#, "beyond ±1e6"),
+        (ball, r#"(name: "ball", file: "ball.ron", material: "m", transform: (degrees: 1e300))"#, "within ±1e6"),
+    ];
+    for (from, to, says) in cases {
+        assert!(base.contains(from), "{from}");
+        std::fs::write(dir.path().join("shot.ron"), base.replace(from, to)).unwrap();
+        let out = run(dir.path(), &["render", "shot.ron", "--size", "8x8"]);
+        assert_refused(dir.path(), &out, "shot.ron:", says);
+    }
+}
+
+#[test]
+fn a_file_included_along_many_paths_is_read_once() {
+    // Twelve levels, each including the next three times: 3¹² includes, 13 files.
+    let dir = tempfile::tempdir().unwrap();
+    let depth = 12;
+    for k in 0..depth {
+        let next = if k + 1 < depth {
+            vec![format!("\"d{}.ron\"", k + 1); 3].join(", ")
+        } else {
+            String::new()
+        };
+        let materials = if k + 1 == depth {
+            r#"materials: {"deep": Cel(base: (0.2, 0.2, 0.2), bands: [])},"#
+        } else {
+            ""
+        };
+        std::fs::write(
+            dir.path().join(format!("d{k}.ron")),
+            format!("(includes: [{next}], {materials})"),
+        )
+        .unwrap();
+    }
+    let path = ball_shot(dir.path());
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(
+        &path,
+        text.replace("instances:", "includes: [\"d0.ron\"],\n    instances:"),
+    )
+    .unwrap();
+    let shot = glint::shot::load_shot(&path).unwrap();
+    // The shot, twelve includes, the ball: each once; and the material defined deepest is
+    // defined once, not once per path to it.
+    assert_eq!(shot.inputs.len(), depth + 2, "{:?}", shot.inputs);
+    assert_eq!(shot.material_names().filter(|n| *n == "deep").count(), 1);
+    // A cycle is still one.
+    std::fs::write(dir.path().join("d11.ron"), "(includes: [\"d3.ron\"])").unwrap();
+    let e = glint::shot::load_shot(&path).unwrap_err().to_string();
+    assert!(e.contains("makes a cycle") && e.contains("d11.ron"), "{e}");
+}
+
+#[test]
+fn a_frame_whose_view_needs_a_mesh_beyond_the_ceiling_is_refused_when_it_comes() {
+    // Forty frames, the camera far from the sphere but for frame 2, where it nearly touches
+    // it: the estimate before rendering looks at 16 of the frames, frame 2 not among them, and
+    // the renderer refuses that frame's mesh before making it.
+    let dir = tempfile::tempdir().unwrap();
+    let path = ball_shot(dir.path());
+    let text = std::fs::read_to_string(&path).unwrap()
+        .replace("frames: (1, 2)", "frames: (1, 40)")
+        .replace(
+            "camera: (eye: (0.0, -6.0, 0.0),",
+            "camera: (eye: [(1, (0.0, -60.0, 0.0)), (2, (0.0, -1.01, 0.0)), (3, (0.0, -60.0, 0.0))],",
+        )
+        .replace("Orthographic(height: 2.4)", "Perspective(fov_y_degrees: 30.0)");
+    std::fs::write(&path, text).unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            "shot.ron",
+            "--size",
+            "16x16",
+            "--preset",
+            "preview",
+            "--max-memory",
+            "65M",
+        ],
+    );
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("frame 2") && err.contains("the mesh for this view would have"),
+        "{err}"
+    );
+    // With room for the near view's mesh, every frame renders.
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            "shot.ron",
+            "--size",
+            "16x16",
+            "--preset",
+            "preview",
+            "--frames",
+            "1-3",
+            "--max-memory",
+            "80M",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}

@@ -9,7 +9,7 @@ use clap::{Args, Subcommand};
 
 use super::render::{frame_list_arg, parse_size, FrameListArg, PresetArg};
 use super::{write_stdout, CliError};
-use crate::job::{estimate_peak_bytes, frame_spec, Overrides, RenderJob};
+use crate::job::{frame_spec, Overrides, RenderJob};
 use crate::shot::Preset;
 
 /// Render a shot on a render farm.
@@ -114,6 +114,8 @@ fn run_slurm(args: &SlurmArgs) -> Result<(), CliError> {
         frames: args.frames.as_ref().map(|f| f.0.clone()),
         size: args.size,
         preset: args.preset.map(Preset::from),
+        // The ceiling is the task's own, set below from what it requests.
+        max_memory: Some(u64::MAX),
         ..Overrides::default()
     };
     let job = RenderJob::load(&args.shot, &overrides).map_err(|e| CliError::BadInput(e.into()))?;
@@ -131,9 +133,15 @@ fn run_slurm(args: &SlurmArgs) -> Result<(), CliError> {
         .collect();
     let mem = args.mem.clone().unwrap_or_else(|| {
         // The estimate and a quarter more, in MiB.
-        let bytes = estimate_peak_bytes(job.settings());
+        let bytes = job.peak_bytes();
         format!("{}M", (bytes + bytes / 4).div_ceil(1 << 20))
     });
+    // Each task may use what it requests (Slurm reads a bare number as megabytes).
+    let ceiling = if mem.bytes().all(|b| b.is_ascii_digit()) {
+        format!("{mem}M")
+    } else {
+        mem.clone()
+    };
     let mut options = String::new();
     if let Some((w, h)) = args.size {
         options.push_str(&format!(" --size {w}x{h}"));
@@ -157,7 +165,7 @@ fn run_slurm(args: &SlurmArgs) -> Result<(), CliError> {
         mem: &mem,
         partition: args.partition.as_deref(),
         retries: args.retries,
-        options: &options,
+        options: &format!("{options} --max-memory {}", quoted(&ceiling)),
     });
     let verify = format!(
         "{} verify {} --frames {}{options}",

@@ -74,7 +74,9 @@ pub fn write_map(
     let legend = part_legend(library, prefix.as_deref());
     let map =
         render_patch_map(library, camera, &settings, &labels, &legend).map_err(|e| match e {
-            RenderError::Camera(_) | RenderError::Settings(_) => bad(format!("{file}: {e}")),
+            RenderError::Camera(_)
+            | RenderError::Settings(_)
+            | RenderError::MeshTooLarge { .. } => bad(format!("{file}: {e}")),
             RenderError::Threads { .. }
             | RenderError::OtherModel
             | RenderError::LooksPerPatch { .. } => CliError::Failed(e.into()),

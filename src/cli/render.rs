@@ -9,7 +9,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::CliError;
-use crate::job::{parse_frames, JobError, Overrides, RenderJob, Scrutiny};
+use crate::job::{parse_frames, parse_memory_size, JobError, Overrides, RenderJob, Scrutiny};
 use crate::render::{RenderStats, Stage};
 use crate::shot::{Aov, Preset};
 
@@ -38,6 +38,12 @@ pub struct RenderArgs {
     /// Worker threads [default: one per core]
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
+    /// The most memory a frame may take, like 512M or 8G: a render whose frames would need
+    /// more (estimated from the size, supersampling and mesh before anything is rendered) is
+    /// refused [default: three quarters of the machine's memory, or of its control group's
+    /// limit]
+    #[arg(long, value_name = "SIZE", value_parser = parse_memory_size)]
+    max_memory: Option<u64>,
     /// Leave frames already rendered (resume an interrupted render): `current` (the default)
     /// skips a frame only when each of its files is a regular file stamped with the frame's
     /// fingerprint — made from the shot's inputs as they are now — so an edited key renders
@@ -86,9 +92,11 @@ pub(super) struct Target {
 }
 
 impl Target {
-    /// The job's overrides for these options, with `threads` worker threads.
-    pub(super) fn overrides(&self, threads: Option<usize>) -> Overrides {
+    /// The job's overrides for these options, with `threads` worker threads and a memory
+    /// ceiling of `max_memory` bytes.
+    pub(super) fn overrides(&self, threads: Option<usize>, max_memory: Option<u64>) -> Overrides {
         Overrides {
+            max_memory,
             frames: self.frames.as_ref().map(|f| f.0.clone()),
             size: self.size,
             preset: self.preset.map(Preset::from),
@@ -155,7 +163,7 @@ pub(super) fn parse_aov_list(text: &str) -> Result<AovList, String> {
 }
 
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
-    let overrides = args.target.overrides(args.threads);
+    let overrides = args.target.overrides(args.threads, args.max_memory);
     if args.watch {
         let printing = super::watch::Printing {
             stats: args.stats,

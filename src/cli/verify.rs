@@ -37,7 +37,8 @@ pub struct VerifyArgs {
 }
 
 pub fn run(args: &VerifyArgs) -> Result<(), CliError> {
-    let overrides = args.target.overrides(None);
+    // Checking renders nothing: no memory ceiling.
+    let overrides = args.target.overrides(None, Some(u64::MAX));
     let job = RenderJob::load(&args.shot, &overrides).map_err(|e: JobError| {
         if e.is_bad_input() {
             CliError::BadInput(e.into())

@@ -81,16 +81,24 @@ impl KnotVector {
                 previous: knots[i],
             });
         }
-        // Multiplicity inside the domain (ends may be clamped with multiplicity p + 1).
-        for i in (degree + 1)..count {
-            let multiplicity = knots.iter().filter(|&&k| k == knots[i]).count();
-            if multiplicity > degree {
+        // Multiplicity inside the domain (ends may be clamped with multiplicity p + 1): the
+        // knots are sorted, so equal knots form one run, measured in one pass.
+        let mut run_start = 0;
+        for i in 0..=knots.len() {
+            if i < knots.len() && knots[i] == knots[run_start] {
+                continue;
+            }
+            let multiplicity = i - run_start;
+            // The run [run_start, i) holds an index in [degree + 1, count): an interior knot.
+            let interior = run_start.max(degree + 1) < i.min(count);
+            if interior && multiplicity > degree {
                 return Err(GeomError::KnotMultiplicity {
-                    value: knots[i],
+                    value: knots[run_start],
                     multiplicity,
                     degree,
                 });
             }
+            run_start = i;
         }
         if knots[degree] >= knots[count] {
             return Err(GeomError::EmptyDomain {
@@ -145,6 +153,15 @@ impl KnotVector {
     /// The number of control points n this vector serves: `len − p − 1`.
     pub fn count(&self) -> usize {
         self.knots.len() - self.degree - 1
+    }
+
+    /// The number of non-empty knot spans in the domain: the `i` in `p ≤ i < n` with
+    /// `U[i] < U[i+1]`.
+    #[must_use]
+    pub fn span_count(&self) -> usize {
+        (self.degree..self.count())
+            .filter(|&i| self.knots[i] < self.knots[i + 1])
+            .count()
     }
 
     /// The parameter domain `[U[p], U[n]]`.
@@ -399,5 +416,41 @@ mod tests {
             kv.knots(),
             &[0.0, 0.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0, 1.0, 1.0]
         );
+    }
+
+    #[test]
+    fn interior_multiplicity_is_found_as_counting_each_knot_would() {
+        // Every non-decreasing vector over {0, 1, 2, 3} of up to 9 knots, every degree: the
+        // one-pass check agrees with counting, for each interior index, the knots equal to it.
+        fn vectors(len: usize, from: u8, out: &mut Vec<Vec<f64>>, prefix: &mut Vec<f64>) {
+            if prefix.len() == len {
+                out.push(prefix.clone());
+                return;
+            }
+            for v in from..4 {
+                prefix.push(f64::from(v));
+                vectors(len, v, out, prefix);
+                prefix.pop();
+            }
+        }
+        let mut checked = 0;
+        for len in 4..=9 {
+            let mut all = Vec::new();
+            vectors(len, 0, &mut all, &mut Vec::new());
+            for knots in all {
+                for degree in 1..len / 2 {
+                    let count = len - degree - 1;
+                    let torn = ((degree + 1)..count)
+                        .any(|i| knots.iter().filter(|&&k| k == knots[i]).count() > degree);
+                    let found = matches!(
+                        KnotVector::new(knots.clone(), degree, count),
+                        Err(GeomError::KnotMultiplicity { .. })
+                    );
+                    assert_eq!(found, torn, "{knots:?} degree {degree}");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 1000, "{checked}");
     }
 }

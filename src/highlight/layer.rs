@@ -91,7 +91,29 @@ impl Layer {
     }
 }
 
+impl<P: Clone> Layer<P> {
+    /// The layer's own parameters (ε, colour, opacity, feather, mask, pin) with an empty stack:
+    /// what is checked apart from the operations.
+    #[must_use]
+    pub fn without_stack(&self) -> Layer<P> {
+        Layer {
+            stack: Vec::new(),
+            epsilon: self.epsilon.clone(),
+            colour: self.colour.clone(),
+            opacity: self.opacity.clone(),
+            feather: self.feather.clone(),
+            mask: self.mask.clone(),
+            pin: self.pin.clone(),
+        }
+    }
+}
+
 impl<P> Layer<P> {
+    /// Calls `f` with every numeric parameter, in the order of [`map`](Self::map).
+    pub fn for_each_param(&self, mut f: impl FnMut(&P)) {
+        let _visited: Layer<()> = self.map(|p| f(p));
+    }
+
     /// The same layer with every numeric parameter mapped through `f`.
     #[must_use]
     pub fn map<Q>(&self, mut f: impl FnMut(&P) -> Q) -> Layer<Q> {

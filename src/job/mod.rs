@@ -32,7 +32,7 @@ use thiserror::Error;
 pub use fingerprint::{Fingerprint, FINGERPRINT_KEY};
 pub use frame_check::{aov_file_names, FileProblem, Scrutiny};
 pub use frame_list::{frame_spec, parse_frames};
-pub use memory::estimate_peak_bytes;
+pub use memory::{bytes_text, default_memory_ceiling, estimate_peak_bytes, parse_memory_size};
 pub use place::{LayerChoice, PlaceError, Placement, Residual};
 
 use crate::formats::atomic::{Durability, WriteError};
@@ -54,6 +54,10 @@ pub struct Overrides {
     pub threads: Option<usize>,
     /// Output pattern, relative to the shot file's folder unless absolute.
     pub output: Option<PathBuf>,
+    /// The most memory a frame may need, in bytes, instead of
+    /// [`default_memory_ceiling`]: a job whose frames would need more
+    /// ([`estimate_peak_bytes`]) is refused before rendering.
+    pub max_memory: Option<u64>,
 }
 
 /// Why a job cannot be made or a frame of it rendered or written.
@@ -83,6 +87,10 @@ impl JobError {
     pub fn is_bad_input(&self) -> bool {
         match self {
             JobError::Shot(_) | JobError::Overrides { .. } | JobError::Output(_) => true,
+            JobError::Render {
+                source: RenderError::MeshTooLarge { .. },
+                ..
+            } => true,
             JobError::Render { .. } | JobError::Write(_) => false,
         }
     }
@@ -120,6 +128,69 @@ fn apply(mut shot: Shot, overrides: &Overrides) -> Result<(Shot, Settings, Vec<i
     Ok((shot, settings, frames))
 }
 
+/// The memory a frame of the job needs at most: [`estimate_peak_bytes`] with the largest mesh
+/// `renderer` makes at up to 16 of `frames` ([`sampled_frames`](memory::sampled_frames)).
+fn frame_memory(shot: &Shot, settings: &Settings, frames: &[i64], renderer: &Renderer) -> u64 {
+    let vertices = memory::sampled_frames(frames)
+        .into_iter()
+        .map(|frame| renderer.mesh_vertices(&shot.camera_at(frame as f64), settings))
+        .max()
+        .unwrap_or(0);
+    estimate_peak_bytes(settings, vertices)
+}
+
+/// Refuses a job whose frames would need more memory than the ceiling `overrides` sets
+/// (default [`default_memory_ceiling`]), estimated at up to 16 of its frames
+/// ([`sampled_frames`](memory::sampled_frames)) with the mesh `renderer` would make for each;
+/// then limits `renderer`'s meshes to what is left beside the image, so that a frame between
+/// those whose view would need a larger mesh is refused when it comes. An allocation of the
+/// estimate that the system refuses (a limit on the address space) is reported here rather
+/// than aborted on halfway through a frame.
+fn limit_memory(
+    shot: &Shot,
+    settings: &Settings,
+    frames: &[i64],
+    renderer: &mut Renderer,
+    ceiling: Option<u64>,
+) -> Result<(), JobError> {
+    let refuse = |message: String| JobError::Overrides {
+        shot: shot.path.display().to_string(),
+        message,
+    };
+    let needed = frame_memory(shot, settings, frames, renderer);
+    let (limit, whose) = match ceiling {
+        Some(limit) => (limit, "the ceiling --max-memory sets"),
+        None => (
+            default_memory_ceiling(),
+            "the default ceiling, three quarters of this machine's memory",
+        ),
+    };
+    let size = format!("{}×{}", settings.width, settings.height);
+    if needed > limit {
+        return Err(refuse(format!(
+            "a frame at {size} with these settings needs about {}, above {} ({whose}); \
+             render smaller, with less supersampling or a coarser tessellation, or raise the \
+             ceiling with --max-memory {}G",
+            bytes_text(needed),
+            bytes_text(limit),
+            needed.div_ceil(1 << 30),
+        )));
+    }
+    let mut probe: Vec<u8> = Vec::new();
+    if probe
+        .try_reserve_exact(usize::try_from(needed).unwrap_or(usize::MAX))
+        .is_err()
+    {
+        return Err(refuse(format!(
+            "a frame at {size} with these settings needs about {}, and the system refuses to \
+             allocate that much (a memory limit on this process?)",
+            bytes_text(needed)
+        )));
+    }
+    renderer.set_max_mesh_vertices(Some(memory::max_mesh_vertices(settings, limit)));
+    Ok(())
+}
+
 /// A shot ready to render: its settings, frames and output with the overrides applied, and a
 /// renderer that keeps the model's tessellation and working memory from frame to frame.
 pub struct RenderJob {
@@ -154,7 +225,14 @@ impl RenderJob {
     /// number them.
     pub fn new(shot: Shot, overrides: &Overrides) -> Result<Self, JobError> {
         let (shot, settings, frames) = apply(shot, overrides)?;
-        let renderer = Renderer::new(Arc::clone(&shot.library));
+        let mut renderer = Renderer::new(Arc::clone(&shot.library));
+        limit_memory(
+            &shot,
+            &settings,
+            &frames,
+            &mut renderer,
+            overrides.max_memory,
+        )?;
         Ok(Self {
             shot,
             overrides: overrides.clone(),
@@ -187,12 +265,25 @@ impl RenderJob {
             Reloaded::ModelChanged
         };
         let (shot, settings, frames) = apply(shot, &self.overrides)?;
+        let ceiling = self.overrides.max_memory;
         if reloaded == Reloaded::ModelChanged {
-            self.renderer = Renderer::new(Arc::clone(&shot.library));
+            let mut renderer = Renderer::new(Arc::clone(&shot.library));
+            limit_memory(&shot, &settings, &frames, &mut renderer, ceiling)?;
+            self.renderer = renderer;
+        } else {
+            limit_memory(&shot, &settings, &frames, &mut self.renderer, ceiling)?;
         }
         (self.shot, self.settings, self.frames) = (shot, settings, frames);
         self.digest = std::sync::OnceLock::new();
         Ok(reloaded)
+    }
+
+    /// The memory one frame of this job needs at most, estimated before rendering: what a farm
+    /// task should request ([`estimate_peak_bytes`], with the largest mesh of up to 16 of its
+    /// frames).
+    #[must_use]
+    pub fn peak_bytes(&self) -> u64 {
+        frame_memory(&self.shot, &self.settings, &self.frames, &self.renderer)
     }
 
     /// The shot, with the overridden AOVs and output.

@@ -4,13 +4,14 @@ use glam::{DVec2, DVec3, Mat4, Vec3};
 use serde::Deserialize;
 
 use super::RenderError;
+use crate::geom::MAX_COORDINATE;
 use crate::highlight::View;
 
 /// How a camera projects.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Projection {
-    /// A pinhole camera with a vertical field of view in degrees, in (0, 180).
+    /// A pinhole camera with a vertical field of view in degrees, in [0.001, 179.9] ([`Camera::validate`]).
     Perspective { fov_y_degrees: f32 },
     /// A parallel projection showing `height` world units vertically.
     Orthographic { height: f32 },
@@ -30,13 +31,30 @@ pub struct Camera {
     pub far: f32,
 }
 
+/// The nearest a near clipping plane may be: nearer, the depth range of f32 runs out.
+pub const MIN_NEAR: f32 = 1e-6;
+/// The farthest a far clipping plane may be.
+pub const MAX_FAR: f32 = 1e9;
+/// The narrowest vertical field of view, in degrees.
+pub const MIN_FOV_DEGREES: f32 = 0.001;
+/// The widest vertical field of view, in degrees (at 180° the image would be infinitely wide).
+pub const MAX_FOV_DEGREES: f32 = 179.9;
+/// The tallest orthographic view: twice the largest coordinate a model may have.
+pub const MAX_HEIGHT: f32 = 2e6;
+
 impl Camera {
-    /// Checks that the camera defines a view: finite values, eye ≠ target, `up` not along the
-    /// line of sight, `0 < near < far`, a field of view in (0°, 180°) or a positive height.
+    /// Checks that the camera defines a view: eye, target and up finite and within
+    /// ±[`MAX_COORDINATE`], eye ≠ target, `up` not along the line of sight,
+    /// `MIN_NEAR ≤ near < far ≤ MAX_FAR`, a field of view in
+    /// `[MIN_FOV_DEGREES, MAX_FOV_DEGREES]` or a height in `(0, MAX_HEIGHT]`: ranges that keep
+    /// the f32 projection finite.
     pub fn validate(&self) -> Result<(), RenderError> {
         let bad = |what: String| Err(RenderError::Camera(what));
-        if !(self.eye.is_finite() && self.target.is_finite() && self.up.is_finite()) {
-            return bad("eye, target and up must be finite".into());
+        let placed = |v: Vec3| v.is_finite() && v.abs().max_element() <= MAX_COORDINATE as f32;
+        if !(placed(self.eye) && placed(self.target) && placed(self.up)) {
+            return bad(format!(
+                "eye, target and up must be finite, each coordinate within ±{MAX_COORDINATE:e}"
+            ));
         }
         let forward = self.target - self.eye;
         if forward.length_squared() == 0.0 {
@@ -45,24 +63,26 @@ impl Camera {
         if forward.normalize().cross(self.up).length_squared() < 1e-10 {
             return bad("up is parallel to the line of sight; choose an up across it".into());
         }
-        if !(self.near > 0.0 && self.far > self.near && self.far.is_finite()) {
+        if !(self.near >= MIN_NEAR && self.far > self.near && self.far <= MAX_FAR) {
             return bad(format!(
-                "near and far must satisfy 0 < near < far, got near {} and far {}",
+                "near and far must satisfy {MIN_NEAR:e} ≤ near < far ≤ {MAX_FAR:e}, got near {} and far {}",
                 self.near, self.far
             ));
         }
         match self.projection {
             Projection::Perspective { fov_y_degrees }
-                if !(fov_y_degrees > 0.0 && fov_y_degrees < 180.0) =>
+                if !(MIN_FOV_DEGREES..=MAX_FOV_DEGREES).contains(&fov_y_degrees) =>
             {
                 bad(format!(
-                    "fov_y_degrees must be in (0, 180), got {fov_y_degrees}"
+                    "fov_y_degrees must be in [{MIN_FOV_DEGREES}, {MAX_FOV_DEGREES}], got {fov_y_degrees}"
                 ))
             }
-            Projection::Orthographic { height } if !(height > 0.0 && height.is_finite()) => bad(
-                format!("orthographic height must be greater than 0, got {height}"),
-            ),
-            _ => Ok(()),
+            Projection::Orthographic { height } if !(height > 0.0 && height <= MAX_HEIGHT) => {
+                bad(format!(
+                    "orthographic height must be in (0, {MAX_HEIGHT:e}], got {height}"
+                ))
+            }
+            Projection::Perspective { .. } | Projection::Orthographic { .. } => Ok(()),
         }
     }
 

@@ -54,6 +54,9 @@ pub enum RenderError {
     /// The scene shows another model than the renderer was made for.
     #[error("scene: the scene shows another model than this renderer was made for")]
     OtherModel,
+    /// The mesh for this view would take more memory than allowed.
+    #[error("the mesh for this view would have {vertices} vertices, more than the {most} the memory ceiling leaves room for; coarsen the tessellation, or raise the ceiling with --max-memory")]
+    MeshTooLarge { vertices: u64, most: u64 },
     /// The scene's looks do not match the model's patches one to one.
     #[error("scene: the scene must give one look for each of the model's {patches} patches, got {looks}")]
     LooksPerPatch { patches: usize, looks: usize },

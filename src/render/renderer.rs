@@ -79,6 +79,8 @@ pub struct Renderer {
     library: Arc<PatchLibrary>,
     stages: Stages,
     pool: Option<(usize, ThreadPool)>,
+    /// The most vertices a frame's mesh may have; None: no limit.
+    max_vertices: Option<u64>,
 }
 
 /// What the stages keep from one frame to the next: the mesh, and every buffer whose size
@@ -113,7 +115,27 @@ impl Renderer {
             },
             library,
             pool: None,
+            max_vertices: None,
         }
+    }
+
+    /// Refuses, from now on, a frame whose mesh would have more than `most` vertices
+    /// ([`RenderError::MeshTooLarge`]), before making it; None lifts the limit.
+    pub fn set_max_mesh_vertices(&mut self, most: Option<u64>) {
+        self.max_vertices = most;
+    }
+
+    /// How many vertices the mesh for `scene`'s view with `settings` has: what the
+    /// tessellation stage would make.
+    #[must_use]
+    pub fn mesh_vertices(&self, camera: &super::Camera, settings: &Settings) -> u64 {
+        let aspect = settings.width as f32 / settings.height as f32;
+        self.stages.tessellator.vertices(
+            settings.density,
+            camera.view_projection(aspect),
+            settings.width,
+            settings.height,
+        )
     }
 
     /// The model this renderer draws.
@@ -138,6 +160,12 @@ impl Renderer {
                 patches: self.library.patches.len(),
                 looks: scene.looks.len(),
             });
+        }
+        if let Some(most) = self.max_vertices {
+            let vertices = self.mesh_vertices(&scene.camera, settings);
+            if vertices > most {
+                return Err(RenderError::MeshTooLarge { vertices, most });
+            }
         }
         let (stages, library) = (&mut self.stages, &*self.library);
         if settings.threads == 0 {

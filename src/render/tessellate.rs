@@ -91,6 +91,22 @@ impl Tessellator {
         (mesh, rebuilt)
     }
 
+    /// How many vertices [`Tessellator::mesh`] would make for these arguments
+    /// ([`vertex_count`]), without making them.
+    #[must_use]
+    pub fn vertices(
+        &self,
+        density: Density,
+        view_projection: Mat4,
+        width: u32,
+        height: u32,
+    ) -> u64 {
+        vertex_count(
+            &self.library,
+            &self.segments(density, view_projection, width, height),
+        )
+    }
+
     /// The mesh last made by [`Tessellator::mesh`], if any.
     #[must_use]
     pub fn cached_mesh(&self) -> Option<&Mesh> {
@@ -128,6 +144,22 @@ impl Tessellator {
             .map(|p| (largest[&self.class[2 * p]], largest[&self.class[2 * p + 1]]))
             .collect()
     }
+}
+
+/// The vertices of `library`'s mesh cut with `segments` per span: per patch
+/// `(spans_u · n_u + 1)(spans_v · n_v + 1)`.
+#[must_use]
+pub fn vertex_count(library: &PatchLibrary, segments: &[Segments]) -> u64 {
+    library
+        .patches
+        .iter()
+        .zip(segments)
+        .map(|(p, &(n_u, n_v))| {
+            let side = |spans: usize, n: u32| (spans as u64).saturating_mul(u64::from(n)) + 1;
+            side(p.surface.knots_u().span_count(), n_u)
+                .saturating_mul(side(p.surface.knots_v().span_count(), n_v))
+        })
+        .fold(0u64, u64::saturating_add)
 }
 
 /// Parameters cutting each knot span of `knots` into `segments` equal parts, every knot inside
@@ -237,6 +269,17 @@ fn model_scale(library: &PatchLibrary) -> f64 {
 /// Union-find classes over the nodes (patch, direction): two patches that share an edge put the
 /// directions that edge runs along into one class.
 fn direction_classes(library: &PatchLibrary) -> Vec<usize> {
+    direction_classes_counted(library).0
+}
+
+/// [`direction_classes`], and how many pairs of edges it compared point by point.
+///
+/// Edges are found through a hash of their end points, not by comparing every pair of
+/// patches: an edge is filed under the grid cell of each end (cells twice the tolerance wide),
+/// and an edge is compared only with the edges filed in the 27 cells around its first point,
+/// which hold every edge that can match it forwards or backwards. The work is linear in the
+/// number of edges, with a constant for the edges that meet at one corner.
+fn direction_classes_counted(library: &PatchLibrary) -> (Vec<usize>, usize) {
     const SAMPLES: usize = 8;
     let mut parent: Vec<usize> = (0..2 * library.patches.len()).collect();
     fn root(parent: &mut [usize], mut x: usize) -> usize {
@@ -247,6 +290,8 @@ fn direction_classes(library: &PatchLibrary) -> Vec<usize> {
         x
     }
     let tolerance = 1e-9 * model_scale(library);
+    let cell_size = 2.0 * tolerance;
+    let cell = |p: DVec3| (p / cell_size).floor().as_i64vec3();
     let edges: Vec<Vec<Vec<DVec3>>> = library
         .patches
         .iter()
@@ -256,6 +301,24 @@ fn direction_classes(library: &PatchLibrary) -> Vec<usize> {
                 .collect()
         })
         .collect();
+    let collapsed = |points: &[DVec3]| {
+        points
+            .iter()
+            .all(|p| (*p - points[0]).length() <= tolerance)
+    };
+    let mut filed: HashMap<glam::I64Vec3, Vec<(usize, usize)>> = HashMap::new();
+    for (patch, patch_edges) in edges.iter().enumerate() {
+        for (edge, points) in patch_edges.iter().enumerate() {
+            if collapsed(points) {
+                continue; // a collapsed edge is a point, shared with nothing
+            }
+            let (first, last) = (cell(points[0]), cell(points[SAMPLES]));
+            filed.entry(first).or_default().push((patch, edge));
+            if last != first {
+                filed.entry(last).or_default().push((patch, edge));
+            }
+        }
+    }
     let same = |a: &[DVec3], b: &[DVec3]| {
         let forward = a
             .iter()
@@ -266,26 +329,43 @@ fn direction_classes(library: &PatchLibrary) -> Vec<usize> {
                 .zip(b.iter().rev())
                 .all(|(p, q)| (*p - *q).length() <= tolerance)
     };
-    for a in 0..edges.len() {
-        for b in a + 1..edges.len() {
-            for (ea, pa) in edges[a].iter().enumerate() {
-                if pa.iter().all(|p| (*p - pa[0]).length() <= tolerance) {
-                    continue; // a collapsed edge is a point, shared with nothing
-                }
-                for (eb, pb) in edges[b].iter().enumerate() {
-                    if same(pa, pb) {
-                        // Edges 0 and 2 run along u (direction 0), 1 and 3 along v.
-                        let (x, y) = (
-                            root(&mut parent, 2 * a + ea % 2),
-                            root(&mut parent, 2 * b + eb % 2),
-                        );
-                        parent[x] = y;
+    let mut compared = 0;
+    let mut candidates = Vec::new();
+    for (a, patch_edges) in edges.iter().enumerate() {
+        for (ea, pa) in patch_edges.iter().enumerate() {
+            if collapsed(pa) {
+                continue;
+            }
+            let centre = cell(pa[0]);
+            candidates.clear();
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    for dz in -1..=1 {
+                        let near = centre + glam::I64Vec3::new(dx, dy, dz);
+                        if let Some(list) = filed.get(&near) {
+                            candidates.extend(list.iter().filter(|&&(b, _)| b > a));
+                        }
                     }
+                }
+            }
+            // An edge filed under both its ends can be found twice.
+            candidates.sort_unstable();
+            candidates.dedup();
+            for &(b, eb) in &candidates {
+                compared += 1;
+                if same(pa, &edges[b][eb]) {
+                    // Edges 0 and 2 run along u (direction 0), 1 and 3 along v.
+                    let (x, y) = (
+                        root(&mut parent, 2 * a + ea % 2),
+                        root(&mut parent, 2 * b + eb % 2),
+                    );
+                    parent[x] = y;
                 }
             }
         }
     }
-    (0..parent.len()).map(|x| root(&mut parent, x)).collect()
+    let classes = (0..parent.len()).map(|x| root(&mut parent, x)).collect();
+    (classes, compared)
 }
 
 /// The grid meshes of all patches, with boundary vertices at equal positions welded to one f32
@@ -336,7 +416,7 @@ fn build_mesh(library: &PatchLibrary, segments: &[Segments]) -> Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::shapes;
+    use crate::geom::{shapes, NamedPatch};
 
     #[test]
     fn span_samples_hit_every_knot_and_cut_spans_evenly() {
@@ -360,5 +440,73 @@ mod tests {
         assert!(near.0 > far.0 && near.1 > far.1, "{near:?} {far:?}");
         assert!(near.0 > coarse.0, "{near:?} {coarse:?}");
         assert!(far.0 >= 2 && near.0 <= MAX_SEGMENTS_PER_SPAN);
+    }
+
+    #[test]
+    fn shared_edges_are_found_by_hashing_not_by_comparing_every_pair() {
+        // A square grid of side × side bilinear tiles: each inner edge is shared by two tiles,
+        // so the u directions of a column and the v directions of a row form classes.
+        let grid = |side: usize| {
+            let s = 1.0 / side as f64;
+            let patches = (0..side * side)
+                .map(|k| {
+                    let (x, y) = ((k / side) as f64 * s, (k % side) as f64 * s);
+                    let p = |dx: f64, dy: f64| DVec3::new(x + dx, y + dy, 0.0);
+                    NamedPatch {
+                        name: format!("t{k}"),
+                        surface: shapes::bezier(
+                            1,
+                            1,
+                            &[vec![p(0.0, 0.0), p(0.0, s)], vec![p(s, 0.0), p(s, s)]],
+                        )
+                        .unwrap(),
+                    }
+                })
+                .collect();
+            PatchLibrary {
+                patches,
+                groups: Vec::new(),
+            }
+        };
+        for side in [3, 10] {
+            let (classes, _) = direction_classes_counted(&grid(side));
+            let distinct: std::collections::HashSet<_> = classes.iter().collect();
+            // u runs along x: tiles with the same y-index share their v = const edges, so their
+            // u directions join; one class per row of u directions and per column of v.
+            assert_eq!(distinct.len(), 2 * side, "side {side}");
+        }
+        // Ten times the tiles, about ten times the comparisons (a pairwise search would do a
+        // hundred times as many).
+        let (_, small) = direction_classes_counted(&grid(20));
+        let (_, large) = direction_classes_counted(&grid(63));
+        assert!(small > 0);
+        assert!(
+            large <= 12 * small,
+            "{small} comparisons for 400 tiles, {large} for 3969"
+        );
+    }
+
+    #[test]
+    fn the_vertex_count_is_the_mesh_s() {
+        let library = PatchLibrary {
+            patches: vec![
+                NamedPatch {
+                    name: "sphere".into(),
+                    surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
+                },
+                NamedPatch {
+                    name: "torus".into(),
+                    surface: shapes::torus(2.0, 0.5).unwrap(),
+                },
+            ],
+            groups: Vec::new(),
+        };
+        for segments in [vec![(1, 1), (1, 1)], vec![(3, 5), (7, 2)]] {
+            let mesh = build_mesh(&library, &segments);
+            assert_eq!(
+                vertex_count(&library, &segments),
+                mesh.positions.len() as u64
+            );
+        }
     }
 }

@@ -7,12 +7,20 @@ use super::pin::pin_path;
 use super::source::Source;
 use super::validated::{MaterialState, Shot};
 use super::ShotError;
+use crate::anim::Keyed;
 use crate::formats::ron_paths::Step::{Entry, Field, Index};
-use crate::highlight::Light;
+use crate::geom::MAX_COORDINATE;
+use crate::highlight::{HighlightError, Light};
 
-/// Checks the camera, light, materials and highlights at every frame of the range and at every
-/// key of every track ([`Shot::for_each_param`]): between keys every value moves linearly, so
-/// the ranges (intervals) hold everywhere once they hold there.
+/// Checks the camera, light, materials and highlights at every frame they can take.
+///
+/// Between keys every value moves linearly, and the ranges of materials and highlights are
+/// intervals and orderings, which hold along a line once they hold at its ends: so each
+/// material, each highlight layer's own parameters and each operation is checked at its own
+/// keys (and at the first frame, for constants), and the work grows with the keys and
+/// operations written, not with frames × operations. The camera is the exception — eye and
+/// target can meet, or the line of sight turn onto `up`, between two keys where both are
+/// fine — so it and the light are checked at every frame of the range and at their keys.
 ///
 /// `sources[0]` is the shot file; `material_sources` names the file each material is written
 /// in, `highlights_written` where each highlight entry is.
@@ -22,37 +30,62 @@ pub(super) fn check_every_frame(
     material_sources: &[usize],
     highlights_written: &[Written],
 ) -> Result<(), ShotError> {
+    check_every_frame_counted(shot, sources, material_sources, highlights_written).map(|_| ())
+}
+
+/// [`check_every_frame`], and how many checks it made (of a camera, a light, a material, a
+/// layer's own parameters, an operation or a pin at one frame).
+fn check_every_frame_counted(
+    shot: &Shot,
+    sources: &[Source],
+    material_sources: &[usize],
+    highlights_written: &[Written],
+) -> Result<usize, ShotError> {
+    let first = shot.frames.0 as f64;
+    let mut checks = 0;
+    let shot_source = &sources[0];
+
     let mut frames: BTreeSet<u64> = (shot.frames.0..=shot.frames.1)
         .map(|f| (f as f64).to_bits())
         .collect();
-    shot.for_each_param(&mut |track| {
+    let mut add = |track: &dyn Keyed| {
         track.for_each_key(&mut |frame| {
             frames.insert(frame.to_bits());
         });
-    });
-
-    let shot_source = &sources[0];
+    };
+    shot.camera.for_each_param(&mut add);
+    shot.light.for_each_param(&mut add);
     for frame in frames.into_iter().map(f64::from_bits) {
-        let state = shot.at(frame);
-        state.camera.validate().map_err(|e| {
+        checks += 1;
+        shot.camera_at(frame).validate().map_err(|e| {
             shot_source.error_at(&[Field("camera")], format!("at frame {frame}: {e}"))
         })?;
-        match state.light {
-            Light::Point { position } if !position.is_finite() => {
+        match shot.light_at(frame) {
+            Light::Point { position }
+                if !(position.is_finite()
+                    && position.abs().max_element() <= MAX_COORDINATE as f32) =>
+            {
                 return Err(shot_source.error_at(
                     &[Field("light")],
-                    format!("at frame {frame}: the light position must be finite"),
+                    format!(
+                        "at frame {frame}: the light position must be finite, each coordinate \
+                         within ±{MAX_COORDINATE:e}"
+                    ),
                 ));
             }
             Light::Point { .. } | Light::Directional { .. } => {}
         }
-        for ((material, name), &source) in state
-            .materials
-            .iter()
-            .zip(shot.material_names())
-            .zip(material_sources)
-        {
-            let valid = match material {
+    }
+
+    for (((name, material), &source), _) in shot
+        .materials
+        .iter()
+        .zip(material_sources)
+        .zip(shot.material_names())
+    {
+        let frames = key_frames(first, |add| material.for_each_param(add));
+        check_at(&frames, shot.frames, &mut checks, |frame| {
+            let valid = match material.at(frame) {
                 MaterialState::Cel(ramp) => ramp.validate().map_err(|e| e.to_string()),
                 MaterialState::XToon(tone) => tone.validate().map_err(|e| e.to_string()),
             };
@@ -61,27 +94,157 @@ pub(super) fn check_every_frame(
                     &[Field("materials"), Entry(name)],
                     format!("material \"{name}\" at frame {frame}: {e}"),
                 )
+            })
+        })?;
+    }
+
+    for (entry, (highlight, written)) in shot.highlights.iter().zip(highlights_written).enumerate()
+    {
+        let source = &sources[written.source];
+        let invalid = |frame: f64, e: HighlightError| {
+            let pattern = &highlight.patches.patterns()[0];
+            source.error_at(
+                &[Field("highlights"), Index(written.index), Field("patches")],
+                format!("the highlight on \"{pattern}\" at frame {frame}: {e}"),
+            )
+        };
+        for (k, layer) in highlight.expr.layers().into_iter().enumerate() {
+            let in_layer = |e: HighlightError| e.at(format!("layer {}", k + 1));
+            let own = layer.without_stack();
+            let frames = key_frames(first, |add| own.for_each_param(|t| add(t)));
+            check_at(&frames, shot.frames, &mut checks, |frame| {
+                if let Some(pin) = &layer.pin {
+                    shot.check_pin(entry, k, pin, frame).map_err(|message| {
+                        source.error_at(&pin_path(*written, &highlight.expr, k), message)
+                    })?;
+                }
+                own.map(|t| t.at(frame))
+                    .validate()
+                    .map_err(|e| invalid(frame, in_layer(e)))
             })?;
-        }
-        for (entry, ((expr, selector), written)) in state
-            .highlights
-            .iter()
-            .zip(shot.highlight_selectors())
-            .zip(highlights_written)
-            .enumerate()
-        {
-            shot.check_pins(entry, frame, |k, message| {
-                let spec = &shot.highlights[entry].expr;
-                sources[written.source].error_at(&pin_path(*written, spec, k), message)
-            })?;
-            expr.validate().map_err(|e| {
-                let pattern = &selector[0];
-                sources[written.source].error_at(
-                    &[Field("highlights"), Index(written.index), Field("patches")],
-                    format!("the highlight on \"{pattern}\" at frame {frame}: {e}"),
-                )
-            })?;
+            for (i, op) in layer.stack.iter().enumerate() {
+                let frames = key_frames(first, |add| op.for_each_param(|t| add(t)));
+                check_at(&frames, shot.frames, &mut checks, |frame| {
+                    let at_frame = op.map(|t| t.at(frame));
+                    at_frame.validate().map_err(|e| {
+                        invalid(
+                            frame,
+                            in_layer(e.at(format!("op {} ({})", i + 1, at_frame.name()))),
+                        )
+                    })
+                })?;
+            }
         }
     }
+    Ok(checks)
+}
+
+/// Runs `check` at each of `frames`, in order, counting the checks in `checks`. Where one
+/// fails, the error named is at the first whole frame of the shot's `range` after the last
+/// frame that passed, when the check fails there — the first frame that would render wrong —
+/// and otherwise at the frame that failed; the search runs only once, on the way out.
+fn check_at<E>(
+    frames: &[f64],
+    (first, last): (i64, i64),
+    checks: &mut usize,
+    mut check: impl FnMut(f64) -> Result<(), E>,
+) -> Result<(), E> {
+    let mut passed = f64::NEG_INFINITY;
+    for &frame in frames {
+        *checks += 1;
+        if let Err(at_key) = check(frame) {
+            // Whole frames strictly between `passed` and `frame` (casts saturate).
+            let from = (passed.floor() as i64).saturating_add(1).max(first);
+            let to = (frame.ceil() as i64).saturating_sub(1).min(last);
+            for whole in from..=to {
+                check(whole as f64)?;
+            }
+            return Err(at_key);
+        }
+        passed = frame;
+    }
     Ok(())
+}
+
+/// The frames at which a group of tracks, each linear between its keys, takes every value it
+/// turns at: `first` and every key of the tracks `visit` names, in order, once each.
+fn key_frames(first: f64, visit: impl FnOnce(&mut dyn FnMut(&dyn Keyed))) -> Vec<f64> {
+    let mut frames = vec![first];
+    visit(&mut |track| track.for_each_key(&mut |frame| frames.push(frame)));
+    frames.sort_by(f64::total_cmp);
+    frames.dedup();
+    frames
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::shot::load_shot_text;
+
+    /// A shot of frames 1–`frames` whose one highlight has `ops` rotations, each keyed at two
+    /// frames of its own, and whose material has a keyed colour.
+    fn shot_text(frames: i64, ops: usize) -> String {
+        let stack: Vec<String> = (0..ops)
+            .map(|i| format!("Rotate(degrees: [({i}, 0.0), ({}, 1.0)])", i + 1))
+            .collect();
+        format!(
+            r#"Shot(
+    resolution: (16, 16), frames: (1, {frames}), fps: 24, output: "out/x.####.png",
+    instances: [(name: "ball", file: "../../patches/sphere.ron", material: "m")],
+    materials: {{"m": Cel(base: [(1, (0.1, 0.1, 0.1)), (50, (0.2, 0.2, 0.2))], bands: [])}},
+    camera: (eye: (0.0, -6.0, 0.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4)),
+    light: Directional(towards: (0.35, -1.0, 0.45)),
+    highlights: [(patches: "ball/*", expr: Layer((stack: [{}], epsilon: 0.05, colour: (1.0, 1.0, 1.0))))],
+)"#,
+            stack.join(", ")
+        )
+    }
+
+    fn checks(frames: i64, ops: usize) -> usize {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/shot/every_frame.test.ron");
+        let text = shot_text(frames, ops);
+        let shot = load_shot_text(&path, text.clone()).unwrap();
+        let sources = [Source::new(&path, text)];
+        let written = [Written {
+            source: 0,
+            index: 0,
+        }];
+        check_every_frame_counted(&shot, &sources, &[0], &written).unwrap()
+    }
+
+    #[test]
+    fn the_checks_grow_with_what_is_written_not_with_frames_times_operations() {
+        for (frames, ops) in [(100, 10), (1000, 100), (10_000, 1000)] {
+            let written = frames as usize + 3 * ops + 2;
+            let made = checks(frames, ops);
+            // The camera and light once a frame, each op at its keys and the first frame, the
+            // material at its keys: a few checks for each thing written. Checking every op at
+            // every frame would make frames × ops.
+            assert!(
+                made <= 2 * written,
+                "{frames} frames, {ops} ops: {made} checks for {written} things written"
+            );
+            assert!(
+                made >= frames as usize + 2 * ops,
+                "{made} checks: some were skipped"
+            );
+        }
+    }
+
+    #[test]
+    fn a_key_beyond_the_frame_range_is_checked_too() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/shot/every_frame.test.ron");
+        // Frames 1–10 hold the first key's value; the negative split is keyed at frame 40.
+        let text = shot_text(10, 1).replace(
+            "Rotate(degrees: [(0, 0.0), (1, 1.0)])",
+            "Split(gamma_u: [(20, 0.0), (40, -0.5)], gamma_v: 0.0)",
+        );
+        let e = load_shot_text(&path, text).unwrap_err().to_string();
+        assert!(
+            e.contains("at frame 40") && e.contains("layer 1: op 1"),
+            "{e}"
+        );
+    }
 }

@@ -30,47 +30,11 @@ impl Shot {
     /// gives the same state, and nothing is read from or written to disk.
     #[must_use]
     pub fn at(&self, frame: f64) -> FrameState {
-        let camera = &self.camera;
-        let projection = match &camera.projection {
-            ProjectionSpec::Perspective { fov_y_degrees } => Projection::Perspective {
-                fov_y_degrees: fov_y_degrees.at(frame),
-            },
-            ProjectionSpec::Orthographic { height } => Projection::Orthographic {
-                height: height.at(frame),
-            },
-        };
         let mut state = FrameState {
             frame,
-            camera: Camera {
-                eye: camera.eye.at(frame),
-                target: camera.target.at(frame),
-                up: camera.up.at(frame),
-                projection,
-                near: camera.near,
-                far: camera.far,
-            },
-            light: match &self.light {
-                LightSpec::Directional { towards } => Light::Directional {
-                    towards: towards.at(frame).0,
-                },
-                LightSpec::Point { position } => Light::Point {
-                    position: position.at(frame),
-                },
-            },
-            materials: self
-                .materials
-                .iter()
-                .map(|(_, m)| match m {
-                    Material::Cel { base, bands } => MaterialState::Cel(CelRamp {
-                        base: base.at(frame),
-                        bands: bands
-                            .iter()
-                            .map(|(threshold, colour)| (threshold.at(frame), colour.at(frame)))
-                            .collect(),
-                    }),
-                    Material::XToon { tone, .. } => MaterialState::XToon(tone.map(|t| t.at(frame))),
-                })
-                .collect(),
+            camera: self.camera_at(frame),
+            light: self.light_at(frame),
+            materials: self.materials.iter().map(|(_, m)| m.at(frame)).collect(),
             highlights: Vec::new(),
         };
         state.highlights = self
@@ -84,6 +48,58 @@ impl Shot {
             })
             .collect();
         state
+    }
+
+    /// The camera's tracks read at `frame`.
+    #[must_use]
+    pub fn camera_at(&self, frame: f64) -> Camera {
+        let camera = &self.camera;
+        let projection = match &camera.projection {
+            ProjectionSpec::Perspective { fov_y_degrees } => Projection::Perspective {
+                fov_y_degrees: fov_y_degrees.at(frame),
+            },
+            ProjectionSpec::Orthographic { height } => Projection::Orthographic {
+                height: height.at(frame),
+            },
+        };
+        Camera {
+            eye: camera.eye.at(frame),
+            target: camera.target.at(frame),
+            up: camera.up.at(frame),
+            projection,
+            near: camera.near,
+            far: camera.far,
+        }
+    }
+
+    /// The light's track read at `frame`.
+    #[must_use]
+    pub fn light_at(&self, frame: f64) -> Light {
+        match &self.light {
+            LightSpec::Directional { towards } => Light::Directional {
+                towards: towards.at(frame).0,
+            },
+            LightSpec::Point { position } => Light::Point {
+                position: position.at(frame),
+            },
+        }
+    }
+}
+
+impl Material {
+    /// Every track of the material read at `frame`.
+    #[must_use]
+    pub fn at(&self, frame: f64) -> MaterialState {
+        match self {
+            Material::Cel { base, bands } => MaterialState::Cel(CelRamp {
+                base: base.at(frame),
+                bands: bands
+                    .iter()
+                    .map(|(threshold, colour)| (threshold.at(frame), colour.at(frame)))
+                    .collect(),
+            }),
+            Material::XToon { tone, .. } => MaterialState::XToon(tone.map(|t| t.at(frame))),
+        }
     }
 }
 

@@ -2,7 +2,7 @@
 //! selectors, build its materials, and check every track at every frame it can take — all
 //! before any frame is rendered.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -20,9 +20,14 @@ use crate::formats::parts::{parts_file, resolve_groups};
 use crate::formats::ron_location::closest_name;
 use crate::formats::ron_paths::Step::{Entry, Field, Index};
 use crate::formats::{load_patches, read_toon_texture};
-use crate::geom::{NamedPatch, PatchGroup, PatchLibrary};
+use crate::geom::{NamedPatch, PatchGroup, PatchLibrary, MAX_COORDINATE};
 use crate::render::{Outlines, Settings};
 use crate::toon::{AbstractShape, Abstraction, ToonTexture, XToon};
+
+/// The smallest scale of an instance's transform.
+const MIN_SCALE: f64 = 1e-6;
+/// The largest scale of an instance's transform.
+const MAX_SCALE: f64 = 1e6;
 
 /// The most files an include chain may nest.
 const MAX_INCLUDE_DEPTH: usize = 16;
@@ -53,6 +58,7 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
     let path = path.as_path();
     let mut reader = Reader {
         sources: vec![source],
+        included: HashSet::new(),
         inputs: Inputs::default(),
         looks: Looks::default(),
     };
@@ -64,6 +70,7 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
     reader.add_looks(0, file.materials.into_iter().collect(), file.highlights)?;
     let Reader {
         sources,
+        included: _,
         mut inputs,
         looks,
     } = reader;
@@ -92,7 +99,7 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
         .collect();
     let mut files = sources.iter().map(|s| s.path.clone()).collect::<Vec<_>>();
     let shot_files = files.len();
-    files.extend(inputs.0);
+    files.extend(inputs.paths);
     let shot = Shot {
         path: path.to_path_buf(),
         inputs: files,
@@ -123,12 +130,17 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
 #[derive(Default)]
 struct Looks {
     materials: Vec<(String, MaterialSpec, usize)>,
+    /// Where each material name is in `materials`.
+    material_index: HashMap<String, usize>,
     highlights: Vec<(HighlightSpec, Written)>,
 }
 
 /// The files read so far, and the looks they define.
 struct Reader {
     sources: Vec<Source>,
+    /// The included files read so far (canonical paths): each is read once, however many
+    /// files include it.
+    included: HashSet<PathBuf>,
     inputs: Inputs,
     looks: Looks,
 }
@@ -154,6 +166,10 @@ impl Reader {
                 format!("including \"{name}\" here makes a cycle: it includes, directly or through others, the file that includes it"),
             ));
         }
+        if self.included.contains(&key) {
+            // Already read through another include: its looks are in once.
+            return Ok(());
+        }
         if chain.len() > MAX_INCLUDE_DEPTH {
             return Err(at(
                 &self.sources,
@@ -171,6 +187,7 @@ impl Reader {
             Err(e) => return Err(e),
         };
         let file: LooksFile = source.parse()?;
+        self.included.insert(key.clone());
         self.sources.push(source);
         let source = self.sources.len() - 1;
         chain.push(key);
@@ -194,15 +211,19 @@ impl Reader {
         highlights: Vec<HighlightSpec>,
     ) -> Result<(), ShotError> {
         for (name, spec) in materials {
-            if let Some((_, _, first)) = self.looks.materials.iter().find(|m| m.0 == name) {
+            if let Some(&first) = self.looks.material_index.get(&name) {
+                let (_, _, first) = self.looks.materials[first];
                 return Err(self.sources[source].error_at(
                     &[Field("materials"), Entry(&name)],
                     format!(
                         "the material \"{name}\" is already defined in {}; material names must be unique",
-                        self.sources[*first].shown
+                        self.sources[first].shown
                     ),
                 ));
             }
+            self.looks
+                .material_index
+                .insert(name.clone(), self.looks.materials.len());
             self.looks.materials.push((name, spec, source));
         }
         let written = |index| Written { source, index };
@@ -272,6 +293,7 @@ fn place_instances(
         instances: Vec::new(),
         patch_material: Vec::new(),
     };
+    let mut instance_names = HashSet::new();
     for (index, spec) in specs.iter().enumerate() {
         let at = |field, message: String| {
             source.error_at(&[Field("instances"), Index(index), Field(field)], message)
@@ -282,7 +304,7 @@ fn place_instances(
                 spec.name
             )));
         }
-        if placed.instances.iter().any(|i| i.name == spec.name) {
+        if !instance_names.insert(spec.name.as_str()) {
             return Err(at(
                 "name",
                 format!(
@@ -292,9 +314,9 @@ fn place_instances(
             ));
         }
         let material = looks
-            .materials
-            .iter()
-            .position(|(name, _, _)| *name == spec.material)
+            .material_index
+            .get(&spec.material)
+            .copied()
             .ok_or_else(|| {
                 let names: Vec<&str> = looks.materials.iter().map(|m| m.0.as_str()).collect();
                 at("material", unknown("material", &spec.material, &names))
@@ -302,15 +324,15 @@ fn place_instances(
         let t = &spec.transform;
         let axis = DVec3::from(t.axis);
         let translate = DVec3::from(t.translate);
-        let placeable = t.scale.is_finite()
-            && t.scale > 0.0
-            && translate.is_finite()
-            && t.degrees.is_finite()
-            && axis.is_finite()
+        let within = |x: f64| x.is_finite() && x.abs() <= MAX_COORDINATE;
+        let placeable = (MIN_SCALE..=MAX_SCALE).contains(&t.scale)
+            && translate.to_array().into_iter().all(within)
+            && within(t.degrees)
+            && axis.to_array().into_iter().all(within)
             && axis.length_squared() > 0.0;
         if !placeable {
             return Err(at("transform", format!(
-                "the transform of instance \"{}\" needs a finite translation and angle, a non-zero axis and a scale greater than 0",
+                "the transform of instance \"{}\" needs a translation and angle within ±{MAX_COORDINATE:e}, a non-zero axis and a scale in [{MIN_SCALE:e}, {MAX_SCALE:e}]",
                 spec.name
             )));
         }
@@ -348,9 +370,19 @@ fn place_instances(
             });
         }
         for patch in &model.patches {
+            let surface = patch.surface.map_points(&place);
+            if !surface
+                .control_points()
+                .all(|p| p.to_array().into_iter().all(within))
+            {
+                return Err(at("transform", format!(
+                    "the transform of instance \"{}\" places the patch \"{}\" beyond ±{MAX_COORDINATE:e}, where coordinates lose their precision; scale or move the instance less",
+                    spec.name, patch.name
+                )));
+            }
             placed.library.patches.push(NamedPatch {
                 name: format!("{}/{}", spec.name, patch.name),
-                surface: patch.surface.map_points(&place),
+                surface,
             });
             placed.patch_material.push(material);
         }
@@ -542,12 +574,16 @@ fn unknown(kind: &str, name: &str, names: &[&str]) -> String {
 /// The files a shot reads besides its own and its includes: patch files and toon textures,
 /// each once.
 #[derive(Default)]
-struct Inputs(Vec<PathBuf>);
+struct Inputs {
+    paths: Vec<PathBuf>,
+    /// The canonical form of each of `paths`.
+    seen: HashSet<PathBuf>,
+}
 
 impl Inputs {
     fn add(&mut self, path: &Path) {
-        if !self.0.iter().any(|p| canonical(p) == canonical(path)) {
-            self.0.push(path.to_path_buf());
+        if self.seen.insert(canonical(path)) {
+            self.paths.push(path.to_path_buf());
         }
     }
 }

@@ -23,7 +23,7 @@ impl Shot {
 impl CameraSpec {
     /// Calls `f` with every track of the camera. The fields are named one by one, so a new
     /// field does not compile until it is visited here (or said to be no track).
-    fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
+    pub(super) fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
         let CameraSpec {
             eye,
             target,
@@ -43,7 +43,7 @@ impl CameraSpec {
 }
 
 impl LightSpec {
-    fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
+    pub(super) fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
         match self {
             LightSpec::Directional { towards } => f(towards),
             LightSpec::Point { position } => f(position),
@@ -52,7 +52,7 @@ impl LightSpec {
 }
 
 impl Material {
-    fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
+    pub(super) fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
         match self {
             Material::Cel { base, bands } => {
                 f(base);

@@ -119,32 +119,28 @@ impl Shot {
         }
     }
 
-    /// Checks that the (u, v) of every pin of highlight entry `entry` at `frame` lies in its
-    /// patch's domain; `fail` makes the error for layer `k` from its message.
-    pub(super) fn check_pins(
+    /// Checks that the (u, v) of `pin`, the pin of layer `layer` of highlight entry `entry`,
+    /// at `frame` lies in its patch's domain; the error is the message.
+    pub(super) fn check_pin(
         &self,
         entry: usize,
+        layer: usize,
+        pin: &Pin<Track<f32>>,
         frame: f64,
-        fail: impl Fn(usize, String) -> ShotError,
-    ) -> Result<(), ShotError> {
-        for (k, layer) in self.highlights[entry].expr.layers().iter().enumerate() {
-            let (Some(pin), Some(patch)) = (&layer.pin, self.pinned_patch(entry, k)) else {
-                continue;
-            };
-            let named = &self.library.patches[patch];
-            let domain = named.surface.domain();
-            let (u, v) = (f64::from(pin.u.at(frame)), f64::from(pin.v.at(frame)));
-            if !domain.contains(u, v) {
-                return Err(fail(
-                    k,
-                    format!(
-                        "at frame {frame} the pin's (u, v) = ({u}, {v}) is outside the domain of \
-                         \"{}\": u in [{}, {}], v in [{}, {}]",
-                        named.name, domain.u.0, domain.u.1, domain.v.0, domain.v.1
-                    ),
-                ));
-            }
+    ) -> Result<(), String> {
+        let Some(patch) = self.pinned_patch(entry, layer) else {
+            return Ok(());
+        };
+        let named = &self.library.patches[patch];
+        let domain = named.surface.domain();
+        let (u, v) = (f64::from(pin.u.at(frame)), f64::from(pin.v.at(frame)));
+        if domain.contains(u, v) {
+            return Ok(());
         }
-        Ok(())
+        Err(format!(
+            "at frame {frame} the pin's (u, v) = ({u}, {v}) is outside the domain of \
+             \"{}\": u in [{}, {}], v in [{}, {}]",
+            named.name, domain.u.0, domain.u.1, domain.v.0, domain.v.1
+        ))
     }
 }
