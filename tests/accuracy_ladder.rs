@@ -73,8 +73,60 @@ fn finer_tessellation_never_raises_the_error_beyond_noise() {
                 errors[errors.len() - 1] < 0.8 * errors[0],
                 "{frames:?}: {errors:?}"
             );
+            // At 32 segments per span the mesh is within 1e-3 of the sphere (below), 0.03 px at
+            // this size, and its normals within 0.1°: what is left of the boundary's
+            // displacement is hard-edge sampling, a quarter pixel on average (the mean of
+            // |x| for x uniform in [−½, ½]).
+            let boundary = per_stack[per_stack.len() - 1].errors.boundary_pixels;
+            assert!(
+                boundary < 0.25 + 0.03 + 0.02,
+                "{frames:?} {:?}: {boundary} px",
+                per_stack[0].stack
+            );
         }
     }
+}
+
+/// The least-squares slope of `log y` against `log x`.
+fn log_slope(points: &[(f64, f64)]) -> f64 {
+    let logs: Vec<(f64, f64)> = points.iter().map(|(x, y)| (x.ln(), y.ln())).collect();
+    let n = logs.len() as f64;
+    let (mx, my) = (
+        logs.iter().map(|p| p.0).sum::<f64>() / n,
+        logs.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxy: f64 = logs.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = logs.iter().map(|(x, _)| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
+
+#[test]
+fn the_mesh_converges_to_the_sphere_as_n_to_the_minus_two() {
+    let segments = [4, 8, 16, 32];
+    let errors = glint::accuracy::geometry::mesh_errors(&segments, 1);
+    let position: Vec<(f64, f64)> = errors
+        .iter()
+        .map(|e| (f64::from(e.segments), e.max_position_error))
+        .collect();
+    let normal: Vec<(f64, f64)> = errors
+        .iter()
+        .map(|e| (f64::from(e.segments), e.max_normal_degrees))
+        .collect();
+    println!("{position:?} {normal:?}");
+    // A chord of angle θ stays within 1 − cos(θ/2) ≈ θ²/8 of the unit sphere: second order.
+    for (what, points) in [("position", &position), ("normal", &normal)] {
+        let slope = log_slope(points);
+        assert!(
+            (-2.2..=-1.8).contains(&slope),
+            "{what}: slope {slope}, {points:?}"
+        );
+    }
+    // At 32 segments per quarter circle the longest triangle edge, a quad's diagonal, spans at
+    // most √2 · 1.2 · (π/2)/32 ≈ 0.083 rad (the rational quadratic's speed varies by less than
+    // 1.2 along a span), whose sagitta is 1 − cos(0.042) ≈ 8.7e-4.
+    let last = errors[errors.len() - 1];
+    assert!(last.max_position_error < 8.7e-4, "{last:?}");
+    assert!(last.max_normal_degrees < 0.1, "{last:?}");
 }
 
 #[test]

@@ -114,9 +114,11 @@ fn a_killed_render_resumes_with_skip_existing_and_leaves_only_whole_files() {
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
+    // Killed as soon as its first frame is on disk: the resume below then has frames to skip
+    // and frames to render.
     let started = Instant::now();
-    while !out_dir.join("t.0002.png").exists() && started.elapsed() < Duration::from_secs(120) {
-        std::thread::sleep(Duration::from_millis(20));
+    while !out_dir.join("t.0001.png").exists() && started.elapsed() < Duration::from_secs(120) {
+        std::thread::sleep(Duration::from_millis(2));
     }
     child.kill().unwrap();
     child.wait().unwrap();
@@ -125,7 +127,14 @@ fn a_killed_render_resumes_with_skip_existing_and_leaves_only_whole_files() {
 
     let before = files(&out_dir);
     let finished: Vec<&String> = before.iter().filter(|n| n.ends_with(".png")).collect();
-    assert!(finished.len() >= 2, "{before:?}");
+    assert!(
+        finished.iter().any(|n| *n == "t.0001.png"),
+        "no frame written: {before:?}"
+    );
+    assert!(
+        finished.len() < 12,
+        "the render was not interrupted: {before:?}"
+    );
     for name in &finished {
         image::open(out_dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
     }
@@ -137,6 +146,9 @@ fn a_killed_render_resumes_with_skip_existing_and_leaves_only_whole_files() {
         finished.len(),
         "{stdout}"
     );
+    // The frames the killed render did not finish, rendered now.
+    let rendered = stdout.lines().filter(|l| l.ends_with(" ms)")).count();
+    assert_eq!(rendered, 12 - finished.len(), "{stdout}");
     let after = files(&out_dir);
     let expected: Vec<String> = (1..=12).map(|f| format!("t.{f:04}.png")).collect();
     assert_eq!(after, expected, "temporary files or missing frames");

@@ -161,8 +161,23 @@ fn points_and_first_derivatives_agree_with_curvo() {
             for _ in 0..4 {
                 let r = random_surface(&mut rng, degree_u, degree_v);
                 let reference = to_curvo(&r);
-                for _ in 0..25 {
-                    let (u, v): (f64, f64) = (rng.random(), rng.random());
+                // Random parameters, and every knot (0 and 1 among them) against every knot and
+                // against random values: span lookup is decided at the knots.
+                let knots = |k: &[f64]| {
+                    let mut k = k.to_vec();
+                    k.dedup();
+                    k
+                };
+                let (knots_u, knots_v) = (knots(&r.knots.0), knots(&r.knots.1));
+                let mut params: Vec<(f64, f64)> =
+                    (0..25).map(|_| (rng.random(), rng.random())).collect();
+                for &u in &knots_u {
+                    params.extend(knots_v.iter().map(|&v| (u, v)));
+                    params.push((u, rng.random()));
+                }
+                params.extend(knots_v.iter().map(|&v| (rng.random(), v)));
+                assert!(params.contains(&(1.0, 1.0)) && params.contains(&(0.0, 0.0)));
+                for (u, v) in params {
                     let d = r.surface.derivs(u, v, 1);
                     let ders = reference.rational_derivatives(u, v, 1);
                     let vec = |x: &nalgebra::Vector3<f64>| DVec3::new(x.x, x.y, x.z);

@@ -392,6 +392,60 @@ fn published_squaring_forms_break_quadrant_symmetry() {
     assert!((2.0 * near.x.acos()).powf(2.0).sin() < 0.0);
 }
 
+/// glint's squaring against the published forms it departs from, in f64 on random unit H:
+/// the tangent style is the published `θ = min(acos(H, du), acos(H, dv))` with θ measured in the
+/// tangent plane and the sine, not its argument, raised to n; the per-axis style is the published
+/// per-axis form with `|sin 2θ|^n`, which is the published form itself for n = 1 where both
+/// tangent components are positive.
+#[test]
+fn squaring_styles_are_the_published_forms_with_their_stated_departures() {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(23);
+    let mut first_quadrant = 0;
+    for _ in 0..2000 {
+        let z: f64 = rng.random_range(0.3..1.0);
+        let a: f64 = rng.random_range(0.0..std::f64::consts::TAU);
+        let r = (1.0 - z * z).sqrt();
+        let h = DVec3::new(r * a.cos(), r * a.sin(), z);
+        let sigma: f32 = rng.random_range(0.0..1.0);
+        let n: f32 = [1.0, 2.0, 3.0, 4.5][rng.random_range(0..4)];
+        let (s, p) = (f64::from(sigma), f64::from(n));
+        let apply = |style| {
+            Op::Square { sigma, n, style }
+                .prepare()
+                .unwrap()
+                .apply_local(h.as_vec3())
+                .as_dvec3()
+        };
+        // Tangent: the angle from the nearest axis in the tangent plane.
+        let from_u = h.y.abs().atan2(h.x.abs());
+        let theta = from_u.min(std::f64::consts::FRAC_PI_2 - from_u);
+        let k = (2.0 * theta).sin().powf(p);
+        let want = (h - s * k * DVec3::new(h.x, h.y, 0.0)).normalize();
+        let got = apply(SquareStyle::Tangent);
+        assert!(
+            (got - want).length() < 2e-6,
+            "tangent at {h}: {got} vs {want}"
+        );
+        // Per axis: each component's own angle to its axis, of the raw unit H.
+        let k = |c: f64| (2.0 * c.acos()).sin().abs().powf(p);
+        let want = (h - s * DVec3::new(k(h.x) * h.x, k(h.y) * h.y, 0.0)).normalize();
+        let got = apply(SquareStyle::PerAxis);
+        assert!(
+            (got - want).length() < 2e-6,
+            "per axis at {h}: {got} vs {want}"
+        );
+        if n == 1.0 && h.x > 0.0 && h.y > 0.0 {
+            let published = published_per_axis(h.as_vec3(), sigma, 1.0).as_dvec3();
+            assert!(
+                (got - published).length() < 2e-6,
+                "published at {h}: {got} vs {published}"
+            );
+            first_quadrant += 1;
+        }
+    }
+    assert!(first_quadrant > 50, "{first_quadrant}");
+}
+
 #[test]
 fn booleans_match_set_algebra_and_make_a_crescent() {
     let eps = 0.05_f32;

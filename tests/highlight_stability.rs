@@ -133,8 +133,14 @@ fn op() -> impl Strategy<Value = Op> {
     prop_oneof![translate(), rotate(), scale(), split(), square()]
 }
 
-fn check_op(f: &TangentFrame, d: &Dir, op: &Op) -> Result<(), TestCaseError> {
-    assert_unit(op.prepare().unwrap().apply(f, unit_h(f, d)))
+fn check_op(f: &TangentFrame, d: &Dir, op: &Op) -> Result<Vec3, TestCaseError> {
+    let out = apply(f, op, unit_h(f, d));
+    assert_unit(out)?;
+    Ok(out)
+}
+
+fn apply(f: &TangentFrame, op: &Op, h: Vec3) -> Vec3 {
+    op.prepare().unwrap().apply(f, h)
 }
 
 fn assert_unit(v: Vec3) -> Result<(), TestCaseError> {
@@ -147,32 +153,119 @@ fn assert_unit(v: Vec3) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+fn assert_close(got: Vec3, want: Vec3, tolerance: f32, what: &str) -> Result<(), TestCaseError> {
+    prop_assert!(
+        (got - want).length() <= tolerance,
+        "{}: {:?}, expected {:?}",
+        what,
+        got,
+        want
+    );
+    Ok(())
+}
+
+/// A unit H on a frame axis: `z N + r a` with `a` one of ±du, ±dv and `r = √(1 − z²)`.
+fn on_axis(f: &TangentFrame, axis: usize, z: f32) -> Vec3 {
+    let a = [f.du, -f.du, f.dv, -f.dv][axis];
+    (z * f.n + (1.0 - z * z).max(0.0).sqrt() * a).normalize()
+}
+
 proptest! {
     #![proptest_config(config())]
+
+    /// Translation by (α, β) scales `H + α du + β dv` by `1 / c`, so `c = h_n / h'_n`, and the
+    /// translation by `(−α / c, −β / c)` brings the result back to H.
+    #[test]
+    fn translate_is_undone_by_its_solved_inverse(
+        f in frame(),
+        d in dir(),
+        alpha in -2.0f32..2.0,
+        beta in -2.0f32..2.0,
+    ) {
+        let h = unit_h(&f, &d);
+        let out = check_op(&f, &d, &Op::Translate { alpha, beta })?;
+        // Away from the tangent plane, where c is well conditioned.
+        if h.dot(f.n) > 0.2 {
+            let c = h.dot(f.n) / out.dot(f.n);
+            let inverse = Op::Translate { alpha: -alpha / c, beta: -beta / c };
+            assert_close(apply(&f, &inverse, out), h, 1e-5, "translated back")?;
+        }
+    }
 
     #[test]
     fn translate_returns_a_unit_vector(f in frame(), d in dir(), op in translate()) {
         check_op(&f, &d, &op)?;
     }
 
+    /// Rotation keeps h_n, and a rotation by −θ undoes one by θ.
     #[test]
-    fn rotate_returns_a_unit_vector(f in frame(), d in dir(), op in rotate()) {
-        check_op(&f, &d, &op)?;
+    fn rotate_keeps_the_normal_part_and_is_undone_by_its_opposite(
+        f in frame(),
+        d in dir(),
+        degrees in -720.0f32..720.0,
+    ) {
+        let h = unit_h(&f, &d);
+        let out = check_op(&f, &d, &Op::Rotate { degrees })?;
+        prop_assert!((out.dot(f.n) - h.dot(f.n)).abs() <= 1e-6, "h_n {} became {}", h.dot(f.n), out.dot(f.n));
+        let back = apply(&f, &Op::Rotate { degrees: -degrees }, out);
+        assert_close(back, h, 1e-5, "rotated back")?;
+    }
+
+    /// δ = 0 is the identity; otherwise the part of H across the axis and its normal part keep
+    /// their ratio (only the part along the axis shrinks).
+    #[test]
+    fn scale_is_the_identity_at_zero_and_shrinks_only_along_its_axis(
+        f in frame(),
+        d in dir(),
+        op in scale(),
+    ) {
+        let h = unit_h(&f, &d);
+        let out = check_op(&f, &d, &op)?;
+        let Op::Scale { delta, axis } = &op else { unreachable!() };
+        if *delta == 0.0 {
+            assert_close(out, h, 1e-6, "δ = 0")?;
+        }
+        let phi = match axis {
+            Axis::U => 0.0,
+            Axis::V => 90.0,
+            Axis::Angle(phi) => *phi,
+        };
+        let (s, c) = phi.to_radians().sin_cos();
+        let across = -s * f.du + c * f.dv;
+        // (H'·across) h_n = (H·across) h'_n: the cross product of the two pairs vanishes.
+        let (a, b) = (h.dot(across), h.dot(f.n));
+        let (a2, b2) = (out.dot(across), out.dot(f.n));
+        if out != h {
+            prop_assert!((a2 * b - a * b2).abs() <= 2e-6, "across/normal {} {} became {} {}", a, b, a2, b2);
+        }
     }
 
     #[test]
-    fn scale_returns_a_unit_vector(f in frame(), d in dir(), op in scale()) {
-        check_op(&f, &d, &op)?;
-    }
-
-    #[test]
-    fn split_returns_a_unit_vector(f in frame(), d in dir(), op in split()) {
-        check_op(&f, &d, &op)?;
+    fn split_is_the_identity_at_zero(f in frame(), d in dir(), op in split()) {
+        let out = check_op(&f, &d, &op)?;
+        if op == (Op::Split { gamma_u: 0.0, gamma_v: 0.0 }) {
+            assert_close(out, unit_h(&f, &d), 1e-6, "γ = 0")?;
+        }
     }
 
     #[test]
     fn square_returns_a_unit_vector(f in frame(), d in dir(), op in square()) {
         check_op(&f, &d, &op)?;
+    }
+
+    /// Tangent squaring leaves H on an axis of the frame where it was: sin 2θ = 0 there (in
+    /// frame coordinates, where H is exactly on the axis).
+    #[test]
+    fn tangent_square_leaves_h_on_an_axis_unchanged(
+        axis in 0usize..4,
+        z in -1.0f32..1.0,
+        sigma in unit_interval(),
+        n in exponent(),
+    ) {
+        let local = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
+        let h = on_axis(&local, axis, z);
+        let op = Op::Square { sigma, n, style: SquareStyle::Tangent }.prepare().unwrap();
+        assert_close(op.apply_local(h), h, 2e-6, "on an axis")?;
     }
 
     #[test]

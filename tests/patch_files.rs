@@ -217,3 +217,138 @@ fn every_shipped_model_renders() {
         assert!(lit > 0, "{}: the highlight shows somewhere", file.display());
     }
 }
+
+/// The volume a model's frames enclose, `(1/3) Σ ∫∫ P·N |Su × Sv| du dv` over its patches (the
+/// divergence theorem with the field P/3), by the midpoint rule on `m × m` cells: positive when
+/// the normals face out of a closed model.
+fn enclosed_volume(library: &PatchLibrary, m: usize) -> f64 {
+    let mut volume = 0.0;
+    for patch in &library.patches {
+        let s = &patch.surface;
+        let (u, v) = (s.domain().u, s.domain().v);
+        let (hu, hv) = ((u.1 - u.0) / m as f64, (v.1 - v.0) / m as f64);
+        for i in 0..m {
+            for j in 0..m {
+                let (a, b) = (u.0 + (i as f64 + 0.5) * hu, v.0 + (j as f64 + 0.5) * hv);
+                let d = s.derivs(a, b, 1);
+                let f = s.frame(a, b);
+                volume += f.point.dot(f.normal) * d.su.cross(d.sv).length() * hu * hv / 3.0;
+            }
+        }
+    }
+    volume
+}
+
+#[test]
+fn closed_models_face_outward() {
+    use std::f64::consts::PI;
+    // The unit sphere, and the torus of radii 1 and 0.35: 2π² R r².
+    let sphere = enclosed_volume(&load("sphere.ron"), 64);
+    assert!((sphere / (4.0 * PI / 3.0) - 1.0).abs() < 1e-3, "{sphere}");
+    let torus = enclosed_volume(&load("torus.ron"), 64);
+    assert!(
+        (torus / (2.0 * PI * PI * 0.35 * 0.35) - 1.0).abs() < 1e-3,
+        "{torus}"
+    );
+    // The teapot is closed but for where the spout and handle meet the body: each patch's
+    // normal faces out, so the whole encloses a positive volume, most of it the body's.
+    let teapot = crate::common::teapot();
+    let volume = enclosed_volume(&teapot, 16);
+    assert!(volume > 20.0, "{volume}");
+    // Each part alone, closed by the others, adds a share of the same sign or nearly none.
+    for (k, patch) in teapot.patches.iter().enumerate() {
+        let one = PatchLibrary {
+            patches: vec![patch.clone()],
+            groups: Vec::new(),
+        };
+        let share = enclosed_volume(&one, 16);
+        assert!(
+            share > -0.05 * volume,
+            "patch {k} ({}): {share} of {volume}",
+            patch.name
+        );
+    }
+}
+
+/// Patch edges of a model as `(patch, edge, points)`, `edge` 0: v = 0, 1: u = 1, 2: v = 1,
+/// 3: u = 0, with 9 points along each; collapsed edges left out.
+type PatchEdge = (usize, usize, Vec<(f64, f64)>);
+
+fn patch_edges(library: &PatchLibrary) -> Vec<PatchEdge> {
+    let mut edges = Vec::new();
+    for (p, patch) in library.patches.iter().enumerate() {
+        let s = &patch.surface;
+        let (u, v) = (s.domain().u, s.domain().v);
+        for e in 0..4 {
+            let params: Vec<(f64, f64)> = (0..=8)
+                .map(|k| {
+                    let t = k as f64 / 8.0;
+                    let (a, b) = (u.0 + t * (u.1 - u.0), v.0 + t * (v.1 - v.0));
+                    [(a, v.0), (u.1, b), (a, v.1), (u.0, b)][e]
+                })
+                .collect();
+            let first = s.point(params[0].0, params[0].1);
+            if params
+                .iter()
+                .all(|&(a, b)| (s.point(a, b) - first).length() < 1e-9)
+            {
+                continue;
+            }
+            edges.push((p, e, params));
+        }
+    }
+    edges
+}
+
+#[test]
+fn normals_agree_across_every_shared_patch_edge() {
+    for file in patch_files() {
+        let library = load_patches(&file).unwrap();
+        let edges = patch_edges(&library);
+        let surface = |p: usize| &library.patches[p].surface;
+        let mut shared = 0;
+        for (a, (p, e, along)) in edges.iter().enumerate() {
+            for (q, f, other) in &edges[a + 1..] {
+                if (p, e) == (q, f) {
+                    continue;
+                }
+                let ends = |r: usize, params: &[(f64, f64)]| -> Vec<glam::DVec3> {
+                    params
+                        .iter()
+                        .map(|&(a, b)| surface(r).point(a, b))
+                        .collect()
+                };
+                let (mine, mut theirs) = (ends(*p, along), ends(*q, other));
+                let mut other = other.clone();
+                let same = |x: &[glam::DVec3], y: &[glam::DVec3]| {
+                    x.iter().zip(y).all(|(m, t)| (*m - *t).length() < 1e-9)
+                };
+                if !same(&mine, &theirs) {
+                    theirs.reverse();
+                    other.reverse();
+                    if !same(&mine, &theirs) {
+                        continue;
+                    }
+                }
+                shared += 1;
+                for (&(u0, v0), &(u1, v1)) in along.iter().zip(&other) {
+                    let (n0, n1) = (
+                        surface(*p).frame(u0, v0).normal,
+                        surface(*q).frame(u1, v1).normal,
+                    );
+                    assert!(
+                        n0.dot(n1) > 0.99,
+                        "{}: patch {p} edge {e} at ({u0}, {v0}) vs patch {q} edge {f}: {n0} vs {n1}",
+                        file.display()
+                    );
+                }
+            }
+        }
+        println!("{}: {shared} shared edges", file.display());
+        assert!(
+            shared > 0 || library.patches.len() == 1,
+            "{}",
+            file.display()
+        );
+    }
+}

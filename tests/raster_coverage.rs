@@ -349,34 +349,87 @@ fn coordinate() -> impl Strategy<Value = f32> {
     ]
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(1000))]
-
-    /// Whatever the positions, nothing panics, no NaN is written, depths lie in [0, 1],
-    /// barycentrics lie in the triangle, and every input triangle is accounted for.
-    #[test]
-    fn arbitrary_positions_never_give_nan(
-        coords in prop::collection::vec(coordinate(), 4 * 9),
-        triangles in prop::collection::vec(prop::array::uniform3(0u32..10), 1..12),
-    ) {
-        let positions: Vec<Vec4> = coords.chunks(4).map(Vec4::from_slice).collect();
-        let viewport = Viewport { width: 24, height: 16 };
-        let (buffer, stats) = rasterize(viewport, &positions, &triangles, &RasterOptions::default());
-        prop_assert_eq!(stats.triangles_in, triangles.len());
-        prop_assert!(stats.triangles_invalid + stats.triangles_culled <= triangles.len());
-        for i in 0..buffer.triangle.len() {
-            let (t, d, [b1, b2]) = (buffer.triangle[i], buffer.depth[i], buffer.barycentric[i]);
-            if t == u32::MAX {
-                prop_assert!(d == f32::INFINITY && b1 == 0.0 && b2 == 0.0);
-            } else {
-                prop_assert!((t as usize) < triangles.len());
-                prop_assert!((0.0..=1.0).contains(&d), "depth {}", d);
-                let tolerance = 1e-4;
-                prop_assert!(b1 >= -tolerance && b2 >= -tolerance && b1 + b2 <= 1.0 + tolerance,
-                    "barycentrics {} {}", b1, b2);
+/// Whatever the positions, nothing panics, no NaN is written, depths lie in [0, 1],
+/// barycentrics lie in the triangle, every input triangle is accounted for exactly once
+/// (invalid, culled or rasterized), and each covered pixel is one its triangle covers alone.
+#[test]
+fn arbitrary_positions_never_give_nan() {
+    use proptest::test_runner::{Config, TestRunner};
+    use std::cell::Cell;
+    let mut runner = TestRunner::new(Config {
+        cases: 1000,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let (covered, cases_covering) = (Cell::new(0u64), Cell::new(0u32));
+    let strategy = (
+        prop::collection::vec(coordinate(), 4 * 9),
+        prop::collection::vec(prop::array::uniform3(0u32..10), 1..12),
+    );
+    runner
+        .run(&strategy, |(coords, triangles)| {
+            let positions: Vec<Vec4> = coords.chunks(4).map(Vec4::from_slice).collect();
+            let viewport = Viewport {
+                width: 24,
+                height: 16,
+            };
+            let options = RasterOptions::default();
+            let (buffer, stats) = rasterize(viewport, &positions, &triangles, &options);
+            prop_assert_eq!(stats.triangles_in, triangles.len());
+            // Each triangle alone: exactly one outcome, and the counts add up to the batch's.
+            let alone: Vec<(VisibilityBuffer, RasterStats)> = triangles
+                .iter()
+                .map(|t| rasterize(viewport, &positions, &[*t], &options))
+                .collect();
+            let mut sum = RasterStats::default();
+            for (t, (_, s)) in triangles.iter().zip(&alone) {
+                let outcomes = s.triangles_invalid
+                    + s.triangles_culled
+                    + usize::from(s.triangles_rasterized > 0);
+                prop_assert_eq!(outcomes, 1, "{:?}: {:?}", t, s);
+                sum = sum + *s;
             }
-        }
-    }
+            prop_assert_eq!(stats.triangles_invalid, sum.triangles_invalid);
+            prop_assert_eq!(stats.triangles_culled, sum.triangles_culled);
+            prop_assert_eq!(stats.triangles_clipped, sum.triangles_clipped);
+            prop_assert_eq!(stats.triangles_rasterized, sum.triangles_rasterized);
+            prop_assert_eq!(stats.fragments, sum.fragments);
+            let drawn = buffer.triangle.iter().filter(|&&t| t != u32::MAX).count() as u64;
+            prop_assert_eq!(stats.pixels_covered, drawn);
+            covered.set(covered.get() + drawn);
+            cases_covering.set(cases_covering.get() + u32::from(drawn > 0));
+            for i in 0..buffer.triangle.len() {
+                let (t, d, [b1, b2]) = (buffer.triangle[i], buffer.depth[i], buffer.barycentric[i]);
+                if t == u32::MAX {
+                    prop_assert!(d == f32::INFINITY && b1 == 0.0 && b2 == 0.0);
+                } else {
+                    prop_assert!((t as usize) < triangles.len());
+                    prop_assert!(alone[t as usize].0.triangle[i] == 0, "pixel {} of {}", i, t);
+                    prop_assert!((0.0..=1.0).contains(&d), "depth {}", d);
+                    let tolerance = 1e-4;
+                    prop_assert!(
+                        b1 >= -tolerance && b2 >= -tolerance && b1 + b2 <= 1.0 + tolerance,
+                        "barycentrics {} {}",
+                        b1,
+                        b2
+                    );
+                }
+            }
+            Ok(())
+        })
+        .unwrap();
+    // The per-pixel checks above ran on many cases and pixels.
+    println!(
+        "{} pixels covered in {} cases",
+        covered.get(),
+        cases_covering.get()
+    );
+    assert!(
+        cases_covering.get() >= 100,
+        "{} cases",
+        cases_covering.get()
+    );
+    assert!(covered.get() >= 10_000, "{} pixels", covered.get());
 }
 
 #[test]

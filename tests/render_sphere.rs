@@ -5,6 +5,7 @@
 
 use std::sync::Arc;
 
+use glam::DVec3;
 use glint::accuracy::sweep::Stack;
 use glint::accuracy::{metrics, AnalyticSphere};
 use glint::highlight::{Expr, Layer, Op, PreparedExpr};
@@ -126,4 +127,94 @@ fn anti_aliasing_brings_the_matte_closer_to_the_true_pixel_coverage() {
         supersampled < 0.6 * hard,
         "4x4 supersampling {supersampled} vs hard {hard}"
     );
+}
+
+/// The highlight region in closed form, in f64, for the view of `AnalyticSphere` (the unit
+/// sphere, the eye at (0, −5, 0) looking along +y with z up, the light toward
+/// (0.35, −1, 0.45)): per pixel centre of a `size × size` image, `Some(inside)`, or `None` off
+/// the sphere or within `1e-4` of the edge `1 − N·H' = ε`. H is the normalized `L + V`, and
+/// `H' = normalize(H + α east + β north)` with east `(−N.y, N.x, 0)/|…|` and north `N × east`.
+fn closed_form(
+    projection: Projection,
+    size: u32,
+    (alpha, beta): (f64, f64),
+    epsilon: f64,
+) -> Vec<Option<bool>> {
+    let light = DVec3::new(0.35, -1.0, 0.45).normalize();
+    let eye = DVec3::new(0.0, -5.0, 0.0);
+    (0..size * size)
+        .map(|i| {
+            let s = f64::from(size);
+            let x = 2.0 * (f64::from(i % size) + 0.5) / s - 1.0;
+            let y = 1.0 - 2.0 * (f64::from(i / size) + 0.5) / s;
+            let (origin, direction) = match projection {
+                Projection::Orthographic { height } => {
+                    let half = f64::from(height) / 2.0;
+                    (eye + DVec3::new(x * half, 0.0, y * half), DVec3::Y)
+                }
+                Projection::Perspective { fov_y_degrees } => {
+                    let t = (f64::from(fov_y_degrees).to_radians() / 2.0).tan();
+                    (eye, DVec3::new(x * t, 1.0, y * t).normalize())
+                }
+            };
+            let b = origin.dot(direction);
+            let disc = b * b - (origin.length_squared() - 1.0);
+            if disc < 0.0 {
+                return None;
+            }
+            let n = origin + (-b - disc.sqrt()) * direction;
+            let v = -direction;
+            let h = (light + v).normalize();
+            let east = DVec3::new(-n.y, n.x, 0.0).normalize();
+            let north = n.cross(east);
+            let moved = (h + alpha * east + beta * north).normalize();
+            let margin = epsilon - (1.0 - n.dot(moved));
+            (margin.abs() > 1e-4).then_some(margin > 0.0)
+        })
+        .collect()
+}
+
+#[test]
+fn the_reference_and_the_render_match_the_closed_form_cap() {
+    let epsilon = 0.04_f32;
+    for (alpha, beta) in [(0.0_f32, 0.0_f32), (0.15, -0.1)] {
+        let stack = if alpha == 0.0 && beta == 0.0 {
+            vec![]
+        } else {
+            vec![Op::Translate { alpha, beta }]
+        };
+        let expr = expression(stack);
+        for projection in [
+            Projection::Orthographic { height: 2.4 },
+            Projection::Perspective {
+                fov_y_degrees: 30.0,
+            },
+        ] {
+            let truth = closed_form(
+                projection,
+                SIZE,
+                (f64::from(alpha), f64::from(beta)),
+                f64::from(epsilon),
+            );
+            let inside = truth.iter().filter(|t| **t == Some(true)).count();
+            assert!(inside > 500, "{projection:?}: {inside} pixels");
+            let sphere = AnalyticSphere::new(projection);
+            let reference = sphere.coverage(&expr, SIZE, 1);
+            let wrong = truth
+                .iter()
+                .zip(&reference)
+                .filter(|(t, r)| t.is_some_and(|t| t != (**r > 0.5)))
+                .count();
+            assert_eq!(wrong, 0, "reference, ({alpha}, {beta}), {projection:?}");
+            let truth: Vec<f32> = truth
+                .iter()
+                .map(|t| f32::from(u8::from(*t == Some(true))))
+                .collect();
+            let score = metrics::iou(&rendered(&expr, &sphere), &truth).unwrap();
+            assert!(
+                score >= 0.99,
+                "render, ({alpha}, {beta}), {projection:?}: IoU {score}"
+            );
+        }
+    }
 }

@@ -76,6 +76,81 @@ fn settings(size: u32) -> Settings {
     }
 }
 
+/// The uncovered pixels of a `size × size` image that no path of uncovered pixels (4-connected)
+/// links to the image border, in enclosed regions of fewer than 64 pixels: cracks of any
+/// length and shape, one pixel or more wide. (The background seen through the handle is one
+/// region of hundreds of pixels; a gap where two parts meet at a grazing angle opens to the
+/// background around the teapot.)
+fn small_holes(size: u32, covered: impl Fn(u32, u32) -> bool) -> Vec<(u32, u32)> {
+    let n = size as usize;
+    let mut outside = vec![false; n * n];
+    let mut stack: Vec<(u32, u32)> = (0..size)
+        .flat_map(|k| [(k, 0), (k, size - 1), (0, k), (size - 1, k)])
+        .collect();
+    while let Some((x, y)) = stack.pop() {
+        let i = y as usize * n + x as usize;
+        if outside[i] || covered(x, y) {
+            continue;
+        }
+        outside[i] = true;
+        if x > 0 {
+            stack.push((x - 1, y));
+        }
+        if y > 0 {
+            stack.push((x, y - 1));
+        }
+        if x + 1 < size {
+            stack.push((x + 1, y));
+        }
+        if y + 1 < size {
+            stack.push((x, y + 1));
+        }
+    }
+    // The enclosed regions, each by a flood fill of its own.
+    let mut seen = outside.clone();
+    let mut holes = Vec::new();
+    for start in 0..n * n {
+        let (x0, y0) = ((start % n) as u32, (start / n) as u32);
+        if seen[start] || covered(x0, y0) {
+            continue;
+        }
+        let mut region = Vec::new();
+        let mut stack = vec![(x0, y0)];
+        while let Some((x, y)) = stack.pop() {
+            let i = y as usize * n + x as usize;
+            if seen[i] || covered(x, y) {
+                continue;
+            }
+            seen[i] = true;
+            region.push((x, y));
+            stack.extend([(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)]);
+        }
+        if region.len() < 64 {
+            holes.extend(region);
+        }
+    }
+    holes
+}
+
+#[test]
+fn small_holes_are_found_whatever_their_shape() {
+    // A covered square with a one-pixel dot, a crack two pixels long, a diagonal crack, and
+    // a 10 × 10 window (a hole of 100 pixels, not a crack); an open notch at the border.
+    let size = 40;
+    let holes: Vec<(u32, u32)> = vec![(5, 5), (10, 5), (11, 5), (15, 15), (16, 16), (17, 17)];
+    let covered = |x: u32, y: u32| {
+        let inside = (2..38).contains(&x) && (2..38).contains(&y);
+        let window = (20..30).contains(&x) && (20..30).contains(&y);
+        let notch = x == 2 && y == 8;
+        inside && !window && !notch && !holes.contains(&(x, y))
+    };
+    let mut found = small_holes(size, covered);
+    found.sort_by_key(|&(x, y)| (y, x));
+    let mut expected = holes.clone();
+    expected.sort_by_key(|&(x, y)| (y, x));
+    assert_eq!(found, expected);
+}
+
 #[test]
 fn no_cracks_and_finite_channels_from_twelve_angles() {
     let library = teapot();
@@ -96,20 +171,11 @@ fn no_cracks_and_finite_channels_from_twelve_angles() {
             .unwrap();
         let ids = frame.aovs.patch_id.as_ref().unwrap();
         let covered = |x: u32, y: u32| ids[(y * size + x) as usize] != u32::MAX;
-        let mut cracks = 0;
-        for y in 1..size - 1 {
-            for x in 1..size - 1 {
-                if !covered(x, y)
-                    && covered(x - 1, y)
-                    && covered(x + 1, y)
-                    && covered(x, y - 1)
-                    && covered(x, y + 1)
-                {
-                    cracks += 1;
-                }
-            }
-        }
-        assert_eq!(cracks, 0, "view {k}");
+        let cracks = small_holes(size, covered);
+        assert!(
+            cracks.is_empty(),
+            "view {k}: uncovered pixels enclosed by the teapot: {cracks:?}"
+        );
         assert!(
             ids.iter().filter(|&&i| i != u32::MAX).count() > 2000,
             "view {k}: teapot in view"

@@ -27,11 +27,25 @@ fn sphere_vertices_lie_on_the_sphere_with_its_frames() {
     // 4 spans in u, 2 in v: (16 + 1) × (12 + 1) vertices, 16 × 12 × 2 triangles.
     assert_eq!(mesh.positions.len(), 17 * 13);
     assert_eq!(mesh.triangles.len(), 16 * 12 * 2);
+    let mut off_the_poles = 0;
     for (k, p) in mesh.positions.iter().enumerate() {
         assert!((p.length() - 2.0).abs() < 1e-6);
         assert!((mesh.normals[k] - *p / 2.0).length() < 1e-6);
         assert!(mesh.tangents_u[k].dot(mesh.normals[k]).abs() < 1e-6);
+        // u runs east: du is the unit east direction (−y, x, 0)/|…|, wherever it is defined.
+        let east = Vec3::new(-p.y, p.x, 0.0);
+        if east.length() > 1e-3 {
+            let east = east.normalize();
+            assert!(
+                (mesh.tangents_u[k] - east).length() < 1e-5,
+                "vertex {k} at {p}: du {} vs east {east}",
+                mesh.tangents_u[k]
+            );
+            off_the_poles += 1;
+        }
     }
+    // Every vertex but the poles' (13 rows of 17, the first and last at a pole).
+    assert_eq!(off_the_poles, 17 * 11);
 }
 
 /// The unordered pair of exact vertex positions of a triangle edge.

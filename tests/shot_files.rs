@@ -5,8 +5,38 @@ use std::sync::Arc;
 use glint::render::Renderer;
 use glint::shot::load_shot;
 
+/// What a shot is there to show, from its header comment: whether its camera moves (so its
+/// silhouettes change from first to last frame), and what else changes over the shot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Shows {
+    /// The highlight changes while the camera and the light stay.
+    AnimatedHighlight,
+    /// The light moves: the tone changes, the silhouettes stay.
+    MovingLight,
+    /// The camera moves: the silhouettes change.
+    MovingCamera,
+    /// The shading changes (a keyed tone or shape detail), the silhouettes stay.
+    AnimatedShading,
+}
+
+fn purpose(name: &str) -> Shows {
+    match name {
+        "sphere_ops" | "crescent" => Shows::AnimatedHighlight,
+        "teapot_light_orbit" => Shows::MovingLight,
+        "teapot_turntable"
+        | "xtoon_abstraction"
+        | "xtoon_aerial_perspective"
+        | "xtoon_metal"
+        | "xtoon_receding_shadows" => Shows::MovingCamera,
+        "xtoon_backlight" | "xtoon_plastic" | "xtoon_shape_teapot" | "xtoon_shape_torus" => {
+            Shows::AnimatedShading
+        }
+        _ => panic!("shots/{name}.ron: say here what it shows"),
+    }
+}
+
 #[test]
-fn every_shot_loads_and_renders_small() {
+fn every_shot_loads_and_renders_small_and_shows_what_it_is_for() {
     let mut count = 0;
     for entry in std::fs::read_dir("shots").unwrap() {
         let path = entry.unwrap().path();
@@ -14,17 +44,22 @@ fn every_shot_loads_and_renders_small() {
             continue;
         }
         count += 1;
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let shows = purpose(&name);
         let shot = load_shot(&path).unwrap_or_else(|e| panic!("{e}"));
         let mut settings = shot.settings;
         settings.width = 64;
         settings.height = 48;
         let mut renderer = Renderer::new(Arc::clone(&shot.library));
+        let mut frames = Vec::new();
         for frame in [
             shot.frames.0,
             (shot.frames.0 + shot.frames.1) / 2,
             shot.frames.1,
         ] {
-            let scene = shot.at(frame as f64).scene(&shot).unwrap();
+            let mut scene = shot.at(frame as f64).scene(&shot).unwrap();
+            scene.aovs.matte = true;
+            scene.aovs.patch_id = true;
             let image = renderer.render(&scene, &settings).unwrap();
             let covered = image.colour.iter().filter(|c| c.w > 0.0).count();
             assert!(
@@ -34,12 +69,25 @@ fn every_shot_loads_and_renders_small() {
             );
             assert!(image.colour.iter().all(|c| c.is_finite()));
             // Only what the shot calls for runs: X-Toon detail only in the X-Toon shots.
-            let xtoon = path
-                .file_name()
-                .unwrap()
-                .to_string_lossy()
-                .starts_with("xtoon_");
+            let xtoon = name.starts_with("xtoon_");
             assert_eq!(image.stats.xtoon_pixels > 0, xtoon, "{}", path.display());
+            frames.push(image);
+        }
+        let what = format!("{}: {shows:?}", path.display());
+        let ids = |k: usize| frames[k].aovs.patch_id.clone().unwrap();
+        let matte = |k: usize| frames[k].aovs.matte.clone().unwrap();
+        let colour = |k: usize| frames[k].colour.clone();
+        let silhouettes_stay = ids(0) == ids(1) && ids(1) == ids(2);
+        assert_eq!(silhouettes_stay, shows != Shows::MovingCamera, "{what}");
+        match shows {
+            Shows::AnimatedHighlight => {
+                assert!(matte(0) != matte(1) || matte(1) != matte(2), "{what}");
+                assert!((0..3).any(|k| matte(k).iter().any(|&m| m > 0.5)), "{what}");
+            }
+            Shows::MovingLight | Shows::AnimatedShading => {
+                assert!(colour(0) != colour(1) && colour(1) != colour(2), "{what}");
+            }
+            Shows::MovingCamera => {}
         }
     }
     assert!(count >= 4, "only {count} shots");

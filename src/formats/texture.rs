@@ -53,6 +53,24 @@ mod tests {
     use super::*;
 
     #[test]
+    fn pixels_are_decoded_from_srgb_to_linear() {
+        // Encoded 0, 128, 188 and 255 of 255 are linear 0, 0.215861, 0.502886 and 1
+        // (IEC 61966-2-1); one texel per channel order, rows from the top.
+        let t = toon_texture_from_srgb8(2, 1, &[0, 128, 255, 188, 0, 128]).unwrap();
+        let close = |a: Vec3, b: [f32; 3]| (a - Vec3::from_array(b)).abs().max_element() < 1e-5;
+        assert!(
+            close(t.texel(0, 0), [0.0, 0.215_861, 1.0]),
+            "{}",
+            t.texel(0, 0)
+        );
+        assert!(
+            close(t.texel(1, 0), [0.502_886, 0.0, 0.215_861]),
+            "{}",
+            t.texel(1, 0)
+        );
+    }
+
+    #[test]
     fn unreadable_files_name_the_path() {
         let dir = tempfile::tempdir().unwrap();
         let missing = dir.path().join("missing.png");

@@ -474,16 +474,26 @@ mod tests {
         op.prepare().unwrap()
     }
 
+    /// A frame turned away from the world axes, as f32 and as f64 columns.
+    fn turned_frame() -> (TangentFrame, [glam::DVec3; 3]) {
+        let q = glam::DQuat::from_euler(glam::EulerRot::ZXY, 0.7, -0.4, 1.9);
+        let axes = [q * glam::DVec3::X, q * glam::DVec3::Y, q * glam::DVec3::Z];
+        let frame = TangentFrame::new(axes[0].as_vec3(), axes[1].as_vec3(), axes[2].as_vec3());
+        (frame, axes)
+    }
+
     #[test]
-    fn translate_matches_formula() {
-        let l = local(0.1, -0.2);
+    fn translate_moves_h_along_the_frame_in_world_space() {
+        // The paper's H' = H + α du + β dv, normalized, in f64 on the world vectors.
+        let (frame, [du, dv, n]) = turned_frame();
+        let h = (0.1 * du - 0.2 * dv + 0.97 * n).normalize();
         let got = prep(Op::Translate {
             alpha: 0.3,
             beta: 0.05,
         })
-        .apply_local(l);
-        let want = (l + Vec3::new(0.3, 0.05, 0.0)).normalize();
-        assert!((got - want).length() < 1e-6);
+        .apply(&frame, h.as_vec3());
+        let want = (h + 0.3 * du + 0.05 * dv).normalize();
+        assert!((got.as_dvec3() - want).length() < 1e-6, "{got} vs {want}");
     }
 
     #[test]
@@ -557,19 +567,21 @@ mod tests {
 
     #[test]
     fn square_per_axis_matches_its_formula() {
-        let op = prep(Op::Square {
+        // θ_u and θ_v are the angles between the unit H and du, dv, measured in f64 from the
+        // world vectors with atan2; each tangent component shrinks by σ |sin 2θ|^n.
+        let (frame, [du, dv, n]) = turned_frame();
+        let h = (-0.3 * du + 0.4 * dv + 0.75_f64.sqrt() * n).normalize();
+        let got = prep(Op::Square {
             sigma: 0.5,
             n: 1.5,
             style: SquareStyle::PerAxis,
-        });
-        let l = local(-0.3, 0.4);
-        let k = |c: f32| (2.0 * c.acos()).sin().abs().powf(1.5);
-        let want = Vec3::new(
-            -0.3 * (1.0 - 0.5 * k(-0.3)),
-            0.4 * (1.0 - 0.5 * k(0.4)),
-            l.z,
-        );
-        assert!((op.apply_local(l) - want.normalize()).length() < 1e-6);
+        })
+        .apply(&frame, h.as_vec3());
+        let angle = |a: glam::DVec3| h.cross(a).length().atan2(h.dot(a));
+        let k = |theta: f64| (2.0 * theta).sin().abs().powf(1.5);
+        let (tu, tv) = (h.dot(du), h.dot(dv));
+        let want = (h - 0.5 * k(angle(du)) * tu * du - 0.5 * k(angle(dv)) * tv * dv).normalize();
+        assert!((got.as_dvec3() - want).length() < 1e-6, "{got} vs {want}");
     }
 
     #[test]

@@ -78,7 +78,11 @@ impl RenderStats {
     }
 
     /// Records what `stage` did.
+    ///
+    /// # Panics
+    /// If the plan does not run `stage`: what [`ran`](Self::ran) reports is what ran.
     pub(crate) fn record(&mut self, stage: Stage, pixels: u64, seconds: f64) {
+        assert!(self.plan.runs(stage), "{stage:?} ran outside the plan");
         self.stages[stage.index()] = StageStats { pixels, seconds };
     }
 }
