@@ -13,6 +13,7 @@ mod cli_probe;
 mod cli_render;
 mod cli_watch;
 mod farm_verify;
+mod fuzz_replay;
 mod geometry_derivatives;
 mod geometry_sphere;
 mod geometry_stability;

@@ -28,7 +28,7 @@ pub use frame_files::{
 };
 pub use patch_ron::parse_patch_ron;
 pub use srgb::{linear_to_srgb, srgb_to_linear};
-pub use texture::{read_toon_texture, toon_texture_from_srgb8};
+pub use texture::{read_toon_texture, toon_texture_from_png, toon_texture_from_srgb8};
 
 /// A file that could not be read, with where in it the problem is.
 #[derive(Debug, Error)]

@@ -19,7 +19,14 @@ pub fn read_toon_texture(path: &Path) -> Result<ToonTexture, FormatError> {
         path: shown.clone(),
         source,
     })?;
-    let image = image::load_from_memory_with_format(&bytes, ImageFormat::Png)
+    toon_texture_from_png(&bytes, &shown)
+}
+
+/// A toon texture from the bytes of a PNG file, as [`read_toon_texture`] reads it; `shown`
+/// names the file in errors.
+pub fn toon_texture_from_png(bytes: &[u8], shown: &str) -> Result<ToonTexture, FormatError> {
+    let shown = shown.to_string();
+    let image = image::load_from_memory_with_format(bytes, ImageFormat::Png)
         .map_err(|e| FormatError::Image {
             path: shown.clone(),
             message: e.to_string(),

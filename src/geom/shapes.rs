@@ -37,7 +37,7 @@ fn circle() -> [(DVec2, f64); 9] {
 
 /// A surface of revolution about +z: the profile's control points `(r, z)` with weights, swept
 /// counter-clockwise along u. `P_ij = (x_i r_j, y_i r_j, z_j)`, `w_ij = w_i w_j`.
-fn revolve(profile: &[(DVec2, f64)], profile_knots: &[f64]) -> NurbsSurface {
+fn revolve(profile: &[(DVec2, f64)], profile_knots: &[f64]) -> Result<NurbsSurface, GeomError> {
     let ring = circle();
     let points: Vec<Vec<DVec3>> = ring
         .iter()
@@ -60,7 +60,6 @@ fn revolve(profile: &[(DVec2, f64)], profile_knots: &[f64]) -> NurbsSurface {
         &points,
         Some(&weights),
     )
-    .expect("a revolved profile with valid knots is a valid surface")
 }
 
 fn check_positive(name: &'static str, value: f64) -> Result<(), GeomError> {
@@ -84,7 +83,7 @@ pub fn sphere(center: DVec3, radius: f64) -> Result<NurbsSurface, GeomError> {
         (DVec2::new(1.0, 1.0), w),
         (DVec2::new(0.0, 1.0), 1.0),
     ];
-    Ok(revolve(&meridian, &HALF_CIRCLE_KNOTS).map_points(|p| center + radius * p))
+    Ok(revolve(&meridian, &HALF_CIRCLE_KNOTS)?.map_points(|p| center + radius * p))
 }
 
 /// The open cylinder of `radius` about +z from z = 0 to z = `height`: u around (east), v up,
@@ -96,7 +95,7 @@ pub fn cylinder(radius: f64, height: f64) -> Result<NurbsSurface, GeomError> {
         (DVec2::new(radius, 0.0), 1.0),
         (DVec2::new(radius, height), 1.0),
     ];
-    Ok(revolve(&side, &[0.0, 0.0, 1.0, 1.0]))
+    revolve(&side, &[0.0, 0.0, 1.0, 1.0])
 }
 
 /// The torus about +z with tube centre radius `major` and tube radius `minor`
@@ -108,11 +107,13 @@ pub fn torus(major: f64, minor: f64) -> Result<NurbsSurface, GeomError> {
     if minor >= major {
         return Err(GeomError::TorusTube { major, minor });
     }
+    // The outer equator lies at major + minor.
+    check_positive("major_radius + minor_radius", major + minor)?;
     let tube: Vec<(DVec2, f64)> = circle()
         .iter()
         .map(|(c, w)| (DVec2::new(major + minor * c.x, minor * c.y), *w))
         .collect();
-    Ok(revolve(&tube, &CIRCLE_KNOTS))
+    revolve(&tube, &CIRCLE_KNOTS)
 }
 
 /// The `width × height` rectangle in the z = 0 plane centred on the origin, u along +x, v along
@@ -209,5 +210,17 @@ mod tests {
         assert!(sphere(DVec3::ZERO, f64::NAN).is_err());
         assert!(torus(1.0, 2.0).is_err());
         assert!(cylinder(1.0, -1.0).is_err());
+    }
+
+    #[test]
+    fn a_torus_reaching_beyond_the_largest_coordinate_is_refused_not_a_panic() {
+        assert!(matches!(
+            torus(1e6, 0.35),
+            Err(GeomError::NotPositive {
+                name: "major_radius + minor_radius",
+                ..
+            })
+        ));
+        assert!(torus(999_999.0, 0.5).is_ok());
     }
 }
