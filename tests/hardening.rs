@@ -405,6 +405,26 @@ fn skip_existing_clears_a_killed_run_s_temporaries_of_every_file_but_a_running_o
         "pid 1 is running: its temporary stays"
     );
     assert!(out_dir.join("s.0001.matte.png").is_file());
+    // Resumed again with every frame done and skipped: a temporary a killed run left beside a
+    // finished frame goes all the same.
+    std::fs::write(out_dir.join(&dead), b"half").unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "render",
+            path.to_str().unwrap(),
+            "--aov",
+            "matte",
+            "--skip-existing",
+            "--quiet",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        !out_dir.join(&dead).exists(),
+        "a killed run's temporary goes when its frame is skipped"
+    );
+    assert!(out_dir.join(&running).exists());
 }
 
 #[test]

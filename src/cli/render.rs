@@ -193,6 +193,7 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
             Some(SkipExisting::Current) => job.frame_problems(frame, Scrutiny::Stamp).is_empty(),
         };
         if done {
+            job.clear_stale_temporaries(frame).map_err(failed)?;
             skipped += 1;
             log.frame(format!("frame {frame}: {} exists, skipped", path.display()));
             continue;

@@ -347,6 +347,13 @@ impl RenderJob {
         self.durability = durability;
     }
 
+    /// Removes what earlier, killed runs left half-written beside `frame`'s files (their stale
+    /// temporaries, [`remove_stale_temporaries`](crate::formats::atomic::remove_stale_temporaries)):
+    /// for a frame that is skipped, as writing does for one that is rendered.
+    pub fn clear_stale_temporaries(&self, frame: i64) -> Result<(), JobError> {
+        Ok(write::clear_stale_temporaries(&self.frame_path(frame))?)
+    }
+
     /// Writes `image`, rendered for `frame`, to its files, each stamped with the frame's
     /// [`fingerprint`](RenderJob::fingerprint): stale temporaries of earlier, killed
     /// runs cleared, each file written atomically, the EXR (when there are AOVs) and the AOV

@@ -24,6 +24,20 @@ pub(super) fn write_frame(
         .into_iter()
         .collect();
     let exr_path = path.with_extension("exr");
+    clear_stale_temporaries(path)?;
+    let mut written = Vec::new();
+    if exr {
+        write_frame_exr(image, &exr_path, &tag)?;
+        written.push(exr_path);
+    }
+    written.extend(write_pngs_tagged(image, path, durability, &tag)?);
+    Ok(written)
+}
+
+/// Removes the stale temporaries of earlier, killed runs beside every file the frame at `path`
+/// can have: its colour PNG, its EXR and each AOV's PNG.
+pub(super) fn clear_stale_temporaries(path: &Path) -> Result<(), WriteError> {
+    let exr_path = path.with_extension("exr");
     let aov_paths = AOV_FILE_NAMES.map(|name| beside(path, name));
     let targets = [path, exr_path.as_path()]
         .into_iter()
@@ -34,13 +48,7 @@ pub(super) fn write_frame(
             reason: format!("cannot clear old temporary files beside it: {e}"),
         })?;
     }
-    let mut written = Vec::new();
-    if exr {
-        write_frame_exr(image, &exr_path, &tag)?;
-        written.push(exr_path);
-    }
-    written.extend(write_pngs_tagged(image, path, durability, &tag)?);
-    Ok(written)
+    Ok(())
 }
 
 /// Makes the folder of `path` and checks that a file can be created in it.
