@@ -652,4 +652,69 @@ mod tests {
         let _ = sq.map(|x| seen.push(*x));
         assert_eq!(seen, [3, 4]);
     }
+
+    #[test]
+    fn for_each_param_visits_every_parameter_in_order() {
+        let ops: [Op<u32>; 5] = [
+            Op::Translate { alpha: 1, beta: 2 },
+            Op::Rotate { degrees: 3 },
+            Op::Scale {
+                delta: 4,
+                axis: Axis::Angle(5),
+            },
+            Op::Split {
+                gamma_u: 6,
+                gamma_v: 7,
+            },
+            Op::Square {
+                sigma: 8,
+                n: 9,
+                style: SquareStyle::Tangent,
+            },
+        ];
+        let mut seen = Vec::new();
+        for op in &ops {
+            op.for_each_param(|p| seen.push(*p));
+        }
+        assert_eq!(seen, (1..=9).collect::<Vec<u32>>());
+    }
+
+    #[test]
+    fn square_tangent_off_the_diagonal_for_small_and_large_exponents() {
+        // t = (0.3, 0.1): 2ab = 2·0.3·0.1 / 0.1 = 0.6, so t shrinks by 1 − σ 0.6ⁿ.
+        let (x, y) = (0.3_f64, 0.1_f64);
+        let z = (1.0 - x * x - y * y).sqrt();
+        for n in [1.0_f64, 2.0, 3.0, 4.0, 5.0, 6.0, 2.5] {
+            let got = prep(Op::Square {
+                sigma: 0.5,
+                n: n as f32,
+                style: SquareStyle::Tangent,
+            })
+            .apply_local(Vec3::new(x as f32, y as f32, z as f32));
+            let k = 1.0 - 0.5 * 0.6_f64.powf(n);
+            let want = glam::DVec3::new(k * x, k * y, z).normalize();
+            assert!(
+                (got.as_dvec3() - want).length() < 1e-6,
+                "n = {n}: {got} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn output_counts_as_zero_below_a_millionth_of_the_input_length() {
+        // Scaling fully along du leaves (0, 0, h_n): kept when |h_n| > 1e-6 ‖H‖, else H itself
+        // is returned, whatever the length of H.
+        let op = prep(Op::Scale {
+            delta: 1.0,
+            axis: Axis::U,
+        });
+        for length in [1.0_f32, 1e3, 1e-3] {
+            let below = Vec3::new(length, 0.0, 1e-7 * length);
+            assert_eq!(op.step(below), below, "{length}");
+            let above = Vec3::new(length, 0.0, 1e-5 * length);
+            assert_eq!(op.step(above), Vec3::new(0.0, 0.0, above.z), "{length}");
+        }
+        // Below the tangent plane the normal part keeps its sign.
+        assert!((op.apply_local(Vec3::new(0.6, 0.0, -0.8)) + Vec3::Z).length() < 1e-6);
+    }
 }
