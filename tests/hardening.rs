@@ -384,18 +384,21 @@ fn skip_existing_clears_a_killed_run_s_temporaries_of_every_file_but_a_running_o
     for name in [&dead, &running] {
         std::fs::write(out_dir.join(name), b"half").unwrap();
     }
-    let out = run(
-        dir.path(),
-        &[
-            "render",
-            path.to_str().unwrap(),
-            "--aov",
-            "matte",
-            "--skip-existing",
-            "--quiet",
-        ],
-    );
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let resume = || {
+        let out = run(
+            dir.path(),
+            &[
+                "render",
+                path.to_str().unwrap(),
+                "--aov",
+                "matte",
+                "--skip-existing",
+                "--quiet",
+            ],
+        );
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    };
+    resume();
     assert!(
         !out_dir.join(&dead).exists(),
         "a killed run's temporary goes"
@@ -408,18 +411,7 @@ fn skip_existing_clears_a_killed_run_s_temporaries_of_every_file_but_a_running_o
     // Resumed again with every frame done and skipped: a temporary a killed run left beside a
     // finished frame goes all the same.
     std::fs::write(out_dir.join(&dead), b"half").unwrap();
-    let out = run(
-        dir.path(),
-        &[
-            "render",
-            path.to_str().unwrap(),
-            "--aov",
-            "matte",
-            "--skip-existing",
-            "--quiet",
-        ],
-    );
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    resume();
     assert!(
         !out_dir.join(&dead).exists(),
         "a killed run's temporary goes when its frame is skipped"
