@@ -76,4 +76,11 @@ mod tests {
         // Symmetric about the edge.
         assert!((coverage_from_signed(-0.01, 0.1) - (1.0 - a)).abs() < 1e-6);
     }
+
+    #[test]
+    fn the_edge_itself_is_outside() {
+        // ‖N − H‖² / 2 = 1/2 exactly, so s = 0 at ε = 1/2: the paper's strict inequality.
+        assert_eq!(signed_inside(Vec3::Z, Vec3::ZERO, 0.5), 0.0);
+        assert!(!inside(Vec3::Z, Vec3::ZERO, 0.5));
+    }
 }

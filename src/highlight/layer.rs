@@ -515,4 +515,68 @@ mod tests {
         assert_eq!(doubled.epsilon, 0.2);
         assert_eq!(doubled.feather, Some(0.6));
     }
+
+    #[test]
+    fn for_each_param_visits_every_parameter_in_order() {
+        let mut l = layer(vec![Op::Rotate { degrees: 7.0 }]);
+        l.feather = Some(0.3);
+        l.mask = Some(Mask {
+            u: (0.0, 1.0),
+            v: (0.25, 0.75),
+            feather: 0.5,
+        });
+        let mut seen = Vec::new();
+        l.for_each_param(|p| seen.push(*p));
+        assert_eq!(
+            seen,
+            [7.0, 0.1, 1.0, 0.5, 0.25, 0.8, 0.3, 0.0, 1.0, 0.25, 0.75, 0.5]
+        );
+    }
+
+    #[test]
+    fn mask_cuts_and_feathers_inward_along_v() {
+        let mut l = layer(vec![]);
+        l.mask = Some(Mask {
+            u: (0.0, 1.0),
+            v: (0.2, 0.6),
+            feather: 0.1,
+        });
+        let p = l.prepare().unwrap();
+        let at = |v: f32| p.shape(&FRAME, Vec2::new(0.5, v), Vec3::Z, 0.0);
+        assert_eq!(at(0.1), 0.0);
+        assert_eq!(at(0.2), 0.0);
+        assert!((at(0.25) - 0.5).abs() < 1e-5);
+        assert_eq!(at(0.4), 1.0);
+        assert!((at(0.55) - 0.5).abs() < 1e-5);
+        assert_eq!(at(0.7), 0.0);
+    }
+
+    #[test]
+    fn pixel_width_widens_the_feather_band() {
+        let mut l = layer(vec![]);
+        l.feather = Some(0.02);
+        let p = l.prepare().unwrap();
+        // At cos = 0.91, s = ε − (1 − cos) = 0.01. Over the band 0.02 + 0.02 the smoothstep is at
+        // x = 0.01 / 0.04 + 0.5 = 0.75: 0.75² (3 − 1.5) = 0.84375; over the feather alone, x = 1.
+        let c = 0.91_f32;
+        let h = Vec3::new((1.0 - c * c).sqrt(), 0.0, c);
+        assert!((p.shape(&FRAME, Vec2::ZERO, h, 0.02) - 0.84375).abs() < 1e-4);
+        assert!((p.shape(&FRAME, Vec2::ZERO, h, 0.0) - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn signed_many_is_epsilon_minus_one_minus_cosine_at_each_point() {
+        let p = layer(vec![]).prepare().unwrap();
+        let count = LANES + 3;
+        let angle = |i: usize| i as f32 * 0.05;
+        let hs: Vec<Vec3> = (0..count)
+            .map(|i| Vec3::new(angle(i).sin(), 0.0, angle(i).cos()))
+            .collect();
+        let mut out = vec![f32::NAN; count];
+        p.signed_many(&vec![FRAME; count], &hs, &mut out);
+        for (i, s) in out.iter().enumerate() {
+            let want = 0.1 - (1.0 - f64::from(angle(i)).cos());
+            assert!((f64::from(*s) - want).abs() < 1e-6, "{i}: {s} vs {want}");
+        }
+    }
 }
