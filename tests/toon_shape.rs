@@ -146,14 +146,48 @@ fn smoothing_flattens_a_bump() {
 
 #[test]
 fn smoothing_keeps_a_sphere_round_across_its_seam_and_poles() {
-    // The sphere's net is closed (seam) and collapsed (poles): welded, it smooths as one.
-    let library = library(shapes::sphere(DVec3::ZERO, 1.0).unwrap());
-    let shape = Abstraction::Smoothed { iterations: 3 }
-        .build(&library)
-        .unwrap();
-    for (p, n, uv) in samples(&library, 17) {
-        let a = shape.normal(p, 0, uv).unwrap();
-        assert!(a.dot(n) > 0.9, "at {uv}: {a} vs {n}");
+    // The sphere's patch closes on itself at u = 0 and 1 (its seam) and collapses to a point at
+    // v = 0 and 1 (its poles), and its rational parametrisation is not uniform in angle: a
+    // smoothing that follows the net or the parameters bends the normals at all three.
+    let centre = DVec3::new(0.5, -1.0, 2.0);
+    let library = library(shapes::sphere(centre, 1.5).unwrap());
+    for iterations in [1, 3, 30] {
+        let shape = Abstraction::Smoothed { iterations }
+            .build(&library)
+            .unwrap();
+        let at = |u: f32, v: f32| shape.normal(Vec3::ZERO, 0, Vec2::new(u, v)).unwrap();
+        // Round: within 2.6° (cos > 0.999) of the sphere's own normal everywhere, including
+        // between the grid's samples.
+        for (p, n, uv) in samples(&library, 53) {
+            let a = shape.normal(p, 0, uv).unwrap().normalize();
+            assert!(
+                a.dot(n) > 0.999,
+                "{iterations} iterations, at {uv}: {a} vs {n}"
+            );
+        }
+        for k in 0..=40 {
+            let t = k as f32 / 40.0;
+            // Across the seam: the same normal from either side.
+            let (start, end) = (at(0.0, t), at(1.0, t));
+            assert!(
+                (start - end).length() < 1e-5,
+                "{iterations} iterations, seam at v = {t}: {start} vs {end}"
+            );
+            // At the poles: one normal, whichever meridian it is reached along, and it is the
+            // normal a step away from the pole tends to.
+            for (pole, axis) in [(0.0, -Vec3::Z), (1.0, Vec3::Z)] {
+                let n = at(t, pole).normalize();
+                assert!(
+                    n.dot(axis) > 0.99999,
+                    "{iterations} iterations: {n} at ({t}, {pole})"
+                );
+                let near = at(t, (pole - 0.01f32).abs()).normalize();
+                assert!(
+                    near.dot(axis) > 0.995,
+                    "{iterations} iterations: {near} near the pole"
+                );
+            }
+        }
     }
 }
 

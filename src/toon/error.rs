@@ -16,7 +16,7 @@ pub enum XToonError {
     /// A smoothed shape with an iteration count outside its range.
     #[error(
         "smoothing iterations is {iterations}, outside the allowed range [1, {MAX_ITERATIONS}]; \
-         each iteration moves every control point halfway to the mean of its neighbours"
+         the normals are averaged over a radius of half the control-net spacing times √iterations"
     )]
     Iterations {
         /// The count given.

@@ -14,6 +14,7 @@ mod cel;
 mod detail;
 mod error;
 mod grid;
+mod normal_average;
 mod shape;
 mod smooth;
 mod texture;

@@ -31,10 +31,10 @@ pub enum Abstraction {
     /// A cylinder through the box centre along the principal axis `e` (largest variance):
     /// `n_a = normalize((p − c) − ((p − c)·e) e)`.
     Cylinder,
-    /// The model with its control net Laplacian-smoothed: each iteration moves every control
-    /// point halfway to the mean of its neighbours in the net, control points shared between
-    /// patches (within 10⁻⁹ of the model size) moving as one. `n_a` is the smoothed patch's
-    /// normal at the same (u, v).
+    /// The model's normals smoothed: `n_a` is the kernel average of the model's normals over a
+    /// ball of radius `½ h √iterations` around the point, h the mean control-net spacing, as
+    /// that many rounds of averaging with the neighbours would spread them (see
+    /// [`SmoothedNormals::new`]).
     Smoothed {
         /// Smoothing iterations, 1 to 1000.
         iterations: u32,
@@ -123,8 +123,8 @@ impl Abstraction {
     }
 
     /// This abstraction of `library`'s model. Done once per model: the principal box is an
-    /// eigen-decomposition of the control points' covariance, the smoothed shape a smoothing of
-    /// every control net and a grid of its normals.
+    /// eigen-decomposition of the control points' covariance, the smoothed shape an average of the
+    /// model's normals on a grid per patch.
     pub fn build(&self, library: &PatchLibrary) -> Result<Arc<AbstractShape>, XToonError> {
         self.validate()?;
         let geometry = match self {

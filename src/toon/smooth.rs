@@ -1,16 +1,14 @@
-//! The smoothed shape of a NURBS model: its control net Laplacian-smoothed as one net across
-//! patches, and a grid of the smoothed patches' normals to look up per point.
+//! The smoothed shape of a NURBS model: its normals averaged over a neighbourhood whose size
+//! the smoothing iterations set, sampled on a grid per patch to look up per point.
 
 use glam::{DVec3, Vec2, Vec3};
 
 use super::error::XToonError;
 use super::grid::Grid;
+use super::normal_average::{AreaSample, NormalAverage};
 use super::xtoon::PointRun;
 use crate::geom::{GridEvaluator, NurbsSurface, PatchLibrary};
 use crate::math::Lanes;
-
-/// How far each smoothing iteration moves a control point toward its neighbours' mean.
-const LAMBDA: f64 = 0.5;
 
 /// Normal grid samples per knot span, in each direction.
 const SAMPLES_PER_SPAN: usize = 16;
@@ -25,7 +23,7 @@ fn intervals(spans: usize) -> usize {
     (SAMPLES_PER_SPAN * spans.max(1)).min(MAX_INTERVALS)
 }
 
-/// Per patch, the normals of the smoothed patch on a uniform grid over its domain.
+/// Per patch, the normals of the smoothed model on a uniform grid over its domain.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SmoothedNormals {
     patches: Vec<NormalGrid>,
@@ -40,64 +38,51 @@ struct NormalGrid {
     normals: Grid,
 }
 
+/// A patch's grid of surface samples: `rows × columns` points and unit normals, row-major.
+struct PatchSamples {
+    domain: ((f64, f64), (f64, f64)),
+    columns: usize,
+    points: Vec<DVec3>,
+    normals: Vec<DVec3>,
+}
+
 impl SmoothedNormals {
-    /// Smooths the model's control net `iterations` times and samples the smoothed patches'
-    /// normals.
+    /// The model's normals smoothed as `iterations` rounds of averaging each with its
+    /// neighbours would, sampled on a grid per patch.
     ///
-    /// Control points that coincide (within 10⁻⁹ of the model's size: shared patch edges,
-    /// collapsed edges, seams) are welded into one node whose neighbours are the net
-    /// neighbours of all its copies; each iteration moves every node by
-    /// `λ (mean of its neighbours − itself)` with λ = ½, all at once. Welded copies move
-    /// together, so patches that met still meet. Weights and knots are kept.
+    /// X-Toon smooths a mesh's normals by repeated averaging over its edges. Repeated averaging
+    /// spreads like diffusion, over a distance that grows as the square root of the rounds; here
+    /// the spread is taken in one step: the smoothed normal at a point is the kernel average of
+    /// the model's normals over a ball (see `NormalAverage`) of radius
+    ///
+    /// `R = ½ h √iterations`,
+    ///
+    /// h the mean distance between neighbouring control points of the model's nets. The average
+    /// is a function of the point and its normal only, so the smoothed normals are continuous
+    /// wherever the model's are: across shared patch edges, seams and collapsed poles alike,
+    /// whatever the patches' parametrisations; and a sphere keeps its own normals.
     pub fn new(library: &PatchLibrary, iterations: u32) -> Result<Self, XToonError> {
-        let nets: Vec<&NurbsSurface> = library.patches.iter().map(|p| &p.surface).collect();
-        let points: Vec<DVec3> = library.control_points().collect();
-        if points.is_empty() {
-            return Err(XToonError::Shape("the model has no control points".into()));
-        }
-        let (node_of, mut nodes) = weld(&points);
-        let neighbours = neighbours(&nets, &node_of, nodes.len());
-        for _ in 0..iterations {
-            nodes = nodes
-                .iter()
-                .zip(&neighbours)
-                .map(|(p, around)| {
-                    if around.is_empty() {
-                        return *p;
-                    }
-                    let mean =
-                        around.iter().map(|&k| nodes[k]).sum::<DVec3>() / around.len() as f64;
-                    *p + LAMBDA * (mean - *p)
-                })
-                .collect();
-        }
-        let mut next = 0;
-        let mut patches = Vec::with_capacity(nets.len());
-        for s in nets {
-            let rows: Vec<Vec<DVec3>> = (0..s.count_u())
-                .map(|_| {
-                    (0..s.count_v())
-                        .map(|_| {
-                            next += 1;
-                            nodes[node_of[next - 1]]
-                        })
-                        .collect()
-                })
-                .collect();
-            let weights: Vec<Vec<f64>> = (0..s.count_u())
-                .map(|i| (0..s.count_v()).map(|j| s.control_point(i, j).1).collect())
-                .collect();
-            let smoothed = NurbsSurface::new(
-                s.knots_u().degree(),
-                s.knots_v().degree(),
-                s.knots_u().knots().to_vec(),
-                s.knots_v().knots().to_vec(),
-                &rows,
-                Some(&weights),
-            )
-            .map_err(|e| XToonError::Shape(format!("smoothed patch: {e}")))?;
-            patches.push(NormalGrid::new(&smoothed));
-        }
+        let spacing = net_spacing(library.patches.iter().map(|p| &p.surface))
+            .ok_or_else(|| XToonError::Shape("the model has no extent".into()))?;
+        let radius = 0.5 * spacing * f64::from(iterations).sqrt();
+        let samples: Vec<PatchSamples> = library
+            .patches
+            .iter()
+            .map(|p| PatchSamples::new(&p.surface))
+            .collect();
+        let average = NormalAverage::new(samples.iter().flat_map(PatchSamples::areas), radius);
+        let patches = samples
+            .iter()
+            .map(|s| {
+                let normals: Vec<Vec3> = s
+                    .points
+                    .iter()
+                    .zip(&s.normals)
+                    .map(|(&p, &n)| average.try_at(p, n).unwrap_or(n).as_vec3())
+                    .collect();
+                NormalGrid::new(s.domain, &normals, s.columns)
+            })
+            .collect();
         Ok(Self { patches })
     }
 
@@ -119,30 +104,61 @@ impl SmoothedNormals {
     }
 }
 
-impl NormalGrid {
+impl PatchSamples {
+    /// The surface's points and normals on its normal grid.
     fn new(surface: &NurbsSurface) -> Self {
         let domain = surface.domain();
-        let samples = |spans: usize| intervals(spans) + 1;
-        let (samples_u, samples_v) = (
-            samples(spans(surface.knots_u().knots())),
-            samples(spans(surface.knots_v().knots())),
+        let samples = |knots: &[f64]| intervals(spans(knots)) + 1;
+        let (rows, columns) = (
+            samples(surface.knots_u().knots()),
+            samples(surface.knots_v().knots()),
         );
-        let grid = GridEvaluator::uniform(surface, samples_u, samples_v);
-        let normals: Vec<Vec3> = (0..samples_u)
-            .flat_map(|i| {
-                grid.row_frames(i)
-                    .map(|f| f.normal.as_vec3())
-                    .collect::<Vec<_>>()
+        let grid = GridEvaluator::uniform(surface, rows, columns);
+        let (points, normals) = (0..rows)
+            .flat_map(|i| grid.row_frames(i).collect::<Vec<_>>())
+            .map(|f| (f.point, f.normal))
+            .unzip();
+        Self {
+            domain: (domain.u, domain.v),
+            columns,
+            points,
+            normals,
+        }
+    }
+
+    /// Each sample with the area of the grid cells around it: `¼ |(p₊ᵤ − p₋ᵤ) × (p₊ᵥ − p₋ᵥ)|`
+    /// with the neighbours one sample away (the sample itself on an edge, which halves its
+    /// share as the trapezoid rule does).
+    fn areas(&self) -> impl Iterator<Item = AreaSample> + '_ {
+        let columns = self.columns;
+        let rows = self.points.len() / columns;
+        (0..rows).flat_map(move |i| {
+            (0..columns).map(move |j| {
+                let at = |i: usize, j: usize| self.points[i * columns + j];
+                let along_u = at((i + 1).min(rows - 1), j) - at(i.saturating_sub(1), j);
+                let along_v = at(i, (j + 1).min(columns - 1)) - at(i, j.saturating_sub(1));
+                AreaSample {
+                    point: at(i, j),
+                    normal: self.normals[i * columns + j],
+                    area: 0.25 * along_u.cross(along_v).length(),
+                }
             })
-            .collect();
+        })
+    }
+}
+
+impl NormalGrid {
+    /// The grid of `normals` (row-major, `columns` per row) spanning `domain` (u, v).
+    fn new(domain: ((f64, f64), (f64, f64)), normals: &[Vec3], columns: usize) -> Self {
+        let rows = normals.len() / columns;
         let length = |(a, b): (f64, f64)| (b - a) as f32;
         Self {
-            origin: Vec2::new(domain.u.0 as f32, domain.v.0 as f32),
+            origin: Vec2::new(domain.0 .0 as f32, domain.1 .0 as f32),
             scale: Vec2::new(
-                (samples_u - 1) as f32 / length(domain.u),
-                (samples_v - 1) as f32 / length(domain.v),
+                (rows - 1) as f32 / length(domain.0),
+                (columns - 1) as f32 / length(domain.1),
             ),
-            normals: Grid::new(&normals, samples_v),
+            normals: Grid::new(normals, columns),
         }
     }
 }
@@ -152,71 +168,31 @@ fn spans(knots: &[f64]) -> usize {
     knots.windows(2).filter(|w| w[1] > w[0]).count()
 }
 
-/// Welds coincident points: for each point its node index, and the nodes' positions. Points
-/// within 10⁻⁹ of the set's size of each other (a sweep over the points sorted by x) share a
-/// node.
-fn weld(points: &[DVec3]) -> (Vec<usize>, Vec<DVec3>) {
-    let (low, high) = points
-        .iter()
-        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
-            (l.min(*p), h.max(*p))
-        });
-    let tolerance = 1e-9 * (high - low).max_element().max(f64::MIN_POSITIVE);
-    let mut order: Vec<usize> = (0..points.len()).collect();
-    order.sort_by(|&a, &b| points[a].x.total_cmp(&points[b].x));
-    let mut node_of = vec![usize::MAX; points.len()];
-    let mut nodes = Vec::new();
-    for (k, &a) in order.iter().enumerate() {
-        if node_of[a] != usize::MAX {
-            continue;
-        }
-        node_of[a] = nodes.len();
-        for &b in &order[k + 1..] {
-            if points[b].x - points[a].x > tolerance {
-                break;
-            }
-            if node_of[b] == usize::MAX && (points[b] - points[a]).abs().max_element() <= tolerance
-            {
-                node_of[b] = nodes.len();
-            }
-        }
-        nodes.push(points[a]);
-    }
-    (node_of, nodes)
-}
-
-/// For each node, the distinct other nodes next to one of its copies in a control net (along u
-/// or v).
-fn neighbours(nets: &[&NurbsSurface], node_of: &[usize], count: usize) -> Vec<Vec<usize>> {
-    let mut around: Vec<Vec<usize>> = vec![Vec::new(); count];
-    let mut start = 0;
+/// The mean distance between control points next to each other along u or v in the nets,
+/// leaving out coincident ones (collapsed edges); `None` when there are none apart.
+fn net_spacing<'a>(nets: impl Iterator<Item = &'a NurbsSurface>) -> Option<f64> {
+    let (mut total, mut count) = (0.0, 0u64);
     for s in nets {
         let (nu, nv) = (s.count_u(), s.count_v());
-        let node = |i: usize, j: usize| node_of[start + i * nv + j];
         for i in 0..nu {
             for j in 0..nv {
-                let (a, b) = (
-                    node(i, j),
-                    [
-                        (i + 1 < nu).then(|| node(i + 1, j)),
-                        (j + 1 < nv).then(|| node(i, j + 1)),
-                    ],
-                );
-                for b in b.into_iter().flatten() {
-                    if a != b {
-                        if !around[a].contains(&b) {
-                            around[a].push(b);
-                        }
-                        if !around[b].contains(&a) {
-                            around[b].push(a);
-                        }
+                let p = s.control_point(i, j).0;
+                let next = [
+                    (i + 1 < nu).then(|| s.control_point(i + 1, j).0),
+                    (j + 1 < nv).then(|| s.control_point(i, j + 1).0),
+                ];
+                for q in next.into_iter().flatten() {
+                    let d = p.distance(q);
+                    if d > 0.0 {
+                        total += d;
+                        count += 1;
                     }
                 }
             }
         }
-        start += nu * nv;
     }
-    around
+    let mean = total / count as f64;
+    (count > 0 && mean.is_finite() && mean > 0.0).then_some(mean)
 }
 
 #[cfg(test)]
@@ -235,8 +211,10 @@ mod tests {
     fn grid_lookups_at_the_samples_give_the_surface_normals_there() {
         // A curved patch whose normal differs everywhere: any misread sample shows.
         let sphere = shapes::sphere(DVec3::ZERO, 1.0).unwrap();
+        let samples = PatchSamples::new(&sphere);
+        let normals: Vec<Vec3> = samples.normals.iter().map(|n| n.as_vec3()).collect();
         let smoothed = SmoothedNormals {
-            patches: vec![NormalGrid::new(&sphere)],
+            patches: vec![NormalGrid::new(samples.domain, &normals, samples.columns)],
         };
         let domain = sphere.domain();
         let last = |knots: &[f64]| intervals(spans(knots)) as u32;
@@ -260,17 +238,30 @@ mod tests {
     }
 
     #[test]
-    fn welding_joins_shared_points_only() {
-        let points = [
-            DVec3::ZERO,
-            DVec3::X,
-            DVec3::new(1e-12, 0.0, 0.0),
-            DVec3::new(1.0, 1e-3, 0.0),
+    fn net_spacing_is_the_mean_gap_between_distinct_neighbours() {
+        // A 3 × 2 net, spaced 1 along u and 2 along v, its last row collapsed to one point.
+        let points = vec![
+            vec![DVec3::ZERO, DVec3::new(0.0, 2.0, 0.0)],
+            vec![DVec3::X, DVec3::new(1.0, 2.0, 0.0)],
+            vec![DVec3::new(2.0, 1.0, 0.0); 2],
         ];
-        let (node_of, nodes) = weld(&points);
-        assert_eq!(node_of[0], node_of[2]);
-        assert_ne!(node_of[1], node_of[3]);
-        assert_eq!(nodes.len(), 3);
+        let surface = NurbsSurface::new(
+            2,
+            1,
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            vec![0.0, 0.0, 1.0, 1.0],
+            &points,
+            None,
+        )
+        .unwrap();
+        // Along u: 1, 1, √2, √2; along v: 2, 2 (and 0, left out).
+        let want = (2.0 + 2.0 * 2f64.sqrt() + 4.0) / 6.0;
+        let got = net_spacing([&surface].into_iter()).unwrap();
+        assert!((got - want).abs() < 1e-15, "{got} vs {want}");
+        let point = vec![vec![DVec3::ONE; 2]; 2];
+        let knots = vec![0.0, 0.0, 1.0, 1.0];
+        let collapsed = NurbsSurface::new(1, 1, knots.clone(), knots, &point, None).unwrap();
+        assert_eq!(net_spacing([&collapsed].into_iter()), None);
     }
 
     #[test]
