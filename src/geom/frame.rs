@@ -84,8 +84,8 @@ impl Frame {
     }
 }
 
-/// `+1` when `t` is nearer the start of `range`, `−1` when nearer its end: the sign of the step
-/// from the nearest edge into the domain.
+/// `+1` when `t` is nearer the start of `range` (or halfway), `−1` when nearer its end: the sign
+/// of the step from the nearest edge into the domain.
 fn edge_sign(t: f64, range: (f64, f64)) -> f64 {
     if t - range.0 <= range.1 - t {
         1.0
@@ -252,6 +252,96 @@ mod tests {
     #[test]
     fn edge_sign_points_into_the_domain() {
         assert_eq!(edge_sign(0.0, (0.0, 1.0)), 1.0);
+        assert_eq!(edge_sign(0.5, (0.0, 1.0)), 1.0);
         assert_eq!(edge_sign(0.9, (0.0, 1.0)), -1.0);
+        assert_eq!(edge_sign(2.6, (2.0, 3.0)), -1.0);
+        assert_eq!(edge_sign(2.4, (2.0, 3.0)), 1.0);
+    }
+
+    /// A biquadratic patch over `[0, 1]²`, curved in z, with its v = 0 row and u = 0 column
+    /// collapsed to one point: the corner (0, 0) has no first derivatives at all, and the patch
+    /// is `map`ped (to place each corner there in turn).
+    fn corner_patch(map: impl Fn(usize, usize) -> (usize, usize)) -> NurbsSurface {
+        let mut points = vec![vec![DVec3::ZERO; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                let (x, y) = (i as f64, j as f64);
+                let p = if i == 0 || j == 0 {
+                    DVec3::ZERO
+                } else {
+                    DVec3::new(x, y, 0.3 * x * y - 0.2 * x * x)
+                };
+                let (a, b) = map(i, j);
+                points[a][b] = p;
+            }
+        }
+        let knots = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+        NurbsSurface::new(2, 2, knots.clone(), knots, &points, None).unwrap()
+    }
+
+    #[test]
+    fn a_corner_where_both_edges_collapse_takes_the_normal_from_just_inside() {
+        // The collapsed corner at each of the four corners of the domain: the fallback steps
+        // toward the centre from whichever side.
+        let maps: [(fn(usize, usize) -> (usize, usize), (f64, f64)); 4] = [
+            (|i, j| (i, j), (0.0, 0.0)),
+            (|i, j| (2 - i, j), (1.0, 0.0)),
+            (|i, j| (i, 2 - j), (0.0, 1.0)),
+            (|i, j| (2 - i, 2 - j), (1.0, 1.0)),
+        ];
+        for (map, (u, v)) in maps {
+            let s = corner_patch(map);
+            let f = s.frame(u, v);
+            assert!(f.degenerate, "({u}, {v}): {f:?}");
+            let inside = s.frame(u + 1e-6 * (0.5 - u), v + 1e-6 * (0.5 - v));
+            assert!(!inside.degenerate);
+            assert!(
+                inside.normal.dot(f.normal) > 1.0 - 1e-4,
+                "({u}, {v}): {f:?} vs {inside:?}"
+            );
+            assert_eq!(f.point, DVec3::ZERO);
+        }
+    }
+
+    #[test]
+    fn nearness_to_a_collapsed_edge_is_relative_to_the_other_derivative() {
+        // The apex patch made 10⁴ times larger: |Su| / |Sv| = 2v whatever the size, so v = 10⁻⁹
+        // is within the vanishing ratio of the edge, and v = 10⁻⁷ is not.
+        let s = apex_patch().map_points(|p| 1e4 * p);
+        let near = s.frame(0.3, 1e-9);
+        assert!(near.degenerate, "{near:?}");
+        assert!((near.normal - DVec3::Z).length() < 1e-12);
+        assert!(!s.frame(0.3, 1e-7).degenerate);
+        // And 10⁻⁴ times smaller.
+        let s = apex_patch().map_points(|p| 1e-4 * p);
+        assert!(s.frame(0.3, 1e-9).degenerate);
+        assert!(!s.frame(0.3, 1e-7).degenerate);
+    }
+
+    #[test]
+    fn a_tangent_nearly_parallel_to_the_other_keeps_du_orthogonal_to_the_normal() {
+        // A bilinear patch whose Su and Sv meet at an angle of about 10⁻⁷, turned off the axes so
+        // that rounding reaches every component: the normal's error (about 10⁻⁹) would tilt an
+        // unprojected du off the tangent plane.
+        let e = 1e-7;
+        let turn = glam::DMat3::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7);
+        let points: Vec<Vec<DVec3>> = [
+            [DVec3::ZERO, DVec3::new(1.0, e, 0.3)],
+            [DVec3::new(1.0, 0.0, 0.3), DVec3::new(2.0, e, 0.6 + e)],
+        ]
+        .iter()
+        .map(|row| row.iter().map(|&p| turn * p).collect())
+        .collect();
+        let knots = vec![0.0, 0.0, 1.0, 1.0];
+        let s = NurbsSurface::new(1, 1, knots.clone(), knots, &points, None).unwrap();
+        for (u, v) in [(0.0, 0.0), (0.4, 0.7), (1.0, 1.0)] {
+            let f = s.frame(u, v);
+            assert!(!f.degenerate);
+            assert!(f.du.dot(f.normal).abs() < 1e-14, "({u}, {v}): {f:?}");
+            assert!(
+                (f.du.cross(f.dv) - f.normal).length() < 1e-14,
+                "({u}, {v}): {f:?}"
+            );
+        }
     }
 }
