@@ -259,9 +259,9 @@ mod tests {
     }
 
     /// A biquadratic patch over `[0, 1]²`, curved in z, with its v = 0 row and u = 0 column
-    /// collapsed to one point: the corner (0, 0) has no first derivatives at all, and the patch
-    /// is `map`ped (to place each corner there in turn).
-    fn corner_patch(map: impl Fn(usize, usize) -> (usize, usize)) -> NurbsSurface {
+    /// collapsed to one point: the corner (0, 0) has no first derivatives at all. The net is
+    /// mirrored in u and in v as asked, to put that corner at each corner of the domain.
+    fn corner_patch(mirror_u: bool, mirror_v: bool) -> NurbsSurface {
         let mut points = vec![vec![DVec3::ZERO; 3]; 3];
         for i in 0..3 {
             for j in 0..3 {
@@ -271,7 +271,10 @@ mod tests {
                 } else {
                     DVec3::new(x, y, 0.3 * x * y - 0.2 * x * x)
                 };
-                let (a, b) = map(i, j);
+                let (a, b) = (
+                    if mirror_u { 2 - i } else { i },
+                    if mirror_v { 2 - j } else { j },
+                );
                 points[a][b] = p;
             }
         }
@@ -283,14 +286,9 @@ mod tests {
     fn a_corner_where_both_edges_collapse_takes_the_normal_from_just_inside() {
         // The collapsed corner at each of the four corners of the domain: the fallback steps
         // toward the centre from whichever side.
-        let maps: [(fn(usize, usize) -> (usize, usize), (f64, f64)); 4] = [
-            (|i, j| (i, j), (0.0, 0.0)),
-            (|i, j| (2 - i, j), (1.0, 0.0)),
-            (|i, j| (i, 2 - j), (0.0, 1.0)),
-            (|i, j| (2 - i, 2 - j), (1.0, 1.0)),
-        ];
-        for (map, (u, v)) in maps {
-            let s = corner_patch(map);
+        for (mirror_u, mirror_v) in [(false, false), (true, false), (false, true), (true, true)] {
+            let (u, v) = (f64::from(u8::from(mirror_u)), f64::from(u8::from(mirror_v)));
+            let s = corner_patch(mirror_u, mirror_v);
             let f = s.frame(u, v);
             assert!(f.degenerate, "({u}, {v}): {f:?}");
             let inside = s.frame(u + 1e-6 * (0.5 - u), v + 1e-6 * (0.5 - v));
