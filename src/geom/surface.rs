@@ -444,4 +444,216 @@ mod tests {
         assert_eq!(w, 0.5);
         assert_eq!(s.control_point(1, 0).1, 2.0);
     }
+
+    /// A rational bicubic over non-uniform knots (an interior knot in u, doubled in v), with
+    /// weights from 0.3 to 4: every term of the quotient rule matters.
+    fn rational_bicubic() -> NurbsSurface {
+        let points: Vec<Vec<DVec3>> = (0..5)
+            .map(|i| {
+                (0..5)
+                    .map(|j| {
+                        let (x, y) = (i as f64, j as f64);
+                        DVec3::new(x + 0.1 * y, y - 0.2 * x, (0.7 * x).sin() * (0.5 * y).cos())
+                    })
+                    .collect()
+            })
+            .collect();
+        let weights: Vec<Vec<f64>> = (0..5)
+            .map(|i| {
+                (0..5)
+                    .map(|j| 0.3 + ((i * 7 + j * 3) % 5) as f64 * 0.9)
+                    .collect()
+            })
+            .collect();
+        NurbsSurface::new(
+            3,
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0],
+            vec![0.0, 0.0, 0.0, 0.0, 0.6, 1.0, 1.0, 1.0, 1.0],
+            &points,
+            Some(&weights),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn rational_derivatives_are_the_differences_of_the_orders_below() {
+        // Central differences: of the point for the first derivatives, of the first for the
+        // second; a step of 1e-5 leaves an error near 1e-9 of the values.
+        let s = rational_bicubic();
+        assert!(s.is_rational());
+        let h = 1e-5;
+        for (u, v) in [(0.2, 0.3), (0.55, 0.8), (0.9, 0.1), (0.3, 0.65)] {
+            let d = s.derivs(u, v, 2);
+            let (up, um) = (s.derivs(u + h, v, 2), s.derivs(u - h, v, 2));
+            let (vp, vm) = (s.derivs(u, v + h, 2), s.derivs(u, v - h, 2));
+            let close = |a: DVec3, b: DVec3| (a - b).length() < 1e-7 * (1.0 + b.length());
+            assert!(
+                close((up.point - um.point) / (2.0 * h), d.su),
+                "Su at ({u}, {v})"
+            );
+            assert!(
+                close((vp.point - vm.point) / (2.0 * h), d.sv),
+                "Sv at ({u}, {v})"
+            );
+            assert!(
+                close((up.su - um.su) / (2.0 * h), d.suu),
+                "Suu at ({u}, {v})"
+            );
+            assert!(
+                close((vp.su - vm.su) / (2.0 * h), d.suv),
+                "Suv at ({u}, {v})"
+            );
+            assert!(
+                close((up.sv - um.sv) / (2.0 * h), d.suv),
+                "Svu at ({u}, {v})"
+            );
+            assert!(
+                close((vp.sv - vm.sv) / (2.0 * h), d.svv),
+                "Svv at ({u}, {v})"
+            );
+            // Lower orders asked for: the same values, and nothing above them.
+            let first = s.derivs(u, v, 1);
+            assert_eq!((first.point, first.su, first.sv), (d.point, d.su, d.sv));
+            assert_eq!(
+                (first.suu, first.suv, first.svv),
+                (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO)
+            );
+            let zeroth = s.derivs(u, v, 0);
+            assert_eq!((zeroth.point, zeroth.su), (d.point, DVec3::ZERO));
+        }
+    }
+
+    #[test]
+    fn a_collapsed_edge_has_exactly_zero_derivative_along_it() {
+        // S(u, v) = (v (2u − 1), v, v²): the v = 0 row collapses to the origin. Measured from
+        // the span's nearest corner, that row contributes exact zeros at either end of u.
+        let points = vec![
+            vec![
+                DVec3::ZERO,
+                DVec3::new(-1.0, 0.5, 0.0),
+                DVec3::new(-1.0, 1.0, 1.0),
+            ],
+            vec![
+                DVec3::ZERO,
+                DVec3::new(1.0, 0.5, 0.0),
+                DVec3::new(1.0, 1.0, 1.0),
+            ],
+        ];
+        let weights = vec![vec![1.0, 0.5, 2.0], vec![3.0, 0.25, 1.0]];
+        let knots_v = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+        let s = NurbsSurface::new(
+            1,
+            2,
+            vec![0.0, 0.0, 1.0, 1.0],
+            knots_v,
+            &points
+                .iter()
+                .map(|r| r.iter().map(|p| *p + DVec3::splat(3e5)).collect())
+                .collect::<Vec<_>>(),
+            Some(&weights),
+        )
+        .unwrap();
+        for u in [0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0] {
+            let d = s.derivs(u, 0.0, 2);
+            assert_eq!(d.su, DVec3::ZERO, "u = {u}");
+            assert_eq!(d.suu, DVec3::ZERO, "u = {u}");
+            assert_eq!(d.point, DVec3::splat(3e5), "u = {u}");
+        }
+    }
+
+    #[test]
+    fn moved_points_move_the_surface_and_keep_its_weights() {
+        let s = rational_bicubic();
+        let shift = DVec3::new(-4.0, 0.5, 2.25);
+        let moved = s.map_points(|p| 2.0 * p + shift);
+        assert_eq!(moved.is_rational(), s.is_rational());
+        for (u, v) in [(0.0, 0.0), (0.3, 0.7), (1.0, 0.5)] {
+            let (a, b) = (s.point(u, v), moved.point(u, v));
+            assert!((b - (2.0 * a + shift)).length() < 1e-12, "({u}, {v})");
+        }
+        for i in 0..5 {
+            assert_eq!(moved.control_point(i, 2).1, s.control_point(i, 2).1);
+        }
+    }
+
+    #[test]
+    fn unit_weights_make_a_polynomial_surface() {
+        assert!(!bilinear().is_rational());
+        let points = vec![vec![DVec3::ZERO, DVec3::X], vec![DVec3::Y, DVec3::ONE]];
+        let knots = vec![0.0, 0.0, 1.0, 1.0];
+        let ones = vec![vec![1.0; 2]; 2];
+        let s = NurbsSurface::new(1, 1, knots.clone(), knots.clone(), &points, Some(&ones));
+        assert!(!s.unwrap().is_rational());
+        let one_off = vec![vec![1.0, 1.0], vec![1.0, 1.5]];
+        let s = NurbsSurface::new(1, 1, knots.clone(), knots, &points, Some(&one_off));
+        assert!(s.unwrap().is_rational());
+    }
+
+    #[test]
+    fn coordinates_and_weights_are_accepted_up_to_their_bounds_and_not_past() {
+        let knots = vec![0.0, 0.0, 1.0, 1.0];
+        let net = |p: DVec3| vec![vec![DVec3::ZERO, DVec3::X], vec![DVec3::Y, p]];
+        let build = |p: DVec3, w: f64| {
+            NurbsSurface::new(
+                1,
+                1,
+                knots.clone(),
+                knots.clone(),
+                &net(p),
+                Some(&[vec![1.0, 1.0], vec![1.0, w]]),
+            )
+        };
+        assert!(build(DVec3::splat(-MAX_COORDINATE), 1.0).is_ok());
+        assert!(build(DVec3::new(0.0, MAX_COORDINATE, 0.0), 1.0).is_ok());
+        assert!(matches!(
+            build(
+                DVec3::new(0.0, 0.0, MAX_COORDINATE * (1.0 + f64::EPSILON)),
+                1.0
+            ),
+            Err(GeomError::PointNotFinite { i: 1, j: 1 })
+        ));
+        assert!(build(DVec3::ONE, MIN_WEIGHT).is_ok() && build(DVec3::ONE, MAX_WEIGHT).is_ok());
+        for w in [MIN_WEIGHT * 0.999, MAX_WEIGHT * 1.001, f64::NAN] {
+            assert!(matches!(
+                build(DVec3::ONE, w),
+                Err(GeomError::Weight { i: 1, j: 1, .. })
+            ));
+        }
+        // Weights of the wrong shape: too few rows, a short row.
+        let points = net(DVec3::ONE);
+        let few = vec![vec![1.0; 2]];
+        assert!(matches!(
+            NurbsSurface::new(1, 1, knots.clone(), knots.clone(), &points, Some(&few)),
+            Err(GeomError::NetSize {
+                rows: 1,
+                columns: 2,
+                expected_rows: 2,
+                expected_columns: 2
+            })
+        ));
+        let short = vec![vec![1.0; 2], vec![1.0]];
+        assert!(matches!(
+            NurbsSurface::new(1, 1, knots.clone(), knots, &points, Some(&short)),
+            Err(GeomError::NetSize {
+                rows: 2,
+                columns: 1,
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn a_domain_knows_its_inside_centre_and_fractions() {
+        let d = Domain {
+            u: (1.0, 3.0),
+            v: (-2.0, 0.0),
+        };
+        assert!(d.contains(1.0, -2.0) && d.contains(3.0, 0.0) && d.contains(2.0, -1.0));
+        assert!(!d.contains(0.999, -1.0) && !d.contains(3.001, -1.0));
+        assert!(!d.contains(2.0, -2.001) && !d.contains(2.0, 0.001));
+        assert_eq!(d.center(), (2.0, -1.0));
+        assert_eq!(d.lerp(0.25, 0.75), (1.5, -0.5));
+        assert_eq!(d.lerp(0.0, 1.0), (1.0, 0.0));
+    }
 }
