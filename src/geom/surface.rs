@@ -526,15 +526,16 @@ mod tests {
 
     #[test]
     fn a_collapsed_edge_has_exactly_zero_derivative_along_it() {
-        // S(u, v) = (v (2u − 1), v, v²): the v = 0 row collapses to the origin. Measured from
-        // the span's nearest corner, that row contributes exact zeros at either end of u.
-        let points = vec![
-            vec![
+        // A rational patch, linear in u and quadratic in v, whose v = 0 row collapses to one point
+        // far from the origin. Measured from the span's nearest corner, that row contributes
+        // exact zeros at either end of u.
+        let points = [
+            [
                 DVec3::ZERO,
                 DVec3::new(-1.0, 0.5, 0.0),
                 DVec3::new(-1.0, 1.0, 1.0),
             ],
-            vec![
+            [
                 DVec3::ZERO,
                 DVec3::new(1.0, 0.5, 0.0),
                 DVec3::new(1.0, 1.0, 1.0),
