@@ -404,6 +404,23 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(huge.contains("finite"), "{huge}");
+        // What each part of a track may be, named where something else is written.
+        let scalar_error = |text: &str| ron::from_str::<Track<f32>>(text).unwrap_err().to_string();
+        for (text, expected) in [
+            ("\"x\"", "a number, or keys [(frame, value), …] but found"),
+            (
+                "[(1, 0.0), \"x\"]",
+                "a number or a (frame, value) key but found",
+            ),
+            ("[(1, \"x\")]", "a number or a tuple of numbers but found"),
+        ] {
+            assert!(
+                scalar_error(text).contains(expected),
+                "{text}: {}",
+                scalar_error(text)
+            );
+        }
+        assert!(error("\"x\"").contains("a vector (x, y, z), or keys"));
     }
 
     #[test]
