@@ -346,4 +346,185 @@ mod tests {
         let degenerate = [vertex(0, 0), vertex(256, 256), vertex(512, 512)];
         assert!(TriangleSetup::new(degenerate.map(|v| (v, DVec2::ZERO)), 0, &screen).is_none());
     }
+
+    #[test]
+    fn projection_maps_clip_space_to_snapped_pixels() {
+        let screen = Screen::new(640, 360);
+        // x/w = 0.5, y/w = −0.25, z/w = 0.3: s = (1.5 · 320, 1.25 · 180) = (480, 225) pixels.
+        let w = 2.0;
+        let v = screen.project(DVec4::new(0.5 * w, -0.25 * w, 0.3 * w, w));
+        assert_eq!((v.x, v.y), (480 * 256, 225 * 256));
+        assert_eq!((v.depth, v.inv_w), (0.3, 0.5));
+        // Rounded to the nearest 1/256 pixel: 100.3/256 px → 100, 100.7/256 px → 101.
+        let at = |sx: f64| {
+            let x = sx / 320.0 - 1.0;
+            screen.project(DVec4::new(x, 0.0, 0.5, 1.0)).x
+        };
+        assert_eq!(at(100.3 / 256.0), 100);
+        assert_eq!(at(100.7 / 256.0), 101);
+        // Depth clamped to [0, 1]; w no smaller than W_MIN; positions clamped to the range.
+        assert_eq!(screen.project(DVec4::new(0.0, 0.0, 3.0, 2.0)).depth, 1.0);
+        assert_eq!(screen.project(DVec4::new(0.0, 0.0, -1.0, 2.0)).depth, 0.0);
+        let tiny = screen.project(DVec4::new(1.0, -1.0, 0.0, 0.0));
+        assert_eq!(tiny.inv_w, 1.0 / W_MIN);
+        assert_eq!((tiny.x, tiny.y), (1 << 29, 1 << 29));
+        let far_left = screen.project(DVec4::new(-1e30, 1e30, 0.0, 1.0));
+        assert_eq!((far_left.x, far_left.y), (-(1 << 29), -(1 << 29)));
+        assert_eq!(
+            screen.guard_band(),
+            (f64::from(1 << 20) / 320.0, f64::from(1 << 20) / 180.0)
+        );
+        assert_eq!(
+            screen.bounds,
+            PixelRect {
+                x0: 0,
+                y0: 0,
+                x1: 639,
+                y1: 359
+            }
+        );
+    }
+
+    #[test]
+    fn rectangles_are_empty_only_when_reversed_and_intersect_per_side() {
+        let r = |x0, y0, x1, y1| PixelRect { x0, y0, x1, y1 };
+        assert!(!r(3, 3, 3, 3).is_empty());
+        assert!(r(4, 3, 3, 3).is_empty() && r(3, 4, 3, 3).is_empty());
+        assert_eq!(
+            r(0, 5, 10, 20).intersection(&r(4, 0, 30, 8)),
+            r(4, 5, 10, 8)
+        );
+    }
+
+    /// The right triangle with its legs along the axes from pixel corner (0, 0), `legs` pixels
+    /// long, corner depths 0.2, 0.5 and 0.8, and `1/w` per corner.
+    fn right_triangle(legs: i64, inv_w: [f64; 3], screen: &Screen) -> Option<TriangleSetup> {
+        let corners = [(0, 0), (legs * ONE, 0), (0, legs * ONE)];
+        let depths = [0.2, 0.5, 0.8];
+        let bary = [DVec2::ZERO, DVec2::X, DVec2::Y];
+        let v = std::array::from_fn(|i| {
+            (
+                ScreenVertex {
+                    x: corners[i].0,
+                    y: corners[i].1,
+                    depth: depths[i],
+                    inv_w: inv_w[i],
+                },
+                bary[i],
+            )
+        });
+        TriangleSetup::new(v, 7, screen)
+    }
+
+    #[test]
+    fn a_right_triangle_covers_the_centres_below_its_hypotenuse_with_linear_depth() {
+        let screen = Screen::new(32, 32);
+        let t = right_triangle(10, [1.0; 3], &screen).unwrap();
+        assert_eq!(t.triangle, 7);
+        // Centres (x + ½, y + ½) from 0.5 to 9.5 lie in the bounding box.
+        assert_eq!(
+            t.rect,
+            PixelRect {
+                x0: 0,
+                y0: 0,
+                x1: 9,
+                y1: 9
+            }
+        );
+        let mut covered = 0;
+        for y in 0..10 {
+            for x in 0..10 {
+                let e = t.edges.map(|edge| edge.at(i64::from(x), i64::from(y)));
+                let inside = e.iter().all(|&e| e >= 0);
+                // The hypotenuse runs from (10, 0) to (0, 10), down and left: not a top or a
+                // left edge, so centres on it (x + y = 9) are left to the neighbour.
+                assert_eq!(inside, x + y <= 8, "({x}, {y})");
+                if !inside {
+                    continue;
+                }
+                covered += 1;
+                let (s, r) = ((f64::from(x) + 0.5) / 10.0, (f64::from(y) + 0.5) / 10.0);
+                let want = 0.2 + 0.3 * s + 0.6 * r;
+                let depth = t.depth_at(e);
+                assert!(
+                    (f64::from(depth) - want).abs() < 1e-6,
+                    "({x}, {y}): {depth}"
+                );
+                let [b1, b2] = t.barycentric(x, y);
+                assert!((f64::from(b1) - s).abs() < 1e-6 && (f64::from(b2) - r).abs() < 1e-6);
+            }
+        }
+        assert_eq!(covered, 45);
+    }
+
+    #[test]
+    fn barycentrics_are_perspective_correct() {
+        // With 1/w = (1, 1/2, 1/4), λ_i ∝ (screen λ_i) · (1/w_i).
+        let screen = Screen::new(32, 32);
+        let inv_w = [1.0, 0.5, 0.25];
+        let t = right_triangle(10, inv_w, &screen).unwrap();
+        for (x, y) in [(0, 0), (3, 4), (7, 0), (0, 7), (2, 2)] {
+            let (s, r) = ((f64::from(x) + 0.5) / 10.0, (f64::from(y) + 0.5) / 10.0);
+            let screen_weights = [1.0 - s - r, s, r];
+            let weighted: Vec<f64> = (0..3).map(|i| screen_weights[i] * inv_w[i]).collect();
+            let total: f64 = weighted.iter().sum();
+            let [b1, b2] = t.barycentric(x, y);
+            assert!(
+                (f64::from(b1) - weighted[1] / total).abs() < 1e-6,
+                "({x}, {y})"
+            );
+            assert!(
+                (f64::from(b2) - weighted[2] / total).abs() < 1e-6,
+                "({x}, {y})"
+            );
+        }
+    }
+
+    #[test]
+    fn the_box_is_cut_to_the_viewport_and_a_triangle_outside_it_is_dropped() {
+        let small = Screen::new(6, 4);
+        let t = right_triangle(10, [1.0; 3], &small).unwrap();
+        assert_eq!(
+            t.rect,
+            PixelRect {
+                x0: 0,
+                y0: 0,
+                x1: 5,
+                y1: 3
+            }
+        );
+        // The box of a triangle up and to the left of the viewport holds no pixel of it.
+        let v = [(-3000, -3000), (-256, -3000), (-3000, -256)]
+            .map(|(x, y)| (vertex(x, y), DVec2::ZERO));
+        assert!(TriangleSetup::new(v, 0, &small).is_none());
+        // A sliver between two pixel centres holds none either.
+        let v = [(300, 0), (350, 0), (300, 2000)].map(|(x, y)| (vertex(x, y), DVec2::ZERO));
+        assert!(TriangleSetup::new(v, 0, &small).is_none());
+    }
+
+    #[test]
+    fn the_box_spans_the_extremes_of_every_corner() {
+        // Each corner holds one extreme, so a box from any one or two corners is too small. The
+        // first centre at or after 900 units is pixel 4's (1152), after 200 pixel 1's (384); the
+        // last at or before 5000 is pixel 19's (4992), before 6000 pixel 22's (5760).
+        let v = [vertex(900, 3000), vertex(5000, 200), vertex(2500, 6000)];
+        assert_eq!(
+            bounding_rect(&v),
+            PixelRect {
+                x0: first_centre_at_or_after(900) as i32,
+                y0: first_centre_at_or_after(200) as i32,
+                x1: last_centre_at_or_before(5000) as i32,
+                y1: last_centre_at_or_before(6000) as i32,
+            }
+        );
+        assert_eq!(
+            bounding_rect(&v),
+            PixelRect {
+                x0: 4,
+                y0: 1,
+                x1: 19,
+                y1: 22
+            }
+        );
+    }
 }
