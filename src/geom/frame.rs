@@ -342,4 +342,118 @@ mod tests {
             );
         }
     }
+
+    /// The unit sphere with its parameters swapped: u runs pole to pole, v around, so the
+    /// collapsed edges are u = 0 and u = 1 and there Sv vanishes.
+    fn transposed_sphere() -> NurbsSurface {
+        let s = crate::geom::shapes::sphere(DVec3::ZERO, 1.0).unwrap();
+        let (rows, columns) = (s.count_v(), s.count_u());
+        let points: Vec<Vec<DVec3>> = (0..rows)
+            .map(|i| (0..columns).map(|j| s.control_point(j, i).0).collect())
+            .collect();
+        let weights: Vec<Vec<f64>> = (0..rows)
+            .map(|i| (0..columns).map(|j| s.control_point(j, i).1).collect())
+            .collect();
+        NurbsSurface::new(
+            s.knots_v().degree(),
+            s.knots_u().degree(),
+            s.knots_v().knots().to_vec(),
+            s.knots_u().knots().to_vec(),
+            &points,
+            Some(&weights),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn a_pole_has_the_exact_limit_frame_whichever_edge_it_is() {
+        // At the poles the normal is ±z exactly, and du is the limit of the tangent along u
+        // from inside. Taken a small step inside instead, either would be off by about the
+        // step: the tolerance tells the limit from any fallback.
+        let sphere = crate::geom::shapes::sphere(DVec3::ZERO, 1.0).unwrap();
+        for u in [0.0, 0.1, 0.37, 0.5, 0.9, 1.0] {
+            // u runs around: du is east at the meridian's longitude.
+            let p = sphere.point(u, 0.5);
+            let east = DVec3::new(-p.y, p.x, 0.0).normalize();
+            for (v, pole) in [(0.0, -DVec3::Z), (1.0, DVec3::Z)] {
+                let f = sphere.frame(u, v);
+                assert!(f.degenerate, "({u}, {v})");
+                assert!((f.normal - pole).length() < 1e-12, "({u}, {v}): {f:?}");
+                assert!(
+                    (f.du - east).length() < 1e-12,
+                    "({u}, {v}): {f:?} vs {east}"
+                );
+                assert!((f.normal.cross(f.du) - f.dv).length() < 1e-15);
+            }
+        }
+        let turned = transposed_sphere();
+        for v in [0.0, 0.1, 0.37, 0.5, 0.9, 1.0] {
+            // u runs pole to pole: du is the meridian's direction, away from the south pole
+            // and toward the north one; swapping the parameters turned the normal inward.
+            let p = turned.point(0.5, v);
+            let out = DVec3::new(p.x, p.y, 0.0).normalize();
+            for (u, pole, du) in [(0.0, DVec3::Z, out), (1.0, -DVec3::Z, -out)] {
+                let f = turned.frame(u, v);
+                assert!(f.degenerate, "({u}, {v})");
+                assert!((f.normal - pole).length() < 1e-12, "({u}, {v}): {f:?}");
+                assert!((f.du - du).length() < 1e-12, "({u}, {v}): {f:?} vs {du}");
+            }
+        }
+    }
+
+    #[test]
+    fn nearly_parallel_vectors_give_no_direction_at_any_scale() {
+        // Two vectors 10⁻⁹ apart in angle are below the vanishing ratio: no normal from them,
+        // whether they are long or short, as the regular and either limit formula meet them.
+        let domain = Domain {
+            u: (0.0, 1.0),
+            v: (0.0, 1.0),
+        };
+        for scale in [1e-4, 1.0, 1e4] {
+            let (a, b) = (scale * DVec3::X, scale * DVec3::new(1.0, 1e-9, 0.0));
+            let regular = SurfaceDerivs {
+                su: a,
+                sv: b,
+                ..SurfaceDerivs::default()
+            };
+            assert_eq!(Frame::from_derivs(&regular, 0.5, 0.5, &domain), None);
+            let collapsed_v = SurfaceDerivs {
+                sv: a,
+                suv: b,
+                ..SurfaceDerivs::default()
+            };
+            assert_eq!(Frame::from_derivs(&collapsed_v, 0.5, 0.0, &domain), None);
+            let collapsed_u = SurfaceDerivs {
+                su: a,
+                suv: b,
+                ..SurfaceDerivs::default()
+            };
+            assert_eq!(Frame::from_derivs(&collapsed_u, 0.0, 0.5, &domain), None);
+            // 10⁻⁷ apart they do give one, across both.
+            let c = scale * DVec3::new(1.0, 1e-7, 0.0);
+            for d in [
+                SurfaceDerivs {
+                    su: a,
+                    sv: c,
+                    ..SurfaceDerivs::default()
+                },
+                SurfaceDerivs {
+                    sv: a,
+                    suv: c,
+                    ..SurfaceDerivs::default()
+                },
+                SurfaceDerivs {
+                    su: a,
+                    suv: c,
+                    ..SurfaceDerivs::default()
+                },
+            ] {
+                let f = Frame::from_derivs(&d, 0.0, 0.0, &domain).unwrap();
+                assert!(
+                    (f.normal.abs() - DVec3::Z).length() < 1e-9,
+                    "{scale}: {f:?}"
+                );
+            }
+        }
+    }
 }
