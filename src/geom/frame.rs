@@ -320,26 +320,29 @@ mod tests {
     fn a_tangent_nearly_parallel_to_the_other_keeps_du_orthogonal_to_the_normal() {
         // A bilinear patch whose Su and Sv meet at an angle of about 10⁻⁷, turned off the axes so
         // that rounding reaches every component: the normal's error (about 10⁻⁹) would tilt an
-        // unprojected du off the tangent plane.
+        // unprojected du off the tangent plane. At a large scale too: the angle, not the
+        // tangents' lengths, decides the projection.
         let e = 1e-7;
         let turn = glam::DMat3::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7);
-        let points: Vec<Vec<DVec3>> = [
-            [DVec3::ZERO, DVec3::new(1.0, e, 0.3)],
-            [DVec3::new(1.0, 0.0, 0.3), DVec3::new(2.0, e, 0.6 + e)],
-        ]
-        .iter()
-        .map(|row| row.iter().map(|&p| turn * p).collect())
-        .collect();
         let knots = vec![0.0, 0.0, 1.0, 1.0];
-        let s = NurbsSurface::new(1, 1, knots.clone(), knots, &points, None).unwrap();
-        for (u, v) in [(0.0, 0.0), (0.4, 0.7), (1.0, 1.0)] {
-            let f = s.frame(u, v);
-            assert!(!f.degenerate);
-            assert!(f.du.dot(f.normal).abs() < 1e-14, "({u}, {v}): {f:?}");
-            assert!(
-                (f.du.cross(f.dv) - f.normal).length() < 1e-14,
-                "({u}, {v}): {f:?}"
-            );
+        for scale in [1.0, 1e3] {
+            let points: Vec<Vec<DVec3>> = [
+                [DVec3::ZERO, DVec3::new(1.0, e, 0.3)],
+                [DVec3::new(1.0, 0.0, 0.3), DVec3::new(2.0, e, 0.6 + e)],
+            ]
+            .iter()
+            .map(|row| row.iter().map(|&p| scale * (turn * p)).collect())
+            .collect();
+            let s = NurbsSurface::new(1, 1, knots.clone(), knots.clone(), &points, None).unwrap();
+            for (u, v) in [(0.0, 0.0), (0.4, 0.7), (1.0, 1.0)] {
+                let f = s.frame(u, v);
+                assert!(!f.degenerate);
+                assert!(
+                    f.du.dot(f.normal).abs() < 1e-14,
+                    "({u}, {v}) at {scale}: {f:?}"
+                );
+                assert!((f.du.cross(f.dv) - f.normal).length() < 1e-14, "{f:?}");
+            }
         }
     }
 
