@@ -246,6 +246,7 @@ mod tests {
         let s = NurbsSurface::new(1, 1, knots.clone(), knots, &points, None).unwrap();
         let f = s.frame(0.5, 0.5);
         assert!(f.degenerate && f.normal.is_finite() && f.du.is_finite() && f.dv.is_finite());
+        assert_eq!(f.point, DVec3::ONE);
         assert!((f.normal.cross(f.du) - f.dv).length() < 1e-15);
     }
 
