@@ -487,31 +487,21 @@ mod tests {
             let d = s.derivs(u, v, 2);
             let (up, um) = (s.derivs(u + h, v, 2), s.derivs(u - h, v, 2));
             let (vp, vm) = (s.derivs(u, v + h, 2), s.derivs(u, v - h, 2));
-            let close = |a: DVec3, b: DVec3| (a - b).length() < 1e-7 * (1.0 + b.length());
-            assert!(
-                close((up.point - um.point) / (2.0 * h), d.su),
-                "Su at ({u}, {v})"
-            );
-            assert!(
-                close((vp.point - vm.point) / (2.0 * h), d.sv),
-                "Sv at ({u}, {v})"
-            );
-            assert!(
-                close((up.su - um.su) / (2.0 * h), d.suu),
-                "Suu at ({u}, {v})"
-            );
-            assert!(
-                close((vp.su - vm.su) / (2.0 * h), d.suv),
-                "Suv at ({u}, {v})"
-            );
-            assert!(
-                close((up.sv - um.sv) / (2.0 * h), d.suv),
-                "Svu at ({u}, {v})"
-            );
-            assert!(
-                close((vp.sv - vm.sv) / (2.0 * h), d.svv),
-                "Svv at ({u}, {v})"
-            );
+            let difference = |plus: DVec3, minus: DVec3| (plus - minus) / (2.0 * h);
+            for (name, estimate, exact) in [
+                ("Su", difference(up.point, um.point), d.su),
+                ("Sv", difference(vp.point, vm.point), d.sv),
+                ("Suu", difference(up.su, um.su), d.suu),
+                ("Suv", difference(vp.su, vm.su), d.suv),
+                ("Svu", difference(up.sv, um.sv), d.suv),
+                ("Svv", difference(vp.sv, vm.sv), d.svv),
+            ] {
+                let error = (estimate - exact).length();
+                assert!(
+                    error < 1e-7 * (1.0 + exact.length()),
+                    "{name} at ({u}, {v}): {estimate} vs {exact}"
+                );
+            }
             // Lower orders asked for: the same values, and nothing above them.
             let first = s.derivs(u, v, 1);
             assert_eq!((first.point, first.su, first.sv), (d.point, d.su, d.sv));
