@@ -326,6 +326,13 @@ mod tests {
                 -1,
                 "direction ({dx}, {dy})"
             );
+            // Top (rightward along x, y down) and left (upward) edges are the ones kept.
+            let kept = dy < 0 || (dy == 0 && dx > 0);
+            assert_eq!(
+                forward.bias(),
+                i64::from(kept) - 1,
+                "direction ({dx}, {dy})"
+            );
             for (px, py) in [(0, 0), (4, -2), (17, 5)] {
                 let e = forward.at(px, py) - forward.bias();
                 assert_eq!(e, -(backward.at(px, py) - backward.bias()));
