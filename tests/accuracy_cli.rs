@@ -39,3 +39,64 @@ fn an_output_directory_that_cannot_be_made_fails_before_measuring() {
     assert!(stderr(&out).contains("cannot create"), "{}", stderr(&out));
     assert!(out.stdout.is_empty(), "nothing was measured");
 }
+
+#[test]
+fn presets_only_measures_every_view_on_every_candidate_and_writes_one_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = glint(&[
+        "bench",
+        "accuracy",
+        "--presets-only",
+        "--target-resolution",
+        "32",
+        "--repeats",
+        "1",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["presets.csv"]);
+    let table = std::fs::read_to_string(dir.path().join("presets.csv")).unwrap();
+    let mut lines = table.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let views = glint::accuracy::case::Case::all();
+    let rungs = glint::accuracy::sweep::Sweep::presets(32, 1, 0).rungs.len();
+    assert_eq!(rows.len(), views.len() * rungs);
+    for view in &views {
+        let (pose, stack) = (view.pose.to_string(), view.stack.to_string());
+        let of_view = rows
+            .iter()
+            .filter(|r| r[column("pose")] == pose && r[column("stack")] == stack)
+            .count();
+        assert_eq!(of_view, rungs, "{view}");
+    }
+    for row in &rows {
+        for name in ["one_minus_iou", "silhouette_one_minus_iou"] {
+            let value: f64 = row[column(name)].parse().unwrap();
+            assert!((0.0..1.0).contains(&value), "{name} = {value} in {row:?}");
+        }
+        let silhouette: f64 = row[column("silhouette_px")].parse().unwrap();
+        assert!((0.0..4.0).contains(&silhouette), "{row:?}");
+        // A highlight thinner than half a pixel at this size has no boundary to measure.
+        let boundary: f64 = row[column("boundary_px")].parse().unwrap();
+        assert!(
+            (0.0..4.0).contains(&boundary) || boundary == f64::INFINITY,
+            "{row:?}"
+        );
+    }
+    for preset in ["preview", "final"] {
+        assert_eq!(
+            rows.iter()
+                .filter(|r| r[column("preset")] == preset)
+                .count(),
+            views.len(),
+            "{preset}"
+        );
+    }
+}

@@ -1,6 +1,7 @@
 //! A reduced accuracy sweep (`glint::accuracy::sweep`) on small images: the facts the ladder
 //! rests on, measured against the analytic sphere. No timings are checked.
 
+use glint::accuracy::case::{Case, Pose};
 use glint::accuracy::sweep::{Measurement, Rung, Stack, Sweep};
 use glint::render::tessellate::Density;
 use glint::render::{Antialias, FrameMode};
@@ -11,10 +12,15 @@ fn span(n: u32) -> Density {
     Density::PerSpan { u: n, v: n }
 }
 
+/// Each rung on each stack in the front pose.
 fn measure(stacks: &[Stack], rungs: Vec<Rung>) -> Vec<Measurement> {
+    let cases = stacks.iter().map(|&stack| Case {
+        pose: Pose::Front,
+        stack,
+    });
     let sweep = Sweep {
         sizes: vec![SIZE],
-        stacks: stacks.to_vec(),
+        cases: cases.collect(),
         rungs,
         repeats: 1,
         threads: 0,
@@ -46,7 +52,7 @@ fn exact_frames_beat_interpolated_frames_at_equal_tessellation() {
                 exact.one_minus_iou < interpolated.one_minus_iou
                     && exact.mean_normal_degrees < interpolated.mean_normal_degrees,
                 "{n} segments, {:?}: exact {exact:?} vs interpolated {interpolated:?}",
-                pair[0].stack
+                pair[0].case.stack
             );
         }
     }
@@ -81,7 +87,7 @@ fn finer_tessellation_never_raises_the_error_beyond_noise() {
             assert!(
                 boundary < 0.25 + 0.03 + 0.02,
                 "{frames:?} {:?}: {boundary} px",
-                per_stack[0].stack
+                per_stack[0].case.stack
             );
         }
     }
@@ -145,9 +151,84 @@ fn anti_aliasing_lowers_the_boundary_error() {
     );
     for per_stack in m.chunks(4) {
         let b: Vec<f64> = per_stack.iter().map(|m| m.errors.boundary_pixels).collect();
-        let stack = per_stack[0].stack;
+        let stack = per_stack[0].case.stack;
         assert!(b[1] < 0.8 * b[0], "{stack:?} analytic vs none: {b:?}");
         assert!(b[2] < 0.8 * b[0], "{stack:?} 2x2 vs none: {b:?}");
         assert!(b[3] < b[2], "{stack:?} 4x4 vs 2x2: {b:?}");
+    }
+}
+
+/// Each rung on each of `cases`.
+fn measure_cases(cases: &[Case], rungs: Vec<Rung>) -> Vec<Measurement> {
+    let sweep = Sweep {
+        sizes: vec![SIZE],
+        cases: cases.to_vec(),
+        rungs,
+        repeats: 1,
+        threads: 0,
+    };
+    sweep.run(|_| {}).unwrap()
+}
+
+#[test]
+fn off_centre_highlights_need_the_point_on_the_pixel_s_ray() {
+    // Exact frames are exact at the flat triangle's (u, v); toward the limb that point is far
+    // from the one the pixel sees, and refined frames, which move it onto the ray, do better.
+    let cases: Vec<Case> = [50, 70]
+        .into_iter()
+        .map(|degrees| Case {
+            pose: Pose::OffCentre { degrees },
+            stack: Stack::Identity,
+        })
+        .collect();
+    let m = measure_cases(
+        &cases,
+        vec![
+            rung(span(4), FrameMode::Exact, Antialias::Supersample(2)),
+            rung(span(4), FrameMode::Refined, Antialias::Supersample(2)),
+        ],
+    );
+    for pair in m.chunks(2) {
+        let (exact, refined) = (&pair[0].errors, &pair[1].errors);
+        assert!(
+            refined.boundary_pixels < 0.7 * exact.boundary_pixels,
+            "{}: exact {exact:?} vs refined {refined:?}",
+            pair[0].case
+        );
+    }
+}
+
+#[test]
+fn the_silhouette_closes_on_the_disc_with_tessellation_and_samples() {
+    let front = [Case {
+        pose: Pose::Front,
+        stack: Stack::Identity,
+    }];
+    let m = measure_cases(
+        &front,
+        vec![
+            rung(span(2), FrameMode::Interpolated, Antialias::None),
+            rung(span(16), FrameMode::Interpolated, Antialias::None),
+            rung(span(16), FrameMode::Interpolated, Antialias::Supersample(4)),
+        ],
+    );
+    let px: Vec<f64> = m.iter().map(|m| m.errors.silhouette_pixels).collect();
+    // The disc's radius in pixels: the sphere subtends asin(1/5) from 5 units, and the image's
+    // half height is tan 15°.
+    let r = f64::from(SIZE) / 2.0 * (0.2f64.asin().tan() / 15f64.to_radians().tan());
+    // Two segments per span: chords of a quarter circle sag by up to 1 − cos(22.5°) ≈ 0.076 of
+    // the radius, about 3.7 px here; at 16 by 0.06 px, and what is left is the quarter pixel
+    // of hard sampling, which 4 × 4 samples cut.
+    assert!(px[0] > 1.0, "{px:?}");
+    assert!(px[1] < 0.35, "{px:?}");
+    assert!(px[2] < 0.5 * px[1], "{px:?}");
+    // The silhouette's IoU follows: about 2·d/r for a disc of radius r displaced by d.
+    for m in &m {
+        let e = m.errors;
+        assert!(
+            (e.silhouette_one_minus_iou - 2.0 * e.silhouette_pixels / r).abs()
+                < 0.3 * e.silhouette_one_minus_iou,
+            "{e:?}"
+        );
     }
 }

@@ -20,11 +20,12 @@ fn preset_label(preset: Option<&str>) -> String {
     preset.unwrap_or("").to_string()
 }
 
-/// One row per size, stack and rung.
+/// One row per size, view and rung.
 pub fn sweep(measurements: &[Measurement]) -> String {
     table(
         [
             "size",
+            "pose",
             "stack",
             "preset",
             "density",
@@ -33,6 +34,8 @@ pub fn sweep(measurements: &[Measurement]) -> String {
             "triangles",
             "one_minus_iou",
             "boundary_px",
+            "silhouette_one_minus_iou",
+            "silhouette_px",
             "max_normal_deg",
             "mean_normal_deg",
             "frame_ms",
@@ -40,7 +43,8 @@ pub fn sweep(measurements: &[Measurement]) -> String {
         measurements.iter().map(|m| {
             [
                 m.size.to_string(),
-                m.stack.name().into(),
+                m.case.pose.to_string(),
+                m.case.stack.to_string(),
                 preset_label(m.rung.preset()),
                 m.rung.density.to_string(),
                 m.rung.frames.to_string(),
@@ -48,6 +52,8 @@ pub fn sweep(measurements: &[Measurement]) -> String {
                 m.triangles.to_string(),
                 format!("{:.6}", m.errors.one_minus_iou),
                 format!("{:.4}", m.errors.boundary_pixels),
+                format!("{:.6}", m.errors.silhouette_one_minus_iou),
+                format!("{:.4}", m.errors.silhouette_pixels),
                 format!("{:.4}", m.errors.max_normal_degrees),
                 format!("{:.4}", m.errors.mean_normal_degrees),
                 format!("{:.3}", 1e3 * m.frame_seconds),
@@ -56,7 +62,7 @@ pub fn sweep(measurements: &[Measurement]) -> String {
     )
 }
 
-/// One row per size and rung, over all stacks, with the Pareto front marked.
+/// One row per size and rung, over all views, with the Pareto front marked.
 pub fn summary(summaries: &[Summary]) -> String {
     table(
         [
@@ -69,6 +75,9 @@ pub fn summary(summaries: &[Summary]) -> String {
             "mean_one_minus_iou",
             "worst_one_minus_iou",
             "mean_boundary_px",
+            "worst_boundary_px",
+            "worst_silhouette_one_minus_iou",
+            "worst_silhouette_px",
             "max_normal_deg",
             "mean_normal_deg",
             "frame_ms",
@@ -85,6 +94,9 @@ pub fn summary(summaries: &[Summary]) -> String {
                 format!("{:.6}", s.mean_one_minus_iou),
                 format!("{:.6}", s.worst_one_minus_iou),
                 format!("{:.4}", s.mean_boundary_pixels),
+                format!("{:.4}", s.worst_boundary_pixels),
+                format!("{:.6}", s.worst_silhouette_one_minus_iou),
+                format!("{:.4}", s.worst_silhouette_pixels),
                 format!("{:.4}", s.max_normal_degrees),
                 format!("{:.4}", s.mean_normal_degrees),
                 format!("{:.3}", 1e3 * s.frame_seconds),

@@ -6,12 +6,14 @@
 //! The measuring logic lives here; `glint bench accuracy` runs it, prints the tables and writes
 //! the CSV files and the plot.
 
+pub mod case;
 pub mod csv;
 pub mod geometry;
 pub mod metrics;
 pub mod plot;
 pub mod reference;
 pub mod scaling;
+pub mod stack;
 pub mod sweep;
 pub mod timing;
 

@@ -16,7 +16,7 @@ const COLOURS: [RGBColor; 4] = [
 /// The smallest 1 − IoU drawn: lower values sit on the axis (log scale).
 const FLOOR: f64 = 1e-5;
 
-/// The SVG text of the plot of mean 1 − IoU against frame time (both logarithmic).
+/// The SVG text of the plot of the worst view's 1 − IoU against frame time (both logarithmic).
 pub fn error_against_time(summaries: &[Summary]) -> Result<String, String> {
     let mut svg = String::new();
     draw(summaries, &mut svg).map_err(|e| format!("drawing the plot: {e}"))?;
@@ -24,7 +24,7 @@ pub fn error_against_time(summaries: &[Summary]) -> Result<String, String> {
 }
 
 fn draw(summaries: &[Summary], svg: &mut String) -> Result<(), Box<dyn std::error::Error>> {
-    let error = |s: &Summary| s.mean_one_minus_iou.max(FLOOR);
+    let error = |s: &Summary| s.worst_one_minus_iou.max(FLOOR);
     let time = |s: &Summary| 1e3 * s.frame_seconds;
     let range = |values: Vec<f64>| {
         let (lo, hi) = values.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &v| {
@@ -56,7 +56,7 @@ fn draw(summaries: &[Summary], svg: &mut String) -> Result<(), Box<dyn std::erro
     chart
         .configure_mesh()
         .x_desc("time per frame (ms, median)")
-        .y_desc("1 − IoU (mean over highlight stacks)")
+        .y_desc("1 − IoU (worst view)")
         .light_line_style(WHITE)
         .x_label_formatter(&|&x| {
             if x >= 1.0 {

@@ -1,106 +1,26 @@
 //! The accuracy sweep: every rung of the ladder (tessellation density × frame mode ×
-//! anti-aliasing) on the analytic sphere, for several highlight stacks and resolutions, with its
+//! anti-aliasing) on the analytic sphere, for several views ([`Case`]) and resolutions, with its
 //! error against the analytic reference and its time per frame.
 
 use std::sync::Arc;
 
 use std::fmt;
 
-use crate::highlight::{Expr, Layer, Op, PreparedExpr, SquareStyle};
 use crate::render::tessellate::Density;
-use crate::render::{Antialias, Aovs, FrameMode, Projection, RenderError, Renderer, Settings};
+use crate::render::{Antialias, Aovs, FrameMode, RenderError, Renderer, Settings};
 
+use super::case::{Case, Pose};
 use super::metrics::{boundary_displacement, iou};
 use super::reference::{AnalyticSphere, NormalErrors};
+pub use super::stack::Stack;
 use super::timing::median;
 
 /// Sub-pixel samples per side of the reference coverage: 64 per pixel.
 pub const REFERENCE_SAMPLES: u32 = 8;
 
-/// The highlight stacks the sweep renders.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stack {
-    /// The plain Blinn highlight.
-    Identity,
-    /// Moved toward du and −dv, then stretched along du.
-    TranslateScale,
-    /// Cut in two along dv.
-    Split,
-    /// Squared (tangent style).
-    Square,
-    /// A Boolean crescent: a plain highlight minus a moved one.
-    Crescent,
-}
-
-impl Stack {
-    pub const ALL: [Stack; 5] = [
-        Stack::Identity,
-        Stack::TranslateScale,
-        Stack::Split,
-        Stack::Square,
-        Stack::Crescent,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Stack::Identity => "identity",
-            Stack::TranslateScale => "translate+scale",
-            Stack::Split => "split",
-            Stack::Square => "square",
-            Stack::Crescent => "crescent",
-        }
-    }
-
-    /// The highlight expression, ε = 0.04 (0.06 for the crescent's outer layer).
-    pub fn expression(self) -> PreparedExpr {
-        let layer = |stack: Vec<Op>, epsilon: f32| {
-            Box::new(Expr::Layer(Layer::new(stack, epsilon, [1.0, 1.0, 1.0])))
-        };
-        let expr = match self {
-            Stack::Identity => *layer(vec![], 0.04),
-            Stack::TranslateScale => *layer(
-                vec![
-                    Op::Translate {
-                        alpha: 0.15,
-                        beta: -0.1,
-                    },
-                    Op::Scale {
-                        delta: 0.6,
-                        axis: Default::default(),
-                    },
-                ],
-                0.04,
-            ),
-            Stack::Split => *layer(
-                vec![Op::Split {
-                    gamma_u: 0.08,
-                    gamma_v: 0.0,
-                }],
-                0.04,
-            ),
-            Stack::Square => *layer(
-                vec![Op::Square {
-                    sigma: 0.2,
-                    n: 2.0,
-                    style: SquareStyle::Tangent,
-                }],
-                0.04,
-            ),
-            Stack::Crescent => Expr::Subtract(
-                layer(vec![], 0.06),
-                layer(
-                    vec![Op::Translate {
-                        alpha: 0.12,
-                        beta: 0.05,
-                    }],
-                    0.05,
-                ),
-            ),
-        };
-        expr.prepare()
-            .expect("the sweep's highlight parameters are in range")
-    }
-}
+/// Sub-pixel samples per side of the reference coverage where a pixel is on an edge:
+/// 1024 per pixel ([`AnalyticSphere::mattes`]).
+pub const REFERENCE_EDGE_SAMPLES: u32 = 32;
 
 /// One rung of the ladder: how the sweep renders.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -155,19 +75,23 @@ impl fmt::Display for Rung {
 pub struct Errors {
     /// 1 − IoU of the highlight matte against the reference coverage ([`iou`]).
     pub one_minus_iou: f64,
-    /// Mean boundary displacement in pixels ([`boundary_displacement`]).
+    /// Mean boundary displacement of the highlight in pixels ([`boundary_displacement`]).
     pub boundary_pixels: f64,
+    /// 1 − IoU of the frame's alpha against the sphere's coverage.
+    pub silhouette_one_minus_iou: f64,
+    /// Mean boundary displacement of the silhouette in pixels.
+    pub silhouette_pixels: f64,
     /// The largest angle between the normal AOV and the sphere's normal, in degrees.
     pub max_normal_degrees: f64,
     /// The mean of that angle over the pixels both cover, in degrees.
     pub mean_normal_degrees: f64,
 }
 
-/// One setting on one stack at one resolution.
+/// One setting on one view at one resolution.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Measurement {
     pub size: u32,
-    pub stack: Stack,
+    pub case: Case,
     pub rung: Rung,
     pub triangles: usize,
     pub errors: Errors,
@@ -180,7 +104,8 @@ pub struct Measurement {
 pub struct Sweep {
     /// Image sides (square images).
     pub sizes: Vec<u32>,
-    pub stacks: Vec<Stack>,
+    /// The views, each measured on every rung.
+    pub cases: Vec<Case>,
     pub rungs: Vec<Rung>,
     /// Timed frames per measurement, after one untimed frame that also gives the errors.
     pub repeats: usize,
@@ -218,13 +143,13 @@ impl Sweep {
 
     /// The full ladder: fixed densities of 2 to 32 segments per span and screen tolerances of
     /// 1 and 0.25 pixels; the three frame modes; no, analytic, 2 × 2, 3 × 3 and 4 × 4 edges;
-    /// all five stacks.
+    /// every view ([`Case::all`]).
     pub fn full(sizes: Vec<u32>, repeats: usize, threads: usize) -> Self {
         let span = |n: u32| Density::PerSpan { u: n, v: n };
         let tolerance = |pixels: f32| Density::ScreenTolerance { pixels };
         Self {
             sizes,
-            stacks: Stack::ALL.to_vec(),
+            cases: Case::all(),
             rungs: Self::ladder(
                 &[
                     span(2),
@@ -254,12 +179,26 @@ impl Sweep {
     }
 
     /// A reduced ladder for a quick look: 4 and 16 segments per span, interpolated and exact
-    /// frames, no and 3 × 3 edges, the presets; the identity and crescent stacks.
+    /// frames, no and 3 × 3 edges, the presets; the identity and crescent stacks in front, and
+    /// the identity 70° off centre.
     pub fn quick(sizes: Vec<u32>, repeats: usize, threads: usize) -> Self {
         let span = |n: u32| Density::PerSpan { u: n, v: n };
         Self {
             sizes,
-            stacks: vec![Stack::Identity, Stack::Crescent],
+            cases: vec![
+                Case {
+                    pose: Pose::Front,
+                    stack: Stack::Identity,
+                },
+                Case {
+                    pose: Pose::Front,
+                    stack: Stack::Crescent,
+                },
+                Case {
+                    pose: Pose::OffCentre { degrees: 70 },
+                    stack: Stack::Identity,
+                },
+            ],
             rungs: Self::ladder(
                 &[span(4), span(16)],
                 &[FrameMode::Interpolated, FrameMode::Exact],
@@ -270,7 +209,7 @@ impl Sweep {
         }
     }
 
-    /// The presets side by side on all five stacks at one size, with the candidates they were
+    /// The presets side by side on every view at one size, with the candidates they were
     /// chosen from: at a 0.25 px tolerance exact frames with analytic, 3 × 3 and 4 × 4 edges
     /// and refined frames with 3 × 3 edges; at 0.5 px refined frames with analytic edges.
     pub fn presets(size: u32, repeats: usize, threads: usize) -> Self {
@@ -290,7 +229,7 @@ impl Sweep {
         rungs.extend(candidates.iter().filter(|c| c.preset().is_none()));
         Self {
             sizes: vec![size],
-            stacks: Stack::ALL.to_vec(),
+            cases: Case::all(),
             rungs,
             repeats,
             threads,
@@ -299,26 +238,28 @@ impl Sweep {
 
     /// The number of measurements [`Sweep::run`] makes.
     pub fn len(&self) -> usize {
-        self.sizes.len() * self.stacks.len() * self.rungs.len()
+        self.sizes.len() * self.cases.len() * self.rungs.len()
     }
 
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
 
-    /// Measures every rung on every stack and size, in a perspective view of the sphere
-    /// (30° field of view), calling `done` after each measurement.
+    /// Measures every rung on every view and size, calling `done` after each measurement.
     pub fn run(&self, mut done: impl FnMut(&Measurement)) -> Result<Vec<Measurement>, RenderError> {
-        let sphere = AnalyticSphere::new(Projection::Perspective {
-            fov_y_degrees: 30.0,
-        });
         let library = AnalyticSphere::library();
         let mut renderer = Renderer::new(Arc::clone(&library));
         let mut measurements = Vec::with_capacity(self.len());
         for &size in &self.sizes {
-            for &stack in &self.stacks {
-                let highlight = stack.expression();
-                let reference = sphere.coverage(&highlight, size, REFERENCE_SAMPLES);
+            for &case in &self.cases {
+                let sphere = case.pose.sphere();
+                let highlight = case.stack.expression();
+                let reference = sphere.mattes(
+                    &case.stack.reference_expression(),
+                    size,
+                    REFERENCE_SAMPLES,
+                    REFERENCE_EDGE_SAMPLES,
+                );
                 for &rung in &self.rungs {
                     let settings = rung.settings(size, self.threads);
                     let with_aovs = sphere.scene(
@@ -331,6 +272,7 @@ impl Sweep {
                         },
                     );
                     let frame = renderer.render(&with_aovs, &settings)?;
+                    let alpha: Vec<f32> = frame.colour.iter().map(|c| c.w).collect();
                     let (matte, normals) = (
                         frame.aovs.matte.unwrap_or_default(),
                         frame.aovs.normal.unwrap_or_default(),
@@ -341,10 +283,19 @@ impl Sweep {
                             max_degrees: 180.0,
                             mean_degrees: 180.0,
                         });
+                    let width = size as usize;
                     let errors = Errors {
-                        one_minus_iou: 1.0 - iou(&matte, &reference).unwrap_or(0.0),
-                        boundary_pixels: boundary_displacement(&matte, &reference, size as usize)
+                        one_minus_iou: 1.0 - iou(&matte, &reference.highlight).unwrap_or(0.0),
+                        boundary_pixels: boundary_displacement(&matte, &reference.highlight, width)
                             .unwrap_or(f64::INFINITY),
+                        silhouette_one_minus_iou: 1.0
+                            - iou(&alpha, &reference.silhouette).unwrap_or(0.0),
+                        silhouette_pixels: boundary_displacement(
+                            &alpha,
+                            &reference.silhouette,
+                            width,
+                        )
+                        .unwrap_or(f64::INFINITY),
                         max_normal_degrees: normal.max_degrees,
                         mean_normal_degrees: normal.mean_degrees,
                     };
@@ -355,7 +306,7 @@ impl Sweep {
                     }
                     let measurement = Measurement {
                         size,
-                        stack,
+                        case,
                         rung,
                         triangles: frame.stats.triangles,
                         errors,
@@ -370,31 +321,37 @@ impl Sweep {
     }
 }
 
-/// One rung at one size, over all stacks.
+/// One rung at one size, over all views.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Summary {
     pub size: u32,
     pub rung: Rung,
     pub triangles: usize,
-    /// The mean over stacks of 1 − IoU.
+    /// The mean over views of the highlight's 1 − IoU.
     pub mean_one_minus_iou: f64,
-    /// The worst stack's 1 − IoU.
+    /// The worst view's highlight 1 − IoU.
     pub worst_one_minus_iou: f64,
-    /// The mean over stacks of the boundary displacement, in pixels.
+    /// The mean over views of the highlight's boundary displacement, in pixels.
     pub mean_boundary_pixels: f64,
-    /// The largest normal error over stacks, in degrees.
+    /// The worst view's highlight boundary displacement, in pixels.
+    pub worst_boundary_pixels: f64,
+    /// The worst view's silhouette 1 − IoU.
+    pub worst_silhouette_one_minus_iou: f64,
+    /// The worst view's silhouette boundary displacement, in pixels.
+    pub worst_silhouette_pixels: f64,
+    /// The largest normal error over views, in degrees.
     pub max_normal_degrees: f64,
-    /// The mean over stacks of the mean normal error, in degrees.
+    /// The mean over views of the mean normal error, in degrees.
     pub mean_normal_degrees: f64,
-    /// The mean over stacks of the median frame time, in seconds.
+    /// The mean over views of the median frame time, in seconds.
     pub frame_seconds: f64,
-    /// No other rung at this size is at least as fast and at least as accurate (mean 1 − IoU),
-    /// and better in one.
+    /// No other rung at this size is at least as fast and at least as accurate (worst
+    /// highlight 1 − IoU), and better in one.
     pub pareto: bool,
 }
 
 /// The measurements summarized per size and rung (in the order they were measured), with the
-/// Pareto front of mean 1 − IoU against time marked per size.
+/// Pareto front of the worst view's 1 − IoU against time marked per size.
 pub fn summarize(measurements: &[Measurement]) -> Vec<Summary> {
     let mut summaries: Vec<Summary> = Vec::new();
     for m in measurements {
@@ -418,6 +375,9 @@ pub fn summarize(measurements: &[Measurement]) -> Vec<Summary> {
             mean_one_minus_iou: mean(|o| o.errors.one_minus_iou),
             worst_one_minus_iou: max(|o| o.errors.one_minus_iou),
             mean_boundary_pixels: mean(|o| o.errors.boundary_pixels),
+            worst_boundary_pixels: max(|o| o.errors.boundary_pixels),
+            worst_silhouette_one_minus_iou: max(|o| o.errors.silhouette_one_minus_iou),
+            worst_silhouette_pixels: max(|o| o.errors.silhouette_pixels),
             max_normal_degrees: max(|o| o.errors.max_normal_degrees),
             mean_normal_degrees: mean(|o| o.errors.mean_normal_degrees),
             frame_seconds: mean(|o| o.frame_seconds),
@@ -426,7 +386,7 @@ pub fn summarize(measurements: &[Measurement]) -> Vec<Summary> {
     }
     let points: Vec<(f64, f64)> = summaries
         .iter()
-        .map(|s| (s.frame_seconds, s.mean_one_minus_iou))
+        .map(|s| (s.frame_seconds, s.worst_one_minus_iou))
         .collect();
     let sizes: Vec<u32> = summaries.iter().map(|s| s.size).collect();
     for (i, summary) in summaries.iter_mut().enumerate() {
@@ -442,11 +402,13 @@ pub fn summarize(measurements: &[Measurement]) -> Vec<Summary> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PresetComparison {
     pub size: u32,
-    /// The worst stack's IoU under `final`.
+    /// The worst view's highlight IoU under `final`.
     pub final_worst_iou: f64,
-    /// The mean IoU over stacks under `final`.
+    /// The mean highlight IoU over views under `final`.
     pub final_mean_iou: f64,
-    /// Mean frame times over stacks, in seconds.
+    /// The worst view's silhouette IoU under `final`.
+    pub final_worst_silhouette_iou: f64,
+    /// Mean frame times over views, in seconds.
     pub preview_seconds: f64,
     pub final_seconds: f64,
 }
@@ -475,6 +437,7 @@ pub fn compare_presets(summaries: &[Summary]) -> Vec<PresetComparison> {
                 size,
                 final_worst_iou: 1.0 - last.worst_one_minus_iou,
                 final_mean_iou: 1.0 - last.mean_one_minus_iou,
+                final_worst_silhouette_iou: 1.0 - last.worst_silhouette_one_minus_iou,
                 preview_seconds: preview.frame_seconds,
                 final_seconds: last.frame_seconds,
             })

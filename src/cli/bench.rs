@@ -34,33 +34,42 @@ enum Bench {
 ///
 /// Every combination of tessellation density (segments per knot span, or a screen tolerance),
 /// frame mode (interpolated, exact, refined) and anti-aliasing (none, analytic, 2×2 to 4×4
-/// supersampling), plus the preview and final presets, renders the exact NURBS unit sphere with
-/// five highlight stacks (identity, translate+scale, split, square, a Boolean crescent) at each
-/// --resolution; then the presets run side by side at --target-resolution. Each render is compared
-/// with the analytic sphere ray-cast through 8×8 samples per pixel: 1 − IoU of the highlight matte,
-/// mean boundary displacement in pixels, and the largest normal error in degrees; its time is the
-/// median of --repeats frames.
+/// supersampling), plus the preview and final presets, renders the exact NURBS unit sphere in
+/// sixteen views at each --resolution: five highlight stacks near the centre (identity,
+/// translate+scale, split, square, a Boolean crescent) and eleven hard ones (highlights 30°, 50°
+/// and 70° off centre, at and near the pole, near the border of a 75° wide-angle view, a thin
+/// crescent, ε = 0.001, a split into four, a keyed translation at fractional frames). Then the
+/// presets run side by side at --target-resolution. Each render is compared with the analytic
+/// sphere ray-cast through 8×8 samples per pixel, 32×32 on edges: 1 − IoU and mean boundary
+/// displacement in pixels of the highlight matte and of the silhouette (the frame's alpha), and
+/// the largest normal error in degrees; its time is the median of --repeats frames. The tables
+/// give the worst view of each rung beside the mean, and the Pareto front is drawn on the worst.
 ///
 /// Then the geometry alone (tessellation density against position and normal error and
 /// tessellation time; the G-buffer cost of exact and refined frames) and the scaling of frame
 /// time with resolution, with copies of the teapot, and with 1 and 2 threads (the fitted
 /// log-log growth).
 ///
-/// Prints the tables and writes to --out: accuracy.csv (every stack), accuracy_summary.csv
-/// (over stacks, Pareto front marked), accuracy.svg (error against time), geometry.csv,
+/// Prints the tables and writes to --out: accuracy.csv (every view), accuracy_summary.csv
+/// (over views, Pareto front marked), accuracy.svg (error against time), geometry.csv,
 /// frame_cost.csv and scaling.csv.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:
   glint bench accuracy --quick
+  glint bench accuracy --presets-only --target-resolution 256
   glint bench accuracy --out docs/accuracy --resolution 256,512 --target-resolution 1024")]
 pub struct AccuracyArgs {
     /// Directory for the CSV files and the plot (created if missing; files replaced atomically)
     #[arg(long, value_name = "DIR", default_value = "out/accuracy")]
     out: PathBuf,
-    /// A reduced sweep: 2 densities, 2 frame modes, 2 edge modes, 2 stacks, the presets, and
+    /// A reduced sweep: 2 densities, 2 frame modes, 2 edge modes, 3 views, the presets, and
     /// smaller scaling runs (default resolutions 128 and 256)
     #[arg(long)]
     quick: bool,
+    /// Only the presets side by side with their candidates at --target-resolution, every view
+    /// listed; writes presets.csv
+    #[arg(long)]
+    presets_only: bool,
     /// Image sides for the whole ladder, square (comma-separated or repeated) [default: 256,512;
     /// with --quick 128,256]
     #[arg(
@@ -70,8 +79,8 @@ pub struct AccuracyArgs {
         value_parser = clap::value_parser!(u32).range(16..=4096)
     )]
     resolutions: Vec<u32>,
-    /// Image side for the presets side by side on all stacks (with two analytic-edge
-    /// alternatives) [default: 1024; with --quick 256]
+    /// Image side for the presets side by side on every view (with the candidates they were
+    /// chosen from) [default: 1024; with --quick 256]
     #[arg(long, value_name = "SIDE", value_parser = clap::value_parser!(u32).range(16..=4096))]
     target_resolution: Option<u32>,
     /// Timed frames per setting; the median is reported
@@ -127,6 +136,9 @@ fn accuracy(args: &AccuracyArgs) -> Result<(), CliError> {
         .unwrap_or(if args.quick { 256 } else { 1024 });
     let presets = Sweep::presets(target_size, repeats, threads);
     let failed = |e: crate::render::RenderError| CliError::Failed(e.into());
+    if args.presets_only {
+        return presets_only(&presets, &args.out);
+    }
 
     let progress = bar(sweep.len() + presets.len(), "sweep");
     let mut measurements = Vec::with_capacity(sweep.len() + presets.len());
@@ -134,7 +146,7 @@ fn accuracy(args: &AccuracyArgs) -> Result<(), CliError> {
         measurements.extend(
             sweep
                 .run(|m| {
-                    progress.set_message(format!("{} {} {}", m.size, m.stack.name(), m.rung));
+                    progress.set_message(format!("{} {} {}", m.size, m.case, m.rung));
                     progress.inc(1);
                 })
                 .map_err(failed)?,
@@ -200,6 +212,39 @@ fn accuracy(args: &AccuracyArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// `--presets-only`: the presets and their candidates on every view, one table row per view.
+fn presets_only(presets: &Sweep, out: &Path) -> Result<(), CliError> {
+    let progress = bar(presets.len(), "presets");
+    let measurements = presets
+        .run(|m| {
+            progress.set_message(format!("{} {}", m.case, m.rung));
+            progress.inc(1);
+        })
+        .map_err(|e| CliError::Failed(e.into()))?;
+    progress.finish_with_message("done");
+    println!(
+        "\n{:<34} {:<36} {:>9} {:>8} {:>9} {:>8} {:>9}",
+        "view", "rung", "1-IoU", "bound px", "sil 1-IoU", "sil px", "ms/frame"
+    );
+    for m in &measurements {
+        println!(
+            "{:<34} {:<36} {:>9.2e} {:>8.3} {:>9.2e} {:>8.3} {:>9.2}",
+            m.case.to_string(),
+            format!("{} {}", m.rung.preset().unwrap_or(""), m.rung),
+            m.errors.one_minus_iou,
+            m.errors.boundary_pixels,
+            m.errors.silhouette_one_minus_iou,
+            m.errors.silhouette_pixels,
+            1e3 * m.frame_seconds
+        );
+    }
+    print_sweep(&summarize(&measurements));
+    let files = [("presets.csv", csv::sweep(&measurements))];
+    write_all(out, &files).map_err(CliError::Failed)?;
+    println!("\nwrote {} to {}", files[0].0, out.display());
+    Ok(())
+}
+
 fn write_all(dir: &Path, files: &[(&str, String)]) -> anyhow::Result<()> {
     for (name, text) in files {
         write_atomically(&dir.join(name), |out| {
@@ -212,10 +257,10 @@ fn write_all(dir: &Path, files: &[(&str, String)]) -> anyhow::Result<()> {
 
 fn print_sweep(summaries: &[Summary]) {
     println!(
-        "\nAccuracy ladder on the analytic sphere (means over highlight stacks; * Pareto front)"
+        "\nAccuracy ladder on the analytic sphere (mean and worst over views; * Pareto front of the worst)"
     );
     println!(
-        "{:>5} {:<8} {:<12} {:<13} {:<9} {:>7} {:>9} {:>9} {:>8} {:>8} {:>8} {:>9}",
+        "{:>5} {:<8} {:<12} {:<13} {:<9} {:>7} {:>9} {:>9} {:>8} {:>8} {:>9} {:>8} {:>8} {:>8} {:>9}",
         "size",
         "preset",
         "density",
@@ -225,13 +270,16 @@ fn print_sweep(summaries: &[Summary]) {
         "1-IoU",
         "worst",
         "bound px",
+        "worst px",
+        "sil worst",
+        "sil px",
         "max N°",
         "mean N°",
         "ms/frame"
     );
     for s in summaries {
         println!(
-            "{:>5} {:<8} {:<12} {:<13} {:<9} {:>7} {:>9.2e} {:>9.2e} {:>8.3} {:>8.2} {:>8.3} {:>9.2} {}",
+            "{:>5} {:<8} {:<12} {:<13} {:<9} {:>7} {:>9.2e} {:>9.2e} {:>8.3} {:>8.3} {:>9.2e} {:>8.3} {:>8.2} {:>8.3} {:>9.2} {}",
             s.size,
             s.rung.preset().unwrap_or(""),
             s.rung.density.to_string(),
@@ -241,6 +289,9 @@ fn print_sweep(summaries: &[Summary]) {
             s.mean_one_minus_iou,
             s.worst_one_minus_iou,
             s.mean_boundary_pixels,
+            s.worst_boundary_pixels,
+            s.worst_silhouette_one_minus_iou,
+            s.worst_silhouette_pixels,
             s.max_normal_degrees,
             s.mean_normal_degrees,
             1e3 * s.frame_seconds,
@@ -249,15 +300,22 @@ fn print_sweep(summaries: &[Summary]) {
     }
     println!("\nPresets side by side (same run)");
     println!(
-        "{:>5} {:>15} {:>16} {:>12} {:>12} {:>9}",
-        "size", "final mean IoU", "final worst IoU", "preview ms", "final ms", "speedup"
+        "{:>5} {:>15} {:>16} {:>16} {:>12} {:>12} {:>9}",
+        "size",
+        "final mean IoU",
+        "final worst IoU",
+        "worst silhouette",
+        "preview ms",
+        "final ms",
+        "final/preview"
     );
     for c in compare_presets(summaries) {
         println!(
-            "{:>5} {:>15.5} {:>16.5} {:>12.2} {:>12.2} {:>8.2}x",
+            "{:>5} {:>15.5} {:>16.5} {:>16.5} {:>12.2} {:>12.2} {:>8.2}x",
             c.size,
             c.final_mean_iou,
             c.final_worst_iou,
+            c.final_worst_silhouette_iou,
             1e3 * c.preview_seconds,
             1e3 * c.final_seconds,
             c.speedup()

@@ -465,6 +465,28 @@ mod tests {
     }
 
     #[test]
+    fn the_fill_rule_bias_is_undone_in_depth_and_barycentrics() {
+        // Two pixels on a side, the smallest triangle covering a centre: its hypotenuse is not
+        // a top or left edge, so its edge value carries a bias of −1 in 2·area = 2¹⁸ units,
+        // 4e-6 of λ₀, which the depth and the barycentrics must take off again.
+        let screen = Screen::new(4, 4);
+        let t = right_triangle(2, [1.0; 3], &screen).unwrap();
+        let e = t.edges.map(|edge| edge.at(0, 0));
+        assert!(e.iter().all(|&e| e >= 0));
+        // The centre (½, ½) is at s = r = ¼.
+        let depth = f64::from(t.depth_at(e));
+        assert!(
+            (depth - (0.2 + 0.3 * 0.25 + 0.6 * 0.25)).abs() < 2e-7,
+            "{depth}"
+        );
+        let [b1, b2] = t.barycentric(0, 0);
+        assert!(
+            (f64::from(b1) - 0.25).abs() < 2e-7 && (f64::from(b2) - 0.25).abs() < 2e-7,
+            "{b1} {b2}"
+        );
+    }
+
+    #[test]
     fn barycentrics_are_perspective_correct() {
         // With 1/w = (1, 1/2, 1/4), λ_i ∝ (screen λ_i) · (1/w_i).
         let screen = Screen::new(32, 32);
