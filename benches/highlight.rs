@@ -8,7 +8,9 @@ use std::hint::black_box;
 
 use criterion::{Criterion, Throughput};
 use glam::{Vec2, Vec3};
-use glint::highlight::{inside, Axis, Expr, Layer, Op, Shade, SquareStyle, TangentFrame};
+use glint::highlight::{
+    inside, Axis, Expr, Footprint, Layer, Op, Shade, SquareStyle, TangentFrame,
+};
 use rand::{Rng, SeedableRng};
 
 const POINTS: usize = 1 << 16;
@@ -116,7 +118,7 @@ fn bench(c: &mut Criterion) {
     g.bench_function("boolean_2_layers", |b| {
         b.iter(|| {
             let (frames, uvs, hs) = black_box((&p.frames, &p.uvs, &p.hs));
-            boolean.eval_many(frames, uvs, hs, 0.0, &mut shades);
+            boolean.eval_many(frames, uvs, hs, Footprint::HARD, &mut shades);
             shades.iter().map(|s| s.coverage).sum::<f32>()
         })
     });
@@ -137,7 +139,7 @@ fn bench(c: &mut Criterion) {
                 .iter()
                 .zip(uvs)
                 .zip(hs)
-                .map(|((f, uv), h)| boolean.eval(f, *uv, *h, 0.0).coverage)
+                .map(|((f, uv), h)| boolean.eval(f, *uv, *h, Footprint::HARD).coverage)
                 .sum::<f32>()
         })
     });

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec2, Vec3};
 use glint::highlight::{
-    half_vector, Axis, Expr, Layer, Op, PreparedExpr, SquareStyle, TangentFrame,
+    half_vector, Axis, Expr, Footprint, Layer, Op, PreparedExpr, SquareStyle, TangentFrame,
 };
 use image::{Rgb, RgbImage};
 
@@ -47,7 +47,7 @@ fn shade(expr: &PreparedExpr, x: f64, y: f64) -> Option<Vec3> {
     } else {
         Vec3::new(0.30, 0.07, 0.10)
     };
-    let hl = expr.eval(&frame, uv, half_vector(l, v), 0.0);
+    let hl = expr.eval(&frame, uv, half_vector(l, v), Footprint::HARD);
     Some(base.lerp(hl.colour, hl.coverage))
 }
 

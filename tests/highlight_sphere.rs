@@ -6,7 +6,9 @@
 //! `(x, y, z)`, so du points right and dv up.
 
 use glam::{DVec3, Vec2, Vec3};
-use glint::highlight::{Axis, Expr, Layer, Op, PreparedLayer, SquareStyle, TangentFrame};
+use glint::highlight::{
+    Axis, Expr, Footprint, Layer, Op, PreparedLayer, SquareStyle, TangentFrame,
+};
 use rand::{Rng, SeedableRng};
 
 /// The sphere's frame and (u, v) = (λ, φ) at unit normal `n` (not a pole).
@@ -475,9 +477,9 @@ fn booleans_match_set_algebra_and_make_a_crescent() {
     let mut counts = [0usize; 3];
     let crescent = Grid::render(201, 0.6, |frame, uv, n| {
         let (in_a, in_b, clear) = reference(n, frame);
-        let u = union.eval(frame, uv, Vec3::Z, 0.0);
-        let m = minus.eval(frame, uv, Vec3::Z, 0.0);
-        let i = both.eval(frame, uv, Vec3::Z, 0.0);
+        let u = union.eval(frame, uv, Vec3::Z, Footprint::HARD);
+        let m = minus.eval(frame, uv, Vec3::Z, Footprint::HARD);
+        let i = both.eval(frame, uv, Vec3::Z, Footprint::HARD);
         if clear {
             assert_eq!(u.coverage == 1.0, in_a || in_b);
             assert_eq!(m.coverage == 1.0, in_a && !in_b);

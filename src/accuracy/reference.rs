@@ -8,7 +8,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
 use crate::geom::{shapes, NamedPatch, PatchLibrary};
-use crate::highlight::{half_vector, Light, PreparedExpr, TangentFrame};
+use crate::highlight::{half_vector, Footprint, Light, PreparedExpr, TangentFrame};
 use crate::render::{Aovs, Camera, PatchLook, Projection, Scene, Tone};
 use crate::toon::CelRamp;
 
@@ -117,7 +117,10 @@ impl AnalyticSphere {
         let frame = TangentFrame::new(east.as_vec3(), north.as_vec3(), n.as_vec3());
         let v = self.camera.toward_eye(p.as_vec3());
         let h = half_vector(self.light, v);
-        highlight.eval(&frame, Vec2::ZERO, h, 0.0).coverage > 0.5
+        highlight
+            .eval(&frame, Vec2::ZERO, h, Footprint::HARD)
+            .coverage
+            > 0.5
     }
 
     /// The fraction of `k × k` sub-pixel samples (at `((i + ½)/k, (j + ½)/k)` within the pixel)

@@ -42,13 +42,14 @@ impl Stack {
     pub const KEYS: [(f64, f32); 3] = [(1.0, -0.2), (4.0, 0.1), (9.0, 0.3)];
 
     /// The highlight as the renderer gets it: a keyed value is read from its [`Track`] at the
-    /// frame ([`keyed_by_track`]).
+    /// frame.
     pub fn expression(self) -> PreparedExpr {
         self.with_keyed(keyed_by_track)
     }
 
-    /// The highlight as the analytic reference gets it: a keyed value is interpolated
-    /// independently of [`Track::at`] ([`keyed_by_hand`]).
+    /// The highlight as the analytic reference gets it: a keyed value is interpolated between
+    /// the keys around the frame, `α = α_k + (f − f_k)(α_{k+1} − α_k)/(f_{k+1} − f_k)`,
+    /// independently of [`Track::at`].
     pub fn reference_expression(self) -> PreparedExpr {
         self.with_keyed(keyed_by_hand)
     }

@@ -4,6 +4,7 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::error::HighlightError;
+use super::footprint::Footprint;
 use super::frame::TangentFrame;
 use super::layer::{Layer, Paint, PreparedLayer};
 use super::stack::LocalChunk;
@@ -198,12 +199,12 @@ pub enum PreparedExpr {
 
 impl PreparedExpr {
     /// The highlight at a point with frame `frame`, patch parameters `uv` and initial unit
-    /// highlight vector `h`. `width` is the edge width in units of the signed value (0: the
-    /// paper's hard edge; the renderer's pixel footprint for analytic anti-aliasing), added to
-    /// each layer's feather.
+    /// highlight vector `h`. `footprint` is the pixel's footprint of the signed value
+    /// ([`Footprint::HARD`]: the paper's hard edge; the renderer's for analytic anti-aliasing),
+    /// which each layer's edge covers ([`Footprint::coverage`]).
     #[must_use]
-    pub fn eval(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, width: f32) -> Shade {
-        let (shape, paint) = self.shape(frame, uv, h, width);
+    pub fn eval(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, footprint: Footprint) -> Shade {
+        let (shape, paint) = self.shape(frame, uv, h, footprint);
         Shade {
             coverage: shape * paint.opacity,
             colour: paint.colour,
@@ -219,7 +220,7 @@ impl PreparedExpr {
         frames: &[TangentFrame],
         uvs: &[Vec2],
         hs: &[Vec3],
-        width: f32,
+        footprint: Footprint,
         out: &mut [Shade],
     ) {
         assert!(
@@ -230,7 +231,7 @@ impl PreparedExpr {
         for (k, o) in out.chunks_mut(LANES).enumerate() {
             let r = k * LANES..k * LANES + o.len();
             initial.load(&frames[r.clone()], &hs[r.clone()]);
-            self.eval_chunk(&initial, &uvs[r], width, &mut scratch, o);
+            self.eval_chunk(&initial, &uvs[r], footprint, &mut scratch, o);
         }
     }
 
@@ -244,7 +245,7 @@ impl PreparedExpr {
         &self,
         initial: &LocalChunk,
         uvs: &[Vec2],
-        width: f32,
+        footprint: Footprint,
         scratch: &mut ChunkScratch,
         out: &mut [Shade],
     ) {
@@ -256,7 +257,7 @@ impl PreparedExpr {
             paints,
         } = scratch;
         let (s, p) = (&mut shapes[..n], &mut paints[..n]);
-        self.shape_chunk(initial, vectors, uvs, width, s, p);
+        self.shape_chunk(initial, vectors, uvs, footprint, s, p);
         for ((o, s), p) in out.iter_mut().zip(s.iter()).zip(p.iter()) {
             *o = Shade {
                 coverage: s * p.opacity,
@@ -297,22 +298,22 @@ impl PreparedExpr {
         initial: &LocalChunk,
         scratch: &mut LocalChunk,
         uvs: &[Vec2],
-        width: f32,
+        footprint: Footprint,
         shapes: &mut [f32],
         paints: &mut [Paint],
     ) {
         match self {
             PreparedExpr::Layer(l) => {
-                l.shape_chunk(initial, scratch, uvs, width, shapes);
+                l.shape_chunk(initial, scratch, uvs, footprint, shapes);
                 paints.fill(l.paint());
             }
             PreparedExpr::Combine(op, a, b) => {
-                a.shape_chunk(initial, scratch, uvs, width, shapes, paints);
+                a.shape_chunk(initial, scratch, uvs, footprint, shapes, paints);
                 let mut b_shapes = [0.0; LANES];
                 let mut b_paints = [b.first_paint(); LANES];
                 let n = shapes.len();
                 let (bs, bp) = (&mut b_shapes[..n], &mut b_paints[..n]);
-                b.shape_chunk(initial, scratch, uvs, width, bs, bp);
+                b.shape_chunk(initial, scratch, uvs, footprint, bs, bp);
                 for i in 0..n {
                     (shapes[i], paints[i]) = op.combine((shapes[i], paints[i]), (bs[i], bp[i]));
                 }
@@ -320,12 +321,13 @@ impl PreparedExpr {
         }
     }
 
-    fn shape(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, width: f32) -> (f32, Paint) {
+    fn shape(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, footprint: Footprint) -> (f32, Paint) {
         match self {
-            PreparedExpr::Layer(l) => (l.shape(frame, uv, h, width), l.paint()),
-            PreparedExpr::Combine(op, a, b) => {
-                op.combine(a.shape(frame, uv, h, width), b.shape(frame, uv, h, width))
-            }
+            PreparedExpr::Layer(l) => (l.shape(frame, uv, h, footprint), l.paint()),
+            PreparedExpr::Combine(op, a, b) => op.combine(
+                a.shape(frame, uv, h, footprint),
+                b.shape(frame, uv, h, footprint),
+            ),
         }
     }
 }
@@ -392,10 +394,10 @@ mod tests {
         let e = Expr::Subtract(Box::new(layer(0.5, 0.5)), Box::new(layer(0.1, 0.2)))
             .prepare()
             .unwrap();
-        let centre = e.eval(&frame, Vec2::ZERO, Vec3::Z, 0.0);
+        let centre = e.eval(&frame, Vec2::ZERO, Vec3::Z, Footprint::HARD);
         assert_eq!(centre.coverage, 0.0);
         let h = Vec3::new(0.6, 0.0, 0.8); // 1 − cos = 0.2: in the ring.
-        let ring = e.eval(&frame, Vec2::ZERO, h, 0.0);
+        let ring = e.eval(&frame, Vec2::ZERO, h, Footprint::HARD);
         assert_eq!(ring.coverage, 0.5);
         assert_eq!(ring.colour.x, 0.5);
     }
@@ -425,9 +427,12 @@ mod tests {
             };
             count
         ];
-        e.eval_many(&frames, &uvs, &hs, 0.001, &mut out);
+        e.eval_many(&frames, &uvs, &hs, Footprint { x: 0.001, y: 0.0 }, &mut out);
         for i in 0..count {
-            assert_eq!(out[i], e.eval(&frame, uvs[i], hs[i], 0.001));
+            assert_eq!(
+                out[i],
+                e.eval(&frame, uvs[i], hs[i], Footprint { x: 0.001, y: 0.0 })
+            );
         }
         // The centre (layer 1), the ring (layer 2 minus 3, half opacity) and outside all occur.
         let colours: Vec<f32> = out.iter().map(|s| s.colour.x).collect();

@@ -5,6 +5,7 @@ use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
 
 use super::error::HighlightError;
+use super::footprint::Footprint;
 use super::frame::TangentFrame;
 use super::inside::{coverage_from_signed, signed_inside};
 use super::ops::Op;
@@ -311,32 +312,33 @@ impl PreparedLayer {
         initial: &LocalChunk,
         scratch: &mut LocalChunk,
         uvs: &[Vec2],
-        width: f32,
+        footprint: Footprint,
         out: &mut [f32],
     ) {
         self.signed_chunk(initial, scratch, out);
         for (o, uv) in out.iter_mut().zip(uvs) {
-            *o = self.shape_from_signed(*o, *uv, width);
+            *o = self.shape_from_signed(*o, *uv, footprint);
         }
     }
 
-    /// Shape coverage in [0, 1] before opacity from the signed value `s` at `uv`: the edge (hard,
-    /// or smoothstep over the feather plus `width`) times the mask.
+    /// Shape coverage in [0, 1] before opacity from the signed value `s` at `uv`: the edge's
+    /// coverage of the pixel ([`Footprint::coverage`]) times the mask.
     #[inline]
-    fn shape_from_signed(&self, s: f32, uv: Vec2, width: f32) -> f32 {
-        let c = coverage_from_signed(s, self.feather + width);
+    fn shape_from_signed(&self, s: f32, uv: Vec2, footprint: Footprint) -> f32 {
+        let c = footprint.coverage(s, self.feather);
         match &self.mask {
             Some(m) if c > 0.0 => c * m.factor(uv),
             _ => c,
         }
     }
 
-    /// Shape coverage in [0, 1] before opacity: the edge (hard, or smoothstep over the feather
-    /// plus `width`, the renderer's pixel footprint of `s`) times the mask at `uv`.
+    /// Shape coverage in [0, 1] before opacity: the edge's coverage of the pixel whose
+    /// `footprint` of `s` the renderer gives ([`Footprint::HARD`]: the hard edge), times the mask
+    /// at `uv`.
     #[inline]
     #[must_use]
-    pub fn shape(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, width: f32) -> f32 {
-        self.shape_from_signed(self.signed(frame, h), uv, width)
+    pub fn shape(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, footprint: Footprint) -> f32 {
+        self.shape_from_signed(self.signed(frame, h), uv, footprint)
     }
 
     /// [`shape`](Self::shape) at many points, into `out`.
@@ -348,7 +350,7 @@ impl PreparedLayer {
         frames: &[TangentFrame],
         uvs: &[Vec2],
         hs: &[Vec3],
-        width: f32,
+        footprint: Footprint,
         out: &mut [f32],
     ) {
         assert!(
@@ -359,7 +361,7 @@ impl PreparedLayer {
         for (k, o) in out.chunks_mut(LANES).enumerate() {
             let r = k * LANES..k * LANES + o.len();
             initial.load(&frames[r.clone()], &hs[r.clone()]);
-            self.shape_chunk(&initial, &mut scratch, &uvs[r], width, o);
+            self.shape_chunk(&initial, &mut scratch, &uvs[r], footprint, o);
         }
     }
 
@@ -394,8 +396,8 @@ mod tests {
         assert!((l.signed(&FRAME, Vec3::Z) - 0.1).abs() < 1e-7);
         let h = Vec3::new(0.6, 0.0, 0.8);
         assert!((l.signed(&FRAME, h) - (0.1 - 0.2)).abs() < 1e-6);
-        assert_eq!(l.shape(&FRAME, Vec2::ZERO, h, 0.0), 0.0);
-        assert_eq!(l.shape(&FRAME, Vec2::ZERO, Vec3::Z, 0.0), 1.0);
+        assert_eq!(l.shape(&FRAME, Vec2::ZERO, h, Footprint::HARD), 0.0);
+        assert_eq!(l.shape(&FRAME, Vec2::ZERO, Vec3::Z, Footprint::HARD), 1.0);
     }
 
     #[test]
@@ -426,9 +428,12 @@ mod tests {
             .map(|i| Vec2::new(i as f32 / 100.0, 0.5))
             .collect();
         let mut out = vec![0.0; count];
-        p.shape_many(&frames, &uvs, &hs, 0.01, &mut out);
+        p.shape_many(&frames, &uvs, &hs, Footprint { x: 0.01, y: 0.0 }, &mut out);
         for i in 0..count {
-            assert_eq!(out[i], p.shape(&FRAME, uvs[i], hs[i], 0.01));
+            assert_eq!(
+                out[i],
+                p.shape(&FRAME, uvs[i], hs[i], Footprint { x: 0.01, y: 0.0 })
+            );
         }
         assert!(out.contains(&0.0) && out.iter().any(|&c| c > 0.5));
     }
@@ -442,7 +447,7 @@ mod tests {
             feather: 0.1,
         });
         let p = l.prepare().unwrap();
-        let at = |u: f32| p.shape(&FRAME, Vec2::new(u, 0.5), Vec3::Z, 0.0);
+        let at = |u: f32| p.shape(&FRAME, Vec2::new(u, 0.5), Vec3::Z, Footprint::HARD);
         assert_eq!(at(0.1), 0.0);
         assert_eq!(at(0.2), 0.0);
         assert!((at(0.25) - 0.5).abs() < 1e-5);
@@ -458,7 +463,7 @@ mod tests {
         // On the hard edge (1 − cos = ε) coverage is one half.
         let c = 0.9_f32;
         let h = Vec3::new((1.0 - c * c).sqrt(), 0.0, c);
-        assert!((p.shape(&FRAME, Vec2::ZERO, h, 0.0) - 0.5).abs() < 1e-3);
+        assert!((p.shape(&FRAME, Vec2::ZERO, h, Footprint::HARD) - 0.5).abs() < 1e-3);
     }
 
     #[test]
@@ -542,7 +547,7 @@ mod tests {
             feather: 0.1,
         });
         let p = l.prepare().unwrap();
-        let at = |v: f32| p.shape(&FRAME, Vec2::new(0.5, v), Vec3::Z, 0.0);
+        let at = |v: f32| p.shape(&FRAME, Vec2::new(0.5, v), Vec3::Z, Footprint::HARD);
         assert_eq!(at(0.1), 0.0);
         assert_eq!(at(0.2), 0.0);
         assert!((at(0.25) - 0.5).abs() < 1e-5);
@@ -560,8 +565,10 @@ mod tests {
         // x = 0.01 / 0.04 + 0.5 = 0.75: 0.75² (3 − 1.5) = 0.84375; over the feather alone, x = 1.
         let c = 0.91_f32;
         let h = Vec3::new((1.0 - c * c).sqrt(), 0.0, c);
-        assert!((p.shape(&FRAME, Vec2::ZERO, h, 0.02) - 0.84375).abs() < 1e-4);
-        assert!((p.shape(&FRAME, Vec2::ZERO, h, 0.0) - 1.0).abs() < 1e-6);
+        assert!(
+            (p.shape(&FRAME, Vec2::ZERO, h, Footprint { x: 0.02, y: 0.0 }) - 0.84375).abs() < 1e-4
+        );
+        assert!((p.shape(&FRAME, Vec2::ZERO, h, Footprint::HARD) - 1.0).abs() < 1e-6);
     }
 
     #[test]

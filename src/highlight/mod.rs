@@ -14,6 +14,7 @@
 mod centre;
 mod error;
 mod expr;
+mod footprint;
 mod frame;
 mod half_vector;
 mod inside;
@@ -25,6 +26,7 @@ mod stack;
 pub use error::HighlightError;
 pub(crate) use expr::ChunkScratch;
 pub use expr::{Boolean, Expr, PreparedExpr, Shade};
+pub use footprint::{box_coverage, Footprint};
 pub use frame::TangentFrame;
 pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View};
 pub use inside::{coverage_from_signed, inside, signed_inside};

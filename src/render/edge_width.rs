@@ -1,5 +1,5 @@
 //! Edge widths for analytic anti-aliasing: per texel, how fast the highlight's signed inside
-//! value changes across the pixel.
+//! value changes across the pixel (its [`Footprint`]).
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -7,11 +7,14 @@ use rayon::prelude::*;
 use super::directions::initial_half_vector;
 use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
 use super::scene::Scene;
-use crate::highlight::PreparedLayer;
+use crate::highlight::{Footprint, PreparedLayer};
 
-/// Per texel, the largest `fwidth(s)` over the layers of its patch's highlight (0 without one).
-/// Differences are taken forward, or backward at the edge of the patch or image.
-pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<f32> {
+/// Per texel, the footprint of the signed value `s` over the layers of its patch's highlight,
+/// the largest `|∂s/∂x|` and `|∂s/∂y|` ([`Footprint::HARD`] without one). The derivatives are
+/// central differences `(s₊ − s₋)/2` between the neighbours on the same patch, exact for the
+/// nearly quadratic `s` about a highlight's centre; one-sided where a neighbour is on another
+/// patch or off the image, and 0 where both are.
+pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<Footprint> {
     let half_vectors: Vec<Option<Vec3>> = gbuffer
         .texels
         .par_iter()
@@ -55,28 +58,41 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<f32> {
         .enumerate()
         .map(|(k, t)| {
             if half_vectors[k].is_none() {
-                return 0.0;
+                return Footprint::HARD;
             }
             let i = t.pixel as usize;
             let (x, y) = (i % w, i / w);
-            // The texel of a neighbour on the same patch: forward if possible, else backward.
+            // The texel of a neighbour on the same patch.
             let same_patch = |pixel: Option<usize>| {
                 let slot = gbuffer.slot[pixel?];
                 (slot != EMPTY && gbuffer.texels[slot as usize].patch == t.patch)
                     .then_some(slot as usize)
             };
-            let nx = same_patch((x + 1 < w).then(|| i + 1))
-                .or_else(|| same_patch((x > 0).then(|| i - 1)));
-            let ny = same_patch((y + 1 < h).then(|| i + w))
-                .or_else(|| same_patch((y > 0).then(|| i - w)));
+            let (left, right) = (
+                same_patch((x > 0).then(|| i - 1)),
+                same_patch((x + 1 < w).then(|| i + 1)),
+            );
+            let (up, down) = (
+                same_patch((y > 0).then(|| i - w)),
+                same_patch((y + 1 < h).then(|| i + w)),
+            );
             (0..layer_lists[t.patch as usize].len())
                 .map(|j| {
-                    let s = signed[k * most + j];
-                    let dx = nx.map_or(0.0, |n| (signed[n * most + j] - s).abs());
-                    let dy = ny.map_or(0.0, |n| (signed[n * most + j] - s).abs());
-                    dx + dy
+                    let at = |n: usize| signed[n * most + j];
+                    let s = at(k);
+                    let derivative =
+                        |before: Option<usize>, after: Option<usize>| match (before, after) {
+                            (Some(b), Some(a)) => 0.5 * (at(a) - at(b)).abs(),
+                            (None, Some(a)) => (at(a) - s).abs(),
+                            (Some(b), None) => (s - at(b)).abs(),
+                            (None, None) => 0.0,
+                        };
+                    Footprint {
+                        x: derivative(left, right),
+                        y: derivative(up, down),
+                    }
                 })
-                .fold(0.0, f32::max)
+                .fold(Footprint::HARD, Footprint::max)
         })
         .collect()
 }

@@ -445,7 +445,11 @@ fn detail(
 }
 
 /// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint.
-fn widths(gbuffer: &GBuffer, scene: &Scene, stats: &mut RenderStats) -> Vec<f32> {
+fn widths(
+    gbuffer: &GBuffer,
+    scene: &Scene,
+    stats: &mut RenderStats,
+) -> Vec<crate::highlight::Footprint> {
     let (widths, seconds) = timed(|| edge_widths(gbuffer, scene));
     stats.record(Stage::EdgeWidths, widths.len() as u64, seconds);
     widths

@@ -7,7 +7,7 @@ use super::directions::{initial_half_vector, initial_half_vectors, view_lanes};
 use super::gbuffer::{GBuffer, Texel, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
 use super::xtoon_tone::{self, Views};
-use crate::highlight::{ChunkScratch, LocalChunk, Shade};
+use crate::highlight::{ChunkScratch, Footprint, LocalChunk, Shade};
 use crate::math::{Lanes, LANES};
 use crate::toon::ViewXToon;
 
@@ -42,14 +42,15 @@ pub(super) struct ShadeBuffers {
 /// expression's coverage c and colour h, and `colour = (1 − c) tone + c h`.
 ///
 /// With edge `widths` (analytic anti-aliasing, [`edge_widths`](super::edge_width::edge_widths)),
-/// each highlight edge is smoothed over the pixel's footprint of the signed inside value
-/// `s = ε − ‖N − H'‖²/2`. Without them, edges are hard (the paper's look).
+/// each highlight edge covers the pixel as a straight edge with the pixel's footprint of the
+/// signed inside value `s = ε − ‖N − H'‖²/2` would ([`Footprint::coverage`]). Without them,
+/// edges are hard (the paper's look).
 pub(super) fn shade(
     gbuffer: &GBuffer,
     scene: &Scene,
     views: &Views,
     ahead: Option<&[Vec3]>,
-    widths: Option<&[f32]>,
+    widths: Option<&[Footprint]>,
     buffers: &mut ShadeBuffers,
 ) -> Shaded {
     let texels = gbuffer.texels.len();
@@ -180,7 +181,7 @@ impl RunScratch {
 fn shade_texels(
     scene: &Scene,
     texels: &[Texel],
-    widths: Option<&[f32]>,
+    widths: Option<&[Footprint]>,
     xtoon: &XToonTones,
     out: Out<'_>,
     scratch: &mut RunScratch,
@@ -240,7 +241,7 @@ fn shade_texels(
 fn highlight<'s>(
     scene: &Scene,
     texels: &[Texel],
-    widths: Option<&[f32]>,
+    widths: Option<&[Footprint]>,
     scratch: &'s mut RunScratch,
 ) -> Option<&'s [Shade]> {
     let expr = scene.looks[texels[0].patch as usize].highlight.as_ref()?;
@@ -260,7 +261,13 @@ fn highlight<'s>(
                 *uv = t.uv;
             }
             let uvs = &scratch.uvs[..n];
-            expr.eval_chunk(&scratch.initial, uvs, 0.0, &mut scratch.expr, shades);
+            expr.eval_chunk(
+                &scratch.initial,
+                uvs,
+                Footprint::HARD,
+                &mut scratch.expr,
+                shades,
+            );
         }
     }
     Some(shades)
