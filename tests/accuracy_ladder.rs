@@ -14,18 +14,14 @@ fn span(n: u32) -> Density {
 
 /// Each rung on each stack in the front pose.
 fn measure(stacks: &[Stack], rungs: Vec<Rung>) -> Vec<Measurement> {
-    let cases = stacks.iter().map(|&stack| Case {
-        pose: Pose::Front,
-        stack,
-    });
-    let sweep = Sweep {
-        sizes: vec![SIZE],
-        cases: cases.collect(),
-        rungs,
-        repeats: 1,
-        threads: 0,
-    };
-    sweep.run(|_| {}).unwrap()
+    let cases: Vec<Case> = stacks
+        .iter()
+        .map(|&stack| Case {
+            pose: Pose::Front,
+            stack,
+        })
+        .collect();
+    measure_cases(&cases, rungs)
 }
 
 fn rung(density: Density, frames: FrameMode, antialias: Antialias) -> Rung {

@@ -122,3 +122,38 @@ impl<'g, 'a> RowContraction<'g, 'a> {
         (&self.rows, origin)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::geom::shapes;
+
+    #[test]
+    fn grid_frames_are_the_direct_frames_on_every_span() {
+        // The torus is rational with four spans each way (double knots at ¼, ½ and ¾), off the
+        // origin; the samples fall inside spans, on the knots and at both ends.
+        let torus = shapes::torus(2.0, 0.5)
+            .unwrap()
+            .map_points(|p| p + DVec3::new(3.0, -1.0, 2.0));
+        let samples: Vec<f64> = (0..=20).map(|k| f64::from(k) / 20.0).collect();
+        let grid = GridEvaluator::new(&torus, &samples, &samples);
+        let mut seen = 0;
+        for i in 0..grid.us().len() {
+            for (j, got) in grid.row_frames(i).enumerate() {
+                let (u, v) = (grid.us()[i], grid.vs()[j]);
+                let want = torus.frame(u, v);
+                assert!(
+                    (got.point - want.point).length() < 1e-13
+                        && (got.normal - want.normal).length() < 1e-13
+                        && (got.du - want.du).length() < 1e-13,
+                    "({u}, {v}): {got:?} vs {want:?}"
+                );
+                assert_eq!(got, grid.frame(i, j));
+                seen += 1;
+            }
+        }
+        assert_eq!(seen, 21 * 21);
+    }
+}
