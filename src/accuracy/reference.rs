@@ -127,22 +127,26 @@ impl AnalyticSphere {
     /// inside the highlight, per pixel of a `size × size` image, rows from the top. With `k = 1`
     /// it is the pixel-centre classification; with large `k` the true area coverage.
     pub fn coverage(&self, highlight: &PreparedExpr, size: u32, k: u32) -> Vec<f32> {
-        let k = k.max(1);
+        let samples = k.max(1) * k.max(1);
         (0..size * size)
             .into_par_iter()
-            .map(|i| {
-                let (px, py) = ((i % size) as f32, (i / size) as f32);
-                let hits = (0..k * k)
-                    .filter(|s| {
-                        let sx = px + ((s % k) as f32 + 0.5) / k as f32;
-                        let sy = py + ((s / k) as f32 + 0.5) / k as f32;
-                        self.hit(size, sx, sy)
-                            .is_some_and(|p| self.inside(highlight, p))
-                    })
-                    .count();
-                hits as f32 / (k * k) as f32
-            })
+            .map(|i| self.sample_counts(highlight, size, i, k).1 as f32 / samples as f32)
             .collect()
+    }
+
+    /// Of the `k × k` samples of pixel `i` (at `((i + ½)/k, (j + ½)/k)` within it) of a
+    /// `size × size` image: how many hit the sphere, and how many of those lie in `highlight`.
+    fn sample_counts(&self, highlight: &PreparedExpr, size: u32, i: u32, k: u32) -> (u32, u32) {
+        let k = k.max(1);
+        let (px, py) = ((i % size) as f32, (i / size) as f32);
+        (0..k * k).fold((0, 0), |(sphere, inside), s| {
+            let sx = px + ((s % k) as f32 + 0.5) / k as f32;
+            let sy = py + ((s / k) as f32 + 0.5) / k as f32;
+            match self.hit(size, sx, sy) {
+                Some(p) => (sphere + 1, inside + u32::from(self.inside(highlight, p))),
+                None => (sphere, inside),
+            }
+        })
     }
 
     /// The fraction of each pixel of a `size × size` image covered by the sphere (its
@@ -151,18 +155,7 @@ impl AnalyticSphere {
     /// neighbour's, is sampled again `refined × refined` times, so that the boundary pixels,
     /// where the measures are decided, carry the finer estimate.
     pub fn mattes(&self, highlight: &PreparedExpr, size: u32, k: u32, refined: u32) -> Mattes {
-        let count = |i: u32, k: u32| -> (u32, u32) {
-            let k = k.max(1);
-            let (px, py) = ((i % size) as f32, (i / size) as f32);
-            (0..k * k).fold((0, 0), |(sphere, inside), s| {
-                let sx = px + ((s % k) as f32 + 0.5) / k as f32;
-                let sy = py + ((s / k) as f32 + 0.5) / k as f32;
-                match self.hit(size, sx, sy) {
-                    Some(p) => (sphere + 1, inside + u32::from(self.inside(highlight, p))),
-                    None => (sphere, inside),
-                }
-            })
-        };
+        let count = |i: u32, k: u32| self.sample_counts(highlight, size, i, k);
         let coarse: Vec<(u32, u32)> = (0..size * size)
             .into_par_iter()
             .map(|i| count(i, k))
