@@ -6,19 +6,28 @@ use glam::DVec3;
 use super::surface::NurbsSurface;
 
 /// The most Newton steps [`NurbsSurface::try_refine_on_ray`] takes; from a tessellated start
-/// it converges in two or three.
-pub const REFINE_STEPS: usize = 4;
+/// it converges in one to three, more where the ray grazes the surface.
+pub const REFINE_STEPS: usize = 8;
+
+/// The residual, relative to the distance along the ray, at which a point counts as on it:
+/// 10⁻⁷ rad, far below any pixel.
+const ON_RAY: f64 = 1e-7;
+
+/// Halvings of a Newton step that does not bring the point nearer the ray before giving up.
+const HALVINGS: usize = 6;
 
 impl NurbsSurface {
     /// `(u, v)` near `start` whose surface point lies on the ray `origin + t direction`, by
-    /// Newton steps; `None` where the steps cannot go on (the caller keeps its start).
+    /// damped Newton steps; `None` where the steps cannot go on (the caller keeps its start).
     ///
     /// With `e1, e2` orthonormal and across the ray, the residual `f = ((S − o)·e1, (S − o)·e2)`
     /// has the Jacobian `J = [[Su·e1, Sv·e1], [Su·e2, Sv·e2]]`; each step solves `J Δ = f` and
-    /// sets `(u, v) −= Δ`, clamped to the domain. Stops when the step is below 1e-12, and after
-    /// [`REFINE_STEPS`] steps returns where it got to. `None` when the direction is zero, J is
-    /// singular or not finite, or a step is longer than a tenth of the domain (the ray passes
-    /// the surface elsewhere, or misses it).
+    /// moves `(u, v) −= t Δ`, clamped to the domain, with `t = 1, ½, ¼, …` the first that makes
+    /// `|f|` smaller (up to 6 halvings): where the ray grazes the surface, J is nearly singular
+    /// and the full step overshoots. Stops once `|f| ≤ 10⁻⁷ |S − o|`, and after [`REFINE_STEPS`]
+    /// steps, or when no halving helps (the ray passes beside the surface), returns the nearest
+    /// point it found. `None` when the direction is zero, J is singular or not finite, or a
+    /// step is longer than a tenth of the domain (the ray passes the surface elsewhere).
     #[must_use]
     pub fn try_refine_on_ray(
         &self,
@@ -30,11 +39,18 @@ impl NurbsSurface {
         let d = direction.try_normalize()?;
         let (e1, e2) = d.any_orthonormal_pair();
         let reach = 0.1 * (domain.u.1 - domain.u.0).max(domain.v.1 - domain.v.0);
+        let residual = |point: DVec3| {
+            let r = point - origin;
+            (r.dot(e1), r.dot(e2), r.length())
+        };
         let (mut u, mut v) = start;
+        let mut s = self.derivs(u, v, 1);
+        let (mut f1, mut f2, mut distance) = residual(s.point);
         for _ in 0..REFINE_STEPS {
-            let s = self.derivs(u, v, 1);
-            let r = s.point - origin;
-            let (f1, f2) = (r.dot(e1), r.dot(e2));
+            let error = f1.hypot(f2);
+            if error <= ON_RAY * distance {
+                break;
+            }
             let (a, b, c, e) = (s.su.dot(e1), s.sv.dot(e1), s.su.dot(e2), s.sv.dot(e2));
             let det = a * e - b * c;
             if det.abs() <= 1e-300 || !det.is_finite() {
@@ -45,11 +61,23 @@ impl NurbsSurface {
             if length > reach || !length.is_finite() {
                 return None;
             }
-            u = (u - step_u).clamp(domain.u.0, domain.u.1);
-            v = (v - step_v).clamp(domain.v.0, domain.v.1);
-            if step_u.abs() + step_v.abs() < 1e-12 {
-                return Some((u, v));
+            let mut t = 1.0;
+            let mut better = None;
+            for _ in 0..=HALVINGS {
+                let nu = (u - t * step_u).clamp(domain.u.0, domain.u.1);
+                let nv = (v - t * step_v).clamp(domain.v.0, domain.v.1);
+                let ns = self.derivs(nu, nv, 1);
+                let (g1, g2, g_distance) = residual(ns.point);
+                if g1.hypot(g2) < error {
+                    better = Some((nu, nv, ns, g1, g2, g_distance));
+                    break;
+                }
+                t *= 0.5;
             }
+            let Some((nu, nv, ns, g1, g2, g_distance)) = better else {
+                break;
+            };
+            (u, v, s, f1, f2, distance) = (nu, nv, ns, g1, g2, g_distance);
         }
         Some((u, v))
     }

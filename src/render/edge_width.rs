@@ -13,7 +13,14 @@ use crate::highlight::{Footprint, PreparedLayer};
 /// the largest `|∂s/∂x|` and `|∂s/∂y|` ([`Footprint::HARD`] without one). The derivatives are
 /// central differences `(s₊ − s₋)/2` between the neighbours on the same patch, exact for the
 /// nearly quadratic `s` about a highlight's centre; one-sided where a neighbour is on another
-/// patch or off the image, and 0 where both are.
+/// patch or off the image, and 0 where both are. Where the slope changes by more than itself
+/// from one side to the other, `|s₊ + s₋ − 2s| > |s₊ − s₋|/2`, `s` is not near enough to a
+/// straight edge for the box coverage to hold and the footprint is 0 along that axis (a hard
+/// edge, as without anti-aliasing). Across a silhouette (a neighbour inside the
+/// image that no surface covers) the footprint is 0 along that axis: there the surface turns
+/// away within the pixel, `s` is far from linear, and a straight edge fitted to it would put
+/// highlight where the surface ends — the edge is left hard, for the silhouette's own
+/// anti-aliasing (supersampling) to smooth.
 pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<Footprint> {
     let half_vectors: Vec<Option<Vec3>> = gbuffer
         .texels
@@ -68,6 +75,10 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<Footprint> {
                 (slot != EMPTY && gbuffer.texels[slot as usize].patch == t.patch)
                     .then_some(slot as usize)
             };
+            // A neighbour inside the image that no surface covers: the texel is on a silhouette.
+            let empty = |pixel: Option<usize>| pixel.is_some_and(|p| gbuffer.slot[p] == EMPTY);
+            let silhouette_x = empty((x > 0).then(|| i - 1)) || empty((x + 1 < w).then(|| i + 1));
+            let silhouette_y = empty((y > 0).then(|| i - w)) || empty((y + 1 < h).then(|| i + w));
             let (left, right) = (
                 same_patch((x > 0).then(|| i - 1)),
                 same_patch((x + 1 < w).then(|| i + 1)),
@@ -82,14 +93,29 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<Footprint> {
                     let s = at(k);
                     let derivative =
                         |before: Option<usize>, after: Option<usize>| match (before, after) {
-                            (Some(b), Some(a)) => 0.5 * (at(a) - at(b)).abs(),
+                            (Some(b), Some(a)) => {
+                                let (ahead, behind) = (at(a) - s, s - at(b));
+                                let central = 0.5 * (ahead + behind);
+                                if (ahead - behind).abs() > central.abs() {
+                                    0.0
+                                } else {
+                                    central.abs()
+                                }
+                            }
                             (None, Some(a)) => (at(a) - s).abs(),
                             (Some(b), None) => (s - at(b)).abs(),
                             (None, None) => 0.0,
                         };
+                    let across = |silhouette: bool, before, after| {
+                        if silhouette {
+                            0.0
+                        } else {
+                            derivative(before, after)
+                        }
+                    };
                     Footprint {
-                        x: derivative(left, right),
-                        y: derivative(up, down),
+                        x: across(silhouette_x, left, right),
+                        y: across(silhouette_y, up, down),
                     }
                 })
                 .fold(Footprint::HARD, Footprint::max)

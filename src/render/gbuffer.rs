@@ -81,7 +81,8 @@ impl GBuffer {
     /// Fills the G-buffer from the visibility buffer of `mesh`, reusing its memory. Frames come
     /// from the mesh's vertex frames, or from the patch itself at the pixel's (u, v)
     /// ([`FrameMode::Exact`]), or at (u, v) moved so the surface point lies on the pixel's ray
-    /// ([`FrameMode::Refined`]), the pixel's ray cast from `camera`. With `edges`, what the
+    /// ([`FrameMode::Refined`]), the pixel's ray cast through `view_projection` (the camera's,
+    /// or a window of it: [`Window`](super::window::Window)). With `edges`, what the
     /// outline pass compares is filled into it too, one per texel, while each texel is at hand.
     /// Returns the number of frames evaluated on the patches.
     ///
@@ -93,6 +94,7 @@ impl GBuffer {
         mesh: &Mesh,
         library: &PatchLibrary,
         camera: &Camera,
+        view_projection: Mat4,
         mode: FrameMode,
         mut edges: Option<&mut Vec<EdgeSurface>>,
     ) -> u64 {
@@ -122,13 +124,12 @@ impl GBuffer {
             blocks.push((first as u32, texels, edges));
             (rest, rest_edges, first) = (tail, edges_tail, first + count);
         }
-        let aspect = visibility.width as f32 / visibility.height as f32;
         let fill = Fill {
             visibility,
             mesh,
             library,
             camera,
-            inverse_view_projection: camera.view_projection(aspect).inverse(),
+            inverse_view_projection: view_projection.inverse(),
             mode,
             edges: fills_edges.then(|| (camera.eye, camera.forward())),
         };
@@ -167,6 +168,29 @@ impl GBuffer {
                 }
             })
             .collect()
+    }
+
+    /// Keeps the texels `keep` marks (one flag per texel, with their edge surfaces in `edges`
+    /// when given) and empties the pixels of the others; texels stay in pixel order.
+    pub(super) fn retain(&mut self, keep: &[bool], mut edges: Option<&mut Vec<EdgeSurface>>) {
+        let mut kept = 0;
+        for k in 0..self.texels.len() {
+            let t = self.texels[k];
+            if keep[k] {
+                self.texels[kept] = t;
+                if let Some(edges) = edges.as_deref_mut() {
+                    edges[kept] = edges[k];
+                }
+                self.slot[t.pixel as usize] = kept as u32;
+                kept += 1;
+            } else {
+                self.slot[t.pixel as usize] = EMPTY;
+            }
+        }
+        self.texels.truncate(kept);
+        if let Some(edges) = edges {
+            edges.truncate(kept);
+        }
     }
 
     /// The texel at pixel index `pixel`, if a surface covers it.
@@ -220,6 +244,13 @@ impl Fill<'_> {
             mesh.positions[i2],
         );
         let frame = match self.mode {
+            // The mesh's normal, kept until the exact frame replaces it: refined frames compare
+            // the side of the surface they land on with the side the mesh shows.
+            FrameMode::Refined => TangentFrame::new(
+                Vec3::X,
+                Vec3::Y,
+                interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]),
+            ),
             FrameMode::Interpolated => facing_frame(
                 interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]),
                 interpolate(
@@ -230,7 +261,7 @@ impl Fill<'_> {
                 ),
                 self.camera.eye_direction(position),
             ),
-            FrameMode::Exact | FrameMode::Refined => UNFILLED.frame,
+            FrameMode::Exact => UNFILLED.frame,
         };
         Texel {
             pixel: i as u32,
@@ -261,18 +292,21 @@ impl Fill<'_> {
             scratch.frames.resize(run.len(), NO_FRAME);
             surface.frames(&scratch.params, &mut scratch.frames);
             for ((t, f), &(u, v)) in run.iter_mut().zip(&scratch.frames).zip(&scratch.params) {
+                let (mut f, mut uv) = (*f, (u, v));
                 if refined {
-                    t.uv = Vec2::new(u as f32, v as f32);
+                    if let Some((front, at)) = self.front_sheet(surface, t, &f, uv) {
+                        (f, uv) = (front, at);
+                    }
+                    t.uv = Vec2::new(uv.0 as f32, uv.1 as f32);
                     t.position = f.point.as_vec3();
                 }
-                t.frame = facing_patch_frame(f, self.camera.eye_direction(t.position));
+                t.frame = facing_patch_frame(&f, self.camera.eye_direction(t.position));
             }
         }
     }
 
-    /// (u, v) near `start` whose surface point lies on the ray through the centre of pixel
-    /// `pixel` ([`NurbsSurface::try_refine_on_ray`]), or `start` where it finds none.
-    fn on_ray(&self, surface: &NurbsSurface, pixel: u32, start: (f64, f64)) -> (f64, f64) {
+    /// The pixel's ray through its centre, `(origin, direction)` from the near plane to the far.
+    fn ray(&self, pixel: u32) -> (DVec3, DVec3) {
         let (width, height) = (self.visibility.width, self.visibility.height);
         let (x, y) = ((pixel % width) as f32 + 0.5, (pixel / width) as f32 + 0.5);
         let ndc = Vec2::new(2.0 * x / width as f32 - 1.0, 1.0 - 2.0 * y / height as f32);
@@ -282,9 +316,51 @@ impl Fill<'_> {
                 .as_dvec3()
         };
         let (near, far) = (unproject(0.0), unproject(1.0));
+        (near, far - near)
+    }
+
+    /// (u, v) near `start` whose surface point lies on the ray through the centre of pixel
+    /// `pixel` ([`NurbsSurface::try_refine_on_ray`]), or `start` where it finds none.
+    fn on_ray(&self, surface: &NurbsSurface, pixel: u32, start: (f64, f64)) -> (f64, f64) {
+        let (origin, direction) = self.ray(pixel);
         surface
-            .try_refine_on_ray(start, near, far - near)
+            .try_refine_on_ray(start, origin, direction)
             .unwrap_or(start)
+    }
+
+    /// Where a ray grazes a surface it crosses it twice, close together, and the mesh point
+    /// lies between the crossings; Newton steps from it may land on the far one. When the
+    /// refined frame `f` at `refined` faces away from the eye while the mesh `t` (still holding
+    /// its interpolated (u, v), position and normal) faces it, this refines again from the
+    /// start mirrored through the mesh's (u, v), `2 start − refined`, and returns that frame and
+    /// (u, v) if it faces the eye and lies nearer along the ray. `None` keeps `f`.
+    fn front_sheet(
+        &self,
+        surface: &NurbsSurface,
+        t: &Texel,
+        f: &Frame,
+        refined: (f64, f64),
+    ) -> Option<(Frame, (f64, f64))> {
+        let eye = self.camera.eye.as_dvec3();
+        let mesh_faces = t.frame.n.dot(self.camera.eye_direction(t.position)) > 0.0;
+        if !mesh_faces || f.normal.dot(eye - f.point) >= 0.0 {
+            return None;
+        }
+        let start = (f64::from(t.uv.x), f64::from(t.uv.y));
+        let mirrored = (2.0 * start.0 - refined.0, 2.0 * start.1 - refined.1);
+        let domain = surface.domain();
+        let mirrored = (
+            mirrored.0.clamp(domain.u.0, domain.u.1),
+            mirrored.1.clamp(domain.v.0, domain.v.1),
+        );
+        let (origin, direction) = self.ray(t.pixel);
+        let at = surface.try_refine_on_ray(mirrored, origin, direction)?;
+        let front = surface.frame(at.0, at.1);
+        let d = direction.normalize();
+        let off_ray = (front.point - origin).reject_from_normalized(d).length();
+        let nearer = (front.point - origin).dot(d) < (f.point - origin).dot(d);
+        let on_ray = off_ray <= 1e-6 * (front.point - origin).length();
+        (front.normal.dot(eye - front.point) > 0.0 && nearer && on_ray).then_some((front, at))
     }
 }
 

@@ -1,13 +1,15 @@
 //! Rendering: a [`Scene`] to a [`RenderedFrame`], stage by stage as the [`Plan`] decides.
 //!
 //! ```text
-//! Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ Shade ▸ Outline ▸ Aov ▸ Resolve
+//! Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ Shade ▸ Outline ▸ Supersample ▸ Aov
+//! ▸ Resolve
 //! ```
 //!
 //! A stage the scene does not use does not run, and [`RenderStats`] shows it. Writing the
 //! images to files is not rendering: see [`crate::formats`].
 
 pub mod camera;
+mod contrast;
 mod directions;
 mod edge_width;
 mod facing;
@@ -22,9 +24,11 @@ mod shade;
 mod stage;
 mod stats;
 mod surface_key;
+mod supersample;
 mod surface_point;
 pub mod tessellate;
 mod visibility_shade;
+mod window;
 mod xtoon_tone;
 
 pub use camera::{Camera, Projection};

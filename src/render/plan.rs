@@ -42,8 +42,9 @@ impl Plan {
     /// - the X-Toon detail runs as a stage of its own only when some patch's designed highlight
     ///   is evaluated in its X-Toon tone's abstracted frame (the highlights then need every
     ///   abstracted frame before they start);
-    /// - edge widths only under analytic anti-aliasing on a frame with highlights;
-    /// - outlines and AOVs when the scene asks for them, the resolve under supersampling.
+    /// - edge widths only under analytic or adaptive anti-aliasing on a frame with highlights;
+    /// - outlines and AOVs when the scene asks for them, the resolve under supersampling, and
+    ///   the supersampling of the pixels that need it under adaptive anti-aliasing.
     #[must_use]
     pub fn new(scene: &Scene, settings: &Settings) -> Self {
         let highlights = scene.looks.iter().any(|look| look.highlight.is_some());
@@ -64,12 +65,17 @@ impl Plan {
             Surfaces::Texels
         };
         let texels = surfaces == Surfaces::Texels;
+        let analytic = match settings.antialias {
+            Antialias::Analytic | Antialias::Adaptive(_) => true,
+            Antialias::None | Antialias::Supersample(_) => false,
+        };
         let runs = Stage::ALL.map(|stage| match stage {
             Stage::Tessellate | Stage::Rasterize | Stage::Shade => true,
             Stage::GBuffer => texels,
             Stage::Detail => texels && abstracted_highlights,
-            Stage::EdgeWidths => texels && highlights && settings.antialias == Antialias::Analytic,
+            Stage::EdgeWidths => texels && highlights && analytic,
             Stage::Outline => outlines,
+            Stage::Supersample => matches!(settings.antialias, Antialias::Adaptive(_)),
             Stage::Aov => aovs,
             Stage::Resolve => settings.samples_per_side() > 1,
         });
@@ -88,8 +94,8 @@ impl Plan {
     ///   light) depend on nothing else;
     /// - the X-Toon detail reads the tone's parameters and the light, the edge widths the
     ///   highlight's layers, and the shade stage both; the outlines draw over the shaded colour
-    ///   in the outline colour; the matte and `N·H` AOVs come from the shade stage, and the
-    ///   resolve averages its colour.
+    ///   in the outline colour; the supersampled pixels are chosen by their shaded colour; the
+    ///   matte and `N·H` AOVs come from the shade stage, and the resolve averages its colour.
     #[must_use]
     pub const fn depends_on_surfaces_only(stage: Stage) -> bool {
         match stage {
@@ -98,6 +104,7 @@ impl Plan {
             | Stage::EdgeWidths
             | Stage::Shade
             | Stage::Outline
+            | Stage::Supersample
             | Stage::Aov
             | Stage::Resolve => false,
         }

@@ -15,7 +15,8 @@ use super::outline::{draw_outlines, OutlineBuffers};
 use super::plan::{Plan, Surfaces};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
-use super::settings::Settings;
+use super::settings::{Antialias, FrameMode, Settings};
+use super::supersample;
 use super::shade::{shade, ShadeBuffers, Shaded};
 use super::stage::Stage;
 use super::stats::{timed, RenderStats};
@@ -269,7 +270,15 @@ impl Stages {
                 if plan.runs(Stage::GBuffer) {
                     let edges = plan.runs(Stage::Outline).then_some(&mut outlining.surfaces);
                     fill_gbuffer(
-                        gbuffer, visibility, mesh, library, scene, settings, edges, &mut stats,
+                        gbuffer,
+                        visibility,
+                        mesh,
+                        library,
+                        scene,
+                        settings,
+                        frame.view_projection,
+                        edges,
+                        &mut stats,
                     );
                 }
                 *kept = Some(KeptSurfaces { key, covered });
@@ -316,6 +325,27 @@ impl Stages {
                 outlining,
                 &mut stats,
             );
+        }
+        if let (true, Antialias::Adaptive(k)) = (plan.runs(Stage::Supersample), settings.antialias)
+        {
+            let input = supersample::Frame {
+                library,
+                scene,
+                mesh,
+                clip,
+                view_projection: frame.view_projection,
+                frames: settings.frames,
+                k,
+                image: frame.samples,
+                detail: plan.uses(Stage::Detail),
+                widths: plan.uses(Stage::EdgeWidths),
+            };
+            let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
+            stats.record(Stage::Supersample, done.pixels, seconds);
+            stats.exact_frames += match settings.frames {
+                FrameMode::Interpolated => 0,
+                FrameMode::Exact | FrameMode::Refined => done.frames,
+            };
         }
         let aovs = if plan.runs(Stage::Aov) {
             aov(scene, gbuffer, &mut shaded, settings, &frame, &mut stats)
@@ -415,6 +445,7 @@ fn fill_gbuffer(
     library: &PatchLibrary,
     scene: &Scene,
     settings: &Settings,
+    view_projection: Mat4,
     edges: Option<&mut Vec<super::outline::EdgeSurface>>,
     stats: &mut RenderStats,
 ) {
@@ -424,6 +455,7 @@ fn fill_gbuffer(
             mesh,
             library,
             &scene.camera,
+            view_projection,
             settings.frames,
             edges,
         )

@@ -10,7 +10,7 @@ macro_rules! stages {
         /// A stage of the pipeline ([`Plan`](super::Plan) decides which run).
         ///
         /// ```text
-        /// Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ Shade ▸ Outline ▸ Aov ▸ Resolve
+        /// Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ Shade ▸ Outline ▸ Supersample ▸ Aov ▸ Resolve
         /// ```
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
         pub enum Stage {
@@ -25,7 +25,7 @@ macro_rules! stages {
             pub const ALL: [Stage; Stage::COUNT] = [$(Stage::$stage),*];
 
             /// The stage's name in statistics: `tessellate`, `rasterize`, `gbuffer`, `detail`,
-            /// `edge_widths`, `shade`, `outline`, `aov`, `resolve`.
+            /// `edge_widths`, `shade`, `outline`, `supersample`, `aov`, `resolve`.
             #[must_use]
             pub const fn name(self) -> &'static str {
                 match self {
@@ -54,6 +54,9 @@ stages! {
     Shade => "shade",
     /// Ink lines where the G-buffer is discontinuous.
     Outline => "outline",
+    /// Under adaptive anti-aliasing, the pixels whose colour differs from a neighbour's drawn
+    /// again at K × K samples, tile by tile, and averaged.
+    Supersample => "supersample",
     /// The extra images a shot asked for.
     Aov => "aov",
     /// Samples averaged into pixels under supersampling.

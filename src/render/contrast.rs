@@ -1,0 +1,86 @@
+//! The pixels of a one-sample image that more samples could change: those whose colour differs
+//! from a neighbour's.
+
+use glam::Vec4;
+use rayon::prelude::*;
+
+/// The largest difference in any channel of premultiplied colour (or of the highlight matte)
+/// between a pixel and a neighbour that still counts as the same colour: half a step of an
+/// 8-bit image.
+pub const CONTRAST: f32 = 0.5 / 255.0;
+
+/// Per pixel of a `width × height` image, whether it or one of its eight neighbours differs from
+/// it by more than [`CONTRAST`] in premultiplied `colour` (straight alpha in, so that coverage
+/// counts) or in `matte`.
+///
+/// A cel-shaded image is flat between edges, so this finds every edge a pixel centre on either
+/// side of it sees: silhouettes (alpha), occlusion and patch edges where the tone differs,
+/// highlight and tone-band edges, lines. A straight edge that crosses a pixel passes between its
+/// centre and a neighbour's centre across it — the diagonal one where it only cuts a corner —
+/// so both are marked. What lies wholly between the centres of neighbouring pixels (a feature
+/// thinner than a pixel) is seen only where it changes a centre's colour.
+#[must_use]
+pub fn pixels_to_supersample(
+    colour: &[Vec4],
+    matte: Option<&[f32]>,
+    width: u32,
+    height: u32,
+) -> Vec<bool> {
+    let (w, h) = (width as usize, height as usize);
+    let premultiplied: Vec<Vec4> = colour
+        .par_iter()
+        .map(|c| (c.truncate() * c.w).extend(c.w))
+        .collect();
+    let differs = |a: usize, b: usize| {
+        (premultiplied[a] - premultiplied[b]).abs().max_element() > CONTRAST
+            || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST)
+    };
+    (0..w * h)
+        .into_par_iter()
+        .with_min_len(1024)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            let ys = y.saturating_sub(1)..=(y + 1).min(h - 1);
+            ys.flat_map(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).map(move |nx| (nx, ny)))
+                .any(|(nx, ny)| differs(i, ny * w + nx))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_edge_marks_the_pixels_on_both_sides_and_nothing_else() {
+        // A 6 × 4 image, red on the left three columns, blue on the right three.
+        let (w, h) = (6u32, 4u32);
+        let colour: Vec<Vec4> = (0..w * h)
+            .map(|i| if i % w < 3 { Vec4::new(1.0, 0.0, 0.0, 1.0) } else { Vec4::new(0.0, 0.0, 1.0, 1.0) })
+            .collect();
+        let marked = pixels_to_supersample(&colour, None, w, h);
+        for (i, &m) in marked.iter().enumerate() {
+            let x = i as u32 % w;
+            assert_eq!(m, x == 2 || x == 3, "pixel {i}");
+        }
+    }
+
+    #[test]
+    fn alpha_and_the_matte_count_and_a_diagonal_neighbour_counts() {
+        let (w, h) = (3u32, 3u32);
+        // One covered pixel in the corner: all four pixels around the corner are marked.
+        let mut colour = vec![Vec4::ZERO; 9];
+        colour[0] = Vec4::new(0.0, 0.0, 0.0, 1.0);
+        let marked = pixels_to_supersample(&colour, None, w, h);
+        assert_eq!(marked, [true, true, false, true, true, false, false, false, false]);
+        // The same colour everywhere but a highlight matte in the last pixel.
+        let colour = vec![Vec4::ONE; 9];
+        let mut matte = vec![0.0; 9];
+        matte[8] = 0.5;
+        let marked = pixels_to_supersample(&colour, Some(&matte), w, h);
+        assert_eq!(marked, [false, false, false, false, true, true, false, true, true]);
+        // Below the contrast, nothing.
+        matte[8] = CONTRAST * 0.9;
+        assert!(!pixels_to_supersample(&colour, Some(&matte), w, h).contains(&true));
+    }
+}

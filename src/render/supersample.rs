@@ -1,0 +1,450 @@
+//! [`Stage::Supersample`](super::Stage::Supersample): the pixels of a one-sample frame that more
+//! samples could change, drawn again at K × K samples a tile at a time and averaged into it.
+
+use glam::{Mat4, Vec4};
+use rayon::prelude::*;
+
+use super::contrast::pixels_to_supersample;
+use super::gbuffer::{GBuffer, EMPTY};
+use super::outline::{draw_outlines, OutlineBuffers};
+use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
+use super::scene::{Outlines, Scene};
+use super::settings::FrameMode;
+use super::shade::{shade, ShadeBuffers, Shaded};
+use super::tessellate::Mesh;
+use super::window::Window;
+use super::xtoon_tone::{self, Views};
+use crate::geom::PatchLibrary;
+
+/// Side of a tile in output pixels. A tile's samples, with its apron, are all a worker holds:
+/// at 8 × 8 samples, 256 × 256 samples plus the apron.
+pub const TILE: u32 = 32;
+
+/// What the stage needs of the frame.
+pub(super) struct Frame<'a> {
+    pub library: &'a PatchLibrary,
+    pub scene: &'a Scene<'a>,
+    pub mesh: &'a Mesh,
+    /// The mesh's vertices in the image's clip space.
+    pub clip: &'a [Vec4],
+    pub view_projection: Mat4,
+    pub frames: FrameMode,
+    /// Samples per pixel side.
+    pub k: u32,
+    /// The image in pixels.
+    pub image: Viewport,
+    /// Whether the X-Toon detail runs ahead of shading, and edge widths are taken.
+    pub detail: bool,
+    pub widths: bool,
+}
+
+/// What the stage did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(super) struct Done {
+    /// Pixels drawn again at K × K samples.
+    pub pixels: u64,
+    /// NURBS frames evaluated for their samples (and the tiles' aprons).
+    pub frames: u64,
+}
+
+/// One pixel's average over its samples.
+struct Resolved {
+    pixel: u32,
+    colour: Vec4,
+    matte: f32,
+    n_dot_h: f32,
+}
+
+/// Draws again, at `frame.k × frame.k` samples, each pixel of `shaded` (a one-sample image of
+/// `frame.image`'s size) whose colour or matte differs from a neighbour's
+/// ([`pixels_to_supersample`]), and puts there the average of its samples: premultiplied colour
+/// `α = mean(α_s)`, `rgb = mean(α_s rgb_s)/α`, and the mean matte and `N·H`.
+///
+/// The marked pixels are gathered in [`TILE`]-pixel tiles. Each tile is a [`Window`] of the
+/// supersampled image with an apron around it wide enough for the central differences of the
+/// edge widths and for the outlines; only the triangles whose bounds reach the window are
+/// rasterized into it, and only the samples of marked pixels and those within the apron of them
+/// are kept: their G-buffer, detail, edge widths, shading and outlines are those of the whole
+/// supersampled image at those samples. Memory is one tile per worker.
+pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
+    let (w, h) = (frame.image.width, frame.image.height);
+    let marked = pixels_to_supersample(&shaded.colour, shaded.matte.as_deref(), w, h);
+    let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
+    let mut tile_marked = vec![false; (tiles_x * tiles_y) as usize];
+    for (i, _) in marked.iter().enumerate().filter(|(_, &m)| m) {
+        let (x, y) = (i as u32 % w, i as u32 / w);
+        tile_marked[((y / TILE) * tiles_x + x / TILE) as usize] = true;
+    }
+    let pixels = marked.iter().filter(|&&m| m).count() as u64;
+    if pixels == 0 {
+        return Done::default();
+    }
+    let apron = apron(frame.scene.outlines.as_ref(), frame.k);
+    let bins = bin_triangles(frame, &tile_marked, (tiles_x, tiles_y), apron);
+    let views = xtoon_tone::views(frame.scene);
+    let tiles: Vec<(u32, &Vec<u32>)> = (0..tiles_x * tiles_y)
+        .zip(&bins)
+        .filter(|&(t, _)| tile_marked[t as usize])
+        .collect();
+    let results: Vec<(Vec<Resolved>, u64)> = tiles
+        .into_par_iter()
+        .map_init(TileBuffers::default, |buffers, (t, bin)| {
+            let (tx, ty) = (t % tiles_x, t / tiles_x);
+            buffers.draw(frame, &views, &marked, (tx, ty), apron, bin)
+        })
+        .collect();
+    let mut frames = 0;
+    for (resolved, tile_frames) in results {
+        frames += tile_frames;
+        for r in resolved {
+            let p = r.pixel as usize;
+            shaded.colour[p] = r.colour;
+            if let Some(matte) = shaded.matte.as_mut() {
+                matte[p] = r.matte;
+            }
+            if let Some(n_dot_h) = shaded.n_dot_h.as_mut() {
+                n_dot_h[p] = r.n_dot_h;
+            }
+        }
+    }
+    Done { pixels, frames }
+}
+
+/// Samples around a tile that its samples' results depend on: one for the central differences
+/// of the edge widths and the outlines' neighbour tests, and with outlines the reach of a line
+/// `width × k` samples wide, plus the one its depth test looks past.
+fn apron(outlines: Option<&Outlines>, k: u32) -> u32 {
+    match outlines {
+        None => 1,
+        Some(o) => {
+            let radius = ((o.width * k as f32).max(1.0) - 1.0) * 0.5;
+            radius.ceil() as u32 + 2
+        }
+    }
+}
+
+/// Per tile of the `tiles` grid that is marked, the triangles whose screen bounds reach its
+/// window (with `apron`), in mesh order; empty for the others. A triangle with a vertex at or
+/// behind the eye goes to every marked tile (the rasterizer clips it).
+fn bin_triangles(
+    frame: &Frame,
+    marked: &[bool],
+    (tiles_x, tiles_y): (u32, u32),
+    apron: u32,
+) -> Vec<Vec<u32>> {
+    let side = (TILE * frame.k) as f32;
+    let (sw, sh) = (
+        (frame.image.width * frame.k) as f32,
+        (frame.image.height * frame.k) as f32,
+    );
+    let a = apron as f32;
+    let ranges: Vec<Option<[u32; 4]>> = frame
+        .mesh
+        .triangles
+        .par_iter()
+        .with_min_len(4096)
+        .map(|tri| {
+            let c = tri.map(|v| frame.clip.get(v as usize).copied().unwrap_or(Vec4::NAN));
+            if c.iter().any(|c| !c.is_finite()) {
+                return None;
+            }
+            if c.iter().any(|c| c.w <= 1e-6) {
+                return Some([0, tiles_x - 1, 0, tiles_y - 1]);
+            }
+            let xs = c.map(|c| (c.x / c.w + 1.0) * 0.5 * sw);
+            let ys = c.map(|c| (1.0 - c.y / c.w) * 0.5 * sh);
+            let (x0, x1) = (xs[0].min(xs[1]).min(xs[2]), xs[0].max(xs[1]).max(xs[2]));
+            let (y0, y1) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
+            if x1 + a < 0.0 || y1 + a < 0.0 || x0 - a > sw || y0 - a > sh {
+                return None;
+            }
+            let tile = |v: f32, most: u32| ((v / side).floor().max(0.0) as u32).min(most - 1);
+            Some([
+                tile(x0 - a, tiles_x),
+                tile(x1 + a, tiles_x),
+                tile(y0 - a, tiles_y),
+                tile(y1 + a, tiles_y),
+            ])
+        })
+        .collect();
+    let mut bins = vec![Vec::new(); marked.len()];
+    for (t, range) in ranges.iter().enumerate() {
+        let Some([tx0, tx1, ty0, ty1]) = *range else {
+            continue;
+        };
+        for ty in ty0..=ty1 {
+            for tx in tx0..=tx1 {
+                let i = (ty * tiles_x + tx) as usize;
+                if marked[i] {
+                    bins[i].push(t as u32);
+                }
+            }
+        }
+    }
+    bins
+}
+
+/// A worker's memory for drawing one tile after another.
+#[derive(Default)]
+struct TileBuffers {
+    vertices: Vec<u32>,
+    clip: Vec<Vec4>,
+    triangles: Vec<[u32; 3]>,
+    rasterizer: Rasterizer,
+    visibility: VisibilityBuffer,
+    gbuffer: GBuffer,
+    shading: ShadeBuffers,
+    outlining: OutlineBuffers,
+    /// Per sample of the window, whether it is drawn on.
+    drawn: Vec<bool>,
+    /// Per sample of the window, whether [`grow`] covered it.
+    grown: Vec<bool>,
+}
+
+/// Rings of samples grown outward from the mesh's coverage under refined frames.
+const GROWN_RINGS: usize = 2;
+
+/// How far, in samples, a grown sample's refined surface point may project from the sample's
+/// centre and still count as a hit.
+const HIT_SAMPLES: f32 = 0.05;
+
+/// Covers, [`GROWN_RINGS`] times, each drawn empty sample beside a covered one with that
+/// neighbour's triangle and barycentrics, and marks it in `grown` (one flag per sample).
+///
+/// A tessellated surface's silhouette is a polygon of chords, inside the true one on a convex
+/// outline by up to the tessellation's sag. Refined frames move each sample's (u, v) onto its
+/// ray, so a sample just outside the mesh, started from its neighbour's (u, v), lands on the
+/// surface if its ray hits it there; [`TileBuffers::grown_hits`] keeps those and drops the rest.
+fn grow(visibility: &mut VisibilityBuffer, drawn: &[bool], grown: &mut Vec<bool>) {
+    let (w, h) = (visibility.width as usize, visibility.height as usize);
+    grown.clear();
+    grown.resize(w * h, false);
+    let mut ring = Vec::new();
+    for _ in 0..GROWN_RINGS {
+        ring.clear();
+        for i in 0..w * h {
+            if !drawn[i] || visibility.triangle[i] != EMPTY {
+                continue;
+            }
+            let (x, y) = (i % w, i / w);
+            let neighbour = (y.saturating_sub(1)..=(y + 1).min(h - 1))
+                .flat_map(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).map(move |nx| ny * w + nx))
+                .find(|&j| visibility.triangle[j] != EMPTY);
+            if let Some(j) = neighbour {
+                ring.push((i, j));
+            }
+        }
+        for &(i, j) in &ring {
+            visibility.triangle[i] = visibility.triangle[j];
+            visibility.barycentric[i] = visibility.barycentric[j];
+            visibility.depth[i] = visibility.depth[j];
+            grown[i] = true;
+        }
+    }
+}
+
+impl TileBuffers {
+    /// Per texel, whether to keep it: every texel the mesh covers, and a grown one whose
+    /// refined surface point projects (through `to_screen`, the window's view-projection) within
+    /// [`HIT_SAMPLES`] of its sample's centre — its ray hits the surface — and whose depth is
+    /// then set from that point.
+    fn grown_hits(&mut self, to_screen: Mat4, width: u32) -> Vec<bool> {
+        let (w, h) = (width as f32, self.gbuffer.height as f32);
+        self.gbuffer
+            .texels
+            .iter_mut()
+            .map(|t| {
+                if !self.grown[t.pixel as usize] {
+                    return true;
+                }
+                let p = to_screen * t.position.extend(1.0);
+                let (x, y) = (
+                    (p.x / p.w + 1.0) * 0.5 * w,
+                    (1.0 - p.y / p.w) * 0.5 * h,
+                );
+                let centre = (
+                    (t.pixel % width) as f32 + 0.5,
+                    (t.pixel / width) as f32 + 0.5,
+                );
+                let hit = p.w > 0.0
+                    && (x - centre.0).abs() <= HIT_SAMPLES
+                    && (y - centre.1).abs() <= HIT_SAMPLES;
+                if hit {
+                    t.depth = p.z / p.w;
+                }
+                hit
+            })
+            .collect()
+    }
+
+    /// The marked pixels of tile `(tx, ty)` drawn at K × K samples from the triangles `bin`,
+    /// and the NURBS frames evaluated.
+    fn draw(
+        &mut self,
+        frame: &Frame,
+        views: &Views,
+        marked: &[bool],
+        (tx, ty): (u32, u32),
+        apron: u32,
+        bin: &[u32],
+    ) -> (Vec<Resolved>, u64) {
+        let (k, image) = (frame.k, frame.image);
+        let full = Viewport {
+            width: image.width * k,
+            height: image.height * k,
+        };
+        let (px0, py0) = (tx * TILE, ty * TILE);
+        let (px1, py1) = ((px0 + TILE).min(image.width), (py0 + TILE).min(image.height));
+        let (x0, y0) = ((px0 * k).saturating_sub(apron), (py0 * k).saturating_sub(apron));
+        let (x1, y1) = (
+            (px1 * k + apron).min(full.width),
+            (py1 * k + apron).min(full.height),
+        );
+        let window = Window {
+            x: x0,
+            y: y0,
+            width: x1 - x0,
+            height: y1 - y0,
+            full,
+        };
+        let to_window = window.clip_from_image();
+
+        // The tile's own vertex list: the bin's vertices, sorted, in the window's clip space.
+        let mesh = frame.mesh;
+        self.vertices.clear();
+        self.vertices
+            .extend(bin.iter().flat_map(|&t| mesh.triangles[t as usize]));
+        self.vertices.sort_unstable();
+        self.vertices.dedup();
+        self.clip.clear();
+        self.clip.extend(
+            self.vertices
+                .iter()
+                .map(|&v| to_window * frame.clip[v as usize]),
+        );
+        let local = |v: u32| self.vertices.binary_search(&v).unwrap_or(0) as u32;
+        self.triangles.clear();
+        self.triangles
+            .extend(bin.iter().map(|&t| mesh.triangles[t as usize].map(local)));
+        let options = RasterOptions {
+            threads: 0,
+            ..RasterOptions::default()
+        };
+        self.rasterizer.rasterize_into(
+            window.viewport(),
+            &self.clip,
+            &self.triangles,
+            &options,
+            &mut self.visibility,
+        );
+        // Only the samples of marked pixels, and those within the apron of them, are drawn on.
+        let near_marked = |i: usize| {
+            let (sx, sy) = (i as u32 % window.width + x0, i as u32 / window.width + y0);
+            let xs = sx.saturating_sub(apron) / k..=((sx + apron) / k).min(image.width - 1);
+            let ys = sy.saturating_sub(apron) / k..=((sy + apron) / k).min(image.height - 1);
+            ys.into_iter().any(|py| {
+                xs.clone()
+                    .any(|px| marked[(py * image.width + px) as usize])
+            })
+        };
+        self.drawn.clear();
+        self.drawn
+            .extend((0..self.visibility.triangle.len()).map(near_marked));
+        for (t, &drawn) in self.visibility.triangle.iter_mut().zip(&self.drawn) {
+            if *t != EMPTY {
+                *t = if drawn { bin[*t as usize] } else { EMPTY };
+            }
+        }
+        if frame.frames == FrameMode::Refined {
+            grow(&mut self.visibility, &self.drawn, &mut self.grown);
+        } else {
+            self.grown.clear();
+        }
+
+        let scene = frame.scene;
+        let edges = scene
+            .outlines
+            .is_some()
+            .then_some(&mut self.outlining.surfaces);
+        let frames = self.gbuffer.fill(
+            &self.visibility,
+            mesh,
+            frame.library,
+            &scene.camera,
+            to_window * frame.view_projection,
+            frame.frames,
+            edges,
+        );
+        if !self.grown.is_empty() {
+            let to_screen = to_window * frame.view_projection;
+            let keep = self.grown_hits(to_screen, window.width);
+            let edges = scene
+                .outlines
+                .is_some()
+                .then_some(&mut self.outlining.surfaces);
+            self.gbuffer.retain(&keep, edges);
+        }
+        let ahead = frame
+            .detail
+            .then(|| xtoon_tone::run_ahead(&self.gbuffer, scene, views));
+        let gbuffer = ahead.as_ref().map_or(&self.gbuffer, |a| &a.gbuffer);
+        let widths = frame
+            .widths
+            .then(|| super::edge_width::edge_widths(gbuffer, scene));
+        let tones = ahead.as_ref().map(|a| a.tones.as_slice());
+        let mut samples = shade(
+            gbuffer,
+            scene,
+            views,
+            tones,
+            widths.as_deref(),
+            &mut self.shading,
+        );
+        if let Some(outlines) = &scene.outlines {
+            let scaled = Outlines {
+                width: outlines.width * k as f32,
+                ..*outlines
+            };
+            draw_outlines(
+                &self.gbuffer,
+                &scaled,
+                &mut samples.colour,
+                &mut self.outlining,
+            );
+        }
+
+        let weight = 1.0 / (k * k) as f32;
+        let mut resolved = Vec::new();
+        for py in py0..py1 {
+            for px in px0..px1 {
+                let pixel = py * image.width + px;
+                if !marked[pixel as usize] {
+                    continue;
+                }
+                let (mut colour, mut matte, mut n_dot_h) = (Vec4::ZERO, 0.0, 0.0);
+                for sy in 0..k {
+                    for sx in 0..k {
+                        let (x, y) = (px * k + sx - x0, py * k + sy - y0);
+                        let s = (y * window.width + x) as usize;
+                        let c = samples.colour[s];
+                        colour += (c.truncate() * c.w).extend(c.w);
+                        matte += samples.matte.as_ref().map_or(0.0, |m| m[s]);
+                        n_dot_h += samples.n_dot_h.as_ref().map_or(0.0, |n| n[s]);
+                    }
+                }
+                let colour = colour * weight;
+                resolved.push(Resolved {
+                    pixel,
+                    colour: if colour.w > 0.0 {
+                        (colour.truncate() / colour.w).extend(colour.w)
+                    } else {
+                        Vec4::ZERO
+                    },
+                    matte: matte * weight,
+                    n_dot_h: n_dot_h * weight,
+                });
+            }
+        }
+        (resolved, frames)
+    }
+}
