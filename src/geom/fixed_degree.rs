@@ -110,7 +110,79 @@ fn nearest_end<const N: usize>(b: &FirstBasis<N>) -> usize {
 /// square roots and divisions of neighbouring frames overlap in the processor.
 const BATCH: usize = 32;
 
+/// First derivatives of one surface of degrees 1 to 3 in each direction, one parameter after
+/// another, keeping the span's net while the parameters stay in it.
+pub(super) struct FixedDerivs(Fixed);
+
+/// [`FixedDerivs`] for each pair of degrees.
+enum Fixed {
+    D11(LocalNet<2, 2>),
+    D12(LocalNet<2, 3>),
+    D13(LocalNet<2, 4>),
+    D21(LocalNet<3, 2>),
+    D22(LocalNet<3, 3>),
+    D23(LocalNet<3, 4>),
+    D31(LocalNet<4, 2>),
+    D32(LocalNet<4, 3>),
+    D33(LocalNet<4, 4>),
+}
+
+impl FixedDerivs {
+    /// The point and first derivatives at (u, v) of `surface`, the surface this was made for.
+    pub(super) fn at(&mut self, surface: &NurbsSurface, u: f64, v: f64) -> SurfaceDerivs {
+        match &mut self.0 {
+            Fixed::D11(net) => net.derivs_at(surface, u, v),
+            Fixed::D12(net) => net.derivs_at(surface, u, v),
+            Fixed::D13(net) => net.derivs_at(surface, u, v),
+            Fixed::D21(net) => net.derivs_at(surface, u, v),
+            Fixed::D22(net) => net.derivs_at(surface, u, v),
+            Fixed::D23(net) => net.derivs_at(surface, u, v),
+            Fixed::D31(net) => net.derivs_at(surface, u, v),
+            Fixed::D32(net) => net.derivs_at(surface, u, v),
+            Fixed::D33(net) => net.derivs_at(surface, u, v),
+        }
+    }
+}
+
+impl<const NU: usize, const NV: usize> LocalNet<NU, NV> {
+    /// The point and first derivatives at (u, v), loading the span's net if it is not loaded.
+    #[inline(always)]
+    fn derivs_at(&mut self, surface: &NurbsSurface, u: f64, v: f64) -> SurfaceDerivs {
+        let bu = surface.knots_u().first_basis::<NU>(u);
+        let bv = surface.knots_v().first_basis::<NV>(v);
+        let first = (bu.span + 1 - NU, bv.span + 1 - NV);
+        let key = (
+            first,
+            (first.0 + nearest_end(&bu), first.1 + nearest_end(&bv)),
+        );
+        self.load(surface, key);
+        if surface.is_rational() {
+            self.rational_derivs(&bu, &bv)
+        } else {
+            self.polynomial_derivs(&bu, &bv)
+        }
+    }
+}
+
 impl NurbsSurface {
+    /// The fixed-degree evaluation of this surface's first derivatives, for degrees 1 to 3 in
+    /// each direction; `None` for any other.
+    pub(super) fn fixed_derivs(&self) -> Option<FixedDerivs> {
+        let fixed = match (self.knots_u().degree(), self.knots_v().degree()) {
+            (1, 1) => Fixed::D11(LocalNet::new()),
+            (1, 2) => Fixed::D12(LocalNet::new()),
+            (1, 3) => Fixed::D13(LocalNet::new()),
+            (2, 1) => Fixed::D21(LocalNet::new()),
+            (2, 2) => Fixed::D22(LocalNet::new()),
+            (2, 3) => Fixed::D23(LocalNet::new()),
+            (3, 1) => Fixed::D31(LocalNet::new()),
+            (3, 2) => Fixed::D32(LocalNet::new()),
+            (3, 3) => Fixed::D33(LocalNet::new()),
+            _ => return None,
+        };
+        Some(FixedDerivs(fixed))
+    }
+
     /// [`frames`](Self::frames) for degrees `NU − 1` along u and `NV − 1` along v. Where the
     /// regular frame does not exist (a collapsed edge), the general evaluation takes over.
     pub(super) fn frames_fixed<const NU: usize, const NV: usize>(

@@ -3,7 +3,8 @@
 
 use glam::DVec3;
 
-use super::surface::NurbsSurface;
+use super::surface::{NurbsSurface, SurfaceDerivs};
+use super::Frame;
 
 /// The most Newton steps [`NurbsSurface::try_refine_on_ray`] takes; from a tessellated start
 /// it converges in one to three, more where the ray grazes the surface.
@@ -23,11 +24,11 @@ impl NurbsSurface {
     /// With `e1, e2` orthonormal and across the ray, the residual `f = ((S − o)·e1, (S − o)·e2)`
     /// has the Jacobian `J = [[Su·e1, Sv·e1], [Su·e2, Sv·e2]]`; each step solves `J Δ = f` and
     /// moves `(u, v) −= t Δ`, clamped to the domain, with `t = 1, ½, ¼, …` the first that makes
-    /// `|f|` smaller (up to 6 halvings): where the ray grazes the surface, J is nearly singular
-    /// and the full step overshoots. Stops once `|f| ≤ 10⁻⁷ |S − o|`, and after [`REFINE_STEPS`]
-    /// steps, or when no halving helps (the ray passes beside the surface), returns the nearest
-    /// point it found. `None` when the direction is zero, J is singular or not finite, or a
-    /// step is longer than a tenth of the domain (the ray passes the surface elsewhere).
+    /// `|f|` smaller (up to 6 halvings), and no step longer than a tenth of the domain: where
+    /// the ray grazes the surface, J is nearly singular and the full step overshoots. Stops once
+    /// `|f| ≤ 10⁻⁷ |S − o|`, and after [`REFINE_STEPS`] steps, or when no halving helps (the ray
+    /// passes beside the surface), returns the nearest point it found. `None` when the
+    /// direction is zero or J is singular or not finite.
     #[must_use]
     pub fn try_refine_on_ray(
         &self,
@@ -35,52 +36,111 @@ impl NurbsSurface {
         origin: DVec3,
         direction: DVec3,
     ) -> Option<(f64, f64)> {
-        let domain = self.domain();
-        let d = direction.try_normalize()?;
-        let (e1, e2) = d.any_orthonormal_pair();
-        let reach = 0.1 * (domain.u.1 - domain.u.0).max(domain.v.1 - domain.v.0);
-        let residual = |point: DVec3| {
-            let r = point - origin;
-            (r.dot(e1), r.dot(e2), r.length())
-        };
-        let (mut u, mut v) = start;
-        let mut s = self.derivs(u, v, 1);
-        let (mut f1, mut f2, mut distance) = residual(s.point);
-        for _ in 0..REFINE_STEPS {
-            let error = f1.hypot(f2);
-            if error <= ON_RAY * distance {
-                break;
-            }
-            let (a, b, c, e) = (s.su.dot(e1), s.sv.dot(e1), s.su.dot(e2), s.sv.dot(e2));
-            let det = a * e - b * c;
-            if det.abs() <= 1e-300 || !det.is_finite() {
-                return None;
-            }
-            let (step_u, step_v) = ((e * f1 - b * f2) / det, (a * f2 - c * f1) / det);
-            let length = step_u.abs() + step_v.abs();
-            if length > reach || !length.is_finite() {
-                return None;
-            }
-            let mut t = 1.0;
-            let mut better = None;
-            for _ in 0..=HALVINGS {
-                let nu = (u - t * step_u).clamp(domain.u.0, domain.u.1);
-                let nv = (v - t * step_v).clamp(domain.v.0, domain.v.1);
-                let ns = self.derivs(nu, nv, 1);
-                let (g1, g2, g_distance) = residual(ns.point);
-                if g1.hypot(g2) < error {
-                    better = Some((nu, nv, ns, g1, g2, g_distance));
-                    break;
-                }
-                t *= 0.5;
-            }
-            let Some((nu, nv, ns, g1, g2, g_distance)) = better else {
-                break;
-            };
-            (u, v, s, f1, f2, distance) = (nu, nv, ns, g1, g2, g_distance);
-        }
-        Some((u, v))
+        newton_on_ray(self, start, origin, direction, |u, v| self.derivs(u, v, 1)).1
     }
+
+    /// Frames at the points where rays meet the surface: for each `k`, [`try_refine_on_ray`]
+    /// from `starts[k]` along `rays[k] = (origin, direction)`, with `params[k]` set to the
+    /// (u, v) found (or the start where there is none) and `frames[k]` to the frame there, as
+    /// [`frames`](Self::frames) gives it.
+    ///
+    /// The frame comes from the derivatives of the last Newton step, so a refined frame costs
+    /// the steps alone; degrees 1 to 3 take their derivatives from the fixed-degree evaluation.
+    ///
+    /// [`try_refine_on_ray`]: Self::try_refine_on_ray
+    ///
+    /// # Panics
+    /// If the slices differ in length.
+    pub fn frames_on_rays(
+        &self,
+        starts: &[(f64, f64)],
+        rays: &[(DVec3, DVec3)],
+        params: &mut [(f64, f64)],
+        frames: &mut [Frame],
+    ) {
+        assert!(
+            starts.len() == rays.len() && rays.len() == params.len() && params.len() == frames.len(),
+            "one ray, parameter and frame per start"
+        );
+        let domain = self.domain();
+        let mut each = |derivs: &mut dyn FnMut(f64, f64) -> SurfaceDerivs| {
+            for (((&start, &(origin, direction)), param), frame) in
+                starts.iter().zip(rays).zip(params.iter_mut()).zip(frames.iter_mut())
+            {
+                let (d, refined) = newton_on_ray(self, start, origin, direction, &mut *derivs);
+                let (u, v) = refined.unwrap_or(start);
+                let d = if refined.is_some() { d } else { derivs(u, v) };
+                *param = (u, v);
+                *frame = Frame::from_derivs(&d, u, v, &domain)
+                    .filter(|f| !f.degenerate)
+                    .unwrap_or_else(|| self.frame_general(u, v));
+            }
+        };
+        match self.fixed_derivs() {
+            Some(mut fixed) => each(&mut |u, v| fixed.at(self, u, v)),
+            None => each(&mut |u, v| self.derivs(u, v, 1)),
+        }
+    }
+}
+
+/// [`NurbsSurface::try_refine_on_ray`] with first derivatives from `derivs`: the (u, v) found,
+/// or `None`, and the derivatives at the (u, v) returned (at the start when `None`, or when the
+/// direction is zero, nothing evaluated: default derivatives).
+fn newton_on_ray(
+    surface: &NurbsSurface,
+    start: (f64, f64),
+    origin: DVec3,
+    direction: DVec3,
+    mut derivs: impl FnMut(f64, f64) -> SurfaceDerivs,
+) -> (SurfaceDerivs, Option<(f64, f64)>) {
+    let domain = surface.domain();
+    let Some(d) = direction.try_normalize() else {
+        return (SurfaceDerivs::default(), None);
+    };
+    let (e1, e2) = d.any_orthonormal_pair();
+    let reach = 0.1 * (domain.u.1 - domain.u.0).max(domain.v.1 - domain.v.0);
+    let residual = |point: DVec3| {
+        let r = point - origin;
+        let (f1, f2) = (r.dot(e1), r.dot(e2));
+        (f1, f2, (f1 * f1 + f2 * f2).sqrt(), r.length())
+    };
+    let (mut u, mut v) = start;
+    let mut s = derivs(u, v);
+    let (mut f1, mut f2, mut error, mut distance) = residual(s.point);
+    for _ in 0..REFINE_STEPS {
+        if error <= ON_RAY * distance {
+            break;
+        }
+        let (a, b, c, e) = (s.su.dot(e1), s.sv.dot(e1), s.su.dot(e2), s.sv.dot(e2));
+        let det = a * e - b * c;
+        if det.abs() <= 1e-300 || !det.is_finite() {
+            return (s, None);
+        }
+        let (step_u, step_v) = ((e * f1 - b * f2) / det, (a * f2 - c * f1) / det);
+        let length = step_u.abs() + step_v.abs();
+        if !length.is_finite() {
+            return (s, None);
+        }
+        let mut t = (reach / length).min(1.0);
+        let mut better = None;
+        for _ in 0..=HALVINGS {
+            let nu = (u - t * step_u).clamp(domain.u.0, domain.u.1);
+            let nv = (v - t * step_v).clamp(domain.v.0, domain.v.1);
+            let ns = derivs(nu, nv);
+            let (g1, g2, g_error, g_distance) = residual(ns.point);
+            if g_error < error {
+                better = Some((nu, nv, ns, (g1, g2, g_error, g_distance)));
+                break;
+            }
+            t *= 0.5;
+        }
+        let Some((nu, nv, ns, g)) = better else {
+            break;
+        };
+        (u, v, s) = (nu, nv, ns);
+        (f1, f2, error, distance) = g;
+    }
+    (s, Some((u, v)))
 }
 
 #[cfg(test)]
@@ -95,13 +155,72 @@ mod tests {
         let (u, v) = sphere
             .try_refine_on_ray((0.31, 0.59), origin, target - origin)
             .unwrap();
-        assert!(
-            (u - 0.3).abs() < 1e-10 && (v - 0.6).abs() < 1e-10,
-            "({u}, {v})"
-        );
-        // A ray that misses the surface nearby, and no ray at all.
+        // Stopped once the point is within 10⁻⁷ of the distance from the ray.
+        let p = sphere.point(u, v);
+        let off = (p - origin).reject_from(target - origin).length();
+        assert!(off <= 1e-7 * (p - origin).length(), "{off}");
+        assert!((u - 0.3).abs() < 1e-6 && (v - 0.6).abs() < 1e-6, "({u}, {v})");
+        // A ray that misses the surface nearby: the nearest point found is off it. No ray at all.
         let start = (0.31, 0.59);
-        assert_eq!(sphere.try_refine_on_ray(start, origin, DVec3::Z), None);
+        let (u, v) = sphere.try_refine_on_ray(start, origin, DVec3::Z).unwrap();
+        let off = (sphere.point(u, v) - origin).reject_from(DVec3::Z).length();
+        assert!(off > 0.1, "{off}");
         assert_eq!(sphere.try_refine_on_ray(start, origin, DVec3::ZERO), None);
+    }
+
+    #[test]
+    fn frames_on_rays_are_the_frames_at_the_refined_parameters() {
+        let sphere = crate::geom::shapes::sphere(DVec3::new(0.1, 0.2, -0.3), 1.3).unwrap();
+        let origin = DVec3::new(0.4, -6.0, 0.9);
+        let targets = [(0.3, 0.6), (0.05, 0.5), (0.7, 0.92), (0.5, 0.2)];
+        let starts: Vec<(f64, f64)> = targets.iter().map(|&(u, v)| (u + 0.01, v - 0.008)).collect();
+        let rays: Vec<(DVec3, DVec3)> = targets
+            .iter()
+            .map(|&(u, v)| (origin, sphere.point(u, v) - origin))
+            .collect();
+        let mut params = vec![(0.0, 0.0); 4];
+        let mut frames = vec![sphere.frame(0.0, 0.0); 4];
+        sphere.frames_on_rays(&starts, &rays, &mut params, &mut frames);
+        for k in 0..4 {
+            let alone = sphere.try_refine_on_ray(starts[k], rays[k].0, rays[k].1);
+            assert_eq!(Some(params[k]), alone, "ray {k}");
+            let direct = sphere.frame(params[k].0, params[k].1);
+            assert!((frames[k].point - direct.point).length() < 1e-12, "ray {k}");
+            assert!((frames[k].normal - direct.normal).length() < 1e-12, "ray {k}");
+            assert!((frames[k].du - direct.du).length() < 1e-12, "ray {k}");
+        }
+    }
+
+    #[test]
+    fn a_grazing_ray_is_met_from_a_chord_of_the_silhouette() {
+        // A unit sphere seen from far along −y; the ray passes 0.995 from the centre, crossing
+        // the surface where the normal is 84° from the line of sight (away from the seam at +x).
+        let sphere = crate::geom::shapes::sphere(DVec3::ZERO, 1.0).unwrap();
+        let origin = DVec3::new(-0.995, -50.0, 0.0);
+        let direction = DVec3::Y;
+        // Start from the middle of a chord between two points of the silhouette circle's
+        // neighbourhood: the (u, v) halfway between the front crossing and the limb.
+        let front = DVec3::new(-0.995, -(1.0f64 - 0.995 * 0.995).sqrt(), 0.0);
+        let limb = DVec3::new(-1.0, 0.0, 0.0);
+        let near = |p: DVec3| {
+            let mut best = (f64::INFINITY, (0.0, 0.0));
+            for i in 0..=400 {
+                for j in 0..=400 {
+                    let uv = (f64::from(i) / 400.0, f64::from(j) / 400.0);
+                    let d = (sphere.point(uv.0, uv.1) - p).length();
+                    if d < best.0 {
+                        best = (d, uv);
+                    }
+                }
+            }
+            best.1
+        };
+        let (a, b) = (near(front), near(limb));
+        let start = ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0);
+        let (u, v) = sphere.try_refine_on_ray(start, origin, direction).unwrap();
+        let p = sphere.point(u, v);
+        let off = (p - origin).reject_from(direction).length();
+        assert!(off <= 1e-7 * (p - origin).length(), "{off} at {p}");
+        assert!((p - front).length() < 1e-4, "{p}: not the near crossing");
     }
 }

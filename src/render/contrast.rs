@@ -35,16 +35,26 @@ pub fn pixels_to_supersample(
         (premultiplied[a] - premultiplied[b]).abs().max_element() > CONTRAST
             || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST)
     };
-    (0..w * h)
-        .into_par_iter()
-        .with_min_len(1024)
-        .map(|i| {
-            let (x, y) = (i % w, i / w);
-            let ys = y.saturating_sub(1)..=(y + 1).min(h - 1);
-            ys.flat_map(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).map(move |nx| (nx, ny)))
-                .any(|(nx, ny)| differs(i, ny * w + nx))
-        })
-        .collect()
+    let mut marked = vec![false; w * h];
+    marked
+        .par_chunks_mut(w)
+        .enumerate()
+        .for_each(|(y, row)| {
+            let (y0, y1) = (y.saturating_sub(1), (y + 1).min(h - 1));
+            for (x, mark) in row.iter_mut().enumerate() {
+                let (x0, x1) = (x.saturating_sub(1), (x + 1).min(w - 1));
+                let i = y * w + x;
+                'around: for ny in y0..=y1 {
+                    for nx in x0..=x1 {
+                        if differs(i, ny * w + nx) {
+                            *mark = true;
+                            break 'around;
+                        }
+                    }
+                }
+            }
+        });
+    marked
 }
 
 #[cfg(test)]

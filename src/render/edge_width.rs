@@ -13,10 +13,12 @@ use crate::highlight::{Footprint, PreparedLayer};
 /// the largest `|∂s/∂x|` and `|∂s/∂y|` ([`Footprint::HARD`] without one). The derivatives are
 /// central differences `(s₊ − s₋)/2` between the neighbours on the same patch, exact for the
 /// nearly quadratic `s` about a highlight's centre; one-sided where a neighbour is on another
-/// patch or off the image, and 0 where both are. Where the slope changes by more than itself
-/// from one side to the other, `|s₊ + s₋ − 2s| > |s₊ − s₋|/2`, `s` is not near enough to a
-/// straight edge for the box coverage to hold and the footprint is 0 along that axis (a hard
-/// edge, as without anti-aliasing). Across a silhouette (a neighbour inside the
+/// patch or off the image, and 0 where both are. Where `s` peaks or dips at the texel (the two
+/// one-sided slopes differ in sign) the larger slope is taken, so that a highlight narrower
+/// than the spacing of pixels still covers some of the pixel nearest it. Where the slope grows
+/// by more than itself from one side to the other, `|s₊ + s₋ − 2s| > |s₊ − s₋|/2`, `s` is not
+/// near enough to a straight edge for the box coverage to hold and the footprint is 0 along
+/// that axis (a hard edge, as without anti-aliasing). Across a silhouette (a neighbour inside the
 /// image that no surface covers) the footprint is 0 along that axis: there the surface turns
 /// away within the pixel, `s` is far from linear, and a straight edge fitted to it would put
 /// highlight where the surface ends — the edge is left hard, for the silhouette's own
@@ -96,7 +98,9 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<Footprint> {
                             (Some(b), Some(a)) => {
                                 let (ahead, behind) = (at(a) - s, s - at(b));
                                 let central = 0.5 * (ahead + behind);
-                                if (ahead - behind).abs() > central.abs() {
+                                if ahead * behind <= 0.0 {
+                                    ahead.abs().max(behind.abs())
+                                } else if (ahead - behind).abs() > central.abs() {
                                     0.0
                                 } else {
                                     central.abs()

@@ -73,6 +73,8 @@ struct Fill<'a> {
 /// Per-job scratch for evaluating a run of frames on one patch.
 #[derive(Default)]
 struct FrameScratch {
+    starts: Vec<(f64, f64)>,
+    rays: Vec<(DVec3, DVec3)>,
     params: Vec<(f64, f64)>,
     frames: Vec<Frame>,
 }
@@ -280,17 +282,25 @@ impl Fill<'_> {
         let refined = self.mode == FrameMode::Refined;
         for run in texels.chunk_by_mut(|a, b| a.patch == b.patch) {
             let surface = &self.library.patches[run[0].patch as usize].surface;
-            scratch.params.clear();
-            scratch.params.extend(run.iter().map(|t| {
-                let uv = (f64::from(t.uv.x), f64::from(t.uv.y));
-                if refined {
-                    self.on_ray(surface, t.pixel, uv)
-                } else {
-                    uv
-                }
-            }));
+            scratch.starts.clear();
+            scratch
+                .starts
+                .extend(run.iter().map(|t| (f64::from(t.uv.x), f64::from(t.uv.y))));
+            scratch.params.resize(run.len(), (0.0, 0.0));
             scratch.frames.resize(run.len(), NO_FRAME);
-            surface.frames(&scratch.params, &mut scratch.frames);
+            if refined {
+                scratch.rays.clear();
+                scratch.rays.extend(run.iter().map(|t| self.ray(t.pixel)));
+                surface.frames_on_rays(
+                    &scratch.starts,
+                    &scratch.rays,
+                    &mut scratch.params,
+                    &mut scratch.frames,
+                );
+            } else {
+                scratch.params.copy_from_slice(&scratch.starts);
+                surface.frames(&scratch.params, &mut scratch.frames);
+            }
             for ((t, f), &(u, v)) in run.iter_mut().zip(&scratch.frames).zip(&scratch.params) {
                 let (mut f, mut uv) = (*f, (u, v));
                 if refined {
@@ -317,15 +327,6 @@ impl Fill<'_> {
         };
         let (near, far) = (unproject(0.0), unproject(1.0));
         (near, far - near)
-    }
-
-    /// (u, v) near `start` whose surface point lies on the ray through the centre of pixel
-    /// `pixel` ([`NurbsSurface::try_refine_on_ray`]), or `start` where it finds none.
-    fn on_ray(&self, surface: &NurbsSurface, pixel: u32, start: (f64, f64)) -> (f64, f64) {
-        let (origin, direction) = self.ray(pixel);
-        surface
-            .try_refine_on_ray(start, origin, direction)
-            .unwrap_or(start)
     }
 
     /// Where a ray grazes a surface it crosses it twice, close together, and the mesh point

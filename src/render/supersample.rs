@@ -338,18 +338,29 @@ impl TileBuffers {
             &mut self.visibility,
         );
         // Only the samples of marked pixels, and those within the apron of them, are drawn on.
-        let near_marked = |i: usize| {
-            let (sx, sy) = (i as u32 % window.width + x0, i as u32 / window.width + y0);
-            let xs = sx.saturating_sub(apron) / k..=((sx + apron) / k).min(image.width - 1);
-            let ys = sy.saturating_sub(apron) / k..=((sy + apron) / k).min(image.height - 1);
-            ys.into_iter().any(|py| {
-                xs.clone()
-                    .any(|px| marked[(py * image.width + px) as usize])
-            })
-        };
+        let (ww, wh) = (window.width, window.height);
         self.drawn.clear();
-        self.drawn
-            .extend((0..self.visibility.triangle.len()).map(near_marked));
+        self.drawn.resize((ww * wh) as usize, false);
+        for y in 0..wh {
+            let sy = y + y0;
+            let (py0, py1) = (
+                sy.saturating_sub(apron) / k,
+                ((sy + apron) / k).min(image.height - 1),
+            );
+            for x in 0..ww {
+                let sx = x + x0;
+                let (px0, px1) = (
+                    sx.saturating_sub(apron) / k,
+                    ((sx + apron) / k).min(image.width - 1),
+                );
+                let mut near = false;
+                for py in py0..=py1 {
+                    let row = &marked[(py * image.width) as usize..];
+                    near |= row[px0 as usize..=px1 as usize].contains(&true);
+                }
+                self.drawn[(y * ww + x) as usize] = near;
+            }
+        }
         for (t, &drawn) in self.visibility.triangle.iter_mut().zip(&self.drawn) {
             if *t != EMPTY {
                 *t = if drawn { bin[*t as usize] } else { EMPTY };
