@@ -221,8 +221,7 @@ impl Sweep {
         let candidates = [
             rung(0.25, FrameMode::Exact, Antialias::Supersample(4)),
             rung(0.25, FrameMode::Refined, Antialias::Adaptive(4)),
-            rung(0.1, FrameMode::Refined, Antialias::Adaptive(4)),
-            rung(0.05, FrameMode::Refined, Antialias::Adaptive(4)),
+            rung(0.05, FrameMode::Refined, Antialias::Adaptive(3)),
             rung(0.05, FrameMode::Exact, Antialias::Adaptive(4)),
             rung(0.5, FrameMode::Refined, Antialias::Analytic),
         ];
