@@ -79,7 +79,12 @@ fn presets_only_measures_every_view_on_every_candidate_and_writes_one_table() {
     for row in &rows {
         for name in ["one_minus_iou", "silhouette_one_minus_iou"] {
             let value: f64 = row[column(name)].parse().unwrap();
-            assert!((0.0..1.0).contains(&value), "{name} = {value} in {row:?}");
+            assert!((0.0..=1.0).contains(&value), "{name} = {value} in {row:?}");
+            // One sample a pixel may miss a highlight smaller than a pixel (ε = 10⁻³ at 32²);
+            // `final` finds it.
+            if row[column("preset")] == "final" {
+                assert!(value < 1.0, "{name} = {value} in {row:?}");
+            }
         }
         let silhouette: f64 = row[column("silhouette_px")].parse().unwrap();
         assert!((0.0..4.0).contains(&silhouette), "{row:?}");

@@ -156,8 +156,13 @@ fn anti_aliasing_lowers_the_boundary_error() {
 
 /// Each rung on each of `cases`.
 fn measure_cases(cases: &[Case], rungs: Vec<Rung>) -> Vec<Measurement> {
+    measure_at(SIZE, cases, rungs)
+}
+
+/// Each rung on each of `cases` at `size` × `size`.
+fn measure_at(size: u32, cases: &[Case], rungs: Vec<Rung>) -> Vec<Measurement> {
     let sweep = Sweep {
-        sizes: vec![SIZE],
+        sizes: vec![size],
         cases: cases.to_vec(),
         rungs,
         repeats: 1,
@@ -253,5 +258,32 @@ fn analytic_edges_on_the_pixel_s_own_point_are_within_a_hundredth_of_a_pixel() {
             m.case,
             m.errors
         );
+    }
+}
+
+#[test]
+fn final_frames_hold_on_the_hard_views() {
+    // The preset's promise at 256²: soft IoU ≥ 0.995 of the highlight matte on every view of
+    // the hard ladder (here the hardest of each kind), and ≥ 0.999 of the silhouette's alpha.
+    let hard = [
+        (Pose::OffCentre { degrees: 70 }, Stack::Identity),
+        (Pose::OffCentre { degrees: 50 }, Stack::Square),
+        (Pose::Pole, Stack::Identity),
+        (Pose::WideAngle, Stack::Identity),
+        (Pose::Front, Stack::ThinCrescent),
+        (Pose::OffCentre { degrees: 30 }, Stack::Tiny),
+        (Pose::OffCentre { degrees: 30 }, Stack::Keyed { frame: 2.5 }),
+    ];
+    let cases: Vec<Case> = hard
+        .into_iter()
+        .map(|(pose, stack)| Case { pose, stack })
+        .collect();
+    let all = Case::all();
+    assert!(cases.iter().all(|c| all.contains(c)), "views of the ladder");
+    let final_quality = Rung::of(&glint::render::Settings::final_quality(1, 1));
+    for m in measure_at(256, &cases, vec![final_quality]) {
+        let e = m.errors;
+        assert!(e.one_minus_iou <= 0.005, "{}: {e:?}", m.case);
+        assert!(e.silhouette_one_minus_iou <= 0.001, "{}: {e:?}", m.case);
     }
 }

@@ -59,13 +59,18 @@ impl NurbsSurface {
         frames: &mut [Frame],
     ) {
         assert!(
-            starts.len() == rays.len() && rays.len() == params.len() && params.len() == frames.len(),
+            starts.len() == rays.len()
+                && rays.len() == params.len()
+                && params.len() == frames.len(),
             "one ray, parameter and frame per start"
         );
         let domain = self.domain();
         let mut each = |derivs: &mut dyn FnMut(f64, f64) -> SurfaceDerivs| {
-            for (((&start, &(origin, direction)), param), frame) in
-                starts.iter().zip(rays).zip(params.iter_mut()).zip(frames.iter_mut())
+            for (((&start, &(origin, direction)), param), frame) in starts
+                .iter()
+                .zip(rays)
+                .zip(params.iter_mut())
+                .zip(frames.iter_mut())
             {
                 let (d, refined) = newton_on_ray(self, start, origin, direction, &mut *derivs);
                 let (u, v) = refined.unwrap_or(start);
@@ -159,7 +164,10 @@ mod tests {
         let p = sphere.point(u, v);
         let off = (p - origin).reject_from(target - origin).length();
         assert!(off <= 1e-7 * (p - origin).length(), "{off}");
-        assert!((u - 0.3).abs() < 1e-6 && (v - 0.6).abs() < 1e-6, "({u}, {v})");
+        assert!(
+            (u - 0.3).abs() < 1e-6 && (v - 0.6).abs() < 1e-6,
+            "({u}, {v})"
+        );
         // A ray that misses the surface nearby: the nearest point found is off it. No ray at all.
         let start = (0.31, 0.59);
         let (u, v) = sphere.try_refine_on_ray(start, origin, DVec3::Z).unwrap();
@@ -173,7 +181,10 @@ mod tests {
         let sphere = crate::geom::shapes::sphere(DVec3::new(0.1, 0.2, -0.3), 1.3).unwrap();
         let origin = DVec3::new(0.4, -6.0, 0.9);
         let targets = [(0.3, 0.6), (0.05, 0.5), (0.7, 0.92), (0.5, 0.2)];
-        let starts: Vec<(f64, f64)> = targets.iter().map(|&(u, v)| (u + 0.01, v - 0.008)).collect();
+        let starts: Vec<(f64, f64)> = targets
+            .iter()
+            .map(|&(u, v)| (u + 0.01, v - 0.008))
+            .collect();
         let rays: Vec<(DVec3, DVec3)> = targets
             .iter()
             .map(|&(u, v)| (origin, sphere.point(u, v) - origin))
@@ -186,7 +197,10 @@ mod tests {
             assert_eq!(Some(params[k]), alone, "ray {k}");
             let direct = sphere.frame(params[k].0, params[k].1);
             assert!((frames[k].point - direct.point).length() < 1e-12, "ray {k}");
-            assert!((frames[k].normal - direct.normal).length() < 1e-12, "ray {k}");
+            assert!(
+                (frames[k].normal - direct.normal).length() < 1e-12,
+                "ray {k}"
+            );
             assert!((frames[k].du - direct.du).length() < 1e-12, "ray {k}");
         }
     }

@@ -1,13 +1,14 @@
 //! How much memory rendering a frame takes, estimated before rendering: what a farm task should
 //! request, and what the memory ceiling refuses.
 
-use crate::render::{FrameMode, Settings};
+use crate::render::{Antialias, FrameMode, Settings};
 
-/// Bytes held per sample while a frame renders (its G-buffer entry, visibility and shading, the
-/// resolved colour and the images written, shared out): with interpolated frames, measured as
-/// 80 B a pixel at `preview`; with exact or refined frames, which keep each sample's frame,
-/// 1.25 KB a pixel at `final` (4 × 4 samples, so about 80 B a sample; 150 B covers smaller
-/// frames, where the fixed costs weigh more) — the teapot turntable (README, farm section).
+/// Bytes held per sample of the whole-image buffers while a frame renders (its G-buffer entry,
+/// visibility and shading, the resolved colour and the images written, shared out): with
+/// interpolated frames, measured as 80 B a pixel at `preview`; with exact or refined frames,
+/// which keep each sample's frame, about 80 B a sample under 4 × 4 supersampling and 110 B a
+/// pixel at `final` (adaptive, one sample a pixel); 150 B covers smaller frames, where the
+/// fixed costs weigh more — the teapot turntable (README, farm section).
 fn bytes_per_sample(frames: FrameMode) -> u64 {
     match frames {
         FrameMode::Interpolated => 90,
@@ -23,9 +24,15 @@ const BYTES_PER_VERTEX: u64 = 200;
 /// What the process holds before the first frame: code, the model, its mesh.
 const BASE_BYTES: u64 = 64 << 20;
 
-/// The peak memory of rendering one frame with `settings` and a mesh of `vertices` vertices:
-/// `64 MiB + pixels × samples × (90 B interpolated, 150 B exact or refined)
-/// + vertices × 200 B`, an upper estimate from measured peaks (the README's farm table).
+/// What each worker holds while it supersamples a tile under adaptive anti-aliasing: a window
+/// of at most (32 · 8 + apron)² samples at about 250 B each at 8 × 8, rounded up; at 4 × 4 a
+/// quarter of it.
+const TILE_BYTES_PER_SAMPLE_SIDE: u64 = 1 << 20;
+
+/// The peak memory of rendering one frame with `settings` and a mesh of `vertices` vertices,
+/// an upper estimate from measured peaks (the README's farm table):
+/// `64 MiB + pixels × samples × (90 B interpolated, 150 B exact or refined) + vertices × 200 B`,
+/// and under adaptive anti-aliasing `K²` MiB more per worker thread for its tile.
 #[must_use]
 pub fn estimate_peak_bytes(settings: &Settings, vertices: u64) -> u64 {
     image_bytes(settings)
@@ -33,11 +40,21 @@ pub fn estimate_peak_bytes(settings: &Settings, vertices: u64) -> u64 {
         .saturating_add(vertices.saturating_mul(BYTES_PER_VERTEX))
 }
 
-/// The part of [`estimate_peak_bytes`] that grows with the image.
+/// The part of [`estimate_peak_bytes`] that grows with the image (and the workers' tiles).
 fn image_bytes(settings: &Settings) -> u64 {
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     let samples = u64::from(settings.samples_per_side()).pow(2);
-    pixels * samples * bytes_per_sample(settings.frames)
+    let tiles = match settings.antialias {
+        Antialias::None | Antialias::Analytic | Antialias::Supersample(_) => 0,
+        Antialias::Adaptive(k) => {
+            let workers = match settings.threads {
+                0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+                n => n,
+            };
+            u64::from(k).pow(2) * TILE_BYTES_PER_SAMPLE_SIDE * workers as u64
+        }
+    };
+    pixels * samples * bytes_per_sample(settings.frames) + tiles
 }
 
 /// The most vertices a mesh may have beside a frame of `settings` within `ceiling` bytes.
@@ -144,13 +161,18 @@ mod tests {
         let mesh = |n: u64| 32 * (n + 1) * (n + 1);
         for (settings, vertices, measured) in [
             (
-                Settings::final_quality(1920, 1080),
+                Settings {
+                    antialias: crate::render::Antialias::Supersample(4),
+                    ..Settings::final_quality(1920, 1080)
+                },
                 mesh(64),
                 2_600_000_000u64,
             ),
-            (Settings::final_quality(640, 360), mesh(64), 325_000_000),
-            (Settings::preview(1920, 1080), mesh(64), 170_000_000),
-            (Settings::preview(3840, 2160), mesh(64), 575_000_000),
+            (Settings::final_quality(640, 360), mesh(64), 125_000_000),
+            (Settings::final_quality(1920, 1080), mesh(64), 300_000_000),
+            (Settings::final_quality(3840, 2160), mesh(64), 815_000_000),
+            (Settings::preview(1920, 1080), mesh(64), 200_000_000),
+            (Settings::preview(3840, 2160), mesh(64), 665_000_000),
             (
                 dense(Settings::preview(64, 64), 256),
                 mesh(256),
@@ -184,6 +206,21 @@ mod tests {
         assert_eq!(
             max_mesh_vertices(&Settings::final_quality(4096, 4096), ceiling),
             0
+        );
+        // Adaptive samples take tiles per worker, not K² times the image.
+        let adaptive = |k, threads| Settings {
+            antialias: Antialias::Adaptive(k),
+            threads,
+            ..Settings::final_quality(1920, 1080)
+        };
+        let (four, eight) = (
+            estimate_peak_bytes(&adaptive(4, 2), 0),
+            estimate_peak_bytes(&adaptive(8, 2), 0),
+        );
+        assert_eq!(eight - four, 2 * (64 - 16) * TILE_BYTES_PER_SAMPLE_SIDE);
+        assert_eq!(
+            estimate_peak_bytes(&adaptive(4, 8), 0) - four,
+            6 * 16 * TILE_BYTES_PER_SAMPLE_SIDE
         );
     }
 

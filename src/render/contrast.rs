@@ -11,7 +11,7 @@ pub const CONTRAST: f32 = 0.5 / 255.0;
 
 /// Per pixel of a `width × height` image, whether it or one of its eight neighbours differs from
 /// it by more than [`CONTRAST`] in premultiplied `colour` (straight alpha in, so that coverage
-/// counts) or in `matte`.
+/// counts) or in `matte`; and every pixel `also` marks.
 ///
 /// A cel-shaded image is flat between edges, so this finds every edge a pixel centre on either
 /// side of it sees: silhouettes (alpha), occlusion and patch edges where the tone differs,
@@ -23,6 +23,7 @@ pub const CONTRAST: f32 = 0.5 / 255.0;
 pub fn pixels_to_supersample(
     colour: &[Vec4],
     matte: Option<&[f32]>,
+    also: Option<&[bool]>,
     width: u32,
     height: u32,
 ) -> Vec<bool> {
@@ -36,24 +37,25 @@ pub fn pixels_to_supersample(
             || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST)
     };
     let mut marked = vec![false; w * h];
-    marked
-        .par_chunks_mut(w)
-        .enumerate()
-        .for_each(|(y, row)| {
-            let (y0, y1) = (y.saturating_sub(1), (y + 1).min(h - 1));
-            for (x, mark) in row.iter_mut().enumerate() {
-                let (x0, x1) = (x.saturating_sub(1), (x + 1).min(w - 1));
-                let i = y * w + x;
-                'around: for ny in y0..=y1 {
-                    for nx in x0..=x1 {
-                        if differs(i, ny * w + nx) {
-                            *mark = true;
-                            break 'around;
-                        }
+    marked.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+        let (y0, y1) = (y.saturating_sub(1), (y + 1).min(h - 1));
+        for (x, mark) in row.iter_mut().enumerate() {
+            if also.is_some_and(|also| also[y * w + x]) {
+                *mark = true;
+                continue;
+            }
+            let (x0, x1) = (x.saturating_sub(1), (x + 1).min(w - 1));
+            let i = y * w + x;
+            'around: for ny in y0..=y1 {
+                for nx in x0..=x1 {
+                    if differs(i, ny * w + nx) {
+                        *mark = true;
+                        break 'around;
                     }
                 }
             }
-        });
+        }
+    });
     marked
 }
 
@@ -66,9 +68,15 @@ mod tests {
         // A 6 × 4 image, red on the left three columns, blue on the right three.
         let (w, h) = (6u32, 4u32);
         let colour: Vec<Vec4> = (0..w * h)
-            .map(|i| if i % w < 3 { Vec4::new(1.0, 0.0, 0.0, 1.0) } else { Vec4::new(0.0, 0.0, 1.0, 1.0) })
+            .map(|i| {
+                if i % w < 3 {
+                    Vec4::new(1.0, 0.0, 0.0, 1.0)
+                } else {
+                    Vec4::new(0.0, 0.0, 1.0, 1.0)
+                }
+            })
             .collect();
-        let marked = pixels_to_supersample(&colour, None, w, h);
+        let marked = pixels_to_supersample(&colour, None, None, w, h);
         for (i, &m) in marked.iter().enumerate() {
             let x = i as u32 % w;
             assert_eq!(m, x == 2 || x == 3, "pixel {i}");
@@ -81,16 +89,22 @@ mod tests {
         // One covered pixel in the corner: all four pixels around the corner are marked.
         let mut colour = vec![Vec4::ZERO; 9];
         colour[0] = Vec4::new(0.0, 0.0, 0.0, 1.0);
-        let marked = pixels_to_supersample(&colour, None, w, h);
-        assert_eq!(marked, [true, true, false, true, true, false, false, false, false]);
+        let marked = pixels_to_supersample(&colour, None, None, w, h);
+        assert_eq!(
+            marked,
+            [true, true, false, true, true, false, false, false, false]
+        );
         // The same colour everywhere but a highlight matte in the last pixel.
         let colour = vec![Vec4::ONE; 9];
         let mut matte = vec![0.0; 9];
         matte[8] = 0.5;
-        let marked = pixels_to_supersample(&colour, Some(&matte), w, h);
-        assert_eq!(marked, [false, false, false, false, true, true, false, true, true]);
+        let marked = pixels_to_supersample(&colour, Some(&matte), None, w, h);
+        assert_eq!(
+            marked,
+            [false, false, false, false, true, true, false, true, true]
+        );
         // Below the contrast, nothing.
         matte[8] = CONTRAST * 0.9;
-        assert!(!pixels_to_supersample(&colour, Some(&matte), w, h).contains(&true));
+        assert!(!pixels_to_supersample(&colour, Some(&matte), None, w, h).contains(&true));
     }
 }

@@ -9,21 +9,27 @@ use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
 use super::scene::Scene;
 use crate::highlight::{Footprint, PreparedLayer};
 
+/// What the edge-width stage finds per texel.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(super) struct EdgeWidths {
+    /// The footprint the box coverage of each highlight edge takes.
+    pub footprints: Vec<Footprint>,
+    /// Whether some layer's `s` may change sign within the pixel ([`straddles_zero`]): a
+    /// highlight edge may cross it though no neighbour's colour shows it.
+    pub straddles: Vec<bool>,
+}
+
+/// At a peak or dip of `s`, the most one one-sided slope may exceed the other by and still be
+/// taken for a smooth extremum rather than a jump (an occlusion within a patch).
+const PEAK_RATIO: f32 = 4.0;
+
 /// Per texel, the footprint of the signed value `s` over the layers of its patch's highlight,
-/// the largest `|∂s/∂x|` and `|∂s/∂y|` ([`Footprint::HARD`] without one). The derivatives are
-/// central differences `(s₊ − s₋)/2` between the neighbours on the same patch, exact for the
-/// nearly quadratic `s` about a highlight's centre; one-sided where a neighbour is on another
-/// patch or off the image, and 0 where both are. Where `s` peaks or dips at the texel (the two
-/// one-sided slopes differ in sign) the larger slope is taken, so that a highlight narrower
-/// than the spacing of pixels still covers some of the pixel nearest it. Where the slope grows
-/// by more than itself from one side to the other, `|s₊ + s₋ − 2s| > |s₊ − s₋|/2`, `s` is not
-/// near enough to a straight edge for the box coverage to hold and the footprint is 0 along
-/// that axis (a hard edge, as without anti-aliasing). Across a silhouette (a neighbour inside the
-/// image that no surface covers) the footprint is 0 along that axis: there the surface turns
-/// away within the pixel, `s` is far from linear, and a straight edge fitted to it would put
-/// highlight where the surface ends — the edge is left hard, for the silhouette's own
-/// anti-aliasing (supersampling) to smooth.
-pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<Footprint> {
+/// the largest `|∂s/∂x|` and `|∂s/∂y|` ([`Footprint::HARD`] without one), each from
+/// [`axis_slope`] over the neighbours on the same patch along that axis. Across a silhouette
+/// (a neighbour inside the image that no surface covers) the footprint is 0 along that axis:
+/// there the surface turns away within the pixel, and the edge is left hard, for the
+/// silhouette's own anti-aliasing (supersampling) to smooth.
+pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
     let half_vectors: Vec<Option<Vec3>> = gbuffer
         .texels
         .par_iter()
@@ -60,14 +66,14 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<Footprint> {
         })
         .collect();
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
-    gbuffer
+    let (footprints, straddles) = gbuffer
         .texels
         .par_iter()
         .with_min_len(PIXELS_PER_JOB)
         .enumerate()
         .map(|(k, t)| {
             if half_vectors[k].is_none() {
-                return Footprint::HARD;
+                return (Footprint::HARD, false);
             }
             let i = t.pixel as usize;
             let (x, y) = (i % w, i / w);
@@ -93,23 +99,9 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<Footprint> {
                 .map(|j| {
                     let at = |n: usize| signed[n * most + j];
                     let s = at(k);
-                    let derivative =
-                        |before: Option<usize>, after: Option<usize>| match (before, after) {
-                            (Some(b), Some(a)) => {
-                                let (ahead, behind) = (at(a) - s, s - at(b));
-                                let central = 0.5 * (ahead + behind);
-                                if ahead * behind <= 0.0 {
-                                    ahead.abs().max(behind.abs())
-                                } else if (ahead - behind).abs() > central.abs() {
-                                    0.0
-                                } else {
-                                    central.abs()
-                                }
-                            }
-                            (None, Some(a)) => (at(a) - s).abs(),
-                            (Some(b), None) => (s - at(b)).abs(),
-                            (None, None) => 0.0,
-                        };
+                    let derivative = |before: Option<usize>, after: Option<usize>| {
+                        axis_slope(s, before.map(at), after.map(at))
+                    };
                     let across = |silhouette: bool, before, after| {
                         if silhouette {
                             0.0
@@ -117,12 +109,150 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> Vec<Footprint> {
                             derivative(before, after)
                         }
                     };
-                    Footprint {
+                    let footprint = Footprint {
                         x: across(silhouette_x, left, right),
                         y: across(silhouette_y, up, down),
-                    }
+                    };
+                    let straddle = |before: Option<usize>, after: Option<usize>| {
+                        straddles_zero(s, before.map(at), after.map(at))
+                    };
+                    (footprint, straddle(left, right) || straddle(up, down))
                 })
-                .fold(Footprint::HARD, Footprint::max)
+                .fold((Footprint::HARD, false), |(f, near), (g, also)| {
+                    (f.max(g), near || also)
+                })
         })
-        .collect()
+        .unzip();
+    EdgeWidths {
+        footprints,
+        straddles,
+    }
+}
+
+/// The slope of `s` along one axis for the box coverage of a straight edge, from its values at
+/// the neighbours `before` and `after` (None: off the image or on another patch); 0 where no
+/// edge of `s` lies along the axis within reach of the texel, or where `s` is too far from
+/// straight for the box coverage to hold — the edge is then hard, as without anti-aliasing:
+///
+/// - where `s` changes sign between the texel and a neighbour (an edge between their centres),
+///   the central difference `(s₊ − s₋)/2`, or the one-sided one where a neighbour is missing —
+///   exact for the nearly quadratic `s` about a highlight's centre; but 0 where the slope
+///   grows by more than itself from one side to the other, `|s₊ + s₋ − 2s| > |s₊ − s₋|/2`
+///   (the surface turning away toward a silhouette);
+/// - where `s` has no sign change but peaks toward 0 at the texel (a local maximum below 0, or
+///   minimum above it), the larger one-sided slope, so that a highlight narrower than the
+///   spacing of pixels still covers some of the pixel nearest it — unless it is more than
+///   [`PEAK_RATIO`] times the other: a jump where one surface passes behind another;
+/// - otherwise 0: the neighbours lie on the texel's side of every edge.
+#[must_use]
+fn axis_slope(s: f32, before: Option<f32>, after: Option<f32>) -> f32 {
+    let crosses = |n: Option<f32>| n.is_some_and(|n| (n >= 0.0) != (s >= 0.0));
+    if !crosses(before) && !crosses(after) {
+        let (Some(b), Some(a)) = (before, after) else {
+            return 0.0;
+        };
+        let (ahead, behind) = (a - s, s - b);
+        let toward_zero = if s < 0.0 {
+            ahead <= 0.0 && behind >= 0.0
+        } else {
+            ahead >= 0.0 && behind <= 0.0
+        };
+        let (low, high) = (ahead.abs().min(behind.abs()), ahead.abs().max(behind.abs()));
+        return if toward_zero && high <= PEAK_RATIO * low {
+            high
+        } else {
+            0.0
+        };
+    }
+    match (before, after) {
+        (Some(b), Some(a)) => {
+            let (ahead, behind) = (a - s, s - b);
+            let central = 0.5 * (ahead + behind);
+            if ahead * behind > 0.0 && (ahead - behind).abs() > central.abs() {
+                0.0
+            } else {
+                central.abs()
+            }
+        }
+        (None, Some(n)) | (Some(n), None) => (n - s).abs(),
+        (None, None) => 0.0,
+    }
+}
+
+/// Whether `s` may change sign within the pixel along one axis: the parabola through the
+/// neighbours' values `before`, `s`, `after` (at −1, 0, 1) takes both signs over [−½, ½] — the
+/// ends, and the vertex where it lies inside. With one neighbour, the straight line through it;
+/// with none, never. This bounds `ε − ‖N − H'‖²/2` over the pixel where the sign at its centre
+/// says nothing: a highlight smaller than the spacing of pixels, between their centres.
+#[must_use]
+fn straddles_zero(s: f32, before: Option<f32>, after: Option<f32>) -> bool {
+    let (low, high) = match (before, after) {
+        (Some(b), Some(a)) => {
+            let (slope, curve) = (0.5 * (a - b), 0.5 * (a + b) - s);
+            let at = |x: f32| s + x * (slope + curve * x);
+            let (mut low, mut high) = (at(-0.5).min(at(0.5)), at(-0.5).max(at(0.5)));
+            if curve != 0.0 {
+                let vertex = -slope / (2.0 * curve);
+                if vertex.abs() <= 0.5 {
+                    (low, high) = (low.min(at(vertex)), high.max(at(vertex)));
+                }
+            }
+            (low, high)
+        }
+        (None, Some(n)) | (Some(n), None) => {
+            let half = 0.5 * (n - s).abs();
+            (s - half, s + half)
+        }
+        (None, None) => (s, s),
+    };
+    low < 0.0 && high >= 0.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_highlight_between_centres_straddles_the_pixel_nearest_it() {
+        // s = 0.02 − (x − 0.3)²·2 sampled at −1, 0, 1: negative at all three centres, positive
+        // near x = 0.3.
+        let s = |x: f32| 0.02 - 2.0 * (x - 0.3) * (x - 0.3);
+        assert!(s(-1.0) < 0.0 && s(0.0) < 0.0 && s(1.0) < 0.0);
+        assert!(straddles_zero(s(0.0), Some(s(-1.0)), Some(s(1.0))));
+        // Its neighbour at x = −1 lies farther from it: no.
+        assert!(!straddles_zero(s(-1.0), Some(s(-2.0)), Some(s(0.0))));
+        // Straight edges: the pixel the edge crosses, not the one beyond.
+        assert!(straddles_zero(0.1, Some(0.3), Some(-0.1)));
+        assert!(!straddles_zero(0.3, Some(0.5), Some(0.1)));
+        assert!(straddles_zero(0.05, None, Some(-0.1)));
+        assert!(!straddles_zero(-0.3, None, None));
+    }
+
+    #[test]
+    fn a_straight_edge_between_centres_takes_the_central_difference() {
+        // s = 0.1 − 0.2 x at x = −1, 0, 1: the edge at x = 0.5.
+        assert!((axis_slope(0.1, Some(0.3), Some(-0.1)) - 0.2).abs() < 1e-6);
+        // One-sided where the other neighbour is missing.
+        assert!((axis_slope(0.1, None, Some(-0.1)) - 0.2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn no_edge_along_the_axis_or_a_runaway_slope_is_hard() {
+        // All three inside, or all outside and falling: no edge near.
+        assert_eq!(axis_slope(0.3, Some(0.5), Some(0.1)), 0.0);
+        assert_eq!(axis_slope(-0.3, Some(-0.1), Some(-0.5)), 0.0);
+        assert_eq!(axis_slope(-0.3, None, Some(-0.5)), 0.0);
+        // Toward a silhouette: the slope quadruples across the texel.
+        assert_eq!(axis_slope(0.05, Some(0.1), Some(-0.2)), 0.0);
+    }
+
+    #[test]
+    fn a_peak_toward_zero_takes_the_larger_slope_and_a_jump_none() {
+        // A highlight between centres: s peaks at −0.05 with neighbours −0.15 and −0.2.
+        assert!((axis_slope(-0.05, Some(-0.15), Some(-0.2)) - 0.15).abs() < 1e-6);
+        // A peak away from zero (a dip below 0) is no highlight.
+        assert_eq!(axis_slope(-0.3, Some(-0.1), Some(-0.2)), 0.0);
+        // One side jumps (another part of the surface): no footprint.
+        assert_eq!(axis_slope(-0.05, Some(-0.06), Some(-0.9)), 0.0);
+    }
 }

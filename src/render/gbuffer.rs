@@ -90,6 +90,7 @@ impl GBuffer {
     ///
     /// Blocks of pixels are filled in parallel: each block counts its covered pixels, and the
     /// running sum of the counts says where its texels start, so texels stay in pixel order.
+    #[allow(clippy::too_many_arguments)]
     pub fn fill(
         &mut self,
         visibility: &VisibilityBuffer,

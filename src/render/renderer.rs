@@ -9,17 +9,17 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
-use super::edge_width::edge_widths;
+use super::edge_width::{edge_widths, EdgeWidths};
 use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
 use super::outline::{draw_outlines, OutlineBuffers};
 use super::plan::{Plan, Surfaces};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
 use super::settings::{Antialias, FrameMode, Settings};
-use super::supersample;
 use super::shade::{shade, ShadeBuffers, Shaded};
 use super::stage::Stage;
 use super::stats::{timed, RenderStats};
+use super::supersample;
 use super::surface_key::SurfaceKey;
 use super::tessellate::{Mesh, Tessellator};
 use super::visibility_shade::shade_visibility;
@@ -285,10 +285,11 @@ impl Stages {
                 (mesh, covered)
             }
         };
-        let mut shaded = match plan.surfaces {
-            Surfaces::Visibility => {
-                shade_from_visibility(visibility, mesh, scene, covered, &mut stats)
-            }
+        let (mut shaded, straddles) = match plan.surfaces {
+            Surfaces::Visibility => (
+                shade_from_visibility(visibility, mesh, scene, covered, &mut stats),
+                None,
+            ),
             Surfaces::Texels => {
                 let views = xtoon_tone::views(scene);
                 let ahead = plan
@@ -306,14 +307,17 @@ impl Stages {
                         scene,
                         &views,
                         tones,
-                        widths.as_deref(),
+                        widths.as_ref().map(|w| w.footprints.as_slice()),
                         shading,
                     )
                 });
                 stats.record(Stage::Shade, shaded.shaded, seconds);
                 stats.highlight_pixels = shaded.highlighted;
                 stats.xtoon_pixels = shaded.xtoon;
-                shaded
+                let straddles = widths
+                    .filter(|_| plan.runs(Stage::Supersample))
+                    .map(|w| highlight_gbuffer.gather(&w.straddles, false));
+                (shaded, straddles)
             }
         };
         if let (true, Some(outlines)) = (plan.runs(Stage::Outline), &scene.outlines) {
@@ -339,6 +343,7 @@ impl Stages {
                 image: frame.samples,
                 detail: plan.uses(Stage::Detail),
                 widths: plan.uses(Stage::EdgeWidths),
+                straddles: straddles.as_deref(),
             };
             let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
             stats.record(Stage::Supersample, done.pixels, seconds);
@@ -477,13 +482,9 @@ fn detail(
 }
 
 /// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint.
-fn widths(
-    gbuffer: &GBuffer,
-    scene: &Scene,
-    stats: &mut RenderStats,
-) -> Vec<crate::highlight::Footprint> {
+fn widths(gbuffer: &GBuffer, scene: &Scene, stats: &mut RenderStats) -> EdgeWidths {
     let (widths, seconds) = timed(|| edge_widths(gbuffer, scene));
-    stats.record(Stage::EdgeWidths, widths.len() as u64, seconds);
+    stats.record(Stage::EdgeWidths, widths.footprints.len() as u64, seconds);
     widths
 }
 

@@ -135,7 +135,10 @@ impl Settings {
                 ));
             }
         }
-        let k = u64::from(self.samples_per_side());
+        let k = u64::from(match self.antialias {
+            Antialias::None | Antialias::Analytic => 1,
+            Antialias::Supersample(k) | Antialias::Adaptive(k) => k,
+        });
         let fits = |side: u32| side > 0 && u64::from(side) * k <= u64::from(MAX_SIDE);
         if !fits(self.width) || !fits(self.height) {
             return bad(format!(

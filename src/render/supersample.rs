@@ -36,6 +36,9 @@ pub(super) struct Frame<'a> {
     /// Whether the X-Toon detail runs ahead of shading, and edge widths are taken.
     pub detail: bool,
     pub widths: bool,
+    /// Per pixel, whether a highlight edge may cross it unseen by its colour (the edge-width
+    /// stage's bound), when edge widths were taken.
+    pub straddles: Option<&'a [bool]>,
 }
 
 /// What the stage did.
@@ -56,8 +59,8 @@ struct Resolved {
 }
 
 /// Draws again, at `frame.k × frame.k` samples, each pixel of `shaded` (a one-sample image of
-/// `frame.image`'s size) whose colour or matte differs from a neighbour's
-/// ([`pixels_to_supersample`]), and puts there the average of its samples: premultiplied colour
+/// `frame.image`'s size) whose colour or matte differs from a neighbour's, or that a highlight
+/// edge may cross unseen ([`pixels_to_supersample`]), and puts there the average of its samples: premultiplied colour
 /// `α = mean(α_s)`, `rgb = mean(α_s rgb_s)/α`, and the mean matte and `N·H`.
 ///
 /// The marked pixels are gathered in [`TILE`]-pixel tiles. Each tile is a [`Window`] of the
@@ -68,7 +71,13 @@ struct Resolved {
 /// supersampled image at those samples. Memory is one tile per worker.
 pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     let (w, h) = (frame.image.width, frame.image.height);
-    let marked = pixels_to_supersample(&shaded.colour, shaded.matte.as_deref(), w, h);
+    let marked = pixels_to_supersample(
+        &shaded.colour,
+        shaded.matte.as_deref(),
+        frame.straddles,
+        w,
+        h,
+    );
     let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
     let mut tile_marked = vec![false; (tiles_x * tiles_y) as usize];
     for (i, _) in marked.iter().enumerate().filter(|(_, &m)| m) {
@@ -222,13 +231,15 @@ fn grow(visibility: &mut VisibilityBuffer, drawn: &[bool], grown: &mut Vec<bool>
     let mut ring = Vec::new();
     for _ in 0..GROWN_RINGS {
         ring.clear();
-        for i in 0..w * h {
-            if !drawn[i] || visibility.triangle[i] != EMPTY {
+        for (i, _) in drawn.iter().enumerate().filter(|(_, &d)| d) {
+            if visibility.triangle[i] != EMPTY {
                 continue;
             }
             let (x, y) = (i % w, i / w);
             let neighbour = (y.saturating_sub(1)..=(y + 1).min(h - 1))
-                .flat_map(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).map(move |nx| ny * w + nx))
+                .flat_map(|ny| {
+                    (x.saturating_sub(1)..=(x + 1).min(w - 1)).map(move |nx| ny * w + nx)
+                })
                 .find(|&j| visibility.triangle[j] != EMPTY);
             if let Some(j) = neighbour {
                 ring.push((i, j));
@@ -258,10 +269,7 @@ impl TileBuffers {
                     return true;
                 }
                 let p = to_screen * t.position.extend(1.0);
-                let (x, y) = (
-                    (p.x / p.w + 1.0) * 0.5 * w,
-                    (1.0 - p.y / p.w) * 0.5 * h,
-                );
+                let (x, y) = ((p.x / p.w + 1.0) * 0.5 * w, (1.0 - p.y / p.w) * 0.5 * h);
                 let centre = (
                     (t.pixel % width) as f32 + 0.5,
                     (t.pixel / width) as f32 + 0.5,
@@ -294,8 +302,14 @@ impl TileBuffers {
             height: image.height * k,
         };
         let (px0, py0) = (tx * TILE, ty * TILE);
-        let (px1, py1) = ((px0 + TILE).min(image.width), (py0 + TILE).min(image.height));
-        let (x0, y0) = ((px0 * k).saturating_sub(apron), (py0 * k).saturating_sub(apron));
+        let (px1, py1) = (
+            (px0 + TILE).min(image.width),
+            (py0 + TILE).min(image.height),
+        );
+        let (x0, y0) = (
+            (px0 * k).saturating_sub(apron),
+            (py0 * k).saturating_sub(apron),
+        );
         let (x1, y1) = (
             (px1 * k + apron).min(full.width),
             (py1 * k + apron).min(full.height),
@@ -401,7 +415,7 @@ impl TileBuffers {
         let gbuffer = ahead.as_ref().map_or(&self.gbuffer, |a| &a.gbuffer);
         let widths = frame
             .widths
-            .then(|| super::edge_width::edge_widths(gbuffer, scene));
+            .then(|| super::edge_width::edge_widths(gbuffer, scene).footprints);
         let tones = ahead.as_ref().map(|a| a.tones.as_slice());
         let mut samples = shade(
             gbuffer,

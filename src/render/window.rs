@@ -87,7 +87,10 @@ mod tests {
             assert_eq!((moved.z, moved.w), (clip.z, clip.w));
             let inside = pixel(Vec2::new(moved.x, moved.y) / moved.w, window.viewport());
             let expected = image - Vec2::new(96.0, 200.0);
-            assert!((inside - expected).length() < 1e-3, "{inside} vs {expected}");
+            assert!(
+                (inside - expected).length() < 1e-3,
+                "{inside} vs {expected}"
+            );
         }
     }
 }
