@@ -30,6 +30,7 @@ mod pictures;
 mod raster_coverage;
 mod raster_determinism;
 mod raster_geometry;
+mod render_adaptive;
 mod render_reuse;
 mod render_sphere;
 mod render_teapot;

@@ -99,7 +99,8 @@ pub struct FrameCost {
 
 /// The cost of each frame mode: the identity highlight on the sphere in perspective on a
 /// `size × size` image, 16 segments per span, no anti-aliasing; medians of `repeats` frames
-/// after one untimed frame.
+/// after one untimed frame. The eye moves by a hundredth of a degree between frames, so that
+/// each builds its G-buffer afresh rather than reusing the last one's.
 pub fn frame_costs(
     size: u32,
     repeats: usize,
@@ -110,7 +111,8 @@ pub fn frame_costs(
     });
     let library = AnalyticSphere::library();
     let highlight = Stack::Identity.expression();
-    let scene = sphere.scene(&library, &highlight, Aovs::default());
+    let mut scene = sphere.scene(&library, &highlight, Aovs::default());
+    let eye = scene.camera.eye;
     let mut renderer = Renderer::new(Arc::clone(&library));
     [
         FrameMode::Interpolated,
@@ -125,9 +127,12 @@ pub fn frame_costs(
             threads,
             ..Settings::preview(size, size)
         };
+        scene.camera.eye = eye;
         let first = renderer.render(&scene, &settings)?;
         let (mut gbuffer, mut total) = (Vec::new(), Vec::new());
-        for _ in 0..repeats.max(1) {
+        for k in 0..repeats.max(1) {
+            let turn = (0.01 * (k % 2 + 1) as f32).to_radians();
+            scene.camera.eye = glam::Mat3::from_rotation_z(turn) * eye;
             let stats = renderer.render(&scene, &settings)?.stats;
             gbuffer
                 .push(stats[Stage::GBuffer].seconds / stats[Stage::GBuffer].pixels.max(1) as f64);
@@ -165,5 +170,13 @@ mod tests {
             errors[1].max_normal_degrees < errors[0].max_normal_degrees,
             "{errors:?}"
         );
+    }
+
+    #[test]
+    fn every_timed_frame_builds_its_g_buffer() {
+        // A still camera would reuse the first frame's G-buffer and time nothing.
+        for cost in frame_costs(48, 3, 1).unwrap() {
+            assert!(cost.gbuffer_ns_per_pixel > 0.0, "{cost:?}");
+        }
     }
 }

@@ -171,6 +171,7 @@ impl Sweep {
                     Antialias::Supersample(2),
                     Antialias::Supersample(3),
                     Antialias::Supersample(4),
+                    Antialias::Adaptive(4),
                 ],
             ),
             repeats,

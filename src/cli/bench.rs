@@ -34,7 +34,7 @@ enum Bench {
 ///
 /// Every combination of tessellation density (segments per knot span, or a screen tolerance),
 /// frame mode (interpolated, exact, refined) and anti-aliasing (none, analytic, 2×2 to 4×4
-/// supersampling), plus the preview and final presets, renders the exact NURBS unit sphere in
+/// supersampling, adaptive 4×4), plus the preview and final presets, renders the exact NURBS unit sphere in
 /// sixteen views at each --resolution: five highlight stacks near the centre (identity,
 /// translate+scale, split, square, a Boolean crescent) and eleven hard ones (highlights 30°, 50°
 /// and 70° off centre, at and near the pole, near the border of a 75° wide-angle view, a thin

@@ -120,7 +120,7 @@ enum SkipExisting {
 pub(super) enum PresetArg {
     /// Fast feedback: coarse tessellation, interpolated frames, no anti-aliasing
     Preview,
-    /// Finished frames: fine tessellation, exact frames, supersampling
+    /// Finished frames: fine tessellation, refined frames, adaptive anti-aliasing
     Final,
 }
 

@@ -221,9 +221,11 @@ mod tests {
         assert!(straddles_zero(s(0.0), Some(s(-1.0)), Some(s(1.0))));
         // Its neighbour at x = −1 lies farther from it: no.
         assert!(!straddles_zero(s(-1.0), Some(s(-2.0)), Some(s(0.0))));
-        // Straight edges: the pixel the edge crosses, not the one beyond.
-        assert!(straddles_zero(0.1, Some(0.3), Some(-0.1)));
-        assert!(!straddles_zero(0.3, Some(0.5), Some(0.1)));
+        // A straight edge, s = 0.05 − 0.2 x, crossing at x = 0.25: the pixel it crosses, not
+        // the ones beyond.
+        assert!(straddles_zero(0.05, Some(0.25), Some(-0.15)));
+        assert!(!straddles_zero(-0.15, Some(0.05), Some(-0.35)));
+        assert!(!straddles_zero(0.25, Some(0.45), Some(0.05)));
         assert!(straddles_zero(0.05, None, Some(-0.1)));
         assert!(!straddles_zero(-0.3, None, None));
     }

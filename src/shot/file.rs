@@ -255,7 +255,7 @@ pub struct RenderSpec {
 pub enum Preset {
     /// Fast feedback: coarse tessellation, interpolated frames, no anti-aliasing.
     Preview,
-    /// Finished frames: fine tessellation, exact frames, supersampling.
+    /// Finished frames: fine tessellation, refined frames, adaptive anti-aliasing.
     #[default]
     Final,
 }

@@ -1,0 +1,149 @@
+//! Adaptive anti-aliasing: the frame at one sample a pixel, with k × k samples averaged into
+//! just the pixels whose colour can be wrong — silhouettes, lines, highlight and tone edges —
+//! tile by tile.
+
+use std::sync::Arc;
+
+use glam::{Vec3, Vec4};
+use glint::highlight::{Expr, Layer, Light, Op};
+use glint::render::{
+    Antialias, Aovs, Camera, FrameMode, Outlines, PatchLook, Projection, Renderer, Scene, Settings,
+    Stage, Tone,
+};
+use glint::toon::CelRamp;
+
+use crate::common::teapot;
+
+fn teapot_scene(library: &glint::geom::PatchLibrary, outlines: bool) -> Scene<'_> {
+    let highlight = Expr::Layer(Layer::new(
+        vec![
+            Op::Translate {
+                alpha: 0.15,
+                beta: 0.05,
+            },
+            Op::Rotate { degrees: 25.0 },
+        ],
+        0.06,
+        [1.0, 1.0, 1.0],
+    ))
+    .prepare()
+    .unwrap();
+    Scene {
+        library,
+        looks: (0..library.patches.len())
+            .map(|_| PatchLook {
+                tone: Tone::Cel(CelRamp::two_tone(
+                    Vec3::new(0.2, 0.25, 0.5),
+                    Vec3::new(0.4, 0.55, 0.9),
+                    0.1,
+                )),
+                highlight: Some(highlight.clone()),
+            })
+            .collect(),
+        camera: Camera {
+            eye: Vec3::new(5.5, -7.0, 4.5),
+            target: Vec3::new(0.0, 0.0, 1.4),
+            up: Vec3::Z,
+            projection: Projection::Perspective {
+                fov_y_degrees: 30.0,
+            },
+            near: 0.1,
+            far: 100.0,
+        },
+        light: Light::Directional {
+            towards: Vec3::new(0.3, -0.6, 0.75).normalize(),
+        },
+        outlines: outlines.then_some(Outlines {
+            width: 2.0,
+            colour: Vec3::ZERO,
+            crease_degrees: 60.0,
+            patch_borders: false,
+        }),
+        aovs: Aovs {
+            matte: true,
+            ..Aovs::default()
+        },
+    }
+}
+
+fn with(antialias: Antialias) -> Settings {
+    Settings {
+        antialias,
+        ..Settings::final_quality(200, 120)
+    }
+}
+
+#[test]
+fn only_supersampled_pixels_leave_the_one_sample_frame_and_they_smooth_its_edges() {
+    let library = teapot();
+    for outlines in [false, true] {
+        let scene = teapot_scene(&library, outlines);
+        let render = |antialias| {
+            Renderer::new(Arc::clone(&library))
+                .render(&scene, &with(antialias))
+                .unwrap()
+        };
+        let (one, adaptive) = (render(Antialias::Analytic), render(Antialias::Adaptive(4)));
+        assert!(!one.stats.ran(Stage::Supersample));
+        let supersampled = adaptive.stats[Stage::Supersample].pixels;
+        let changed = one
+            .colour
+            .iter()
+            .zip(&adaptive.colour)
+            .filter(|(a, b)| a != b)
+            .count() as u64;
+        // The unmarked pixels are the one-sample frame's, bit for bit.
+        assert!(
+            0 < changed && changed <= supersampled,
+            "{changed} of {supersampled}"
+        );
+        assert!(supersampled < 200 * 120 / 2, "{supersampled}");
+        // At one sample the silhouette is hard; adaptively it is anti-aliased.
+        let partial = |colour: &[Vec4]| colour.iter().filter(|c| c.w > 0.0 && c.w < 1.0).count();
+        assert_eq!(partial(&one.colour), 0);
+        assert!(
+            partial(&adaptive.colour) > 100,
+            "{}",
+            partial(&adaptive.colour)
+        );
+        // The same samples as a fresh renderer's, frame after frame.
+        let mut renderer = Renderer::new(Arc::clone(&library));
+        let settings = with(Antialias::Adaptive(4));
+        let first = renderer.render(&scene, &settings).unwrap();
+        let again = renderer.render(&scene, &settings).unwrap();
+        assert_eq!(first.colour, adaptive.colour);
+        assert_eq!(again.colour, adaptive.colour);
+        assert_eq!(again.aovs, adaptive.aovs);
+    }
+}
+
+#[test]
+fn the_supersampled_silhouette_follows_the_surface_not_the_mesh() {
+    // Refined frames grow the coverage past the mesh's chords onto the surface, so a coarse
+    // and a fine tessellation give nearly the same alpha; exact frames keep the mesh's.
+    let library = teapot();
+    let scene = teapot_scene(&library, false);
+    let alpha = |pixels: f32, frames: FrameMode| -> Vec<f32> {
+        let settings = Settings {
+            density: glint::render::tessellate::Density::ScreenTolerance { pixels },
+            frames,
+            ..with(Antialias::Adaptive(4))
+        };
+        let frame = Renderer::new(Arc::clone(&library))
+            .render(&scene, &settings)
+            .unwrap();
+        frame.colour.iter().map(|c| c.w).collect()
+    };
+    let difference =
+        |a: &[f32], b: &[f32]| -> f32 { a.iter().zip(b).map(|(a, b)| (a - b).abs()).sum() };
+    let fine = alpha(0.05, FrameMode::Refined);
+    let refined = difference(&alpha(1.0, FrameMode::Refined), &fine);
+    let exact = difference(
+        &alpha(1.0, FrameMode::Exact),
+        &alpha(0.05, FrameMode::Exact),
+    );
+    assert!(
+        refined < 0.5 * exact,
+        "refined {refined} against exact {exact}"
+    );
+}
