@@ -25,7 +25,7 @@ use glint::accuracy::case::Case;
 use glint::accuracy::AnalyticSphere;
 use glint::formats::load_patches;
 use glint::geom::PatchLibrary;
-use glint::highlight::{Axis, Expr, Layer, Light, Op, PreparedExpr, SquareStyle};
+use glint::highlight::{Expr, Layer, Light, PreparedExpr};
 use glint::render::tessellate::Density;
 use glint::render::{
     Antialias, Aovs, FrameMode, Outlines, PatchLook, Renderer, Scene, Settings, Tone,
@@ -37,27 +37,7 @@ const ROUNDS: usize = 12;
 
 /// The teapot's highlight: the stack the render benchmark uses.
 fn teapot_highlight() -> PreparedExpr {
-    let stack = vec![
-        Op::Translate {
-            alpha: 0.1,
-            beta: 0.05,
-        },
-        Op::Rotate { degrees: 20.0 },
-        Op::Scale {
-            delta: 0.5,
-            axis: Axis::U,
-        },
-        Op::Split {
-            gamma_u: 0.05,
-            gamma_v: 0.0,
-        },
-        Op::Square {
-            sigma: 0.2,
-            n: 2.0,
-            style: SquareStyle::Tangent,
-        },
-    ];
-    Expr::Layer(Layer::new(stack, 0.08, [1.0, 1.0, 1.0]))
+    Expr::Layer(Layer::new(teapot::five_op_stack(), 0.08, [1.0, 1.0, 1.0]))
         .prepare()
         .unwrap()
 }

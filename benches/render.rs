@@ -38,7 +38,7 @@ use std::sync::Arc;
 use glam::{Vec3, Vec4};
 use glint::formats::load_patches;
 use glint::geom::PatchLibrary;
-use glint::highlight::{Axis, Expr, Layer, Light, Op, SquareStyle};
+use glint::highlight::{Expr, Layer, Light};
 use glint::render::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use glint::render::tessellate::{Density, Tessellator};
 use glint::render::{Aovs, FrameMode, Outlines, PatchLook, Scene, Settings, Tone};
@@ -53,26 +53,7 @@ fn scene<'a>(
     highlights: bool,
     outlines: bool,
 ) -> Scene<'a> {
-    let stack = vec![
-        Op::Translate {
-            alpha: 0.1,
-            beta: 0.05,
-        },
-        Op::Rotate { degrees: 20.0 },
-        Op::Scale {
-            delta: 0.5,
-            axis: Axis::U,
-        },
-        Op::Split {
-            gamma_u: 0.05,
-            gamma_v: 0.0,
-        },
-        Op::Square {
-            sigma: 0.2,
-            n: 2.0,
-            style: SquareStyle::Tangent,
-        },
-    ];
+    let stack = teapot::five_op_stack();
     let expr = Expr::Layer(Layer::new(stack, 0.08, [1.0, 1.0, 1.0]))
         .prepare()
         .unwrap();

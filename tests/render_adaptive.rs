@@ -7,12 +7,11 @@ use std::sync::Arc;
 use glam::{Vec3, Vec4};
 use glint::highlight::{Expr, Layer, Light, Op};
 use glint::render::{
-    Antialias, Aovs, Camera, FrameMode, Outlines, PatchLook, Projection, Renderer, Scene, Settings,
-    Stage, Tone,
+    Antialias, Aovs, FrameMode, Outlines, PatchLook, Renderer, Scene, Settings, Stage, Tone,
 };
 use glint::toon::CelRamp;
 
-use crate::common::teapot;
+use crate::common::{teapot, teapot_camera};
 
 fn teapot_scene(library: &glint::geom::PatchLibrary, outlines: bool) -> Scene<'_> {
     let highlight = Expr::Layer(Layer::new(
@@ -40,16 +39,7 @@ fn teapot_scene(library: &glint::geom::PatchLibrary, outlines: bool) -> Scene<'_
                 highlight: Some(highlight.clone()),
             })
             .collect(),
-        camera: Camera {
-            eye: Vec3::new(5.5, -7.0, 4.5),
-            target: Vec3::new(0.0, 0.0, 1.4),
-            up: Vec3::Z,
-            projection: Projection::Perspective {
-                fov_y_degrees: 30.0,
-            },
-            near: 0.1,
-            far: 100.0,
-        },
+        camera: teapot_camera(),
         light: Light::Directional {
             towards: Vec3::new(0.3, -0.6, 0.75).normalize(),
         },

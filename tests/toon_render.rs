@@ -17,7 +17,7 @@ use glint::toon::{
     Abstraction, CelRamp, DetailMap, HighlightFrame, ShapeDetail, ToonTexture, XToon,
 };
 
-use crate::common::teapot;
+use crate::common::{teapot, teapot_camera};
 
 /// A texture whose colour is its own coordinates: red the tone coordinate `(n·l + 1)/2`, green
 /// the detail D, at every texel centre. Bilinear lookups between the centres return the
@@ -41,19 +41,6 @@ fn highlight() -> PreparedExpr {
     ))
     .prepare()
     .unwrap()
-}
-
-fn teapot_camera() -> Camera {
-    Camera {
-        eye: Vec3::new(5.5, -7.0, 4.5),
-        target: Vec3::new(0.0, 0.0, 1.4),
-        up: Vec3::Z,
-        projection: Projection::Perspective {
-            fov_y_degrees: 30.0,
-        },
-        near: 0.1,
-        far: 100.0,
-    }
 }
 
 fn light() -> Light {

@@ -41,6 +41,21 @@ pub fn teapot() -> Arc<PatchLibrary> {
     Arc::new(load_patches(&repo_file("patches/teapot.bpt")).expect("the shipped teapot loads"))
 }
 
+/// The teapot from the front right and above, filling most of a 16:9 frame (the frame
+/// benchmarks' view).
+pub fn teapot_camera() -> glint::render::Camera {
+    glint::render::Camera {
+        eye: glam::Vec3::new(5.5, -7.0, 4.5),
+        target: glam::Vec3::new(0.0, 0.0, 1.4),
+        up: glam::Vec3::Z,
+        projection: glint::render::Projection::Perspective {
+            fov_y_degrees: 30.0,
+        },
+        near: 0.1,
+        far: 100.0,
+    }
+}
+
 /// Runs a documented command line (`glint …`) with `sh` in `dir`, `glint` being the binary
 /// under test, and returns what it did.
 pub fn run_documented(dir: &Path, command: &str) -> Output {
