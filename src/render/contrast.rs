@@ -4,6 +4,8 @@
 use glam::Vec4;
 use rayon::prelude::*;
 
+use super::renderer::premultiplied;
+
 /// The largest difference in any channel of premultiplied colour (or of the highlight matte)
 /// between a pixel and a neighbour that still counts as the same colour: half a step of an
 /// 8-bit image.
@@ -28,10 +30,7 @@ pub fn pixels_to_supersample(
     height: u32,
 ) -> Vec<bool> {
     let (w, h) = (width as usize, height as usize);
-    let premultiplied: Vec<Vec4> = colour
-        .par_iter()
-        .map(|c| (c.truncate() * c.w).extend(c.w))
-        .collect();
+    let premultiplied: Vec<Vec4> = colour.par_iter().copied().map(premultiplied).collect();
     let differs = |a: usize, b: usize| {
         (premultiplied[a] - premultiplied[b]).abs().max_element() > CONTRAST
             || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST)

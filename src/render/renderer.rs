@@ -15,7 +15,7 @@ use super::outline::{draw_outlines, OutlineBuffers};
 use super::plan::{Plan, Surfaces};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
-use super::settings::{Antialias, FrameMode, Settings};
+use super::settings::{Antialias, Settings};
 use super::shade::{shade, ShadeBuffers, Shaded};
 use super::stage::Stage;
 use super::stats::{timed, RenderStats};
@@ -347,10 +347,7 @@ impl Stages {
             };
             let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
             stats.record(Stage::Supersample, done.pixels, seconds);
-            stats.exact_frames += match settings.frames {
-                FrameMode::Interpolated => 0,
-                FrameMode::Exact | FrameMode::Refined => done.frames,
-            };
+            stats.exact_frames += done.frames;
         }
         let aovs = if plan.runs(Stage::Aov) {
             aov(scene, gbuffer, &mut shaded, settings, &frame, &mut stats)
@@ -536,22 +533,31 @@ fn resolve_stage(
     colour
 }
 
+/// Straight alpha to premultiplied: `(α rgb, α)`.
+#[inline]
+#[must_use]
+pub(super) fn premultiplied(c: Vec4) -> Vec4 {
+    (c.truncate() * c.w).extend(c.w)
+}
+
+/// Premultiplied alpha back to straight: `(rgb / α, α)`, and zero where `α = 0`.
+#[inline]
+#[must_use]
+pub(super) fn straight(p: Vec4) -> Vec4 {
+    if p.w > 0.0 {
+        (p.truncate() / p.w).extend(p.w)
+    } else {
+        Vec4::ZERO
+    }
+}
+
 /// Resolves `k × k` samples per pixel by averaging premultiplied colour:
 /// `α = mean(α_s)`, `rgb = mean(α_s rgb_s) / α`.
 fn resolve(samples: &[Vec4], width: u32, height: u32, k: u32) -> Vec<Vec4> {
-    let premultiplied: Vec<Vec4> = samples
-        .iter()
-        .map(|s| (s.truncate() * s.w).extend(s.w))
-        .collect();
+    let premultiplied: Vec<Vec4> = samples.iter().copied().map(premultiplied).collect();
     box_filter(&premultiplied, width, height, k)
         .into_iter()
-        .map(|p| {
-            if p.w > 0.0 {
-                (p.truncate() / p.w).extend(p.w)
-            } else {
-                Vec4::ZERO
-            }
-        })
+        .map(straight)
         .collect()
 }
 

@@ -8,6 +8,7 @@ use super::contrast::pixels_to_supersample;
 use super::gbuffer::{GBuffer, EMPTY};
 use super::outline::{draw_outlines, OutlineBuffers};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
+use super::renderer::{premultiplied, straight};
 use super::scene::{Outlines, Scene};
 use super::settings::FrameMode;
 use super::shade::{shade, ShadeBuffers, Shaded};
@@ -46,7 +47,8 @@ pub(super) struct Frame<'a> {
 pub(super) struct Done {
     /// Pixels drawn again at K × K samples.
     pub pixels: u64,
-    /// NURBS frames evaluated for their samples (and the tiles' aprons).
+    /// NURBS frames evaluated for their samples (and the tiles' aprons); 0 with interpolated
+    /// frames.
     pub frames: u64,
 }
 
@@ -452,7 +454,7 @@ impl TileBuffers {
                         let (x, y) = (px * k + sx - x0, py * k + sy - y0);
                         let s = (y * window.width + x) as usize;
                         let c = samples.colour[s];
-                        colour += (c.truncate() * c.w).extend(c.w);
+                        colour += premultiplied(c);
                         matte += samples.matte.as_ref().map_or(0.0, |m| m[s]);
                         n_dot_h += samples.n_dot_h.as_ref().map_or(0.0, |n| n[s]);
                     }
@@ -460,11 +462,7 @@ impl TileBuffers {
                 let colour = colour * weight;
                 resolved.push(Resolved {
                     pixel,
-                    colour: if colour.w > 0.0 {
-                        (colour.truncate() / colour.w).extend(colour.w)
-                    } else {
-                        Vec4::ZERO
-                    },
+                    colour: straight(colour),
                     matte: matte * weight,
                     n_dot_h: n_dot_h * weight,
                 });
