@@ -18,5 +18,5 @@ pub use frame::Frame;
 pub use grid::GridEvaluator;
 pub use knots::KnotVector;
 pub use library::{NamedPatch, PatchGroup, PatchLibrary, PatchNotFound};
-pub use on_ray::REFINE_STEPS;
+pub use on_ray::{RaySearch, ALL_EVALUATIONS, REFINE_STEPS};
 pub use surface::{Domain, NurbsSurface, SurfaceDerivs, MAX_COORDINATE, MAX_WEIGHT, MIN_WEIGHT};

@@ -17,6 +17,25 @@ const ON_RAY: f64 = 1e-7;
 /// Halvings of a Newton step that does not bring the point nearer the ray before giving up.
 const HALVINGS: usize = 6;
 
+/// Surface evaluations enough for every step [`NurbsSurface::try_refine_on_ray`] may take: the
+/// start, and [`REFINE_STEPS`] steps of up to [`HALVINGS`] halvings each.
+pub const ALL_EVALUATIONS: u32 = (1 + REFINE_STEPS * (HALVINGS + 1)) as u32;
+
+/// A ray to refine a start onto, and how many surface evaluations the search may spend.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RaySearch {
+    /// The (u, v) to start from.
+    pub start: (f64, f64),
+    /// A point of the ray.
+    pub origin: DVec3,
+    /// The ray's direction (any length but zero).
+    pub direction: DVec3,
+    /// The most surface evaluations to spend, the start's included: [`ALL_EVALUATIONS`] for
+    /// the full search; fewer to ask only whether the ray meets the surface close to the start,
+    /// where a ray that passes beside it would spend the rest approaching its outline.
+    pub evaluations: u32,
+}
+
 impl NurbsSurface {
     /// `(u, v)` near `start` whose surface point lies on the ray `origin + t direction`, by
     /// damped Newton steps; `None` where the steps cannot go on (the caller keeps its start).
@@ -36,13 +55,19 @@ impl NurbsSurface {
         origin: DVec3,
         direction: DVec3,
     ) -> Option<(f64, f64)> {
-        newton_on_ray(self, start, origin, direction, |u, v| self.derivs(u, v, 1)).1
+        let search = RaySearch {
+            start,
+            origin,
+            direction,
+            evaluations: ALL_EVALUATIONS,
+        };
+        newton_on_ray(self, &search, |u, v| self.derivs(u, v, 1)).1
     }
 
     /// Frames at the points where rays meet the surface: for each `k`, [`try_refine_on_ray`]
-    /// from `starts[k]` along `rays[k] = (origin, direction)`, with `params[k]` set to the
-    /// (u, v) found (or the start where there is none) and `frames[k]` to the frame there, as
-    /// [`frames`](Self::frames) gives it.
+    /// from `searches[k].start` along its ray, within its evaluations, with `params[k]` set to
+    /// the (u, v) found (or the start where there is none) and `frames[k]` to the frame there,
+    /// as [`frames`](Self::frames) gives it.
     ///
     /// The frame comes from the derivatives of the last Newton step, so a refined frame costs
     /// the steps alone; degrees 1 to 3 take their derivatives from the fixed-degree evaluation.
@@ -53,27 +78,23 @@ impl NurbsSurface {
     /// If the slices differ in length.
     pub fn frames_on_rays(
         &self,
-        starts: &[(f64, f64)],
-        rays: &[(DVec3, DVec3)],
+        searches: &[RaySearch],
         params: &mut [(f64, f64)],
         frames: &mut [Frame],
     ) {
         assert!(
-            starts.len() == rays.len()
-                && rays.len() == params.len()
-                && params.len() == frames.len(),
-            "one ray, parameter and frame per start"
+            searches.len() == params.len() && params.len() == frames.len(),
+            "one parameter and frame per search"
         );
         let domain = self.domain();
         let mut each = |derivs: &mut dyn FnMut(f64, f64) -> SurfaceDerivs| {
-            for (((&start, &(origin, direction)), param), frame) in starts
+            for ((search, param), frame) in searches
                 .iter()
-                .zip(rays)
                 .zip(params.iter_mut())
                 .zip(frames.iter_mut())
             {
-                let (d, refined) = newton_on_ray(self, start, origin, direction, &mut *derivs);
-                let (u, v) = refined.unwrap_or(start);
+                let (d, refined) = newton_on_ray(self, search, &mut *derivs);
+                let (u, v) = refined.unwrap_or(search.start);
                 let d = if refined.is_some() { d } else { derivs(u, v) };
                 *param = (u, v);
                 *frame = Frame::from_derivs(&d, u, v, &domain)
@@ -88,16 +109,22 @@ impl NurbsSurface {
     }
 }
 
-/// [`NurbsSurface::try_refine_on_ray`] with first derivatives from `derivs`: the (u, v) found,
-/// or `None`, and the derivatives at the (u, v) returned (at the start when `None`, or when the
-/// direction is zero, nothing evaluated: default derivatives).
+/// [`NurbsSurface::try_refine_on_ray`] with first derivatives from `derivs`, within the
+/// search's evaluations (at least the start's): the (u, v) found, or `None`, and the
+/// derivatives at the (u, v) returned (at the start when `None`, or when the direction is zero,
+/// nothing evaluated: default derivatives).
 fn newton_on_ray(
     surface: &NurbsSurface,
-    start: (f64, f64),
-    origin: DVec3,
-    direction: DVec3,
+    search: &RaySearch,
     mut derivs: impl FnMut(f64, f64) -> SurfaceDerivs,
 ) -> (SurfaceDerivs, Option<(f64, f64)>) {
+    let RaySearch {
+        start,
+        origin,
+        direction,
+        ..
+    } = *search;
+    let mut left = search.evaluations.saturating_sub(1);
     let domain = surface.domain();
     let Some(d) = direction.try_normalize() else {
         return (SurfaceDerivs::default(), None);
@@ -129,6 +156,10 @@ fn newton_on_ray(
         let mut t = (reach / length).min(1.0);
         let mut better = None;
         for _ in 0..=HALVINGS {
+            if left == 0 {
+                break;
+            }
+            left -= 1;
             let nu = (u - t * step_u).clamp(domain.u.0, domain.u.1);
             let nv = (v - t * step_v).clamp(domain.v.0, domain.v.1);
             let ns = derivs(nu, nv);
@@ -185,15 +216,22 @@ mod tests {
             .iter()
             .map(|&(u, v)| (u + 0.01, v - 0.008))
             .collect();
-        let rays: Vec<(DVec3, DVec3)> = targets
+        let searches: Vec<RaySearch> = targets
             .iter()
-            .map(|&(u, v)| (origin, sphere.point(u, v) - origin))
+            .zip(&starts)
+            .map(|(&(u, v), &start)| RaySearch {
+                start,
+                origin,
+                direction: sphere.point(u, v) - origin,
+                evaluations: ALL_EVALUATIONS,
+            })
             .collect();
         let mut params = vec![(0.0, 0.0); 4];
         let mut frames = vec![sphere.frame(0.0, 0.0); 4];
-        sphere.frames_on_rays(&starts, &rays, &mut params, &mut frames);
+        sphere.frames_on_rays(&searches, &mut params, &mut frames);
         for k in 0..4 {
-            let alone = sphere.try_refine_on_ray(starts[k], rays[k].0, rays[k].1);
+            let s = searches[k];
+            let alone = sphere.try_refine_on_ray(s.start, s.origin, s.direction);
             assert_eq!(Some(params[k]), alone, "ray {k}");
             let direct = sphere.frame(params[k].0, params[k].1);
             assert!((frames[k].point - direct.point).length() < 1e-12, "ray {k}");
@@ -203,6 +241,45 @@ mod tests {
             );
             assert!((frames[k].du - direct.du).length() < 1e-12, "ray {k}");
         }
+    }
+
+    #[test]
+    fn a_search_spends_no_more_evaluations_than_it_is_given() {
+        let sphere = crate::geom::shapes::sphere(DVec3::ZERO, 1.0).unwrap();
+        let origin = DVec3::new(0.2, -4.0, 0.7);
+        // A ray that passes beside the sphere: the full search spends many evaluations on it.
+        let search = |evaluations| RaySearch {
+            start: (0.31, 0.59),
+            origin,
+            direction: DVec3::Z,
+            evaluations,
+        };
+        let count = |evaluations| {
+            let mut spent = 0;
+            let (_, found) = newton_on_ray(&sphere, &search(evaluations), |u, v| {
+                spent += 1;
+                sphere.derivs(u, v, 1)
+            });
+            (spent, found.is_some())
+        };
+        let (all, _) = count(ALL_EVALUATIONS);
+        assert!(all > 8, "the full search took only {all} evaluations");
+        for budget in [1, 2, 5, 8] {
+            assert_eq!(count(budget), (budget, true), "budget {budget}");
+        }
+        // A hit close to the start is found within a few.
+        let target = sphere.point(0.3, 0.6);
+        let hit = RaySearch {
+            direction: target - origin,
+            evaluations: 4,
+            ..search(0)
+        };
+        let (_, found) = newton_on_ray(&sphere, &hit, |u, v| sphere.derivs(u, v, 1));
+        let (u, v) = found.unwrap();
+        assert!(
+            (u - 0.3).abs() < 1e-6 && (v - 0.6).abs() < 1e-6,
+            "({u}, {v})"
+        );
     }
 
     #[test]

@@ -10,7 +10,7 @@ use super::outline::EdgeSurface;
 use super::raster::{interpolate, VisibilityBuffer};
 use super::settings::FrameMode;
 use super::tessellate::Mesh;
-use crate::geom::{Frame, NurbsSurface, PatchLibrary};
+use crate::geom::{Frame, NurbsSurface, PatchLibrary, RaySearch, ALL_EVALUATIONS};
 use crate::highlight::TangentFrame;
 
 /// The slot of a pixel no surface covers.
@@ -57,6 +57,25 @@ const UNFILLED: Texel = Texel {
     frame: TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z),
 };
 
+/// How much of its frame a sample needs, when frames are evaluated on the patches
+/// ([`FrameMode::Exact`] or [`FrameMode::Refined`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Evaluate {
+    /// The frame in full: evaluated on the patch, refined onto the ray with every step needed.
+    #[default]
+    Full,
+    /// Whether the ray meets the surface near the mesh's (u, v): refined within
+    /// [`PROBE_EVALUATIONS`], so that a ray passing beside the surface costs little.
+    Probe,
+    /// Only where the surface is: the mesh's interpolated frame, as [`FrameMode::Interpolated`]
+    /// gives it (for samples whose depth and normal matter, not their shading).
+    Mesh,
+}
+
+/// Surface evaluations a [`Evaluate::Probe`] spends at most: from a start within a sample of
+/// the ray, Newton's steps land on it in two or three.
+pub const PROBE_EVALUATIONS: u32 = 5;
+
 /// What filling the texels of one block of pixels needs to know.
 struct Fill<'a> {
     visibility: &'a VisibilityBuffer,
@@ -65,6 +84,8 @@ struct Fill<'a> {
     camera: &'a Camera,
     inverse_view_projection: Mat4,
     mode: FrameMode,
+    /// Per pixel, how much of its frame to evaluate (`None`: all of every frame).
+    evaluate: Option<&'a [Evaluate]>,
     /// Whether to fill the edge surfaces, and the line of sight `(eye, forward)` they are seen
     /// along.
     edges: Option<(Vec3, Vec3)>,
@@ -74,7 +95,7 @@ struct Fill<'a> {
 #[derive(Default)]
 struct FrameScratch {
     starts: Vec<(f64, f64)>,
-    rays: Vec<(DVec3, DVec3)>,
+    searches: Vec<RaySearch>,
     params: Vec<(f64, f64)>,
     frames: Vec<Frame>,
 }
@@ -86,6 +107,7 @@ impl GBuffer {
     /// ([`FrameMode::Refined`]), the pixel's ray cast through `view_projection` (the camera's,
     /// or a window of it: [`Window`](super::window::Window)). With `edges`, what the
     /// outline pass compares is filled into it too, one per texel, while each texel is at hand.
+    /// `evaluate`, one per pixel, says how much of each frame to evaluate (`None`: all).
     /// Returns the number of frames evaluated on the patches.
     ///
     /// Blocks of pixels are filled in parallel: each block counts its covered pixels, and the
@@ -99,6 +121,7 @@ impl GBuffer {
         camera: &Camera,
         view_projection: Mat4,
         mode: FrameMode,
+        evaluate: Option<&[Evaluate]>,
         mut edges: Option<&mut Vec<EdgeSurface>>,
     ) -> u64 {
         (self.width, self.height) = (visibility.width, visibility.height);
@@ -134,6 +157,7 @@ impl GBuffer {
             camera,
             inverse_view_projection: view_projection.inverse(),
             mode,
+            evaluate,
             edges: fills_edges.then(|| (camera.eye, camera.forward())),
         };
         blocks
@@ -151,9 +175,15 @@ impl GBuffer {
                     }
                 },
             );
-        match mode {
-            FrameMode::Interpolated => 0,
-            FrameMode::Exact | FrameMode::Refined => self.texels.len() as u64,
+        match (mode, evaluate) {
+            (FrameMode::Interpolated, _) => 0,
+            (FrameMode::Exact | FrameMode::Refined, None) => self.texels.len() as u64,
+            (FrameMode::Exact | FrameMode::Refined, Some(evaluate)) => {
+                self.texels
+                    .iter()
+                    .filter(|t| evaluate[t.pixel as usize] != Evaluate::Mesh)
+                    .count() as u64
+            }
         }
     }
 
@@ -246,7 +276,12 @@ impl Fill<'_> {
             mesh.positions[i1],
             mesh.positions[i2],
         );
-        let frame = match self.mode {
+        let evaluate = self.evaluate.map_or(Evaluate::Full, |e| e[i]);
+        let mode = match (self.mode, evaluate) {
+            (_, Evaluate::Mesh) => FrameMode::Interpolated,
+            (mode, Evaluate::Full | Evaluate::Probe) => mode,
+        };
+        let frame = match mode {
             // The mesh's normal, kept until the exact frame replaces it: refined frames compare
             // the side of the surface they land on with the side the mesh shows.
             FrameMode::Refined => TangentFrame::new(
@@ -281,24 +316,40 @@ impl Fill<'_> {
     /// moves the texel's (u, v) and position there.
     fn exact_frames(&self, texels: &mut [Texel], scratch: &mut FrameScratch) {
         let refined = self.mode == FrameMode::Refined;
-        for run in texels.chunk_by_mut(|a, b| a.patch == b.patch) {
+        let evaluate = |t: &Texel| {
+            self.evaluate
+                .map_or(Evaluate::Full, |e| e[t.pixel as usize])
+        };
+        let runs = texels.chunk_by_mut(|a, b| {
+            a.patch == b.patch && (evaluate(a) == Evaluate::Mesh) == (evaluate(b) == Evaluate::Mesh)
+        });
+        for run in runs {
+            if evaluate(&run[0]) == Evaluate::Mesh {
+                continue;
+            }
             let surface = &self.library.patches[run[0].patch as usize].surface;
-            scratch.starts.clear();
-            scratch
-                .starts
-                .extend(run.iter().map(|t| (f64::from(t.uv.x), f64::from(t.uv.y))));
             scratch.params.resize(run.len(), (0.0, 0.0));
             scratch.frames.resize(run.len(), NO_FRAME);
+            let start = |t: &Texel| (f64::from(t.uv.x), f64::from(t.uv.y));
             if refined {
-                scratch.rays.clear();
-                scratch.rays.extend(run.iter().map(|t| self.ray(t.pixel)));
-                surface.frames_on_rays(
-                    &scratch.starts,
-                    &scratch.rays,
-                    &mut scratch.params,
-                    &mut scratch.frames,
-                );
+                scratch.searches.clear();
+                scratch.searches.extend(run.iter().map(|t| {
+                    let (origin, direction) = self.ray(t.pixel);
+                    let evaluations = match evaluate(t) {
+                        Evaluate::Probe => PROBE_EVALUATIONS,
+                        Evaluate::Full | Evaluate::Mesh => ALL_EVALUATIONS,
+                    };
+                    RaySearch {
+                        start: start(t),
+                        origin,
+                        direction,
+                        evaluations,
+                    }
+                }));
+                surface.frames_on_rays(&scratch.searches, &mut scratch.params, &mut scratch.frames);
             } else {
+                scratch.starts.clear();
+                scratch.starts.extend(run.iter().map(start));
                 scratch.params.copy_from_slice(&scratch.starts);
                 surface.frames(&scratch.params, &mut scratch.frames);
             }
@@ -374,3 +425,97 @@ pub(super) const NO_FRAME: Frame = Frame {
     dv: DVec3::Y,
     degenerate: false,
 };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{shapes, NamedPatch};
+    use crate::render::camera::Projection;
+    use crate::render::raster::{RasterOptions, Rasterizer, Viewport};
+    use crate::render::tessellate::{Density, Tessellator};
+
+    #[test]
+    fn each_sample_gets_the_frame_its_evaluation_asks_for() {
+        let library = PatchLibrary::new(vec![NamedPatch {
+            name: "ball".into(),
+            surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
+        }]);
+        let camera = Camera {
+            eye: Vec3::new(0.3, -5.0, 0.8),
+            target: Vec3::ZERO,
+            up: Vec3::Z,
+            projection: Projection::Perspective {
+                fov_y_degrees: 30.0,
+            },
+            near: 0.1,
+            far: 100.0,
+        };
+        let (width, height) = (64, 64);
+        let view_projection = camera.view_projection(1.0);
+        let mut tessellator = Tessellator::new(library.clone());
+        let (mesh, _) = tessellator.mesh(
+            Density::ScreenTolerance { pixels: 0.5 },
+            view_projection,
+            width,
+            height,
+        );
+        let clip: Vec<_> = mesh
+            .positions
+            .iter()
+            .map(|p| view_projection * p.extend(1.0))
+            .collect();
+        let mut visibility = VisibilityBuffer::default();
+        Rasterizer::default().rasterize_into(
+            Viewport { width, height },
+            &clip,
+            &mesh.triangles,
+            &RasterOptions::default(),
+            &mut visibility,
+        );
+        let fill = |mode, evaluate: Option<&[Evaluate]>| {
+            let mut g = GBuffer::default();
+            let frames = g.fill(
+                &visibility,
+                mesh,
+                &library,
+                &camera,
+                view_projection,
+                mode,
+                evaluate,
+                None,
+            );
+            (g, frames)
+        };
+        let (mesh_frames, none) = fill(FrameMode::Interpolated, None);
+        let (full, all) = fill(FrameMode::Refined, None);
+        assert_eq!(none, 0);
+        assert_eq!(all, full.texels.len() as u64);
+        // Every third pixel each way.
+        let evaluate: Vec<Evaluate> = (0..width * height)
+            .map(|i| [Evaluate::Full, Evaluate::Probe, Evaluate::Mesh][i as usize % 3])
+            .collect();
+        let (mixed, frames) = fill(FrameMode::Refined, Some(&evaluate));
+        let mut counted = 0;
+        for ((m, f), i) in mixed
+            .texels
+            .iter()
+            .zip(&full.texels)
+            .zip(&mesh_frames.texels)
+        {
+            assert_eq!(m.pixel, f.pixel);
+            match evaluate[m.pixel as usize] {
+                Evaluate::Full => assert_eq!(m, f),
+                // From a mesh within half a pixel of the surface, a probe lands where the full
+                // search does.
+                Evaluate::Probe => {
+                    assert!((m.uv - f.uv).length() < 1e-5, "{} {}", m.uv, f.uv);
+                    assert!((m.frame.n - f.frame.n).length() < 1e-4);
+                }
+                Evaluate::Mesh => assert_eq!(m, i),
+            }
+            counted += u64::from(evaluate[m.pixel as usize] != Evaluate::Mesh);
+        }
+        assert_eq!(frames, counted);
+        assert!(counted > 100 && counted < mixed.texels.len() as u64);
+    }
+}

@@ -459,6 +459,7 @@ fn fill_gbuffer(
             &scene.camera,
             view_projection,
             settings.frames,
+            None,
             edges,
         )
     });

@@ -5,7 +5,7 @@ use glam::{Mat4, Vec4};
 use rayon::prelude::*;
 
 use super::contrast::pixels_to_supersample;
-use super::gbuffer::{GBuffer, EMPTY};
+use super::gbuffer::{Evaluate, GBuffer, EMPTY};
 use super::outline::{draw_outlines, OutlineBuffers};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::renderer::{premultiplied, straight};
@@ -208,6 +208,10 @@ struct TileBuffers {
     outlining: OutlineBuffers,
     /// Per sample of the window, whether it is drawn on.
     drawn: Vec<bool>,
+    /// Per sample of the window, how much of its frame the G-buffer evaluates.
+    evaluate: Vec<Evaluate>,
+    /// Scratch for [`dilate`].
+    dilating: (Vec<bool>, Vec<u32>),
     /// Per sample of the window, whether [`grow`] covered it.
     grown: Vec<bool>,
 }
@@ -252,6 +256,62 @@ fn grow(visibility: &mut VisibilityBuffer, drawn: &[bool], grown: &mut Vec<bool>
             visibility.barycentric[i] = visibility.barycentric[j];
             visibility.depth[i] = visibility.depth[j];
             grown[i] = true;
+        }
+    }
+}
+
+/// Sets every flag of the `width × height` grid `flags` within `radius` (in x and in y: a
+/// square) of one that is set, in time linear in the grid: a sliding count along each row, then
+/// one down the columns, a row at a time. `rows` is scratch.
+fn dilate(
+    flags: &mut [bool],
+    (width, height): (usize, usize),
+    radius: usize,
+    (rows, counts): (&mut Vec<bool>, &mut Vec<u32>),
+) {
+    if radius == 0 {
+        return;
+    }
+    // Along the rows, into `rows`.
+    rows.clear();
+    rows.resize(width * height, false);
+    for (row, out) in flags.chunks(width).zip(rows.chunks_mut(width)) {
+        let mut set = row[..radius.min(width)].iter().filter(|&&f| f).count();
+        for (x, o) in out.iter_mut().enumerate() {
+            if let Some(&f) = row.get(x + radius) {
+                set += usize::from(f);
+            }
+            *o = set > 0;
+            if x >= radius {
+                set -= usize::from(row[x - radius]);
+            }
+        }
+    }
+    // Down the columns: `counts[x]` is the set flags of column x among rows y − radius ..= y + radius.
+    counts.clear();
+    counts.resize(width, 0);
+    for row in rows.chunks(width).take(radius) {
+        for (c, &f) in counts.iter_mut().zip(row) {
+            *c += u32::from(f);
+        }
+    }
+    for y in 0..height {
+        if let Some(entering) = rows.get((y + radius) * width..(y + radius + 1) * width) {
+            for (c, &f) in counts.iter_mut().zip(entering) {
+                *c += u32::from(f);
+            }
+        }
+        for (o, &c) in flags[y * width..(y + 1) * width]
+            .iter_mut()
+            .zip(counts.iter())
+        {
+            *o = c > 0;
+        }
+        if y >= radius {
+            let leaving = &rows[(y - radius) * width..(y - radius + 1) * width];
+            for (c, &f) in counts.iter_mut().zip(leaving) {
+                *c -= u32::from(f);
+            }
         }
     }
 }
@@ -353,29 +413,31 @@ impl TileBuffers {
             &options,
             &mut self.visibility,
         );
-        // Only the samples of marked pixels, and those within the apron of them, are drawn on.
+        // Only the samples of marked pixels, and those within the apron of them, are drawn on;
+        // those within a sample of them are shaded (the edge widths' central differences), the
+        // rest only show the outlines where the surfaces are.
         let (ww, wh) = (window.width, window.height);
-        self.drawn.clear();
-        self.drawn.resize((ww * wh) as usize, false);
-        for y in 0..wh {
-            let sy = y + y0;
-            let (py0, py1) = (
-                sy.saturating_sub(apron) / k,
-                ((sy + apron) / k).min(image.height - 1),
-            );
-            for x in 0..ww {
-                let sx = x + x0;
-                let (px0, px1) = (
-                    sx.saturating_sub(apron) / k,
-                    ((sx + apron) / k).min(image.width - 1),
-                );
-                let mut near = false;
-                for py in py0..=py1 {
-                    let row = &marked[(py * image.width) as usize..];
-                    near |= row[px0 as usize..=px1 as usize].contains(&true);
+        let (wu, hu) = (ww as usize, wh as usize);
+        self.evaluate.clear();
+        self.evaluate.extend((0..wh).flat_map(|y| {
+            let row = ((y + y0) / k * image.width) as usize;
+            (0..ww).map(move |x| {
+                if marked[row + ((x + x0) / k) as usize] {
+                    Evaluate::Full
+                } else {
+                    Evaluate::Mesh
                 }
-                self.drawn[(y * ww + x) as usize] = near;
-            }
+            })
+        }));
+        self.drawn.clear();
+        self.drawn
+            .extend(self.evaluate.iter().map(|&e| e == Evaluate::Full));
+        let (rows, counts) = &mut self.dilating;
+        dilate(&mut self.drawn, (wu, hu), apron as usize, (rows, counts));
+        let mut shaded: Vec<bool> = self.evaluate.iter().map(|&e| e == Evaluate::Full).collect();
+        dilate(&mut shaded, (wu, hu), 1, (rows, counts));
+        for (e, &s) in self.evaluate.iter_mut().zip(&shaded) {
+            *e = if s { Evaluate::Full } else { Evaluate::Mesh };
         }
         for (t, &drawn) in self.visibility.triangle.iter_mut().zip(&self.drawn) {
             if *t != EMPTY {
@@ -384,6 +446,14 @@ impl TileBuffers {
         }
         if frame.frames == FrameMode::Refined {
             grow(&mut self.visibility, &self.drawn, &mut self.grown);
+            for (e, _) in self
+                .evaluate
+                .iter_mut()
+                .zip(&self.grown)
+                .filter(|(_, &g)| g)
+            {
+                *e = Evaluate::Probe;
+            }
         } else {
             self.grown.clear();
         }
@@ -400,6 +470,7 @@ impl TileBuffers {
             &scene.camera,
             to_window * frame.view_projection,
             frame.frames,
+            Some(&self.evaluate),
             edges,
         );
         if !self.grown.is_empty() {
@@ -469,5 +540,33 @@ impl TileBuffers {
             }
         }
         (resolved, frames)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dilation_sets_exactly_the_square_around_each_set_flag() {
+        // Against the definition, on grids with flags at corners, edges and inside.
+        let (w, h) = (9usize, 7usize);
+        let set = [(0usize, 0usize), (8, 3), (4, 6), (5, 2)];
+        for radius in 0..=4 {
+            let mut flags = vec![false; w * h];
+            for &(x, y) in &set {
+                flags[y * w + x] = true;
+            }
+            let mut scratch = (Vec::new(), Vec::new());
+            dilate(&mut flags, (w, h), radius, (&mut scratch.0, &mut scratch.1));
+            for y in 0..h {
+                for x in 0..w {
+                    let near = set
+                        .iter()
+                        .any(|&(sx, sy)| sx.abs_diff(x) <= radius && sy.abs_diff(y) <= radius);
+                    assert_eq!(flags[y * w + x], near, "({x}, {y}) at radius {radius}");
+                }
+            }
+        }
     }
 }
