@@ -137,3 +137,65 @@ fn the_supersampled_silhouette_follows_the_surface_not_the_mesh() {
         "refined {refined} against exact {exact}"
     );
 }
+
+#[test]
+fn adaptive_samples_agree_with_supersampling_every_pixel() {
+    // The marked pixels' samples — found from the refined points around them inside a surface,
+    // rasterized in tiles at silhouettes and where lines reach — against every pixel rasterized
+    // at the same 4 × 4 samples.
+    let library = teapot();
+    for outlines in [false, true] {
+        let scene = teapot_scene(&library, outlines);
+        let render = |antialias| {
+            Renderer::new(Arc::clone(&library))
+                .render(&scene, &with(antialias))
+                .unwrap()
+        };
+        let (adaptive, every) = (
+            render(Antialias::Adaptive(4)),
+            render(Antialias::Supersample(4)),
+        );
+        let edge = every
+            .colour
+            .iter()
+            .filter(|c| c.w > 0.0 && c.w < 1.0)
+            .count() as f32;
+        let alpha: Vec<f32> = adaptive
+            .colour
+            .iter()
+            .zip(&every.colour)
+            .map(|(a, b)| (a.w - b.w).abs())
+            .collect();
+        let matte = |f: &glint::render::RenderedFrame| f.aovs.matte.clone().unwrap();
+        let mattes: Vec<f32> = matte(&adaptive)
+            .iter()
+            .zip(&matte(&every))
+            .map(|(a, b)| (a - b).abs())
+            .collect();
+        let most = |v: &[f32]| v.iter().copied().fold(0.0, f32::max);
+        let sum = |v: &[f32]| v.iter().sum::<f32>();
+        // Coverage: a sample row at most anywhere (the sliver of a surface no centre sees), and
+        // a few hundredths of a pixel over the silhouette's length.
+        assert!(
+            most(&alpha) <= 0.25,
+            "outlines {outlines}: {}",
+            most(&alpha)
+        );
+        assert!(
+            sum(&alpha) <= 0.03 * edge,
+            "outlines {outlines}: {} over {edge} edge pixels",
+            sum(&alpha)
+        );
+        // The highlight: within a fifth of a pixel's coverage anywhere.
+        assert!(
+            most(&mattes) <= 0.2,
+            "outlines {outlines}: {}",
+            most(&mattes)
+        );
+        assert!(
+            sum(&mattes) <= 0.03 * edge,
+            "outlines {outlines}: {} against {edge} edge pixels",
+            sum(&mattes)
+        );
+    }
+}

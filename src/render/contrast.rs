@@ -30,29 +30,41 @@ pub fn pixels_to_supersample(
     height: u32,
 ) -> Vec<bool> {
     let (w, h) = (width as usize, height as usize);
-    let premultiplied: Vec<Vec4> = colour.par_iter().copied().map(premultiplied).collect();
     let differs = |a: usize, b: usize| {
-        (premultiplied[a] - premultiplied[b]).abs().max_element() > CONTRAST
+        (premultiplied(colour[a]) - premultiplied(colour[b]))
+            .abs()
+            .max_element()
+            > CONTRAST
             || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST)
     };
+    // Each pair of neighbours compared once, from the upper or left one: bit 0 its right
+    // neighbour, 1 the one below, 2 below right, 3 below left.
+    let mut pairs = vec![0u8; w * h];
+    pairs.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+        for (x, bits) in row.iter_mut().enumerate() {
+            let i = y * w + x;
+            let right = x + 1 < w;
+            let below = y + 1 < h;
+            *bits = u8::from(right && differs(i, i + 1))
+                | u8::from(below && differs(i, i + w)) << 1
+                | u8::from(right && below && differs(i, i + w + 1)) << 2
+                | u8::from(x > 0 && below && differs(i, i + w - 1)) << 3;
+        }
+    });
     let mut marked = vec![false; w * h];
     marked.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
-        let (y0, y1) = (y.saturating_sub(1), (y + 1).min(h - 1));
         for (x, mark) in row.iter_mut().enumerate() {
-            if also.is_some_and(|also| also[y * w + x]) {
-                *mark = true;
-                continue;
-            }
-            let (x0, x1) = (x.saturating_sub(1), (x + 1).min(w - 1));
             let i = y * w + x;
-            'around: for ny in y0..=y1 {
-                for nx in x0..=x1 {
-                    if differs(i, ny * w + nx) {
-                        *mark = true;
-                        break 'around;
-                    }
-                }
-            }
+            let left = x > 0 && pairs[i - 1] & 1 != 0;
+            let above = y > 0 && pairs[i - w] & 2 != 0;
+            let above_left = x > 0 && y > 0 && pairs[i - w - 1] & 4 != 0;
+            let above_right = x + 1 < w && y > 0 && pairs[i - w + 1] & 8 != 0;
+            *mark = pairs[i] != 0
+                || left
+                || above
+                || above_left
+                || above_right
+                || also.is_some_and(|also| also[i]);
         }
     });
     marked
@@ -105,5 +117,49 @@ mod tests {
         // Below the contrast, nothing.
         matte[8] = CONTRAST * 0.9;
         assert!(!pixels_to_supersample(&colour, Some(&matte), None, w, h).contains(&true));
+    }
+
+    #[test]
+    fn each_pixel_is_marked_exactly_when_one_of_its_eight_neighbours_differs() {
+        // Random blocky images against the definition, neighbour by neighbour.
+        let (w, h) = (13usize, 9usize);
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for _ in 0..20 {
+            let colour: Vec<Vec4> = (0..w * h)
+                .map(|_| match next() % 4 {
+                    0 => Vec4::ZERO,
+                    1 => Vec4::new(0.2, 0.3, 0.4, 1.0),
+                    _ => Vec4::new(0.2, 0.3, 0.4 + CONTRAST * 0.5, 1.0),
+                })
+                .collect();
+            let matte: Vec<f32> = (0..w * h).map(|_| (next() % 3) as f32 * 0.4).collect();
+            let also: Vec<bool> = (0..w * h).map(|_| next() % 17 == 0).collect();
+            let marked =
+                pixels_to_supersample(&colour, Some(&matte), Some(&also), w as u32, h as u32);
+            for y in 0..h {
+                for x in 0..w {
+                    let i = y * w + x;
+                    let mut expected = also[i];
+                    for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
+                        for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
+                            let j = ny * w + nx;
+                            let a = colour[i] * colour[i].w;
+                            let b = colour[j] * colour[j].w;
+                            let rgb = (a.truncate() - b.truncate()).abs().max_element();
+                            let alpha = (colour[i].w - colour[j].w).abs();
+                            expected |=
+                                rgb.max(alpha) > CONTRAST || (matte[i] - matte[j]).abs() > CONTRAST;
+                        }
+                    }
+                    assert_eq!(marked[i], expected, "({x}, {y})");
+                }
+            }
+        }
     }
 }

@@ -80,15 +80,22 @@ pub const PROBE_EVALUATIONS: u32 = 5;
 struct Fill<'a> {
     visibility: &'a VisibilityBuffer,
     mesh: &'a Mesh,
-    library: &'a PatchLibrary,
-    camera: &'a Camera,
-    inverse_view_projection: Mat4,
-    mode: FrameMode,
+    frames: Frames<'a>,
     /// Per pixel, how much of its frame to evaluate (`None`: all of every frame).
     evaluate: Option<&'a [Evaluate]>,
     /// Whether to fill the edge surfaces, and the line of sight `(eye, forward)` they are seen
     /// along.
     edges: Option<(Vec3, Vec3)>,
+}
+
+/// What evaluating texels' frames on their patches needs to know: the texels' `pixel` indices
+/// are those of a `size` image seen through the view-projection inverted here.
+struct Frames<'a> {
+    library: &'a PatchLibrary,
+    camera: &'a Camera,
+    inverse_view_projection: Mat4,
+    size: (u32, u32),
+    mode: FrameMode,
 }
 
 /// Per-job scratch for evaluating a run of frames on one patch.
@@ -153,10 +160,13 @@ impl GBuffer {
         let fill = Fill {
             visibility,
             mesh,
-            library,
-            camera,
-            inverse_view_projection: view_projection.inverse(),
-            mode,
+            frames: Frames {
+                library,
+                camera,
+                inverse_view_projection: view_projection.inverse(),
+                size: (visibility.width, visibility.height),
+                mode,
+            },
             evaluate,
             edges: fills_edges.then(|| (camera.eye, camera.forward())),
         };
@@ -184,6 +194,39 @@ impl GBuffer {
                     .filter(|t| evaluate[t.pixel as usize] != Evaluate::Mesh)
                     .count() as u64
             }
+        }
+    }
+
+    /// Moves each of `texels` onto its pixel's ray, as [`fill`](Self::fill) does with
+    /// [`FrameMode::Refined`], and puts the frame there: each texel holds its patch, the (u, v)
+    /// to start from, a normal facing the eye (in `frame.n`: where the refined point faces away,
+    /// the near crossing is looked for) and its `pixel` index in a `size` image seen through
+    /// `view_projection`. Each search spends what `evaluate` allows. Texels on one patch are
+    /// best kept together. Returns the frames evaluated.
+    pub(super) fn refine_onto_rays(
+        texels: &mut [Texel],
+        library: &PatchLibrary,
+        camera: &Camera,
+        view_projection: Mat4,
+        size: (u32, u32),
+        evaluate: Evaluate,
+    ) -> u64 {
+        let frames = Frames {
+            library,
+            camera,
+            inverse_view_projection: view_projection.inverse(),
+            size,
+            mode: FrameMode::Refined,
+        };
+        texels.par_chunks_mut(PIXELS_PER_JOB).for_each_init(
+            FrameScratch::default,
+            |scratch, chunk| {
+                frames.exact_frames(chunk, &|_| evaluate, scratch);
+            },
+        );
+        match evaluate {
+            Evaluate::Mesh => 0,
+            Evaluate::Full | Evaluate::Probe => texels.len() as u64,
         }
     }
 
@@ -259,8 +302,12 @@ impl Fill<'_> {
             texels[k] = self.texel(i, triangle);
             k += 1;
         }
-        if self.mode != FrameMode::Interpolated {
-            self.exact_frames(texels, scratch);
+        if self.frames.mode != FrameMode::Interpolated {
+            let evaluate = |t: &Texel| {
+                self.evaluate
+                    .map_or(Evaluate::Full, |e| e[t.pixel as usize])
+            };
+            self.frames.exact_frames(texels, &evaluate, scratch);
         }
     }
 
@@ -277,7 +324,7 @@ impl Fill<'_> {
             mesh.positions[i2],
         );
         let evaluate = self.evaluate.map_or(Evaluate::Full, |e| e[i]);
-        let mode = match (self.mode, evaluate) {
+        let mode = match (self.frames.mode, evaluate) {
             (_, Evaluate::Mesh) => FrameMode::Interpolated,
             (mode, Evaluate::Full | Evaluate::Probe) => mode,
         };
@@ -297,7 +344,7 @@ impl Fill<'_> {
                     mesh.tangents_u[i1],
                     mesh.tangents_u[i2],
                 ),
-                self.camera.eye_direction(position),
+                self.frames.camera.eye_direction(position),
             ),
             FrameMode::Exact => UNFILLED.frame,
         };
@@ -310,16 +357,19 @@ impl Fill<'_> {
             frame,
         }
     }
+}
 
+impl Frames<'_> {
     /// The frames of `texels` evaluated on their patches, a run of texels on one patch at a
     /// time; with [`FrameMode::Refined`], at (u, v) refined onto the pixel's ray, which also
-    /// moves the texel's (u, v) and position there.
-    fn exact_frames(&self, texels: &mut [Texel], scratch: &mut FrameScratch) {
+    /// moves the texel's (u, v) and position there; `evaluate` says how much of each.
+    fn exact_frames(
+        &self,
+        texels: &mut [Texel],
+        evaluate: &dyn Fn(&Texel) -> Evaluate,
+        scratch: &mut FrameScratch,
+    ) {
         let refined = self.mode == FrameMode::Refined;
-        let evaluate = |t: &Texel| {
-            self.evaluate
-                .map_or(Evaluate::Full, |e| e[t.pixel as usize])
-        };
         let runs = texels.chunk_by_mut(|a, b| {
             a.patch == b.patch && (evaluate(a) == Evaluate::Mesh) == (evaluate(b) == Evaluate::Mesh)
         });
@@ -353,9 +403,24 @@ impl Fill<'_> {
                 scratch.params.copy_from_slice(&scratch.starts);
                 surface.frames(&scratch.params, &mut scratch.frames);
             }
-            for ((t, f), &(u, v)) in run.iter_mut().zip(&scratch.frames).zip(&scratch.params) {
+            let searches = scratch
+                .searches
+                .iter()
+                .map(Some)
+                .chain(std::iter::repeat(None));
+            for (((t, f), &(u, v)), search) in run
+                .iter_mut()
+                .zip(&scratch.frames)
+                .zip(&scratch.params)
+                .zip(searches)
+            {
                 let (mut f, mut uv) = (*f, (u, v));
-                if refined {
+                // A probe that found no point on its ray has its answer: the ray misses.
+                let missed = || {
+                    evaluate(t) == Evaluate::Probe
+                        && search.is_some_and(|s| !on_ray(f.point, s.origin, s.direction))
+                };
+                if refined && !missed() {
                     if let Some((front, at)) = self.front_sheet(surface, t, &f, uv) {
                         (f, uv) = (front, at);
                     }
@@ -369,7 +434,7 @@ impl Fill<'_> {
 
     /// The pixel's ray through its centre, `(origin, direction)` from the near plane to the far.
     fn ray(&self, pixel: u32) -> (DVec3, DVec3) {
-        let (width, height) = (self.visibility.width, self.visibility.height);
+        let (width, height) = self.size;
         let (x, y) = ((pixel % width) as f32 + 0.5, (pixel / width) as f32 + 0.5);
         let ndc = Vec2::new(2.0 * x / width as f32 - 1.0, 1.0 - 2.0 * y / height as f32);
         let unproject = |z: f32| {
@@ -410,11 +475,17 @@ impl Fill<'_> {
         let at = surface.try_refine_on_ray(mirrored, origin, direction)?;
         let front = surface.frame(at.0, at.1);
         let d = direction.normalize();
-        let off_ray = (front.point - origin).reject_from_normalized(d).length();
         let nearer = (front.point - origin).dot(d) < (f.point - origin).dot(d);
-        let on_ray = off_ray <= 1e-6 * (front.point - origin).length();
-        (front.normal.dot(eye - front.point) > 0.0 && nearer && on_ray).then_some((front, at))
+        (front.normal.dot(eye - front.point) > 0.0 && nearer && on_ray(front.point, origin, d))
+            .then_some((front, at))
     }
+}
+
+/// Whether `point` lies on the ray from `origin` along `direction`, within 10⁻⁶ of its distance
+/// from the origin.
+fn on_ray(point: DVec3, origin: DVec3, direction: DVec3) -> bool {
+    let r = point - origin;
+    r.reject_from(direction).length() <= 1e-6 * r.length()
 }
 
 /// A frame to fill scratch buffers with before evaluation overwrites it.

@@ -10,6 +10,7 @@
 
 pub mod camera;
 mod contrast;
+mod dilate;
 mod directions;
 mod edge_width;
 mod facing;
@@ -19,6 +20,7 @@ mod plan;
 pub mod raster;
 mod renderer;
 mod scene;
+mod seeded;
 mod settings;
 mod shade;
 mod stage;

@@ -22,6 +22,14 @@ pub(super) struct OutlineBuffers {
     edges: Vec<bool>,
 }
 
+impl OutlineBuffers {
+    /// Per pixel of the last image lines were drawn on, whether a line runs from it (the
+    /// pixels the lines are centred on).
+    pub(super) fn edges(&self) -> &[bool] {
+        &self.edges
+    }
+}
+
 /// What the edge tests read of a texel, packed.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct EdgeSurface {

@@ -285,7 +285,7 @@ impl Stages {
                 (mesh, covered)
             }
         };
-        let (mut shaded, straddles) = match plan.surfaces {
+        let (mut shaded, widths) = match plan.surfaces {
             Surfaces::Visibility => (
                 shade_from_visibility(visibility, mesh, scene, covered, &mut stats),
                 None,
@@ -314,10 +314,7 @@ impl Stages {
                 stats.record(Stage::Shade, shaded.shaded, seconds);
                 stats.highlight_pixels = shaded.highlighted;
                 stats.xtoon_pixels = shaded.xtoon;
-                let straddles = widths
-                    .filter(|_| plan.runs(Stage::Supersample))
-                    .map(|w| highlight_gbuffer.gather(&w.straddles, false));
-                (shaded, straddles)
+                (shaded, widths.filter(|_| plan.runs(Stage::Supersample)))
             }
         };
         if let (true, Some(outlines)) = (plan.runs(Stage::Outline), &scene.outlines) {
@@ -332,6 +329,9 @@ impl Stages {
         }
         if let (true, Antialias::Adaptive(k)) = (plan.runs(Stage::Supersample), settings.antialias)
         {
+            let straddles = widths.as_ref().map(|w| gbuffer.gather(&w.straddles, false));
+            let lines =
+                (scene.outlines.is_some() && plan.runs(Stage::Outline)).then(|| outlining.edges());
             let input = supersample::Frame {
                 library,
                 scene,
@@ -344,6 +344,9 @@ impl Stages {
                 detail: plan.uses(Stage::Detail),
                 widths: plan.uses(Stage::EdgeWidths),
                 straddles: straddles.as_deref(),
+                gbuffer,
+                footprints: widths.as_ref().map(|w| w.footprints.as_slice()),
+                lines,
             };
             let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
             stats.record(Stage::Supersample, done.pixels, seconds);

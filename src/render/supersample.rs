@@ -5,17 +5,20 @@ use glam::{Mat4, Vec4};
 use rayon::prelude::*;
 
 use super::contrast::pixels_to_supersample;
+use super::dilate::dilate;
 use super::gbuffer::{Evaluate, GBuffer, EMPTY};
 use super::outline::{draw_outlines, OutlineBuffers};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::renderer::{premultiplied, straight};
 use super::scene::{Outlines, Scene};
+use super::seeded::{self, Seeded};
 use super::settings::FrameMode;
 use super::shade::{shade, ShadeBuffers, Shaded};
 use super::tessellate::Mesh;
 use super::window::Window;
 use super::xtoon_tone::{self, Views};
 use crate::geom::PatchLibrary;
+use crate::highlight::Footprint;
 
 /// Side of a tile in output pixels. A tile's samples, with its apron, are all a worker holds:
 /// at 8 × 8 samples, 256 × 256 samples plus the apron.
@@ -40,6 +43,12 @@ pub(super) struct Frame<'a> {
     /// Per pixel, whether a highlight edge may cross it unseen by its colour (the edge-width
     /// stage's bound), when edge widths were taken.
     pub straddles: Option<&'a [bool]>,
+    /// The one-sample G-buffer the highlights were shaded from.
+    pub gbuffer: &'a GBuffer,
+    /// Per texel of `gbuffer`, its footprint, when edge widths were taken.
+    pub footprints: Option<&'a [Footprint]>,
+    /// Per pixel, whether a line is centred on it, when the scene draws lines.
+    pub lines: Option<&'a [bool]>,
 }
 
 /// What the stage did.
@@ -53,11 +62,11 @@ pub(super) struct Done {
 }
 
 /// One pixel's average over its samples.
-struct Resolved {
-    pixel: u32,
-    colour: Vec4,
-    matte: f32,
-    n_dot_h: f32,
+pub(super) struct Resolved {
+    pub pixel: u32,
+    pub colour: Vec4,
+    pub matte: f32,
+    pub n_dot_h: f32,
 }
 
 /// Draws again, at `frame.k × frame.k` samples, each pixel of `shaded` (a one-sample image of
@@ -80,19 +89,39 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
         w,
         h,
     );
+    let pixels = marked.iter().filter(|&&m| m).count() as u64;
+    if pixels == 0 {
+        return Done::default();
+    }
+    let views = xtoon_tone::views(frame.scene);
+    let (mut marked, seeded) = split_seeded(frame, marked);
+
+    let (mut resolved, mut frames) = if seeded.is_empty() {
+        (Vec::new(), 0)
+    } else {
+        let input = Seeded {
+            library: frame.library,
+            scene: frame.scene,
+            view_projection: frame.view_projection,
+            gbuffer: frame.gbuffer,
+            footprints: frame.footprints,
+            image: frame.image,
+            k: frame.k,
+        };
+        let drawn = seeded::draw(&input, &views, &seeded, &mut ShadeBuffers::default());
+        for &p in &drawn.failed {
+            marked[p as usize] = true;
+        }
+        (drawn.resolved, drawn.frames)
+    };
     let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
     let mut tile_marked = vec![false; (tiles_x * tiles_y) as usize];
     for (i, _) in marked.iter().enumerate().filter(|(_, &m)| m) {
         let (x, y) = (i as u32 % w, i as u32 / w);
         tile_marked[((y / TILE) * tiles_x + x / TILE) as usize] = true;
     }
-    let pixels = marked.iter().filter(|&&m| m).count() as u64;
-    if pixels == 0 {
-        return Done::default();
-    }
     let apron = apron(frame.scene.outlines.as_ref(), frame.k);
     let bins = bin_triangles(frame, &tile_marked, (tiles_x, tiles_y), apron);
-    let views = xtoon_tone::views(frame.scene);
     let tiles: Vec<(u32, &Vec<u32>)> = (0..tiles_x * tiles_y)
         .zip(&bins)
         .filter(|&(t, _)| tile_marked[t as usize])
@@ -104,21 +133,57 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
             buffers.draw(frame, &views, &marked, (tx, ty), apron, bin)
         })
         .collect();
-    let mut frames = 0;
-    for (resolved, tile_frames) in results {
+    for (tile, tile_frames) in results {
         frames += tile_frames;
-        for r in resolved {
-            let p = r.pixel as usize;
-            shaded.colour[p] = r.colour;
-            if let Some(matte) = shaded.matte.as_mut() {
-                matte[p] = r.matte;
-            }
-            if let Some(n_dot_h) = shaded.n_dot_h.as_mut() {
-                n_dot_h[p] = r.n_dot_h;
-            }
+        resolved.extend(tile);
+    }
+    for r in resolved {
+        let p = r.pixel as usize;
+        shaded.colour[p] = r.colour;
+        if let Some(matte) = shaded.matte.as_mut() {
+            matte[p] = r.matte;
+        }
+        if let Some(n_dot_h) = shaded.n_dot_h.as_mut() {
+            n_dot_h[p] = r.n_dot_h;
         }
     }
     Done { pixels, frames }
+}
+
+/// The marked pixels split in two: those left to the rasterized tiles, as a mask, and those the
+/// seeded path draws ([`seeded::draw`]), as a list. The seeded path takes a marked pixel when
+/// frames are refined (it refines its samples' (u, v) from the refined points around them),
+/// nothing runs ahead of shading (the X-Toon detail reads a neighbourhood of samples), no line
+/// reaches the pixel (lines need their edge tests at the samples), and its neighbourhood
+/// shows the surfaces to start from ([`seeded::seedable`]).
+fn split_seeded(frame: &Frame, mut marked: Vec<bool>) -> (Vec<bool>, Vec<u32>) {
+    let (w, h) = (frame.image.width as usize, frame.image.height as usize);
+    let samples = u64::from(frame.image.width * frame.k) * u64::from(frame.image.height * frame.k);
+    if frame.frames != FrameMode::Refined || frame.detail || samples > u64::from(u32::MAX) {
+        return (marked, Vec::new());
+    }
+    let near_lines = match (frame.lines, frame.scene.outlines.as_ref()) {
+        (Some(lines), Some(outlines)) => {
+            let mut near = lines.to_vec();
+            let reach = ((outlines.width.max(1.0) - 1.0) * 0.5).ceil() as usize + 2;
+            dilate(&mut near, (w, h), reach, (&mut Vec::new(), &mut Vec::new()));
+            Some(near)
+        }
+        _ => None,
+    };
+    let seeded: Vec<u32> = (0..w * h)
+        .into_par_iter()
+        .filter(|&p| {
+            marked[p]
+                && !near_lines.as_ref().is_some_and(|n| n[p])
+                && seeded::seedable(frame.gbuffer, frame.scene, p)
+        })
+        .map(|p| p as u32)
+        .collect();
+    for &p in &seeded {
+        marked[p as usize] = false;
+    }
+    (marked, seeded)
 }
 
 /// Samples around a tile that its samples' results depend on: one for the central differences
@@ -221,7 +286,7 @@ const GROWN_RINGS: usize = 2;
 
 /// How far, in samples, a grown sample's refined surface point may project from the sample's
 /// centre and still count as a hit.
-const HIT_SAMPLES: f32 = 0.05;
+pub(super) const HIT_SAMPLES: f32 = 0.05;
 
 /// Covers, [`GROWN_RINGS`] times, each drawn empty sample beside a covered one with that
 /// neighbour's triangle and barycentrics, and marks it in `grown` (one flag per sample).
@@ -256,62 +321,6 @@ fn grow(visibility: &mut VisibilityBuffer, drawn: &[bool], grown: &mut Vec<bool>
             visibility.barycentric[i] = visibility.barycentric[j];
             visibility.depth[i] = visibility.depth[j];
             grown[i] = true;
-        }
-    }
-}
-
-/// Sets every flag of the `width × height` grid `flags` within `radius` (in x and in y: a
-/// square) of one that is set, in time linear in the grid: a sliding count along each row, then
-/// one down the columns, a row at a time. `rows` is scratch.
-fn dilate(
-    flags: &mut [bool],
-    (width, height): (usize, usize),
-    radius: usize,
-    (rows, counts): (&mut Vec<bool>, &mut Vec<u32>),
-) {
-    if radius == 0 {
-        return;
-    }
-    // Along the rows, into `rows`.
-    rows.clear();
-    rows.resize(width * height, false);
-    for (row, out) in flags.chunks(width).zip(rows.chunks_mut(width)) {
-        let mut set = row[..radius.min(width)].iter().filter(|&&f| f).count();
-        for (x, o) in out.iter_mut().enumerate() {
-            if let Some(&f) = row.get(x + radius) {
-                set += usize::from(f);
-            }
-            *o = set > 0;
-            if x >= radius {
-                set -= usize::from(row[x - radius]);
-            }
-        }
-    }
-    // Down the columns: `counts[x]` is the set flags of column x among rows y − radius ..= y + radius.
-    counts.clear();
-    counts.resize(width, 0);
-    for row in rows.chunks(width).take(radius) {
-        for (c, &f) in counts.iter_mut().zip(row) {
-            *c += u32::from(f);
-        }
-    }
-    for y in 0..height {
-        if let Some(entering) = rows.get((y + radius) * width..(y + radius + 1) * width) {
-            for (c, &f) in counts.iter_mut().zip(entering) {
-                *c += u32::from(f);
-            }
-        }
-        for (o, &c) in flags[y * width..(y + 1) * width]
-            .iter_mut()
-            .zip(counts.iter())
-        {
-            *o = c > 0;
-        }
-        if y >= radius {
-            let leaving = &rows[(y - radius) * width..(y - radius + 1) * width];
-            for (c, &f) in counts.iter_mut().zip(leaving) {
-                *c -= u32::from(f);
-            }
         }
     }
 }
@@ -540,33 +549,5 @@ impl TileBuffers {
             }
         }
         (resolved, frames)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn dilation_sets_exactly_the_square_around_each_set_flag() {
-        // Against the definition, on grids with flags at corners, edges and inside.
-        let (w, h) = (9usize, 7usize);
-        let set = [(0usize, 0usize), (8, 3), (4, 6), (5, 2)];
-        for radius in 0..=4 {
-            let mut flags = vec![false; w * h];
-            for &(x, y) in &set {
-                flags[y * w + x] = true;
-            }
-            let mut scratch = (Vec::new(), Vec::new());
-            dilate(&mut flags, (w, h), radius, (&mut scratch.0, &mut scratch.1));
-            for y in 0..h {
-                for x in 0..w {
-                    let near = set
-                        .iter()
-                        .any(|&(sx, sy)| sx.abs_diff(x) <= radius && sy.abs_diff(y) <= radius);
-                    assert_eq!(flags[y * w + x], near, "({x}, {y}) at radius {radius}");
-                }
-            }
-        }
     }
 }

@@ -1,0 +1,326 @@
+//! The K × K samples of a marked pixel found from the refined surface points around it, by
+//! Newton steps along each sample's ray instead of rasterization.
+
+use glam::{Mat4, Vec2, Vec4};
+use rayon::prelude::*;
+
+use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY};
+use super::raster::Viewport;
+use super::renderer::{premultiplied, straight};
+use super::scene::Scene;
+use super::shade::{shade, ShadeBuffers};
+use super::supersample::{Resolved, HIT_SAMPLES};
+use super::xtoon_tone::Views;
+use crate::geom::PatchLibrary;
+use crate::highlight::Footprint;
+
+/// Pixels drawn together: the samples of one batch, and their candidates, are all the memory
+/// the path holds (about 2 MB at 4 × 4 samples).
+const BATCH_PIXELS: usize = 1024;
+
+/// The relative spread of view depth among the texels of one patch around a pixel beyond which
+/// the patch folds over itself there (one sheet in front of another): such a pixel is left to
+/// rasterization, which sees every sheet.
+const FOLD: f32 = 0.05;
+
+/// What the path needs of the frame.
+pub(super) struct Seeded<'a> {
+    pub library: &'a PatchLibrary,
+    pub scene: &'a Scene<'a>,
+    pub view_projection: Mat4,
+    /// The one-sample G-buffer, its frames refined onto the pixels' rays.
+    pub gbuffer: &'a GBuffer,
+    /// Per texel of `gbuffer`, its footprint from the edge-width stage, when edges are analytic.
+    pub footprints: Option<&'a [Footprint]>,
+    /// The image in pixels.
+    pub image: Viewport,
+    /// Samples per pixel side.
+    pub k: u32,
+}
+
+/// Whether pixel `pixel` can be drawn from the surfaces its neighbourhood shows: every pixel of
+/// its 3 × 3 neighbourhood (inside the image) is covered, and no patch among them folds over
+/// itself there (the view depths of its texels spread by more than [`FOLD`]).
+///
+/// A silhouette is left to rasterization: there a patch seen edge-on may cover a sliver of the
+/// pixel that no centre of the nine sees (the flat top of a knob, one patch, above its side,
+/// another), and only the mesh knows it is there. Inside a surface, what no centre sees is
+/// what the marking of the pixels cannot see either.
+#[must_use]
+pub(super) fn seedable(gbuffer: &GBuffer, scene: &Scene, pixel: usize) -> bool {
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    let (x, y) = (pixel % w, pixel / w);
+    let (eye, forward) = (scene.camera.eye, scene.camera.forward());
+    let mut seen: [(u32, f32, f32); 9] = [(EMPTY, 0.0, 0.0); 9];
+    let mut patches = 0;
+    for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
+        for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
+            let Some(t) = gbuffer.texel(ny * w + nx) else {
+                return false;
+            };
+            let depth = (t.position - eye).dot(forward);
+            match seen[..patches].iter_mut().find(|s| s.0 == t.patch) {
+                Some(s) => (s.1, s.2) = (s.1.min(depth), s.2.max(depth)),
+                None => {
+                    seen[patches] = (t.patch, depth, depth);
+                    patches += 1;
+                }
+            }
+        }
+    }
+    seen[..patches]
+        .iter()
+        .all(|&(_, near, far)| near > 0.0 && far - near <= FOLD * near)
+}
+
+/// How far (u, v) moves from texel `slot`'s over `offset` pixels: the central (or one-sided)
+/// differences of (u, v) to its neighbours on its patch, along x and along y; none along an
+/// axis where no neighbour is on the patch or (u, v) jumps (a seam of a closed surface). A
+/// start this near the sample's point takes Newton a step or two fewer.
+fn uv_slope(gbuffer: &GBuffer, slot: u32, offset: Vec2) -> Vec2 {
+    let t = &gbuffer.texels[slot as usize];
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    let i = t.pixel as usize;
+    let (x, y) = (i % w, i / w);
+    let uv_at = |pixel: Option<usize>| {
+        let n = gbuffer.texel(pixel?)?;
+        (n.patch == t.patch && (n.uv - t.uv).abs().max_element() < SEAM).then_some(n.uv)
+    };
+    let slope = |before: Option<Vec2>, after: Option<Vec2>| match (before, after) {
+        (Some(b), Some(a)) => (a - b) * 0.5,
+        (Some(b), None) => t.uv - b,
+        (None, Some(a)) => a - t.uv,
+        (None, None) => Vec2::ZERO,
+    };
+    let along_x = slope(
+        uv_at((x > 0).then(|| i - 1)),
+        uv_at((x + 1 < w).then(|| i + 1)),
+    );
+    let along_y = slope(
+        uv_at((y > 0).then(|| i - w)),
+        uv_at((y + 1 < h).then(|| i + w)),
+    );
+    along_x * offset.x + along_y * offset.y
+}
+
+/// The most (u, v) may change between neighbouring pixels and still be taken for a slope rather
+/// than a seam.
+const SEAM: f32 = 0.25;
+
+/// One candidate for a sample: the sample, the texel it starts from, and the texel refined.
+struct Candidate {
+    /// The sample's index in the batch: `pixel_in_batch · k² + sy · k + sx`.
+    sample: u32,
+    /// The seed texel's index in the one-sample G-buffer.
+    seed: u32,
+}
+
+/// Draws each of `pixels` at `frame.k × frame.k` samples and returns their averages, the pixels
+/// it could not draw, and the frames evaluated. Each sample is tried from each patch its pixel's 3 × 3 neighbourhood
+/// shows, starting from that patch's texel nearest the sample: its (u, v) is refined onto the
+/// sample's ray ([`GBuffer::refine_onto_rays`], within a probe's evaluations), and kept when the
+/// point it lands on projects within [`HIT_SAMPLES`] of the sample's centre; of the points
+/// kept, the nearest covers the sample; a pixel with a sample that none covers is given back.
+/// The samples are shaded with their seed's footprint
+/// over the sample (a `k`-th of the pixel's), and a pixel takes the mean of its samples as the
+/// rasterized tiles do (premultiplied colour; matte and `N·H`).
+pub(super) fn draw(
+    frame: &Seeded,
+    views: &Views,
+    pixels: &[u32],
+    buffers: &mut ShadeBuffers,
+) -> Drawn {
+    let mut drawn = Drawn {
+        resolved: Vec::with_capacity(pixels.len()),
+        failed: Vec::new(),
+        frames: 0,
+    };
+    for batch in pixels.chunks(BATCH_PIXELS) {
+        let out = (&mut drawn.resolved, &mut drawn.failed);
+        drawn.frames += draw_batch(frame, views, batch, buffers, out);
+    }
+    drawn
+}
+
+/// What [`draw`] did.
+pub(super) struct Drawn {
+    /// The pixels drawn, averaged.
+    pub resolved: Vec<Resolved>,
+    /// The pixels some sample of which met no surface from any start: inside a covered
+    /// neighbourhood that means a surface no centre sees (or a search that strayed), so they are
+    /// left to rasterization.
+    pub failed: Vec<u32>,
+    /// NURBS frames evaluated.
+    pub frames: u64,
+}
+
+fn draw_batch(
+    frame: &Seeded,
+    views: &Views,
+    pixels: &[u32],
+    buffers: &mut ShadeBuffers,
+    (resolved, failed): (&mut Vec<Resolved>, &mut Vec<u32>),
+) -> u64 {
+    let (k, image, gbuffer) = (frame.k, frame.image, frame.gbuffer);
+    let per_pixel = (k * k) as usize;
+    let full = (image.width * k, image.height * k);
+    let w = image.width as usize;
+
+    // The candidates: per sample, the nearest texel of each patch around its pixel.
+    let (candidates, mut texels): (Vec<Candidate>, Vec<Texel>) = pixels
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(j, &pixel)| {
+            let (px, py) = (pixel as usize % w, pixel as usize / w);
+            let mut around = [(0u32, 0u32, Vec2::ZERO); 9];
+            let mut count = 0;
+            for ny in py.saturating_sub(1)..=(py + 1).min(image.height as usize - 1) {
+                for nx in px.saturating_sub(1)..=(px + 1).min(w - 1) {
+                    let slot = gbuffer.slot[ny * w + nx];
+                    if slot != EMPTY {
+                        let patch = gbuffer.texels[slot as usize].patch;
+                        around[count] = (slot, patch, Vec2::new(nx as f32, ny as f32) + 0.5);
+                        count += 1;
+                    }
+                }
+            }
+            (0..per_pixel as u32).flat_map(move |s| {
+                let (sx, sy) = (s % k, s / k);
+                let centre = Vec2::new(
+                    px as f32 + (sx as f32 + 0.5) / k as f32,
+                    py as f32 + (sy as f32 + 0.5) / k as f32,
+                );
+                let global = (py as u32 * k + sy) * full.0 + px as u32 * k + sx;
+                // The nearest texel of each patch: (patch, slot, distance², its centre).
+                let mut nearest = [(EMPTY, 0u32, 0f32, Vec2::ZERO); 9];
+                let mut patches = 0;
+                for &(slot, patch, at) in &around[..count] {
+                    let d = centre.distance_squared(at);
+                    match nearest[..patches].iter_mut().find(|n| n.0 == patch) {
+                        Some(n) if d < n.2 => (n.1, n.2, n.3) = (slot, d, at),
+                        Some(_) => {}
+                        None => {
+                            nearest[patches] = (patch, slot, d, at);
+                            patches += 1;
+                        }
+                    }
+                }
+                (0..patches).map(move |n| {
+                    let (_, slot, _, at) = nearest[n];
+                    let seed = gbuffer.texels[slot as usize];
+                    let domain = frame.library.patches[seed.patch as usize].surface.domain();
+                    let uv = seed.uv + uv_slope(gbuffer, slot, centre - at);
+                    let uv = Vec2::new(
+                        uv.x.clamp(domain.u.0 as f32, domain.u.1 as f32),
+                        uv.y.clamp(domain.v.0 as f32, domain.v.1 as f32),
+                    );
+                    let candidate = Candidate {
+                        sample: (j * per_pixel) as u32 + s,
+                        seed: slot,
+                    };
+                    (
+                        candidate,
+                        Texel {
+                            pixel: global,
+                            uv,
+                            ..seed
+                        },
+                    )
+                })
+            })
+        })
+        .unzip();
+    let frames = GBuffer::refine_onto_rays(
+        &mut texels,
+        frame.library,
+        &frame.scene.camera,
+        frame.view_projection,
+        full,
+        Evaluate::Probe,
+    );
+
+    // Per sample, the nearest candidate that landed on its ray.
+    let to_screen = frame.view_projection;
+    let mut chosen: Vec<Option<(f32, u32)>> = vec![None; pixels.len() * per_pixel];
+    for (index, (c, t)) in candidates.iter().zip(texels.iter_mut()).enumerate() {
+        let p = to_screen * t.position.extend(1.0);
+        if p.w <= 0.0 {
+            continue;
+        }
+        let (x, y) = (
+            (p.x / p.w + 1.0) * 0.5 * full.0 as f32,
+            (1.0 - p.y / p.w) * 0.5 * full.1 as f32,
+        );
+        let centre = (
+            (t.pixel % full.0) as f32 + 0.5,
+            (t.pixel / full.0) as f32 + 0.5,
+        );
+        if (x - centre.0).abs() > HIT_SAMPLES || (y - centre.1).abs() > HIT_SAMPLES {
+            continue;
+        }
+        t.depth = p.z / p.w;
+        let slot = &mut chosen[c.sample as usize];
+        if slot.is_none_or(|(depth, _)| t.depth < depth) {
+            *slot = Some((t.depth, index as u32));
+        }
+    }
+
+    // The samples as a G-buffer k wide, one k × k block per pixel down it.
+    let mut samples = GBuffer {
+        width: k,
+        height: k * pixels.len() as u32,
+        slot: vec![EMPTY; chosen.len()],
+        texels: Vec::with_capacity(chosen.len()),
+    };
+    let mut footprints = Vec::with_capacity(chosen.len());
+    for (s, choice) in chosen.iter().enumerate() {
+        let Some((_, index)) = *choice else {
+            continue;
+        };
+        samples.slot[s] = samples.texels.len() as u32;
+        samples.texels.push(Texel {
+            pixel: s as u32,
+            ..texels[index as usize]
+        });
+        let seed = candidates[index as usize].seed as usize;
+        let footprint = frame.footprints.map_or(Footprint::HARD, |f| f[seed]);
+        footprints.push(Footprint {
+            x: footprint.x / k as f32,
+            y: footprint.y / k as f32,
+        });
+    }
+    let shaded = shade(
+        &samples,
+        frame.scene,
+        views,
+        None,
+        frame.footprints.map(|_| footprints.as_slice()),
+        buffers,
+    );
+
+    let weight = 1.0 / per_pixel as f32;
+    for (j, &pixel) in pixels.iter().enumerate() {
+        let range = j * per_pixel..(j + 1) * per_pixel;
+        if chosen[range.clone()].iter().any(Option::is_none) {
+            failed.push(pixel);
+            continue;
+        }
+        let colour: Vec4 = shaded.colour[range.clone()]
+            .iter()
+            .map(|&c| premultiplied(c))
+            .sum::<Vec4>()
+            * weight;
+        let mean = |values: &Option<Vec<f32>>| {
+            values
+                .as_ref()
+                .map_or(0.0, |v| v[range.clone()].iter().sum::<f32>() * weight)
+        };
+        resolved.push(Resolved {
+            pixel,
+            colour: straight(colour),
+            matte: mean(&shaded.matte),
+            n_dot_h: mean(&shaded.n_dot_h),
+        });
+    }
+    frames
+}
