@@ -172,6 +172,15 @@ fn adaptive_samples_agree_with_supersampling_every_pixel() {
             .zip(&matte(&every))
             .map(|(a, b)| (a - b).abs())
             .collect();
+        for (i, d) in alpha.iter().enumerate().filter(|(_, d)| **d > 0.2) {
+            eprintln!(
+                "  px ({}, {}) d {d} adaptive {} every {}",
+                i % 200,
+                i / 200,
+                adaptive.colour[i].w,
+                every.colour[i].w
+            );
+        }
         let most = |v: &[f32]| v.iter().copied().fold(0.0, f32::max);
         let sum = |v: &[f32]| v.iter().sum::<f32>();
         // Coverage: a sample row at most anywhere (the sliver of a surface no centre sees), and

@@ -26,13 +26,15 @@ const BASE_BYTES: u64 = 64 << 20;
 
 /// What each worker holds while it supersamples a tile under adaptive anti-aliasing: a window
 /// of at most (32 · 8 + apron)² samples at about 250 B each at 8 × 8, rounded up; at 4 × 4 a
-/// quarter of it.
+/// quarter of it. The batch of pixels drawn from the refined points around them (1024 pixels'
+/// samples with their candidates, about 650 B a sample at most) takes as much once more.
 const TILE_BYTES_PER_SAMPLE_SIDE: u64 = 1 << 20;
 
 /// The peak memory of rendering one frame with `settings` and a mesh of `vertices` vertices,
 /// an upper estimate from measured peaks (the README's farm table):
 /// `64 MiB + pixels × samples × (90 B interpolated, 150 B exact or refined) + vertices × 200 B`,
-/// and under adaptive anti-aliasing `K²` MiB more per worker thread for its tile.
+/// and under adaptive anti-aliasing `K²` MiB more per worker thread for its tile, and once more
+/// for the batch of samples drawn without tiles.
 #[must_use]
 pub fn estimate_peak_bytes(settings: &Settings, vertices: u64) -> u64 {
     image_bytes(settings)
@@ -51,7 +53,7 @@ fn image_bytes(settings: &Settings) -> u64 {
                 0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
                 n => n,
             };
-            u64::from(k).pow(2) * TILE_BYTES_PER_SAMPLE_SIDE * workers as u64
+            u64::from(k).pow(2) * TILE_BYTES_PER_SAMPLE_SIDE * (workers as u64 + 1)
         }
     };
     pixels * samples * bytes_per_sample(settings.frames) + tiles
@@ -217,7 +219,7 @@ mod tests {
             estimate_peak_bytes(&adaptive(4, 2), 0),
             estimate_peak_bytes(&adaptive(8, 2), 0),
         );
-        assert_eq!(eight - four, 2 * (64 - 16) * TILE_BYTES_PER_SAMPLE_SIDE);
+        assert_eq!(eight - four, 3 * (64 - 16) * TILE_BYTES_PER_SAMPLE_SIDE);
         assert_eq!(
             estimate_peak_bytes(&adaptive(4, 8), 0) - four,
             6 * 16 * TILE_BYTES_PER_SAMPLE_SIDE

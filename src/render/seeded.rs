@@ -38,25 +38,33 @@ pub(super) struct Seeded<'a> {
     pub k: u32,
 }
 
-/// Whether pixel `pixel` can be drawn from the surfaces its neighbourhood shows: every pixel of
-/// its 3 × 3 neighbourhood (inside the image) is covered, and no patch among them folds over
-/// itself there (the view depths of its texels spread by more than [`FOLD`]).
+/// Whether pixel `pixel` can be drawn from the surfaces its neighbourhood shows: some pixel of
+/// its 3 × 3 neighbourhood is covered, no patch among them folds over itself there (the view
+/// depths of its texels spread by more than [`FOLD`]), and where one of the nine is not covered
+/// (a silhouette), every covered one lies [`BORDER_PIXELS`] pixels or more inside its patch's
+/// domain, by the slope of its (u, v).
 ///
-/// A silhouette is left to rasterization: there a patch seen edge-on may cover a sliver of the
-/// pixel that no centre of the nine sees (the flat top of a knob, one patch, above its side,
-/// another), and only the mesh knows it is there. Inside a surface, what no centre sees is
-/// what the marking of the pixels cannot see either.
+/// A silhouette near a patch's border is left to rasterization: there a patch seen edge-on may
+/// cover a sliver of the pixel that no centre of the nine sees (the flat top of a knob, one
+/// patch, above its side, another), and only the mesh knows it is there. Away from borders, and
+/// inside a surface, what no centre sees is what the marking of the pixels cannot see either.
 #[must_use]
-pub(super) fn seedable(gbuffer: &GBuffer, scene: &Scene, pixel: usize) -> bool {
+pub(super) fn seedable(
+    gbuffer: &GBuffer,
+    library: &PatchLibrary,
+    scene: &Scene,
+    pixel: usize,
+) -> bool {
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     let (x, y) = (pixel % w, pixel / w);
     let (eye, forward) = (scene.camera.eye, scene.camera.forward());
     let mut seen: [(u32, f32, f32); 9] = [(EMPTY, 0.0, 0.0); 9];
-    let mut patches = 0;
+    let (mut patches, mut empty) = (0, false);
     for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
         for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
             let Some(t) = gbuffer.texel(ny * w + nx) else {
-                return false;
+                empty = true;
+                continue;
             };
             let depth = (t.position - eye).dot(forward);
             match seen[..patches].iter_mut().find(|s| s.0 == t.patch) {
@@ -68,16 +76,51 @@ pub(super) fn seedable(gbuffer: &GBuffer, scene: &Scene, pixel: usize) -> bool {
             }
         }
     }
-    seen[..patches]
+    let flat = seen[..patches]
         .iter()
-        .all(|&(_, near, far)| near > 0.0 && far - near <= FOLD * near)
+        .all(|&(_, near, far)| near > 0.0 && far - near <= FOLD * near);
+    let inside_borders = || {
+        (y.saturating_sub(1)..=(y + 1).min(h - 1)).all(|ny| {
+            (x.saturating_sub(1)..=(x + 1).min(w - 1)).all(|nx| {
+                let slot = gbuffer.slot[ny * w + nx];
+                slot == EMPTY || away_from_borders(gbuffer, library, slot)
+            })
+        })
+    };
+    patches > 0 && flat && (!empty || inside_borders())
 }
 
-/// How far (u, v) moves from texel `slot`'s over `offset` pixels: the central (or one-sided)
-/// differences of (u, v) to its neighbours on its patch, along x and along y; none along an
-/// axis where no neighbour is on the patch or (u, v) jumps (a seam of a closed surface). A
-/// start this near the sample's point takes Newton a step or two fewer.
+/// How far inside its patch's domain, in pixels, a texel beside a silhouette must lie for the
+/// silhouette to be drawn from it.
+const BORDER_PIXELS: f32 = 3.0;
+
+/// Whether texel `slot` lies [`BORDER_PIXELS`] or more inside its patch's domain, measured by
+/// the slope of its (u, v) ([`uv_slopes`]); not when it has no slope along x or y (no neighbour
+/// on its patch there).
+fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bool {
+    let t = &gbuffer.texels[slot as usize];
+    let (Some(along_x), Some(along_y)) = uv_slopes(gbuffer, slot) else {
+        return false;
+    };
+    let reach = (along_x.abs() + along_y.abs()) * BORDER_PIXELS;
+    let domain = library.patches[t.patch as usize].surface.domain();
+    let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
+    let (ru, rv) = (f64::from(reach.x), f64::from(reach.y));
+    u - ru > domain.u.0 && u + ru < domain.u.1 && v - rv > domain.v.0 && v + rv < domain.v.1
+}
+
+/// How far (u, v) moves from texel `slot`'s over `offset` pixels ([`uv_slopes`]), taking no
+/// slope along an axis that has none. A start this near the sample's point takes Newton a step
+/// or two fewer.
 fn uv_slope(gbuffer: &GBuffer, slot: u32, offset: Vec2) -> Vec2 {
+    let (along_x, along_y) = uv_slopes(gbuffer, slot);
+    along_x.unwrap_or(Vec2::ZERO) * offset.x + along_y.unwrap_or(Vec2::ZERO) * offset.y
+}
+
+/// The change of (u, v) per pixel at texel `slot`, along x and along y: the central (or
+/// one-sided) differences to its neighbours on its patch; `None` along an axis where no
+/// neighbour is on the patch or (u, v) jumps (a seam of a closed surface).
+fn uv_slopes(gbuffer: &GBuffer, slot: u32) -> (Option<Vec2>, Option<Vec2>) {
     let t = &gbuffer.texels[slot as usize];
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     let i = t.pixel as usize;
@@ -87,25 +130,35 @@ fn uv_slope(gbuffer: &GBuffer, slot: u32, offset: Vec2) -> Vec2 {
         (n.patch == t.patch && (n.uv - t.uv).abs().max_element() < SEAM).then_some(n.uv)
     };
     let slope = |before: Option<Vec2>, after: Option<Vec2>| match (before, after) {
-        (Some(b), Some(a)) => (a - b) * 0.5,
-        (Some(b), None) => t.uv - b,
-        (None, Some(a)) => a - t.uv,
-        (None, None) => Vec2::ZERO,
+        (Some(b), Some(a)) => Some((a - b) * 0.5),
+        (Some(b), None) => Some(t.uv - b),
+        (None, Some(a)) => Some(a - t.uv),
+        (None, None) => None,
     };
-    let along_x = slope(
-        uv_at((x > 0).then(|| i - 1)),
-        uv_at((x + 1 < w).then(|| i + 1)),
-    );
-    let along_y = slope(
-        uv_at((y > 0).then(|| i - w)),
-        uv_at((y + 1 < h).then(|| i + w)),
-    );
-    along_x * offset.x + along_y * offset.y
+    (
+        slope(
+            uv_at((x > 0).then(|| i - 1)),
+            uv_at((x + 1 < w).then(|| i + 1)),
+        ),
+        slope(
+            uv_at((y > 0).then(|| i - w)),
+            uv_at((y + 1 < h).then(|| i + w)),
+        ),
+    )
 }
 
 /// The most (u, v) may change between neighbouring pixels and still be taken for a slope rather
 /// than a seam.
 const SEAM: f32 = 0.25;
+
+/// Whether every pixel of the 3 × 3 neighbourhood of `pixel` (inside the image) is covered.
+fn covered_around(gbuffer: &GBuffer, pixel: u32) -> bool {
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    let (x, y) = (pixel as usize % w, pixel as usize / w);
+    (y.saturating_sub(1)..=(y + 1).min(h - 1)).all(|ny| {
+        (x.saturating_sub(1)..=(x + 1).min(w - 1)).all(|nx| gbuffer.slot[ny * w + nx] != EMPTY)
+    })
+}
 
 /// One candidate for a sample: the sample, the texel it starts from, and the texel refined.
 struct Candidate {
@@ -120,7 +173,8 @@ struct Candidate {
 /// shows, starting from that patch's texel nearest the sample: its (u, v) is refined onto the
 /// sample's ray ([`GBuffer::refine_onto_rays`], within a probe's evaluations), and kept when the
 /// point it lands on projects within [`HIT_SAMPLES`] of the sample's centre; of the points
-/// kept, the nearest covers the sample; a pixel with a sample that none covers is given back.
+/// kept, the nearest covers the sample; a pixel inside a surface with a sample that none covers
+/// is given back.
 /// The samples are shaded with their seed's footprint
 /// over the sample (a `k`-th of the pixel's), and a pixel takes the mean of its samples as the
 /// rasterized tiles do (premultiplied colour; matte and `N·H`).
@@ -146,8 +200,8 @@ pub(super) fn draw(
 pub(super) struct Drawn {
     /// The pixels drawn, averaged.
     pub resolved: Vec<Resolved>,
-    /// The pixels some sample of which met no surface from any start: inside a covered
-    /// neighbourhood that means a surface no centre sees (or a search that strayed), so they are
+    /// The pixels inside a surface (their neighbourhood covered) some sample of which met no
+    /// surface from any start: a surface no centre sees, or a search that strayed. They are
     /// left to rasterization.
     pub failed: Vec<u32>,
     /// NURBS frames evaluated.
@@ -301,7 +355,7 @@ fn draw_batch(
     let weight = 1.0 / per_pixel as f32;
     for (j, &pixel) in pixels.iter().enumerate() {
         let range = j * per_pixel..(j + 1) * per_pixel;
-        if chosen[range.clone()].iter().any(Option::is_none) {
+        if chosen[range.clone()].iter().any(Option::is_none) && covered_around(gbuffer, pixel) {
             failed.push(pixel);
             continue;
         }

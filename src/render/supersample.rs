@@ -176,7 +176,7 @@ fn split_seeded(frame: &Frame, mut marked: Vec<bool>) -> (Vec<bool>, Vec<u32>) {
         .filter(|&p| {
             marked[p]
                 && !near_lines.as_ref().is_some_and(|n| n[p])
-                && seeded::seedable(frame.gbuffer, frame.scene, p)
+                && seeded::seedable(frame.gbuffer, frame.library, frame.scene, p)
         })
         .map(|p| p as u32)
         .collect();
