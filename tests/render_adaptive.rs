@@ -5,15 +5,17 @@
 use std::sync::Arc;
 
 use glam::{Vec3, Vec4};
+use glint::geom::PatchLibrary;
 use glint::highlight::{Expr, Layer, Light, Op};
 use glint::render::{
-    Antialias, Aovs, FrameMode, Outlines, PatchLook, Renderer, Scene, Settings, Stage, Tone,
+    Antialias, Aovs, FrameMode, Outlines, PatchLook, RenderedFrame, Renderer, Scene, Settings,
+    Stage, Tone,
 };
 use glint::toon::CelRamp;
 
 use crate::common::{teapot, teapot_camera};
 
-fn teapot_scene(library: &glint::geom::PatchLibrary, outlines: bool) -> Scene<'_> {
+fn teapot_scene(library: &PatchLibrary, outlines: bool) -> Scene<'_> {
     let highlight = Expr::Layer(Layer::new(
         vec![
             Op::Translate {
@@ -63,16 +65,19 @@ fn with(antialias: Antialias) -> Settings {
     }
 }
 
+/// A frame of `scene` from a fresh renderer with the `final` settings but `antialias`.
+fn render(library: &Arc<PatchLibrary>, scene: &Scene, antialias: Antialias) -> RenderedFrame {
+    Renderer::new(Arc::clone(library))
+        .render(scene, &with(antialias))
+        .unwrap()
+}
+
 #[test]
 fn only_supersampled_pixels_leave_the_one_sample_frame_and_they_smooth_its_edges() {
     let library = teapot();
     for outlines in [false, true] {
         let scene = teapot_scene(&library, outlines);
-        let render = |antialias| {
-            Renderer::new(Arc::clone(&library))
-                .render(&scene, &with(antialias))
-                .unwrap()
-        };
+        let render = |antialias| render(&library, &scene, antialias);
         let (one, adaptive) = (render(Antialias::Analytic), render(Antialias::Adaptive(4)));
         assert!(!one.stats.ran(Stage::Supersample));
         let supersampled = adaptive.stats[Stage::Supersample].pixels;
@@ -146,11 +151,7 @@ fn adaptive_samples_agree_with_supersampling_every_pixel() {
     let library = teapot();
     for outlines in [false, true] {
         let scene = teapot_scene(&library, outlines);
-        let render = |antialias| {
-            Renderer::new(Arc::clone(&library))
-                .render(&scene, &with(antialias))
-                .unwrap()
-        };
+        let render = |antialias| render(&library, &scene, antialias);
         let (adaptive, every) = (
             render(Antialias::Adaptive(4)),
             render(Antialias::Supersample(4)),
@@ -166,7 +167,7 @@ fn adaptive_samples_agree_with_supersampling_every_pixel() {
             .zip(&every.colour)
             .map(|(a, b)| (a.w - b.w).abs())
             .collect();
-        let matte = |f: &glint::render::RenderedFrame| f.aovs.matte.clone().unwrap();
+        let matte = |f: &RenderedFrame| f.aovs.matte.clone().unwrap();
         let mattes: Vec<f32> = matte(&adaptive)
             .iter()
             .zip(&matte(&every))
