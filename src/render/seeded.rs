@@ -298,9 +298,6 @@ fn draw_batch(
     let mut chosen: Vec<Option<(f32, u32)>> = vec![None; pixels.len() * per_pixel];
     for (index, (c, t)) in candidates.iter().zip(texels.iter_mut()).enumerate() {
         let p = to_screen * t.position.extend(1.0);
-        if p.w <= 0.0 {
-            continue;
-        }
         let (x, y) = (
             (p.x / p.w + 1.0) * 0.5 * full.0 as f32,
             (1.0 - p.y / p.w) * 0.5 * full.1 as f32,
@@ -309,7 +306,12 @@ fn draw_batch(
             (t.pixel % full.0) as f32 + 0.5,
             (t.pixel / full.0) as f32 + 0.5,
         );
-        if (x - centre.0).abs() > HIT_SAMPLES || (y - centre.1).abs() > HIT_SAMPLES {
+        // Written so that a point that is not finite is no hit.
+        let hit = p.w > 0.0
+            && (x - centre.0).abs() <= HIT_SAMPLES
+            && (y - centre.1).abs() <= HIT_SAMPLES
+            && (p.z / p.w).is_finite();
+        if !hit {
             continue;
         }
         t.depth = p.z / p.w;
