@@ -18,7 +18,7 @@ const ON_RAY: f64 = 1e-7;
 const HALVINGS: usize = 6;
 
 /// Surface evaluations enough for every step [`NurbsSurface::try_refine_on_ray`] may take: the
-/// start, and [`REFINE_STEPS`] steps of up to [`HALVINGS`] halvings each.
+/// start, and [`REFINE_STEPS`] steps of up to six halvings each.
 pub const ALL_EVALUATIONS: u32 = (1 + REFINE_STEPS * (HALVINGS + 1)) as u32;
 
 /// A ray to refine a start onto, and how many surface evaluations the search may spend.
