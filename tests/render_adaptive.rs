@@ -173,39 +173,21 @@ fn adaptive_samples_agree_with_supersampling_every_pixel() {
             .zip(&matte(&every))
             .map(|(a, b)| (a - b).abs())
             .collect();
-        for (i, d) in alpha.iter().enumerate().filter(|(_, d)| **d > 0.2) {
-            eprintln!(
-                "  px ({}, {}) d {d} adaptive {} every {}",
-                i % 200,
-                i / 200,
-                adaptive.colour[i].w,
-                every.colour[i].w
+        // Each difference at most `most` anywhere, and summed over the image at most
+        // `per_edge` per pixel of the silhouette.
+        let within = |what: &str, differences: &[f32], most: f32, per_edge: f32| {
+            let largest = differences.iter().copied().fold(0.0, f32::max);
+            let sum = differences.iter().sum::<f32>();
+            assert!(largest <= most, "outlines {outlines}: {what} {largest}");
+            assert!(
+                sum <= per_edge * edge,
+                "outlines {outlines}: {what} {sum} over {edge} edge pixels"
             );
-        }
-        let most = |v: &[f32]| v.iter().copied().fold(0.0, f32::max);
-        let sum = |v: &[f32]| v.iter().sum::<f32>();
+        };
         // Coverage: a sample row at most anywhere (the sliver of a surface no centre sees), and
         // a few hundredths of a pixel over the silhouette's length.
-        assert!(
-            most(&alpha) <= 0.25,
-            "outlines {outlines}: {}",
-            most(&alpha)
-        );
-        assert!(
-            sum(&alpha) <= 0.03 * edge,
-            "outlines {outlines}: {} over {edge} edge pixels",
-            sum(&alpha)
-        );
+        within("alpha", &alpha, 0.25, 0.03);
         // The highlight: within a fifth of a pixel's coverage anywhere.
-        assert!(
-            most(&mattes) <= 0.2,
-            "outlines {outlines}: {}",
-            most(&mattes)
-        );
-        assert!(
-            sum(&mattes) <= 0.03 * edge,
-            "outlines {outlines}: {} against {edge} edge pixels",
-            sum(&mattes)
-        );
+        within("matte", &mattes, 0.2, 0.03);
     }
 }

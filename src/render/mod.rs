@@ -15,6 +15,7 @@ mod directions;
 mod edge_width;
 mod facing;
 mod gbuffer;
+mod neighbourhood;
 mod outline;
 mod plan;
 pub mod raster;

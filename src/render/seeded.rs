@@ -1,15 +1,15 @@
 //! The K × K samples of a marked pixel found from the refined surface points around it, by
 //! Newton steps along each sample's ray instead of rasterization.
 
-use glam::{Mat4, Vec2, Vec4};
+use glam::{Mat4, Vec2};
 use rayon::prelude::*;
 
 use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY};
+use super::neighbourhood::around;
 use super::raster::Viewport;
-use super::renderer::{premultiplied, straight};
 use super::scene::Scene;
 use super::shade::{shade, ShadeBuffers};
-use super::supersample::{Resolved, HIT_SAMPLES};
+use super::supersample::{landed_depth, Resolved};
 use super::xtoon_tone::Views;
 use crate::geom::PatchLibrary;
 use crate::highlight::Footprint;
@@ -55,24 +55,21 @@ pub(super) fn seedable(
     scene: &Scene,
     pixel: usize,
 ) -> bool {
-    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
-    let (x, y) = (pixel % w, pixel / w);
+    let size = (gbuffer.width as usize, gbuffer.height as usize);
     let (eye, forward) = (scene.camera.eye, scene.camera.forward());
     let mut seen: [(u32, f32, f32); 9] = [(EMPTY, 0.0, 0.0); 9];
     let (mut patches, mut empty) = (0, false);
-    for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
-        for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {
-            let Some(t) = gbuffer.texel(ny * w + nx) else {
-                empty = true;
-                continue;
-            };
-            let depth = (t.position - eye).dot(forward);
-            match seen[..patches].iter_mut().find(|s| s.0 == t.patch) {
-                Some(s) => (s.1, s.2) = (s.1.min(depth), s.2.max(depth)),
-                None => {
-                    seen[patches] = (t.patch, depth, depth);
-                    patches += 1;
-                }
+    for n in around(pixel, size) {
+        let Some(t) = gbuffer.texel(n) else {
+            empty = true;
+            continue;
+        };
+        let depth = (t.position - eye).dot(forward);
+        match seen[..patches].iter_mut().find(|s| s.0 == t.patch) {
+            Some(s) => (s.1, s.2) = (s.1.min(depth), s.2.max(depth)),
+            None => {
+                seen[patches] = (t.patch, depth, depth);
+                patches += 1;
             }
         }
     }
@@ -80,11 +77,9 @@ pub(super) fn seedable(
         .iter()
         .all(|&(_, near, far)| near > 0.0 && far - near <= FOLD * near);
     let inside_borders = || {
-        (y.saturating_sub(1)..=(y + 1).min(h - 1)).all(|ny| {
-            (x.saturating_sub(1)..=(x + 1).min(w - 1)).all(|nx| {
-                let slot = gbuffer.slot[ny * w + nx];
-                slot == EMPTY || away_from_borders(gbuffer, library, slot)
-            })
+        around(pixel, size).all(|n| {
+            let slot = gbuffer.slot[n];
+            slot == EMPTY || away_from_borders(gbuffer, library, slot)
         })
     };
     patches > 0 && flat && (!empty || inside_borders())
@@ -109,17 +104,11 @@ fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bo
     u - ru > domain.u.0 && u + ru < domain.u.1 && v - rv > domain.v.0 && v + rv < domain.v.1
 }
 
-/// How far (u, v) moves from texel `slot`'s over `offset` pixels ([`uv_slopes`]), taking no
-/// slope along an axis that has none. A start this near the sample's point takes Newton a step
-/// or two fewer.
-fn uv_slope(gbuffer: &GBuffer, slot: u32, offset: Vec2) -> Vec2 {
-    let (along_x, along_y) = uv_slopes(gbuffer, slot);
-    along_x.unwrap_or(Vec2::ZERO) * offset.x + along_y.unwrap_or(Vec2::ZERO) * offset.y
-}
-
 /// The change of (u, v) per pixel at texel `slot`, along x and along y: the central (or
 /// one-sided) differences to its neighbours on its patch; `None` along an axis where no
-/// neighbour is on the patch or (u, v) jumps (a seam of a closed surface).
+/// neighbour is on the patch or (u, v) jumps (a seam of a closed surface). A sample started
+/// from the texel's (u, v) moved by them to the sample's offset takes Newton a step or two
+/// fewer.
 fn uv_slopes(gbuffer: &GBuffer, slot: u32) -> (Option<Vec2>, Option<Vec2>) {
     let t = &gbuffer.texels[slot as usize];
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
@@ -153,14 +142,11 @@ const SEAM: f32 = 0.25;
 
 /// Whether every pixel of the 3 × 3 neighbourhood of `pixel` (inside the image) is covered.
 fn covered_around(gbuffer: &GBuffer, pixel: u32) -> bool {
-    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
-    let (x, y) = (pixel as usize % w, pixel as usize / w);
-    (y.saturating_sub(1)..=(y + 1).min(h - 1)).all(|ny| {
-        (x.saturating_sub(1)..=(x + 1).min(w - 1)).all(|nx| gbuffer.slot[ny * w + nx] != EMPTY)
-    })
+    let size = (gbuffer.width as usize, gbuffer.height as usize);
+    around(pixel as usize, size).all(|n| gbuffer.slot[n] != EMPTY)
 }
 
-/// One candidate for a sample: the sample, the texel it starts from, and the texel refined.
+/// One candidate for a sample: the sample and the texel it starts from.
 struct Candidate {
     /// The sample's index in the batch: `pixel_in_batch · k² + sy · k + sx`.
     sample: u32,
@@ -169,15 +155,17 @@ struct Candidate {
 }
 
 /// Draws each of `pixels` at `frame.k × frame.k` samples and returns their averages, the pixels
-/// it could not draw, and the frames evaluated. Each sample is tried from each patch its pixel's 3 × 3 neighbourhood
-/// shows, starting from that patch's texel nearest the sample: its (u, v) is refined onto the
-/// sample's ray ([`GBuffer::refine_onto_rays`], within a probe's evaluations), and kept when the
-/// point it lands on projects within [`HIT_SAMPLES`] of the sample's centre; of the points
-/// kept, the nearest covers the sample; a pixel inside a surface with a sample that none covers
-/// is given back.
-/// The samples are shaded with their seed's footprint
-/// over the sample (a `k`-th of the pixel's), and a pixel takes the mean of its samples as the
-/// rasterized tiles do (premultiplied colour; matte and `N·H`).
+/// it could not draw, and the frames evaluated.
+///
+/// Each sample is tried from each patch its pixel's 3 × 3 neighbourhood shows, starting from
+/// that patch's texel nearest the sample, its (u, v) moved by the texel's slope
+/// ([`uv_slopes`]): the start is refined onto the sample's ray ([`GBuffer::refine_onto_rays`],
+/// within a probe's evaluations) and kept when the point it lands on projects within
+/// 0.05 samples of the sample's centre ([`landed_depth`]); of the points kept, the nearest
+/// covers the sample. A pixel inside a surface with a sample that none covers is given back.
+/// The samples are shaded with their seed's footprint over the sample (a `k`-th of the
+/// pixel's), and a pixel takes the mean of its samples as the rasterized tiles do
+/// ([`Resolved::average`]).
 pub(super) fn draw(
     frame: &Seeded,
     views: &Views,
@@ -226,16 +214,18 @@ fn draw_batch(
         .enumerate()
         .flat_map_iter(|(j, &pixel)| {
             let (px, py) = (pixel as usize % w, pixel as usize / w);
-            let mut around = [(0u32, 0u32, Vec2::ZERO); 9];
+            // The covered pixels around: (slot, patch, centre, (u, v) slopes along x and y).
+            let mut seeds = [(0u32, 0u32, Vec2::ZERO, (Vec2::ZERO, Vec2::ZERO)); 9];
             let mut count = 0;
-            for ny in py.saturating_sub(1)..=(py + 1).min(image.height as usize - 1) {
-                for nx in px.saturating_sub(1)..=(px + 1).min(w - 1) {
-                    let slot = gbuffer.slot[ny * w + nx];
-                    if slot != EMPTY {
-                        let patch = gbuffer.texels[slot as usize].patch;
-                        around[count] = (slot, patch, Vec2::new(nx as f32, ny as f32) + 0.5);
-                        count += 1;
-                    }
+            for n in around(pixel as usize, (w, image.height as usize)) {
+                let slot = gbuffer.slot[n];
+                if slot != EMPTY {
+                    let patch = gbuffer.texels[slot as usize].patch;
+                    let centre = Vec2::new((n % w) as f32, (n / w) as f32) + 0.5;
+                    let (along_x, along_y) = uv_slopes(gbuffer, slot);
+                    let slopes = (along_x.unwrap_or(Vec2::ZERO), along_y.unwrap_or(Vec2::ZERO));
+                    seeds[count] = (slot, patch, centre, slopes);
+                    count += 1;
                 }
             }
             (0..per_pixel as u32).flat_map(move |s| {
@@ -245,25 +235,26 @@ fn draw_batch(
                     py as f32 + (sy as f32 + 0.5) / k as f32,
                 );
                 let global = (py as u32 * k + sy) * full.0 + px as u32 * k + sx;
-                // The nearest texel of each patch: (patch, slot, distance², its centre).
-                let mut nearest = [(EMPTY, 0u32, 0f32, Vec2::ZERO); 9];
+                // The nearest seed of each patch: (patch, distance², its index in `seeds`).
+                let mut nearest = [(EMPTY, 0f32, 0usize); 9];
                 let mut patches = 0;
-                for &(slot, patch, at) in &around[..count] {
+                for (i, &(_, patch, at, _)) in seeds[..count].iter().enumerate() {
                     let d = centre.distance_squared(at);
                     match nearest[..patches].iter_mut().find(|n| n.0 == patch) {
-                        Some(n) if d < n.2 => (n.1, n.2, n.3) = (slot, d, at),
+                        Some(n) if d < n.1 => (n.1, n.2) = (d, i),
                         Some(_) => {}
                         None => {
-                            nearest[patches] = (patch, slot, d, at);
+                            nearest[patches] = (patch, d, i);
                             patches += 1;
                         }
                     }
                 }
                 (0..patches).map(move |n| {
-                    let (_, slot, _, at) = nearest[n];
+                    let (slot, _, at, (along_x, along_y)) = seeds[nearest[n].2];
                     let seed = gbuffer.texels[slot as usize];
                     let domain = frame.library.patches[seed.patch as usize].surface.domain();
-                    let uv = seed.uv + uv_slope(gbuffer, slot, centre - at);
+                    let offset = centre - at;
+                    let uv = seed.uv + (along_x * offset.x + along_y * offset.y);
                     let uv = Vec2::new(
                         uv.x.clamp(domain.u.0 as f32, domain.u.1 as f32),
                         uv.y.clamp(domain.v.0 as f32, domain.v.1 as f32),
@@ -294,30 +285,15 @@ fn draw_batch(
     );
 
     // Per sample, the nearest candidate that landed on its ray.
-    let to_screen = frame.view_projection;
     let mut chosen: Vec<Option<(f32, u32)>> = vec![None; pixels.len() * per_pixel];
     for (index, (c, t)) in candidates.iter().zip(texels.iter_mut()).enumerate() {
-        let p = to_screen * t.position.extend(1.0);
-        let (x, y) = (
-            (p.x / p.w + 1.0) * 0.5 * full.0 as f32,
-            (1.0 - p.y / p.w) * 0.5 * full.1 as f32,
-        );
-        let centre = (
-            (t.pixel % full.0) as f32 + 0.5,
-            (t.pixel / full.0) as f32 + 0.5,
-        );
-        // Written so that a point that is not finite is no hit.
-        let hit = p.w > 0.0
-            && (x - centre.0).abs() <= HIT_SAMPLES
-            && (y - centre.1).abs() <= HIT_SAMPLES
-            && (p.z / p.w).is_finite();
-        if !hit {
+        let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full) else {
             continue;
-        }
-        t.depth = p.z / p.w;
+        };
+        t.depth = depth;
         let slot = &mut chosen[c.sample as usize];
-        if slot.is_none_or(|(depth, _)| t.depth < depth) {
-            *slot = Some((t.depth, index as u32));
+        if slot.is_none_or(|(nearest, _)| depth < nearest) {
+            *slot = Some((depth, index as u32));
         }
     }
 
@@ -354,29 +330,13 @@ fn draw_batch(
         buffers,
     );
 
-    let weight = 1.0 / per_pixel as f32;
     for (j, &pixel) in pixels.iter().enumerate() {
         let range = j * per_pixel..(j + 1) * per_pixel;
         if chosen[range.clone()].iter().any(Option::is_none) && covered_around(gbuffer, pixel) {
             failed.push(pixel);
             continue;
         }
-        let colour: Vec4 = shaded.colour[range.clone()]
-            .iter()
-            .map(|&c| premultiplied(c))
-            .sum::<Vec4>()
-            * weight;
-        let mean = |values: &Option<Vec<f32>>| {
-            values
-                .as_ref()
-                .map_or(0.0, |v| v[range.clone()].iter().sum::<f32>() * weight)
-        };
-        resolved.push(Resolved {
-            pixel,
-            colour: straight(colour),
-            matte: mean(&shaded.matte),
-            n_dot_h: mean(&shaded.n_dot_h),
-        });
+        resolved.push(Resolved::average(pixel, &shaded, range));
     }
     frames
 }

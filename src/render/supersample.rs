@@ -1,12 +1,13 @@
 //! [`Stage::Supersample`](super::Stage::Supersample): the pixels of a one-sample frame that more
 //! samples could change, drawn again at K × K samples a tile at a time and averaged into it.
 
-use glam::{Mat4, Vec4};
+use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::contrast::pixels_to_supersample;
 use super::dilate::dilate;
 use super::gbuffer::{Evaluate, GBuffer, EMPTY};
+use super::neighbourhood::around;
 use super::outline::{draw_outlines, OutlineBuffers};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::renderer::{premultiplied, straight};
@@ -67,6 +68,55 @@ pub(super) struct Resolved {
     pub colour: Vec4,
     pub matte: f32,
     pub n_dot_h: f32,
+}
+
+impl Resolved {
+    /// Pixel `pixel` as the mean of `samples`, indices into `shaded`'s images: premultiplied
+    /// colour `α = mean(α_s)`, `rgb = mean(α_s rgb_s)/α`, and the mean matte and `N·H` (0
+    /// where `shaded` has none).
+    pub(super) fn average(
+        pixel: u32,
+        shaded: &Shaded,
+        samples: impl ExactSizeIterator<Item = usize>,
+    ) -> Self {
+        let weight = 1.0 / samples.len() as f32;
+        let (mut colour, mut matte, mut n_dot_h) = (Vec4::ZERO, 0.0, 0.0);
+        for s in samples {
+            colour += premultiplied(shaded.colour[s]);
+            matte += shaded.matte.as_ref().map_or(0.0, |m| m[s]);
+            n_dot_h += shaded.n_dot_h.as_ref().map_or(0.0, |n| n[s]);
+        }
+        Self {
+            pixel,
+            colour: straight(colour * weight),
+            matte: matte * weight,
+            n_dot_h: n_dot_h * weight,
+        }
+    }
+}
+
+/// The depth at which `point` lands on sample `sample` of a `width × height` grid of samples
+/// seen through `to_screen`: its NDC depth when it projects within [`HIT_SAMPLES`] of the
+/// sample's centre (its ray meets the surface there), `None` otherwise or when not finite.
+pub(super) fn landed_depth(
+    to_screen: Mat4,
+    point: Vec3,
+    sample: u32,
+    (width, height): (u32, u32),
+) -> Option<f32> {
+    let p = to_screen * point.extend(1.0);
+    let (x, y) = (
+        (p.x / p.w + 1.0) * 0.5 * width as f32,
+        (1.0 - p.y / p.w) * 0.5 * height as f32,
+    );
+    let centre = ((sample % width) as f32 + 0.5, (sample / width) as f32 + 0.5);
+    let depth = p.z / p.w;
+    // Written so that a point that is not finite is no hit.
+    (p.w > 0.0
+        && (x - centre.0).abs() <= HIT_SAMPLES
+        && (y - centre.1).abs() <= HIT_SAMPLES
+        && depth.is_finite())
+    .then_some(depth)
 }
 
 /// Draws again, at `frame.k × frame.k` samples, each pixel of `shaded` (a one-sample image of
@@ -286,7 +336,7 @@ const GROWN_RINGS: usize = 2;
 
 /// How far, in samples, a grown sample's refined surface point may project from the sample's
 /// centre and still count as a hit.
-pub(super) const HIT_SAMPLES: f32 = 0.05;
+const HIT_SAMPLES: f32 = 0.05;
 
 /// Covers, [`GROWN_RINGS`] times, each drawn empty sample beside a covered one with that
 /// neighbour's triangle and barycentrics, and marks it in `grown` (one flag per sample).
@@ -306,12 +356,7 @@ fn grow(visibility: &mut VisibilityBuffer, drawn: &[bool], grown: &mut Vec<bool>
             if visibility.triangle[i] != EMPTY {
                 continue;
             }
-            let (x, y) = (i % w, i / w);
-            let neighbour = (y.saturating_sub(1)..=(y + 1).min(h - 1))
-                .flat_map(|ny| {
-                    (x.saturating_sub(1)..=(x + 1).min(w - 1)).map(move |nx| ny * w + nx)
-                })
-                .find(|&j| visibility.triangle[j] != EMPTY);
+            let neighbour = around(i, (w, h)).find(|&j| visibility.triangle[j] != EMPTY);
             if let Some(j) = neighbour {
                 ring.push((i, j));
             }
@@ -331,7 +376,7 @@ impl TileBuffers {
     /// [`HIT_SAMPLES`] of its sample's centre — its ray hits the surface — and whose depth is
     /// then set from that point.
     fn grown_hits(&mut self, to_screen: Mat4, width: u32) -> Vec<bool> {
-        let (w, h) = (width as f32, self.gbuffer.height as f32);
+        let size = (width, self.gbuffer.height);
         self.gbuffer
             .texels
             .iter_mut()
@@ -339,19 +384,11 @@ impl TileBuffers {
                 if !self.grown[t.pixel as usize] {
                     return true;
                 }
-                let p = to_screen * t.position.extend(1.0);
-                let (x, y) = ((p.x / p.w + 1.0) * 0.5 * w, (1.0 - p.y / p.w) * 0.5 * h);
-                let centre = (
-                    (t.pixel % width) as f32 + 0.5,
-                    (t.pixel / width) as f32 + 0.5,
-                );
-                let hit = p.w > 0.0
-                    && (x - centre.0).abs() <= HIT_SAMPLES
-                    && (y - centre.1).abs() <= HIT_SAMPLES;
-                if hit {
-                    t.depth = p.z / p.w;
+                let landed = landed_depth(to_screen, t.position, t.pixel, size);
+                if let Some(depth) = landed {
+                    t.depth = depth;
                 }
-                hit
+                landed.is_some()
             })
             .collect()
     }
@@ -520,7 +557,6 @@ impl TileBuffers {
             );
         }
 
-        let weight = 1.0 / (k * k) as f32;
         let mut resolved = Vec::new();
         for py in py0..py1 {
             for px in px0..px1 {
@@ -528,24 +564,10 @@ impl TileBuffers {
                 if !marked[pixel as usize] {
                     continue;
                 }
-                let (mut colour, mut matte, mut n_dot_h) = (Vec4::ZERO, 0.0, 0.0);
-                for sy in 0..k {
-                    for sx in 0..k {
-                        let (x, y) = (px * k + sx - x0, py * k + sy - y0);
-                        let s = (y * window.width + x) as usize;
-                        let c = samples.colour[s];
-                        colour += premultiplied(c);
-                        matte += samples.matte.as_ref().map_or(0.0, |m| m[s]);
-                        n_dot_h += samples.n_dot_h.as_ref().map_or(0.0, |n| n[s]);
-                    }
-                }
-                let colour = colour * weight;
-                resolved.push(Resolved {
-                    pixel,
-                    colour: straight(colour),
-                    matte: matte * weight,
-                    n_dot_h: n_dot_h * weight,
-                });
+                let (sx0, sy0) = (px * k - x0, py * k - y0);
+                let indices =
+                    (0..k * k).map(|s| ((sy0 + s / k) * window.width + sx0 + s % k) as usize);
+                resolved.push(Resolved::average(pixel, &samples, indices));
             }
         }
         (resolved, frames)
