@@ -106,6 +106,7 @@ fn a_highlight_change_reuses_the_surfaces_and_gives_a_fresh_renderers_bytes() {
         normal: true,
         uv: true,
         n_dot_h: true,
+        outline: true,
     };
     let settings = [
         preview(96, 64),
@@ -259,11 +260,20 @@ fn a_light_change_on_the_tone_alone_reuses_the_visibility_buffer() {
     assert!(!same_output(&first, &fresh), "the light shows in the frame");
     assert!(same_output(&second, &fresh));
 
-    // Outlines switched on need edge surfaces the kept buffers lack: every stage runs.
+    // Lines switched on are found on the mesh and tested against the kept depth: the
+    // surfaces serve, still without a G-buffer, and the lines show.
     let mut outlined = relit.clone();
     outlined.outlines = scene(&library, camera(120.0), None, Vec3::Z, Aovs::default()).outlines;
+    assert!(outlined.outlines.is_some());
     let third = renderer.render(&outlined, &settings).unwrap();
-    assert!(third.stats.ran(Stage::Rasterize) && third.stats.ran(Stage::GBuffer));
+    assert!(third.stats.reused(Stage::Rasterize) && third.stats.ran(Stage::Outline));
+    assert!(!third.stats.ran(Stage::GBuffer) && !third.stats.reused(Stage::GBuffer));
+    assert!(third.stats[Stage::Outline].pixels > 0);
+    assert!(!same_output(&third, &fresh), "the lines show in the frame");
+    let fresh_outlined = Renderer::new(Arc::clone(&library))
+        .render(&outlined, &settings)
+        .unwrap();
+    assert!(same_output(&third, &fresh_outlined));
 }
 
 /// Every shot, at two frames in a row with one job, against the second frame with a fresh

@@ -162,6 +162,7 @@ fn no_cracks_and_finite_channels_from_twelve_angles() {
         normal: true,
         uv: true,
         n_dot_h: true,
+        outline: true,
     };
     let size = 256;
     for k in 0..12 {

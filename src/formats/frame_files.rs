@@ -15,8 +15,8 @@ use super::png::{write_png_tagged, PngLayout};
 use crate::render::RenderedFrame;
 
 /// The names the AOV files beside a frame add to it ([`beside`]), every one there is.
-pub const AOV_FILE_NAMES: [&str; 7] = [
-    "matte", "patch_id", "patches", "depth", "normal", "uv", "n_dot_h",
+pub const AOV_FILE_NAMES: [&str; 8] = [
+    "matte", "patch_id", "patches", "depth", "normal", "uv", "n_dot_h", "outline",
 ];
 
 /// The file beside the frame file `path` that holds its AOV `name`: `shot.0001.png` gives
@@ -32,7 +32,8 @@ pub fn beside(path: &Path, name: &str) -> PathBuf {
 /// Writes the colour to `path` (PNG) and each AOV the frame holds beside it, named after it:
 /// `shot.0001.png` gives `shot.0001.matte.png`, `.patch_id.png` (16-bit indices),
 /// `.patches.png` (flat colours, the paper's Figure 9 view), `.depth.png` (16-bit),
-/// `.normal.png`, `.uv.png` and `.n_dot_h.png` (heat map). The colour is written last, so once
+/// `.normal.png`, `.uv.png`, `.n_dot_h.png` (heat map) and `.outline.png` (the lines alone,
+/// sRGB with alpha). The colour is written last, so once
 /// it exists the whole frame does. Returns the paths written.
 pub fn write_pngs(frame: &RenderedFrame, path: &Path) -> Result<Vec<PathBuf>, WriteError> {
     write_pngs_with(frame, path, Durability::Synced)
@@ -86,6 +87,9 @@ pub fn write_pngs_tagged(
             heat_rgba8(nh, &alpha, HEAT_RANGE),
         ));
     }
+    if let Some(lines) = &a.outline {
+        images.push((aov_file("outline"), PngLayout::Rgba8, colour_rgba8(lines)));
+    }
     images.push((
         path.to_path_buf(),
         PngLayout::Rgba8,
@@ -100,8 +104,8 @@ pub fn write_pngs_tagged(
 }
 
 /// Writes the frame as one EXR: linear `R G B A` and the AOVs as `matte.Y`, `patch_id.Y`
-/// (−1 on the background), `depth.Z` (NDC, +∞ on the background), `normal.X/Y/Z`, `uv.U/V` and
-/// `n_dot_h.Y`; a text attribute in its header for each `(name, text)` of `text`.
+/// (−1 on the background), `depth.Z` (NDC, +∞ on the background), `normal.X/Y/Z`, `uv.U/V`,
+/// `n_dot_h.Y` and `outline.R/G/B/A` (linear, straight alpha); a text attribute in its header for each `(name, text)` of `text`.
 pub fn write_frame_exr(
     frame: &RenderedFrame,
     path: &Path,
@@ -139,6 +143,14 @@ pub fn write_frame_exr(
     }
     if let Some(nh) = &a.n_dot_h {
         channels.push(("n_dot_h.Y".into(), nh.clone()));
+    }
+    if let Some(lines) = &a.outline {
+        for (channel, name) in ["R", "G", "B", "A"].into_iter().enumerate() {
+            channels.push((
+                format!("outline.{name}"),
+                lines.iter().map(|l| l[channel]).collect(),
+            ));
+        }
     }
     write_exr(path, frame.width, frame.height, channels, text)
 }

@@ -6,7 +6,6 @@ use rayon::prelude::*;
 
 use super::camera::Camera;
 use super::facing::{facing_frame, facing_patch_frame};
-use super::outline::EdgeSurface;
 use super::raster::{interpolate, VisibilityBuffer};
 use super::settings::FrameMode;
 use super::tessellate::Mesh;
@@ -83,9 +82,6 @@ struct Fill<'a> {
     frames: Frames<'a>,
     /// Per pixel, how much of its frame to evaluate (`None`: all of every frame).
     evaluate: Option<&'a [Evaluate]>,
-    /// Whether to fill the edge surfaces, and the line of sight `(eye, forward)` they are seen
-    /// along.
-    edges: Option<(Vec3, Vec3)>,
 }
 
 /// What evaluating texels' frames on their patches needs to know: the texels' `pixel` indices
@@ -112,8 +108,7 @@ impl GBuffer {
     /// from the mesh's vertex frames, or from the patch itself at the pixel's (u, v)
     /// ([`FrameMode::Exact`]), or at (u, v) moved so the surface point lies on the pixel's ray
     /// ([`FrameMode::Refined`]), the pixel's ray cast through `view_projection` (the camera's,
-    /// or a window of it: [`Window`](super::window::Window)). With `edges`, what the
-    /// outline pass compares is filled into it too, one per texel, while each texel is at hand.
+    /// or a window of it: [`Window`](super::window::Window)).
     /// `evaluate`, one per pixel, says how much of each frame to evaluate (`None`: all).
     /// Returns the number of frames evaluated on the patches.
     ///
@@ -129,7 +124,6 @@ impl GBuffer {
         view_projection: Mat4,
         mode: FrameMode,
         evaluate: Option<&[Evaluate]>,
-        mut edges: Option<&mut Vec<EdgeSurface>>,
     ) -> u64 {
         (self.width, self.height) = (visibility.width, visibility.height);
         let counts: Vec<usize> = visibility
@@ -139,23 +133,13 @@ impl GBuffer {
             .collect();
         let covered = counts.iter().sum();
         self.texels.resize(covered, UNFILLED);
-        let fills_edges = edges.is_some();
-        let mut no_edges = Vec::new();
-        let edge_surfaces = edges.as_mut().map_or(&mut no_edges, |e| &mut **e);
-        edge_surfaces.resize(
-            if fills_edges { covered } else { 0 },
-            EdgeSurface::default(),
-        );
         self.slot.resize(visibility.triangle.len(), EMPTY);
         let mut blocks = Vec::with_capacity(counts.len());
         let (mut rest, mut first) = (&mut self.texels[..], 0);
-        let mut rest_edges = &mut edge_surfaces[..];
         for &count in &counts {
             let (texels, tail) = std::mem::take(&mut rest).split_at_mut(count);
-            let (edges, edges_tail) =
-                std::mem::take(&mut rest_edges).split_at_mut(if fills_edges { count } else { 0 });
-            blocks.push((first as u32, texels, edges));
-            (rest, rest_edges, first) = (tail, edges_tail, first + count);
+            blocks.push((first as u32, texels));
+            (rest, first) = (tail, first + count);
         }
         let fill = Fill {
             visibility,
@@ -168,7 +152,6 @@ impl GBuffer {
                 mode,
             },
             evaluate,
-            edges: fills_edges.then(|| (camera.eye, camera.forward())),
         };
         blocks
             .into_par_iter()
@@ -176,13 +159,8 @@ impl GBuffer {
             .enumerate()
             .for_each_init(
                 FrameScratch::default,
-                |scratch, (block, ((first, texels, edges), slots))| {
+                |scratch, (block, ((first, texels), slots))| {
                     fill.block(block * PIXELS_PER_JOB, first, texels, slots, scratch);
-                    if let Some((eye, forward)) = fill.edges {
-                        for (e, t) in edges.iter_mut().zip(texels.iter()) {
-                            *e = EdgeSurface::of(t, eye, forward);
-                        }
-                    }
                 },
             );
         match (mode, evaluate) {
@@ -246,17 +224,14 @@ impl GBuffer {
             .collect()
     }
 
-    /// Keeps the texels `keep` marks (one flag per texel, with their edge surfaces in `edges`
-    /// when given) and empties the pixels of the others; texels stay in pixel order.
-    pub(super) fn retain(&mut self, keep: &[bool], mut edges: Option<&mut Vec<EdgeSurface>>) {
+    /// Keeps the texels `keep` marks (one flag per texel) and empties the pixels of the
+    /// others; texels stay in pixel order.
+    pub(super) fn retain(&mut self, keep: &[bool]) {
         let mut kept = 0;
-        for k in 0..self.texels.len() {
+        for (k, &keep) in keep.iter().enumerate().take(self.texels.len()) {
             let t = self.texels[k];
-            if keep[k] {
+            if keep {
                 self.texels[kept] = t;
-                if let Some(edges) = edges.as_deref_mut() {
-                    edges[kept] = edges[k];
-                }
                 self.slot[t.pixel as usize] = kept as u32;
                 kept += 1;
             } else {
@@ -264,9 +239,6 @@ impl GBuffer {
             }
         }
         self.texels.truncate(kept);
-        if let Some(edges) = edges {
-            edges.truncate(kept);
-        }
     }
 
     /// The texel at pixel index `pixel`, if a surface covers it.
@@ -553,7 +525,6 @@ mod tests {
                 view_projection,
                 mode,
                 evaluate,
-                None,
             );
             (g, frames)
         };

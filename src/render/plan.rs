@@ -35,10 +35,10 @@ impl Plan {
     /// The plan for `scene` under `settings`:
     ///
     /// - tessellation, rasterization and shading always run;
-    /// - the G-buffer is built unless the only effect is the cel tone over interpolated frames:
-    ///   highlights need the frame's tangents and (u, v), outlines and AOVs read neighbouring or
-    ///   stored texels, X-Toon reads each texel's position and frame, and exact or refined
-    ///   frames are evaluated per texel;
+    /// - the G-buffer is built unless the only effect is the cel tone over interpolated frames
+    ///   (with or without lines, which are found on the mesh): highlights need the frame's
+    ///   tangents and (u, v), AOVs read stored texels, X-Toon reads each texel's position and
+    ///   frame, and exact or refined frames are evaluated per texel;
     /// - the X-Toon detail runs as a stage of its own only when some patch's designed highlight
     ///   is evaluated in its X-Toon tone's abstracted frame (the highlights then need every
     ///   abstracted frame before they start);
@@ -50,6 +50,11 @@ impl Plan {
         let highlights = scene.looks.iter().any(|look| look.highlight.is_some());
         let outlines = scene.outlines.is_some();
         let aovs = scene.aovs != Aovs::default();
+        // The AOVs read from texels: all but the lines.
+        let texel_aovs = Aovs {
+            outline: false,
+            ..scene.aovs
+        } != Aovs::default();
         let xtoon = scene
             .looks
             .iter()
@@ -58,7 +63,7 @@ impl Plan {
             look.highlight.is_some()
                 && matches!(&look.tone, Tone::XToon(tone) if tone.abstracts_highlights())
         });
-        let tone_only = !highlights && !outlines && !aovs && !xtoon;
+        let tone_only = !highlights && !texel_aovs && !xtoon;
         let surfaces = if tone_only && settings.frames == FrameMode::Interpolated {
             Surfaces::Visibility
         } else {

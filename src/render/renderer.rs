@@ -11,7 +11,7 @@ use rayon::ThreadPool;
 
 use super::edge_width::{edge_widths, EdgeWidths};
 use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
-use super::outline::{draw_outlines, OutlineBuffers};
+use super::lines::{draw_lines, LineImage, LineInput};
 use super::plan::{Plan, Surfaces};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
@@ -51,6 +51,8 @@ pub struct AovImages {
     pub uv: Option<Vec<Vec2>>,
     /// `N·H` of the initial half vector, 0 on the background.
     pub n_dot_h: Option<Vec<f32>>,
+    /// The lines alone: linear RGB, straight alpha their coverage.
+    pub outline: Option<Vec<Vec4>>,
 }
 
 impl AovImages {
@@ -64,6 +66,7 @@ impl AovImages {
             self.normal.is_some(),
             self.uv.is_some(),
             self.n_dot_h.is_some(),
+            self.outline.is_some(),
         ]
         .iter()
         .filter(|&&on| on)
@@ -96,7 +99,6 @@ struct Stages {
     visibility: VisibilityBuffer,
     gbuffer: GBuffer,
     shading: ShadeBuffers,
-    outlining: OutlineBuffers,
 }
 
 impl Renderer {
@@ -112,7 +114,6 @@ impl Renderer {
                 visibility: VisibilityBuffer::default(),
                 gbuffer: GBuffer::default(),
                 shading: ShadeBuffers::default(),
-                outlining: OutlineBuffers::default(),
             },
             library,
             pool: None,
@@ -251,7 +252,6 @@ impl Stages {
             visibility,
             gbuffer,
             shading,
-            outlining,
         } = self;
 
         let (mesh, covered) = match kept.filter(|_| reuse) {
@@ -268,7 +268,6 @@ impl Stages {
                 let mesh = tessellate(tessellator, settings, &frame, &mut stats);
                 let covered = rasterize(rasterizer, mesh, &frame, clip, visibility, &mut stats);
                 if plan.runs(Stage::GBuffer) {
-                    let edges = plan.runs(Stage::Outline).then_some(&mut outlining.surfaces);
                     fill_gbuffer(
                         gbuffer,
                         visibility,
@@ -277,7 +276,6 @@ impl Stages {
                         scene,
                         settings,
                         frame.view_projection,
-                        edges,
                         &mut stats,
                     );
                 }
@@ -317,21 +315,24 @@ impl Stages {
                 (shaded, widths.filter(|_| plan.runs(Stage::Supersample)))
             }
         };
-        if let (true, Some(outlines)) = (plan.runs(Stage::Outline), &scene.outlines) {
-            outline(
-                gbuffer,
-                outlines,
-                &frame,
-                &mut shaded,
-                outlining,
-                &mut stats,
-            );
-        }
+        let lines = match (plan.runs(Stage::Outline), &scene.outlines) {
+            (true, Some(outlines)) => {
+                let input = LineInput {
+                    library,
+                    mesh,
+                    camera: &scene.camera,
+                    view_projection: frame.view_projection,
+                    visibility,
+                    k,
+                    size: (settings.width, settings.height),
+                };
+                Some(outline(&input, outlines, &mut stats))
+            }
+            _ => None,
+        };
         if let (true, Antialias::Adaptive(k)) = (plan.runs(Stage::Supersample), settings.antialias)
         {
             let straddles = widths.as_ref().map(|w| gbuffer.gather(&w.straddles, false));
-            let lines =
-                (scene.outlines.is_some() && plan.runs(Stage::Outline)).then(|| outlining.edges());
             let input = supersample::Frame {
                 library,
                 scene,
@@ -346,22 +347,33 @@ impl Stages {
                 straddles: straddles.as_deref(),
                 gbuffer,
                 footprints: widths.as_ref().map(|w| w.footprints.as_slice()),
-                lines,
+                lines: lines.as_ref(),
             };
             let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
             stats.record(Stage::Supersample, done.pixels, seconds);
             stats.exact_frames += done.frames;
         }
         let aovs = if plan.runs(Stage::Aov) {
-            aov(scene, gbuffer, &mut shaded, settings, &frame, &mut stats)
+            aov(
+                scene,
+                gbuffer,
+                lines.as_ref(),
+                &mut shaded,
+                settings,
+                &mut stats,
+            )
         } else {
             AovImages::default()
         };
-        let colour = if plan.runs(Stage::Resolve) {
+        let mut colour = if plan.runs(Stage::Resolve) {
             resolve_stage(&shaded.colour, settings, &frame, &mut stats)
         } else {
             shaded.colour
         };
+        if let Some(lines) = &lines {
+            let (_, seconds) = timed(|| lines.composite(&mut colour));
+            stats.add_seconds(Stage::Outline, seconds);
+        }
         RenderedFrame {
             width: settings.width,
             height: settings.height,
@@ -451,7 +463,6 @@ fn fill_gbuffer(
     scene: &Scene,
     settings: &Settings,
     view_projection: Mat4,
-    edges: Option<&mut Vec<super::outline::EdgeSurface>>,
     stats: &mut RenderStats,
 ) {
     let (exact, seconds) = timed(|| {
@@ -463,7 +474,6 @@ fn fill_gbuffer(
             view_projection,
             settings.frames,
             None,
-            edges,
         )
     });
     stats.exact_frames = exact;
@@ -489,36 +499,24 @@ fn widths(gbuffer: &GBuffer, scene: &Scene, stats: &mut RenderStats) -> EdgeWidt
     widths
 }
 
-/// [`Stage::Outline`]: lines over the shaded samples, their width scaled to samples.
-fn outline(
-    gbuffer: &GBuffer,
-    outlines: &Outlines,
-    frame: &Frame,
-    shaded: &mut Shaded,
-    buffers: &mut OutlineBuffers,
-    stats: &mut RenderStats,
-) {
-    let (_, seconds) = timed(|| {
-        let scaled = Outlines {
-            width: outlines.width * frame.k as f32,
-            ..*outlines
-        };
-        draw_outlines(gbuffer, &scaled, &mut shaded.colour, buffers);
-    });
-    let samples = u64::from(frame.samples.width) * u64::from(frame.samples.height);
-    stats.record(Stage::Outline, samples, seconds);
+/// [`Stage::Outline`]: the lines, found on the mesh and tested against the frame's depth, as
+/// coverage at output resolution (composited over the colour once it is resolved).
+fn outline(input: &LineInput, outlines: &Outlines, stats: &mut RenderStats) -> LineImage {
+    let (lines, seconds) = timed(|| draw_lines(input, outlines));
+    stats.record(Stage::Outline, lines.inked, seconds);
+    lines
 }
 
 /// [`Stage::Aov`]: the AOVs the scene asked for, at output resolution.
 fn aov(
     scene: &Scene,
     gbuffer: &GBuffer,
+    lines: Option<&LineImage>,
     shaded: &mut Shaded,
     settings: &Settings,
-    frame: &Frame,
     stats: &mut RenderStats,
 ) -> AovImages {
-    let (images, seconds) = timed(|| collect_aovs(scene, gbuffer, shaded, frame.k));
+    let (images, seconds) = timed(|| collect_aovs(scene, gbuffer, lines, shaded, settings));
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     stats.record(Stage::Aov, images.count() as u64 * pixels, seconds);
     images
@@ -588,8 +586,14 @@ where
 }
 
 /// The AOVs the scene asked for, at output resolution.
-fn collect_aovs(scene: &Scene, gbuffer: &GBuffer, shaded: &mut Shaded, k: u32) -> AovImages {
-    let (width, height) = (gbuffer.width / k, gbuffer.height / k);
+fn collect_aovs(
+    scene: &Scene,
+    gbuffer: &GBuffer,
+    lines: Option<&LineImage>,
+    shaded: &mut Shaded,
+    settings: &Settings,
+) -> AovImages {
+    let (width, height, k) = (settings.width, settings.height, settings.samples_per_side());
     let centre = |x: u32, y: u32| gbuffer.at(x * k + k / 2, y * k + k / 2);
     let pixels = || (0..height).flat_map(move |y| (0..width).map(move |x| (x, y)));
     let a = scene.aovs;
@@ -621,6 +625,12 @@ fn collect_aovs(scene: &Scene, gbuffer: &GBuffer, shaded: &mut Shaded, k: u32) -
             pixels()
                 .map(|(x, y)| centre(x, y).map_or(Vec2::ZERO, |t| t.uv))
                 .collect()
+        }),
+        outline: a.outline.then(|| {
+            lines.map_or_else(
+                || vec![Vec4::ZERO; width as usize * height as usize],
+                LineImage::alone,
+            )
         }),
     }
 }

@@ -56,6 +56,8 @@ pub struct Aovs {
     /// `N·H` of the initial half vector per pixel, on every patch: where the undesigned Blinn
     /// highlight would be (a debug view for animators).
     pub n_dot_h: bool,
+    /// The lines alone, with their coverage as alpha (transparent where none are drawn).
+    pub outline: bool,
 }
 
 /// Everything one frame shows.

@@ -89,6 +89,11 @@ impl RenderStats {
         }
         self.stages[stage.index()] = StageStats { pixels, seconds };
     }
+
+    /// Adds `seconds` to what `stage` took: a stage whose work is split over the frame.
+    pub(crate) fn add_seconds(&mut self, stage: Stage, seconds: f64) {
+        self.stages[stage.index()].seconds += seconds;
+    }
 }
 
 impl Index<Stage> for RenderStats {

@@ -7,11 +7,11 @@ use rayon::prelude::*;
 use super::contrast::pixels_to_supersample;
 use super::dilate::dilate;
 use super::gbuffer::{Evaluate, GBuffer, EMPTY};
+use super::lines::LineImage;
 use super::neighbourhood::around;
-use super::outline::{draw_outlines, OutlineBuffers};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::renderer::{premultiplied, straight};
-use super::scene::{Outlines, Scene};
+use super::scene::Scene;
 use super::seeded::{self, Seeded};
 use super::settings::FrameMode;
 use super::shade::{shade, ShadeBuffers, Shaded};
@@ -48,8 +48,9 @@ pub(super) struct Frame<'a> {
     pub gbuffer: &'a GBuffer,
     /// Per texel of `gbuffer`, its footprint, when edge widths were taken.
     pub footprints: Option<&'a [Footprint]>,
-    /// Per pixel, whether a line is centred on it, when the scene draws lines.
-    pub lines: Option<&'a [bool]>,
+    /// The frame's lines, when the scene draws them: a pixel they wholly ink is not drawn
+    /// again.
+    pub lines: Option<&'a LineImage>,
 }
 
 /// What the stage did.
@@ -124,21 +125,29 @@ pub(super) fn landed_depth(
 /// edge may cross unseen ([`pixels_to_supersample`]), and puts there the average of its samples: premultiplied colour
 /// `α = mean(α_s)`, `rgb = mean(α_s rgb_s)/α`, and the mean matte and `N·H`.
 ///
+/// A pixel the frame's lines wholly ink is left as it is, unless an AOV of the shading (the
+/// matte, `N·H`) shows what lies under the lines.
+///
 /// The marked pixels are gathered in [`TILE`]-pixel tiles. Each tile is a [`Window`] of the
-/// supersampled image with an apron around it wide enough for the central differences of the
-/// edge widths and for the outlines; only the triangles whose bounds reach the window are
-/// rasterized into it, and only the samples of marked pixels and those within the apron of them
-/// are kept: their G-buffer, detail, edge widths, shading and outlines are those of the whole
-/// supersampled image at those samples. Memory is one tile per worker.
+/// supersampled image with an [`APRON`] around it for the central differences of the edge
+/// widths; only the triangles whose bounds reach the window are rasterized into it, and only
+/// the samples of marked pixels and those within the apron of them are kept: their G-buffer,
+/// detail, edge widths and shading are those of the whole supersampled image at those samples.
+/// Memory is one tile per worker.
 pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     let (w, h) = (frame.image.width, frame.image.height);
-    let marked = pixels_to_supersample(
+    let mut marked = pixels_to_supersample(
         &shaded.colour,
         shaded.matte.as_deref(),
         frame.straddles,
         w,
         h,
     );
+    if let (Some(lines), None, None) = (frame.lines, &shaded.matte, &shaded.n_dot_h) {
+        for (p, m) in marked.iter_mut().enumerate() {
+            *m &= !lines.hides(p);
+        }
+    }
     let pixels = marked.iter().filter(|&&m| m).count() as u64;
     if pixels == 0 {
         return Done::default();
@@ -170,8 +179,7 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
         let (x, y) = (i as u32 % w, i as u32 / w);
         tile_marked[((y / TILE) * tiles_x + x / TILE) as usize] = true;
     }
-    let apron = apron(frame.scene.outlines.as_ref(), frame.k);
-    let bins = bin_triangles(frame, &tile_marked, (tiles_x, tiles_y), apron);
+    let bins = bin_triangles(frame, &tile_marked, (tiles_x, tiles_y), APRON);
     let tiles: Vec<(u32, &Vec<u32>)> = (0..tiles_x * tiles_y)
         .zip(&bins)
         .filter(|&(t, _)| tile_marked[t as usize])
@@ -180,7 +188,7 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
         .into_par_iter()
         .map_init(TileBuffers::default, |buffers, (t, bin)| {
             let (tx, ty) = (t % tiles_x, t / tiles_x);
-            buffers.draw(frame, &views, &marked, (tx, ty), apron, bin)
+            buffers.draw(frame, &views, &marked, (tx, ty), APRON, bin)
         })
         .collect();
     for (tile, tile_frames) in results {
@@ -203,31 +211,17 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
 /// The marked pixels split in two: those left to the rasterized tiles, as a mask, and those the
 /// seeded path draws ([`seeded::draw`]), as a list. The seeded path takes a marked pixel when
 /// frames are refined (it refines its samples' (u, v) from the refined points around them),
-/// nothing runs ahead of shading (the X-Toon detail reads a neighbourhood of samples), no line
-/// reaches the pixel (lines need their edge tests at the samples), and its neighbourhood
-/// shows the surfaces to start from ([`seeded::seedable`]).
+/// nothing runs ahead of shading (the X-Toon detail reads a neighbourhood of samples), and its
+/// neighbourhood shows the surfaces to start from ([`seeded::seedable`]).
 fn split_seeded(frame: &Frame, mut marked: Vec<bool>) -> (Vec<bool>, Vec<u32>) {
     let (w, h) = (frame.image.width as usize, frame.image.height as usize);
     let samples = u64::from(frame.image.width * frame.k) * u64::from(frame.image.height * frame.k);
     if frame.frames != FrameMode::Refined || frame.detail || samples > u64::from(u32::MAX) {
         return (marked, Vec::new());
     }
-    let near_lines = match (frame.lines, frame.scene.outlines.as_ref()) {
-        (Some(lines), Some(outlines)) => {
-            let mut near = lines.to_vec();
-            let reach = ((outlines.width.max(1.0) - 1.0) * 0.5).ceil() as usize + 2;
-            dilate(&mut near, (w, h), reach, (&mut Vec::new(), &mut Vec::new()));
-            Some(near)
-        }
-        _ => None,
-    };
     let seeded: Vec<u32> = (0..w * h)
         .into_par_iter()
-        .filter(|&p| {
-            marked[p]
-                && !near_lines.as_ref().is_some_and(|n| n[p])
-                && seeded::seedable(frame.gbuffer, frame.library, frame.scene, p)
-        })
+        .filter(|&p| marked[p] && seeded::seedable(frame.gbuffer, frame.library, frame.scene, p))
         .map(|p| p as u32)
         .collect();
     for &p in &seeded {
@@ -236,18 +230,9 @@ fn split_seeded(frame: &Frame, mut marked: Vec<bool>) -> (Vec<bool>, Vec<u32>) {
     (marked, seeded)
 }
 
-/// Samples around a tile that its samples' results depend on: one for the central differences
-/// of the edge widths and the outlines' neighbour tests, and with outlines the reach of a line
-/// `width × k` samples wide, plus the one its depth test looks past.
-fn apron(outlines: Option<&Outlines>, k: u32) -> u32 {
-    match outlines {
-        None => 1,
-        Some(o) => {
-            let radius = ((o.width * k as f32).max(1.0) - 1.0) * 0.5;
-            radius.ceil() as u32 + 2
-        }
-    }
-}
+/// Samples around a tile that its samples' results depend on: one, for the central
+/// differences of the edge widths.
+const APRON: u32 = 1;
 
 /// Per tile of the `tiles` grid that is marked, the triangles whose screen bounds reach its
 /// window (with `apron`), in mesh order; empty for the others. A triangle with a vertex at or
@@ -320,7 +305,6 @@ struct TileBuffers {
     visibility: VisibilityBuffer,
     gbuffer: GBuffer,
     shading: ShadeBuffers,
-    outlining: OutlineBuffers,
     /// Per sample of the window, whether it is drawn on.
     drawn: Vec<bool>,
     /// Per sample of the window, how much of its frame the G-buffer evaluates.
@@ -459,32 +443,25 @@ impl TileBuffers {
             &options,
             &mut self.visibility,
         );
-        // Only the samples of marked pixels, and those within the apron of them, are drawn on;
-        // those within a sample of them are shaded (the edge widths' central differences), the
-        // rest only show the outlines where the surfaces are.
+        // Only the samples of marked pixels, and those within the apron of them (the edge
+        // widths' central differences), are drawn on.
         let (ww, wh) = (window.width, window.height);
         let (wu, hu) = (ww as usize, wh as usize);
-        self.evaluate.clear();
-        self.evaluate.extend((0..wh).flat_map(|y| {
-            let row = ((y + y0) / k * image.width) as usize;
-            (0..ww).map(move |x| {
-                if marked[row + ((x + x0) / k) as usize] {
-                    Evaluate::Full
-                } else {
-                    Evaluate::Mesh
-                }
-            })
-        }));
         self.drawn.clear();
-        self.drawn
-            .extend(self.evaluate.iter().map(|&e| e == Evaluate::Full));
+        self.drawn.extend((0..wh).flat_map(|y| {
+            let row = ((y + y0) / k * image.width) as usize;
+            (0..ww).map(move |x| marked[row + ((x + x0) / k) as usize])
+        }));
         let (rows, counts) = &mut self.dilating;
         dilate(&mut self.drawn, (wu, hu), apron as usize, (rows, counts));
-        let mut shaded: Vec<bool> = self.evaluate.iter().map(|&e| e == Evaluate::Full).collect();
-        dilate(&mut shaded, (wu, hu), 1, (rows, counts));
-        for (e, &s) in self.evaluate.iter_mut().zip(&shaded) {
-            *e = if s { Evaluate::Full } else { Evaluate::Mesh };
-        }
+        self.evaluate.clear();
+        self.evaluate.extend(self.drawn.iter().map(|&d| {
+            if d {
+                Evaluate::Full
+            } else {
+                Evaluate::Mesh
+            }
+        }));
         for (t, &drawn) in self.visibility.triangle.iter_mut().zip(&self.drawn) {
             if *t != EMPTY {
                 *t = if drawn { bin[*t as usize] } else { EMPTY };
@@ -505,10 +482,6 @@ impl TileBuffers {
         }
 
         let scene = frame.scene;
-        let edges = scene
-            .outlines
-            .is_some()
-            .then_some(&mut self.outlining.surfaces);
         let frames = self.gbuffer.fill(
             &self.visibility,
             mesh,
@@ -517,16 +490,11 @@ impl TileBuffers {
             to_window * frame.view_projection,
             frame.frames,
             Some(&self.evaluate),
-            edges,
         );
         if !self.grown.is_empty() {
             let to_screen = to_window * frame.view_projection;
             let keep = self.grown_hits(to_screen, window.width);
-            let edges = scene
-                .outlines
-                .is_some()
-                .then_some(&mut self.outlining.surfaces);
-            self.gbuffer.retain(&keep, edges);
+            self.gbuffer.retain(&keep);
         }
         let ahead = frame
             .detail
@@ -536,7 +504,7 @@ impl TileBuffers {
             .widths
             .then(|| super::edge_width::edge_widths(gbuffer, scene).footprints);
         let tones = ahead.as_ref().map(|a| a.tones.as_slice());
-        let mut samples = shade(
+        let samples = shade(
             gbuffer,
             scene,
             views,
@@ -544,18 +512,6 @@ impl TileBuffers {
             widths.as_deref(),
             &mut self.shading,
         );
-        if let Some(outlines) = &scene.outlines {
-            let scaled = Outlines {
-                width: outlines.width * k as f32,
-                ..*outlines
-            };
-            draw_outlines(
-                &self.gbuffer,
-                &scaled,
-                &mut samples.colour,
-                &mut self.outlining,
-            );
-        }
 
         let mut resolved = Vec::new();
         for py in py0..py1 {

@@ -4,7 +4,6 @@
 use super::camera::{Camera, Projection};
 use super::plan::{Plan, Surfaces};
 use super::settings::{FrameMode, Settings};
-use super::stage::Stage;
 use super::tessellate::Density;
 
 /// What the stages that [depend on surfaces only](Plan::depends_on_surfaces_only) read of a
@@ -21,7 +20,6 @@ pub(super) struct SurfaceKey {
     density: [u32; 3],
     frames: FrameMode,
     surfaces: Surfaces,
-    edges: bool,
 }
 
 impl SurfaceKey {
@@ -38,7 +36,6 @@ impl SurfaceKey {
             },
             frames: settings.frames,
             surfaces: plan.surfaces,
-            edges: plan.surfaces == Surfaces::Texels && plan.runs(Stage::Outline),
         }
     }
 }
@@ -172,12 +169,12 @@ mod tests {
         }
         let visibility = plan(false, false);
         assert_eq!(visibility.surfaces, Surfaces::Visibility);
-        for other in [visibility, plan(true, true)] {
-            assert_ne!(
-                key,
-                SurfaceKey::new(&camera(), &settings, &other),
-                "{other:?}"
-            );
-        }
+        assert_ne!(key, SurfaceKey::new(&camera(), &settings, &visibility));
+        // Lines are found on the mesh: they read nothing of the G-buffer, and need none.
+        assert_eq!(
+            key,
+            SurfaceKey::new(&camera(), &settings, &plan(true, true))
+        );
+        assert_eq!(plan(true, false).surfaces, Surfaces::Visibility);
     }
 }

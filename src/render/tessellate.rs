@@ -47,6 +47,44 @@ pub struct Mesh {
     pub triangles: Vec<[u32; 3]>,
     /// The patch (index in the library) of each triangle.
     pub triangle_patch: Vec<u32>,
+    /// Per patch, where its grid of vertices sits in the mesh.
+    pub grids: Vec<PatchGrid>,
+    /// Every piece of a patch's domain boundary between two neighbouring vertices, once
+    /// ([`boundary_edges`]).
+    pub borders: Vec<BorderEdge>,
+}
+
+/// One patch's vertices in the mesh: an `nu × nv` grid from `first`, vertex `(i, j)` (the i-th
+/// u sample, the j-th v sample) at `first + i nv + j`. Each grid cell `(i, j)` is cut into the
+/// triangles `[(i, j), (i+1, j), (i+1, j+1)]` and `[(i, j), (i+1, j+1), (i, j+1)]`, in that
+/// order, from triangle `2 Σ (cells of the patches before) + 2 (i (nv − 1) + j)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PatchGrid {
+    pub first: u32,
+    pub nu: u32,
+    pub nv: u32,
+}
+
+impl PatchGrid {
+    /// The vertex `(i, j)`.
+    #[inline]
+    #[must_use]
+    pub fn vertex(&self, i: u32, j: u32) -> u32 {
+        self.first + i * self.nv + j
+    }
+}
+
+/// A piece of a patch's domain boundary between two neighbouring mesh vertices `a` and `b`
+/// (of patch `patch`), and the vertices at the same two positions on the patch across it, when
+/// another piece of boundary (of another patch, or of the same patch on a closed surface) runs
+/// there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BorderEdge {
+    pub patch: u32,
+    pub a: u32,
+    pub b: u32,
+    /// `(a', b')` at the positions of `a` and `b`, and their patch.
+    pub across: Option<(u32, u32, u32)>,
 }
 
 /// Segments per knot span of one patch, along u and along v.
@@ -395,6 +433,11 @@ fn build_mesh(library: &PatchLibrary, segments: &[Segments]) -> Mesh {
                 mesh.uvs.push(Vec2::new(u as f32, vs[j] as f32));
             }
         }
+        mesh.grids.push(PatchGrid {
+            first,
+            nu: nu as u32,
+            nv: nv as u32,
+        });
         let index = |i: usize, j: usize| first + (i * nv + j) as u32;
         for i in 0..nu - 1 {
             for j in 0..nv - 1 {
@@ -410,7 +453,61 @@ fn build_mesh(library: &PatchLibrary, segments: &[Segments]) -> Mesh {
             }
         }
     }
+    mesh.borders = boundary_edges(&mesh.positions, &mesh.grids);
     mesh
+}
+
+/// The pieces of every patch's domain boundary, each between two neighbouring vertices of its
+/// grid, paired with the piece at the same two positions across it. Boundary vertices are
+/// welded, so two pieces that meet have bit-identical end points; pieces of zero length (a
+/// collapsed edge) are left out. A piece met from two sides is listed once, from the first.
+#[must_use]
+pub fn boundary_edges(positions: &[Vec3], grids: &[PatchGrid]) -> Vec<BorderEdge> {
+    let key = |v: u32| positions[v as usize].to_array().map(f32::to_bits);
+    let mut pieces: Vec<BorderEdge> = Vec::new();
+    let mut seen: HashMap<([u32; 3], [u32; 3]), usize> = HashMap::new();
+    for (patch, g) in grids.iter().enumerate() {
+        let (nu, nv) = (g.nu, g.nv);
+        // The four sides in turn: v = v0, u = u1, v = v1, u = u0.
+        let sides: [Vec<u32>; 4] = [
+            (0..nu).map(|i| g.vertex(i, 0)).collect(),
+            (0..nv).map(|j| g.vertex(nu - 1, j)).collect(),
+            (0..nu).map(|i| g.vertex(i, nv - 1)).collect(),
+            (0..nv).map(|j| g.vertex(0, j)).collect(),
+        ];
+        for side in &sides {
+            for pair in side.windows(2) {
+                let (a, b) = (pair[0], pair[1]);
+                let (ka, kb) = (key(a), key(b));
+                if ka == kb {
+                    continue;
+                }
+                let unordered = if ka < kb { (ka, kb) } else { (kb, ka) };
+                match seen.get(&unordered) {
+                    Some(&k) if pieces[k].across.is_none() && pieces[k].a != a => {
+                        let first = &mut pieces[k];
+                        let (fa, _) = (key(first.a), key(first.b));
+                        first.across = Some(if fa == ka {
+                            (a, b, patch as u32)
+                        } else {
+                            (b, a, patch as u32)
+                        });
+                    }
+                    Some(_) => {}
+                    None => {
+                        seen.insert(unordered, pieces.len());
+                        pieces.push(BorderEdge {
+                            patch: patch as u32,
+                            a,
+                            b,
+                            across: None,
+                        });
+                    }
+                }
+            }
+        }
+    }
+    pieces
 }
 
 #[cfg(test)]

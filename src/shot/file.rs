@@ -296,20 +296,24 @@ pub enum Aov {
     Uv,
     /// `N·H` heat map of the undesigned Blinn highlight.
     NDotH,
+    /// The lines alone, with alpha.
+    Outline,
 }
 
 impl Aov {
     /// Every AOV, in the order the command line and the docs list them.
-    pub const ALL: [Aov; 6] = [
+    pub const ALL: [Aov; 7] = [
         Aov::Matte,
         Aov::PatchId,
         Aov::Depth,
         Aov::Normal,
         Aov::Uv,
         Aov::NDotH,
+        Aov::Outline,
     ];
 
-    /// The name on the command line: `matte`, `patch_id`, `depth`, `normal`, `uv`, `n_dot_h`.
+    /// The name on the command line: `matte`, `patch_id`, `depth`, `normal`, `uv`, `n_dot_h`,
+    /// `outline`.
     pub fn name(self) -> &'static str {
         match self {
             Aov::Matte => "matte",
@@ -318,6 +322,7 @@ impl Aov {
             Aov::Normal => "normal",
             Aov::Uv => "uv",
             Aov::NDotH => "n_dot_h",
+            Aov::Outline => "outline",
         }
     }
 }

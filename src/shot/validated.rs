@@ -193,6 +193,7 @@ impl Shot {
             normal: on(Aov::Normal),
             uv: on(Aov::Uv),
             n_dot_h: on(Aov::NDotH),
+            outline: on(Aov::Outline),
         }
     }
 }

@@ -1,0 +1,323 @@
+//! Silhouettes: the curve where the surface turns from facing the eye to facing away, found on
+//! the mesh and refined onto the surface.
+
+use glam::{DVec2, DVec3, Mat4, Vec3};
+use rayon::prelude::*;
+
+use super::super::camera::{Camera, Projection};
+use super::super::tessellate::{Mesh, PatchGrid};
+use super::piece::{LineKind, Piece};
+use super::to_screen;
+use crate::geom::{NurbsSurface, PatchLibrary};
+
+/// Regula falsi steps that move a point of the silhouette from the mesh onto the surface.
+const REFINE_STEPS: usize = 4;
+
+/// A silhouette piece longer than this on the image (pixels) is cut in two at a point of the
+/// true silhouette between its ends, so that its chord stays close to the curve whatever the
+/// tessellation: a chord `c` of a curve of radius `ρ` sags by `c²/8ρ`, 0.04 px for 4 px on a
+/// 50 px radius.
+pub(crate) const LONGEST_PIECE_PIXELS: f32 = 4.0;
+
+/// How many times a piece may be cut in two.
+const MOST_HALVINGS: u32 = 8;
+
+/// Which side of the surface the eye is on, as a signed number: `g(P, N) = N·(P − E)` under
+/// perspective, `N·F` (F the line of sight) under orthographic projection. The silhouette is
+/// where it is zero.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct EyeSide {
+    eye: Option<DVec3>,
+    forward: DVec3,
+}
+
+impl EyeSide {
+    #[must_use]
+    pub fn of(camera: &Camera) -> Self {
+        Self {
+            eye: match camera.projection {
+                Projection::Perspective { .. } => Some(camera.eye.as_dvec3()),
+                Projection::Orthographic { .. } => None,
+            },
+            forward: camera.forward().as_dvec3(),
+        }
+    }
+
+    /// `g(P, N)`: negative where the side `N` points to faces the eye.
+    #[inline]
+    #[must_use]
+    pub fn at(&self, point: DVec3, normal: DVec3) -> f64 {
+        match self.eye {
+            Some(eye) => normal.dot(point - eye),
+            None => normal.dot(self.forward),
+        }
+    }
+
+    /// `g` at a mesh vertex.
+    #[inline]
+    #[must_use]
+    pub fn at_vertex(&self, mesh: &Mesh, v: u32) -> f64 {
+        let v = v as usize;
+        self.at(mesh.positions[v].as_dvec3(), mesh.normals[v].as_dvec3())
+    }
+}
+
+/// A point of the silhouette: its (u, v), where it is on the surface and on the mesh.
+#[derive(Clone, Copy, Debug)]
+struct Crossing {
+    uv: DVec2,
+    point: DVec3,
+    on_mesh: Vec3,
+}
+
+/// What finding silhouettes on one patch needs.
+struct OnPatch<'a> {
+    mesh: &'a Mesh,
+    surface: &'a NurbsSurface,
+    side: EyeSide,
+    view_projection: Mat4,
+    size: (u32, u32),
+}
+
+/// The silhouette pieces of every patch. In each triangle of the mesh where `g` takes both
+/// signs at its corners, the silhouette runs between the two edges `g` changes sign along; on
+/// each, the crossing is found on the surface along the edge's straight line in (u, v)
+/// ([`REFINE_STEPS`] of regula falsi from the mesh's estimate `gₐ / (gₐ − g_b)`), so the ends
+/// lie on the true silhouette and the two triangles of an edge find the same point. A piece
+/// longer than [`LONGEST_PIECE_PIXELS`] on the `size` image is cut at the point of the
+/// silhouette on the line from the triangle's lone corner through its middle (in (u, v)).
+#[must_use]
+pub(crate) fn silhouettes(
+    mesh: &Mesh,
+    library: &PatchLibrary,
+    camera: &Camera,
+    view_projection: Mat4,
+    size: (u32, u32),
+) -> Vec<Piece> {
+    let side = EyeSide::of(camera);
+    mesh.grids
+        .par_iter()
+        .zip(&library.patches)
+        .flat_map_iter(|(grid, patch)| {
+            let on = OnPatch {
+                mesh,
+                surface: &patch.surface,
+                side,
+                view_projection,
+                size,
+            };
+            on.silhouettes(grid)
+        })
+        .collect()
+}
+
+impl OnPatch<'_> {
+    fn silhouettes(&self, grid: &PatchGrid) -> Vec<Piece> {
+        let (nu, nv) = (grid.nu, grid.nv);
+        let g: Vec<f64> = (0..nu * nv)
+            .map(|k| self.side.at_vertex(self.mesh, grid.first + k))
+            .collect();
+        let value = |v: u32| g[(v - grid.first) as usize];
+        let front = |v: u32| value(v) >= 0.0;
+        let mut pieces = Vec::new();
+        for i in 0..nu.saturating_sub(1) {
+            for j in 0..nv.saturating_sub(1) {
+                let (a, b, c, d) = (
+                    grid.vertex(i, j),
+                    grid.vertex(i + 1, j),
+                    grid.vertex(i + 1, j + 1),
+                    grid.vertex(i, j + 1),
+                );
+                if [b, c, d].iter().all(|&v| front(v) == front(a)) {
+                    continue;
+                }
+                for triangle in [[a, b, c], [a, c, d]] {
+                    // The corner on its own side, and the other two.
+                    let Some(k) = (0..3).find(|&k| {
+                        front(triangle[k]) != front(triangle[(k + 1) % 3])
+                            && front(triangle[k]) != front(triangle[(k + 2) % 3])
+                    }) else {
+                        continue;
+                    };
+                    let (lone, p, q) = (triangle[k], triangle[(k + 1) % 3], triangle[(k + 2) % 3]);
+                    let start = self.on_edge((lone, value(lone)), (p, value(p)));
+                    let end = self.on_edge((lone, value(lone)), (q, value(q)));
+                    let corners = [lone, p, q].map(|v| (v, value(v)));
+                    self.cut(&corners, start, end, 0, &mut pieces);
+                }
+            }
+        }
+        pieces
+    }
+
+    /// The silhouette's crossing of the mesh edge from `x` to `y` (`g` of opposite signs),
+    /// computed from the lower-numbered vertex so that both triangles of the edge agree.
+    fn on_edge(&self, x: (u32, f64), y: (u32, f64)) -> Crossing {
+        let ((x, gx), (y, gy)) = if x.0 < y.0 { (x, y) } else { (y, x) };
+        let uv = |v: u32| self.mesh.uvs[v as usize].as_dvec2();
+        let found = self.root_on_line((uv(x), gx), (uv(y), gy));
+        let (px, py) = (
+            self.mesh.positions[x as usize],
+            self.mesh.positions[y as usize],
+        );
+        let on_mesh = px.lerp(py, found.0 as f32);
+        Crossing {
+            uv: found.1,
+            point: found.2.unwrap_or(on_mesh.as_dvec3()),
+            on_mesh,
+        }
+    }
+
+    /// Draws the silhouette from `start` to `end` inside the triangle `corners` (the lone
+    /// corner first, each with its `g`): one piece, or two halves cut at a point of the true
+    /// silhouette when it is long on the image.
+    fn cut(
+        &self,
+        corners: &[(u32, f64); 3],
+        start: Crossing,
+        end: Crossing,
+        halvings: u32,
+        pieces: &mut Vec<Piece>,
+    ) {
+        if start.point == end.point {
+            return;
+        }
+        let long = halvings < MOST_HALVINGS
+            && self.screen_length(start.point, end.point) > LONGEST_PIECE_PIXELS;
+        if let Some(middle) = long.then(|| self.middle(corners, start, end)).flatten() {
+            self.cut(corners, start, middle, halvings + 1, pieces);
+            self.cut(corners, middle, end, halvings + 1, pieces);
+            return;
+        }
+        pieces.push(Piece {
+            ends: [start.point, end.point],
+            on_mesh: [start.on_mesh, end.on_mesh],
+            opacity: 1.0,
+            kind: LineKind::Silhouette,
+        });
+    }
+
+    /// The point of the silhouette on the line in (u, v) from the lone corner through the
+    /// middle of `start` and `end`, up to the opposite edge; None when `g` there has the lone
+    /// corner's sign (the silhouette leaves the triangle's line).
+    fn middle(
+        &self,
+        corners: &[(u32, f64); 3],
+        start: Crossing,
+        end: Crossing,
+    ) -> Option<Crossing> {
+        let uv = |v: u32| self.mesh.uvs[v as usize].as_dvec2();
+        let [(lone, g_lone), (p, _), (q, _)] = *corners;
+        let (o, a, b) = (uv(lone), uv(p), uv(q));
+        let m = 0.5 * (start.uv + end.uv);
+        // Where the line o + s (m − o) meets the edge a + t (b − a).
+        let (d, e) = (m - o, b - a);
+        let det = d.perp_dot(e);
+        if det.abs() <= f64::EPSILON * d.length() * e.length() {
+            return None;
+        }
+        let s = (a - o).perp_dot(e) / det;
+        if !(s.is_finite() && s >= 1.0) {
+            return None;
+        }
+        let far = o + d * s;
+        let frame = self.surface.frame(far.x, far.y);
+        let g_far = self.side.at(frame.point, frame.normal);
+        if (g_far >= 0.0) == (g_lone >= 0.0) {
+            return None;
+        }
+        let (_, at, point) = self.root_on_line((o, g_lone), (far, g_far));
+        let on_mesh = self.on_mesh(corners, at);
+        Some(Crossing {
+            uv: at,
+            point: point.unwrap_or(on_mesh.as_dvec3()),
+            on_mesh,
+        })
+    }
+
+    /// The mesh's point at (u, v) inside the triangle `corners`, by barycentric coordinates in
+    /// (u, v).
+    fn on_mesh(&self, corners: &[(u32, f64); 3], at: DVec2) -> Vec3 {
+        let [x, y, z] = corners.map(|(v, _)| v);
+        let uv = |v: u32| self.mesh.uvs[v as usize].as_dvec2();
+        let position = |v: u32| self.mesh.positions[v as usize];
+        let (a, b, c) = (uv(x), uv(y), uv(z));
+        let area = (b - a).perp_dot(c - a);
+        if area == 0.0 {
+            return position(x);
+        }
+        let wb = ((at - a).perp_dot(c - a) / area) as f32;
+        let wc = ((b - a).perp_dot(at - a) / area) as f32;
+        position(x) * (1.0 - wb - wc) + position(y) * wb + position(z) * wc
+    }
+
+    fn screen_length(&self, a: DVec3, b: DVec3) -> f32 {
+        screen_length(self.view_projection, self.size, a, b)
+    }
+
+    /// Where `g` is zero on the surface along the straight line in (u, v) from `from` to `to`
+    /// (with `g` of opposite signs there): the fraction of the way, the (u, v), and the point
+    /// on the surface (None if no evaluation gave a finite one). Regula falsi (Illinois) keeps
+    /// the root bracketed, so the fraction stays in [0, 1] whatever the surface does between.
+    fn root_on_line(
+        &self,
+        (from, g_from): (DVec2, f64),
+        (to, g_to): (DVec2, f64),
+    ) -> (f64, DVec2, Option<DVec3>) {
+        let (mut lo, mut hi) = ((0.0, g_from), (1.0, g_to));
+        let mut t = linear_root(lo, hi);
+        let mut found = None;
+        let mut last_side = 0i8;
+        for _ in 0..REFINE_STEPS {
+            let uv = from.lerp(to, t);
+            let frame = self.surface.frame(uv.x, uv.y);
+            let value = self.side.at(frame.point, frame.normal);
+            if frame.point.is_finite() {
+                found = Some((t, frame.point));
+            }
+            if value == 0.0 || !value.is_finite() {
+                break;
+            }
+            if (value < 0.0) == (lo.1 < 0.0) {
+                lo = (t, value);
+                if last_side == -1 {
+                    hi.1 *= 0.5;
+                }
+                last_side = -1;
+            } else {
+                hi = (t, value);
+                if last_side == 1 {
+                    lo.1 *= 0.5;
+                }
+                last_side = 1;
+            }
+            t = linear_root(lo, hi);
+        }
+        match found {
+            Some((t, point)) => (t, from.lerp(to, t), Some(point)),
+            None => (t, from.lerp(to, t), None),
+        }
+    }
+}
+
+/// The length in pixels, on a `size` image through `view_projection`, of the segment between
+/// two points; 0 when one is at or behind the eye.
+#[must_use]
+pub(crate) fn screen_length(view_projection: Mat4, size: (u32, u32), a: DVec3, b: DVec3) -> f32 {
+    let project = |p: DVec3| to_screen(view_projection * p.as_vec3().extend(1.0), size);
+    match (project(a), project(b)) {
+        (Some((a, _)), Some((b, _))) => a.distance(b),
+        _ => 0.0,
+    }
+}
+
+/// The zero of the line through `(t₀, g₀)` and `(t₁, g₁)`, clamped between them.
+#[inline]
+fn linear_root((t0, g0): (f64, f64), (t1, g1): (f64, f64)) -> f64 {
+    let t = t0 + (t1 - t0) * g0 / (g0 - g1);
+    if t.is_finite() {
+        t.clamp(t0.min(t1), t0.max(t1))
+    } else {
+        0.5 * (t0 + t1)
+    }
+}
