@@ -24,6 +24,7 @@ fn purpose(name: &str) -> Shows {
         "sphere_ops" | "crescent" => Shows::AnimatedHighlight,
         "teapot_light_orbit" => Shows::MovingLight,
         "teapot_turntable"
+        | "teapot_rising_camera"
         | "xtoon_abstraction"
         | "xtoon_aerial_perspective"
         | "xtoon_metal"

@@ -11,7 +11,7 @@ use rayon::ThreadPool;
 
 use super::edge_width::{edge_widths, EdgeWidths};
 use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
-use super::lines::{draw_lines, LineImage, LineInput};
+use super::lines::{draw_lines, LineImage, LineInput, MeshLines};
 use super::plan::{Plan, Surfaces};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
@@ -99,6 +99,8 @@ struct Stages {
     visibility: VisibilityBuffer,
     gbuffer: GBuffer,
     shading: ShadeBuffers,
+    /// What the lines found on the mesh and keep while it stays.
+    mesh_lines: MeshLines,
 }
 
 impl Renderer {
@@ -114,6 +116,7 @@ impl Renderer {
                 visibility: VisibilityBuffer::default(),
                 gbuffer: GBuffer::default(),
                 shading: ShadeBuffers::default(),
+                mesh_lines: MeshLines::default(),
             },
             library,
             pool: None,
@@ -252,8 +255,11 @@ impl Stages {
             visibility,
             gbuffer,
             shading,
+            mesh_lines,
         } = self;
 
+        // The generation of the mesh the frame draws: the cached one's, one more if rebuilt.
+        let mut generation = tessellator.generation();
         let (mesh, covered) = match kept.filter(|_| reuse) {
             Some(surfaces) => {
                 let mesh = tessellator
@@ -266,6 +272,7 @@ impl Stages {
                 // Until the buffers are filled again they hold no frame's surfaces.
                 *kept = None;
                 let mesh = tessellate(tessellator, settings, &frame, &mut stats);
+                generation += u64::from(stats.tessellation_rebuilt);
                 let covered = rasterize(rasterizer, mesh, &frame, clip, visibility, &mut stats);
                 if plan.runs(Stage::GBuffer) {
                     fill_gbuffer(
@@ -317,16 +324,20 @@ impl Stages {
         };
         let lines = match (plan.runs(Stage::Outline), &scene.outlines) {
             (true, Some(outlines)) => {
+                let (intersections, seconds) = timed(|| mesh_lines.intersections(mesh, generation));
                 let input = LineInput {
                     library,
                     mesh,
+                    intersections,
                     camera: &scene.camera,
                     view_projection: frame.view_projection,
                     visibility,
                     k,
                     size: (settings.width, settings.height),
                 };
-                Some(outline(&input, outlines, &mut stats))
+                let lines = outline(&input, outlines, &mut stats);
+                stats.add_seconds(Stage::Outline, seconds);
+                Some(lines)
             }
             _ => None,
         };

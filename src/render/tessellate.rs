@@ -97,6 +97,8 @@ pub struct Tessellator {
     /// Classes of (patch, direction) that must be cut alike: `class[2 p + d]`, d = 0 for u.
     class: Vec<usize>,
     cached: Option<(Vec<Segments>, Mesh)>,
+    /// How many meshes have been made: what identifies the cached one.
+    generation: u64,
 }
 
 impl Tessellator {
@@ -107,6 +109,7 @@ impl Tessellator {
             class: direction_classes(&library),
             library,
             cached: None,
+            generation: 0,
         }
     }
 
@@ -124,6 +127,7 @@ impl Tessellator {
         if rebuilt {
             let mesh = build_mesh(&self.library, &segments);
             self.cached = Some((segments, mesh));
+            self.generation += 1;
         }
         let (_, mesh) = self.cached.as_ref().expect("the cache was just filled");
         (mesh, rebuilt)
@@ -143,6 +147,13 @@ impl Tessellator {
             &self.library,
             &self.segments(density, view_projection, width, height),
         )
+    }
+
+    /// Which mesh [`Tessellator::mesh`] last made, counting from 1: what depends on the mesh
+    /// alone may be kept while this stays the same.
+    #[must_use]
+    pub fn generation(&self) -> u64 {
+        self.generation
     }
 
     /// The mesh last made by [`Tessellator::mesh`], if any.

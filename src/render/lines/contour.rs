@@ -10,8 +10,13 @@ use super::piece::{LineKind, Piece};
 use super::to_screen;
 use crate::geom::{NurbsSurface, PatchLibrary};
 
-/// Regula falsi steps that move a point of the silhouette from the mesh onto the surface.
-const REFINE_STEPS: usize = 4;
+/// The most regula falsi steps that move a point of the silhouette from the mesh onto the
+/// surface; the search stops sooner once the bracket is narrower than [`BRACKET`] of the line.
+const REFINE_STEPS: usize = 12;
+
+/// A bracket this narrow (a fraction of the line searched) holds the silhouette's point to well
+/// under a thousandth of a pixel on any mesh the tessellation makes.
+const BRACKET: f64 = 1e-6;
 
 /// A silhouette piece longer than this on the image (pixels) is cut in two at a point of the
 /// true silhouette between its ends, so that its chord stays close to the curve whatever the
@@ -82,7 +87,7 @@ struct OnPatch<'a> {
 /// The silhouette pieces of every patch. In each triangle of the mesh where `g` takes both
 /// signs at its corners, the silhouette runs between the two edges `g` changes sign along; on
 /// each, the crossing is found on the surface along the edge's straight line in (u, v)
-/// ([`REFINE_STEPS`] of regula falsi from the mesh's estimate `gₐ / (gₐ − g_b)`), so the ends
+/// (regula falsi from the mesh's estimate `gₐ / (gₐ − g_b)`), so the ends
 /// lie on the true silhouette and the two triangles of an edge find the same point. A piece
 /// longer than [`LONGEST_PIECE_PIXELS`] on the `size` image is cut at the point of the
 /// silhouette on the line from the triangle's lone corner through its middle (in (u, v)).
@@ -292,6 +297,9 @@ impl OnPatch<'_> {
                 last_side = 1;
             }
             t = linear_root(lo, hi);
+            if (hi.0 - lo.0).abs() < BRACKET {
+                break;
+            }
         }
         match found {
             Some((t, point)) => (t, from.lerp(to, t), Some(point)),

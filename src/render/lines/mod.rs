@@ -1,16 +1,21 @@
 //! [`Stage::Outline`](super::Stage::Outline): ink lines as anti-aliased strokes along curves
-//! found on the mesh — silhouettes, creases and borders — kept where the depth buffer shows
-//! them.
+//! found on the mesh — silhouettes, creases, borders and intersections — kept where the depth
+//! buffer shows them.
 //!
 //! The curves are decided on the surface, not by comparing neighbouring pixels, so that a line
 //! does not break up when the view turns: a silhouette is where `N·(P − E)` changes sign
-//! ([`contour`]), a border or crease is a piece of a patch's domain boundary ([`border`]).
-//! Each piece is cut into samples half a pixel apart, each sample is kept when no nearer
-//! surface hides it ([`visible`]), and each run of kept samples is drawn as a capsule of the
-//! line's width ([`stroke`]): where capsules meet, the joins are round.
+//! ([`contour`]), a border or crease is a piece of a patch's domain boundary ([`border`]), an
+//! intersection is where two patches pass through each other ([`intersection`], found once per
+//! mesh: [`MeshLines`]).
+//! Pieces that share an end are joined into lines ([`chain`]); each line is cut into samples
+//! half a pixel apart, each kept when no nearer surface hides it ([`visible`]), and each
+//! visible stretch is drawn as capsules of the line's width ([`stroke`]): where capsules meet,
+//! the joins are round.
 
 mod border;
+mod chain;
 mod contour;
+mod intersection;
 mod piece;
 mod stroke;
 mod visible;
@@ -25,7 +30,7 @@ use super::renderer::{premultiplied, straight};
 use super::scene::Outlines;
 use super::tessellate::Mesh;
 use crate::geom::PatchLibrary;
-use piece::Piece;
+use piece::{LineKind, Piece};
 use stroke::Capsule;
 use visible::DepthTest;
 
@@ -79,10 +84,34 @@ impl LineImage {
     }
 }
 
+/// What the lines keep of a mesh from one frame to the next: the curves along which its
+/// patches pass through one another, which depend on the mesh alone.
+#[derive(Debug, Default)]
+pub(super) struct MeshLines {
+    /// The [`Tessellator::generation`](super::tessellate::Tessellator::generation) of the mesh
+    /// they were found on.
+    generation: u64,
+    intersections: Vec<[Vec3; 2]>,
+}
+
+impl MeshLines {
+    /// The intersections of `mesh`, of tessellation `generation`: found again only when the
+    /// mesh is not the one they were found on.
+    pub fn intersections(&mut self, mesh: &Mesh, generation: u64) -> &[[Vec3; 2]] {
+        if self.generation != generation || generation == 0 {
+            self.intersections = intersection::intersections(mesh);
+            self.generation = generation;
+        }
+        &self.intersections
+    }
+}
+
 /// What the lines are found on and tested against.
 pub(super) struct LineInput<'a> {
     pub library: &'a PatchLibrary,
     pub mesh: &'a Mesh,
+    /// Where the mesh's patches pass through one another ([`MeshLines::intersections`]).
+    pub intersections: &'a [[Vec3; 2]],
     pub camera: &'a Camera,
     pub view_projection: Mat4,
     /// The frame's depth, `k × k` samples per pixel.
@@ -110,18 +139,23 @@ pub(super) fn draw_lines(input: &LineInput, outlines: &Outlines) -> LineImage {
         input.size,
         outlines,
     ));
+    pieces.extend(input.intersections.iter().map(|&[a, b]| Piece {
+        ends: [a.as_dvec3(), b.as_dvec3()],
+        on_mesh: [a, b],
+        opacity: 1.0,
+        kind: LineKind::Intersection,
+    }));
     let (w, h) = input.size;
     let depth = DepthTest::new(input.visibility, input.k, input.camera);
     let radius = 0.5 * outlines.width.max(1.0);
-    let capsules: Vec<Capsule> = pieces
+    let screen: Vec<_> = pieces
         .par_iter()
         .with_min_len(256)
-        .flat_map_iter(|piece| {
-            piece
-                .on_screen(input.view_projection, input.size, radius)
-                .map(|p| p.visible_runs(&depth, radius))
-                .unwrap_or_default()
-        })
+        .map(|piece| piece.on_screen(input.view_projection, input.size, radius))
+        .collect();
+    let capsules: Vec<Capsule> = chain::chains(&pieces)
+        .par_iter()
+        .flat_map_iter(|line| chain::visible_capsules(line, &screen, &depth, radius))
         .collect();
     let mut alpha = vec![0.0; w as usize * h as usize];
     stroke::draw(&capsules, (w, h), &mut alpha);

@@ -1,11 +1,10 @@
 //! A piece of a line: a straight segment of a curve found on the mesh, with its ends on the
-//! surface and on the mesh, and the runs of it the depth buffer shows.
+//! surface and on the mesh, and its place on the image.
 
 use glam::{DVec3, Mat4, Vec2, Vec3};
 
 use super::stroke::Capsule;
 use super::to_screen;
-use super::visible::DepthTest;
 
 /// The kinds of line: what decided that a curve is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -17,6 +16,8 @@ pub(crate) enum LineKind {
     /// A patch's boundary that no other patch continues, or (with patch borders on) one where
     /// two patches meet.
     Border,
+    /// Where two patches pass through each other.
+    Intersection,
 }
 
 /// A straight piece of a line between two points.
@@ -24,8 +25,9 @@ pub(crate) enum LineKind {
 pub(crate) struct Piece {
     /// The ends, on the surface: where the piece is drawn.
     pub ends: [DVec3; 2],
-    /// The ends on the mesh at the same parameters: what the depth test compares, since the
-    /// depth buffer holds the mesh.
+    /// The ends on the mesh at the same parameters: where the depth test looks and what it
+    /// compares, since the depth buffer holds the mesh (whose outline may lie a tessellation
+    /// tolerance inside the surface's).
     pub on_mesh: [Vec3; 2],
     /// How strongly the piece is inked, in [0, 1] (a crease fading with its angle).
     pub opacity: f32,
@@ -36,16 +38,15 @@ pub(crate) struct Piece {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct OnScreen {
     ends: [Vec2; 2],
+    /// The ends on the mesh, in pixels, and their NDC depths.
+    on_mesh: [Vec2; 2],
     depths: [f32; 2],
     opacity: f32,
+    /// How far around its points the depth test looks ([`DepthTest::shows`]).
+    ///
+    /// [`DepthTest::shows`]: super::visible::DepthTest::shows
+    pub reach: f32,
 }
-
-/// Samples along a piece are at most this many pixels apart.
-const STEP: f32 = 0.5;
-
-/// The most samples a piece is cut into: a piece longer than this many steps is drawn from
-/// fewer, farther-apart samples (only a piece reaching far outside the image is that long).
-const MOST_SAMPLES: f32 = 16384.0;
 
 impl Piece {
     /// The piece on an image of `size` pixels through `view_projection`; None when an end is
@@ -60,56 +61,60 @@ impl Piece {
         let project = |p: Vec3| to_screen(view_projection * p.extend(1.0), size);
         let (a, _) = project(self.ends[0].as_vec3())?;
         let (b, _) = project(self.ends[1].as_vec3())?;
-        let (_, za) = project(self.on_mesh[0])?;
-        let (_, zb) = project(self.on_mesh[1])?;
+        let (ma, za) = project(self.on_mesh[0])?;
+        let (mb, zb) = project(self.on_mesh[1])?;
         let reach = radius + 1.0;
         let (lo, hi) = (a.min(b) - reach, a.max(b) + reach);
         let inside = hi.x >= 0.0 && hi.y >= 0.0 && lo.x <= size.0 as f32 && lo.y <= size.1 as f32;
         inside.then_some(OnScreen {
             ends: [a, b],
+            on_mesh: [ma, mb],
             depths: [za, zb],
             opacity: self.opacity,
+            reach: match self.kind {
+                LineKind::Silhouette => 1.0,
+                LineKind::Crease | LineKind::Border | LineKind::Intersection => 0.5,
+            },
         })
     }
 }
 
 impl OnScreen {
-    /// The runs of the piece that `depth` shows, as capsules of `radius`: the piece is cut into
-    /// samples at most [`STEP`] apart (both ends included), and each run of consecutive visible
-    /// samples becomes one capsule from its first to its last.
+    /// Its length on the image, in pixels.
     #[must_use]
-    pub fn visible_runs(&self, depth: &DepthTest, radius: f32) -> Vec<Capsule> {
-        let [a, b] = self.ends;
-        let n = ((b - a).length() / STEP).ceil().clamp(1.0, MOST_SAMPLES) as u32;
-        let at = |i: u32| i as f32 / n as f32;
-        let mut runs = Vec::new();
-        let mut start: Option<u32> = None;
-        for i in 0..=n {
-            let t = at(i);
-            let seen = depth.shows(
-                a.lerp(b, t),
-                self.depths[0] + (self.depths[1] - self.depths[0]) * t,
-            );
-            match (seen, start) {
-                (true, None) => start = Some(i),
-                (false, Some(s)) => {
-                    runs.push(self.capsule(at(s), at(i - 1), radius));
-                    start = None;
-                }
-                _ => {}
-            }
-        }
-        if let Some(s) = start {
-            runs.push(self.capsule(at(s), 1.0, radius));
-        }
-        runs
+    pub fn length(&self) -> f32 {
+        self.ends[0].distance(self.ends[1])
     }
 
-    fn capsule(&self, t0: f32, t1: f32, radius: f32) -> Capsule {
-        let [a, b] = self.ends;
+    /// The point a fraction `t` of the way from its first end, in pixels.
+    #[must_use]
+    pub fn point(&self, t: f32) -> Vec2 {
+        self.ends[0].lerp(self.ends[1], t)
+    }
+
+    /// The NDC depth of the mesh's point a fraction `t` of the way (affine along a straight
+    /// piece on the image).
+    #[must_use]
+    pub fn depth(&self, t: f32) -> f32 {
+        self.depths[0] + (self.depths[1] - self.depths[0]) * t
+    }
+
+    /// How far the depth test looks around the point a fraction `t` of the way: the kind's
+    /// [`reach`](Self::reach), and as far again as the surface's point lies from the mesh's
+    /// on the image (the tessellation's error there), so that the window holds what the mesh
+    /// shows where the surface is.
+    #[must_use]
+    pub fn reach_at(&self, t: f32) -> f32 {
+        let apart = |k: usize| self.ends[k].distance(self.on_mesh[k]);
+        self.reach + apart(0) + (apart(1) - apart(0)) * t
+    }
+
+    /// The stretch from fraction `t0` to `t1` as a capsule of `radius`.
+    #[must_use]
+    pub fn capsule(&self, t0: f32, t1: f32, radius: f32) -> Capsule {
         Capsule {
-            a: a.lerp(b, t0),
-            b: a.lerp(b, t1),
+            a: self.point(t0),
+            b: self.point(t1),
             radius,
             opacity: self.opacity,
         }

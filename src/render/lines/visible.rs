@@ -9,7 +9,7 @@ use super::super::raster::VisibilityBuffer;
 /// hide it. The line and the depth buffer come from the same mesh, so a surface at the line
 /// differs from it only by f32 rounding (about 1e-6 of the distance); a part in front of
 /// another is nearer by a visible fraction of the distance.
-const RELATIVE_GAP: f32 = 5e-3;
+const RELATIVE_GAP: f32 = 1e-3;
 
 /// The depth test of line samples against a frame's depth buffer.
 pub(crate) struct DepthTest<'a> {
@@ -51,18 +51,22 @@ impl<'a> DepthTest<'a> {
     }
 
     /// Whether the point at `pixel` (in output pixels) with NDC depth `z` shows: some sample
-    /// within one pixel of it sees no surface, or one no nearer than the point by more than
-    /// [`RELATIVE_GAP`] of its distance. On a silhouette the background or the farther side of
-    /// the surface lies within that pixel; where a nearer surface covers the point, every
-    /// sample around sees it.
+    /// within `reach` pixels of it (along each axis) sees no surface, or one no nearer than
+    /// the point by more than [`RELATIVE_GAP`] of its distance. A silhouette takes a reach of a
+    /// pixel: the background or the surface's far side lies within it, while the surface's
+    /// near side may be nearer than the silhouette itself. A line on a surface (a border, a
+    /// crease, an intersection) takes half a pixel: the samples around its own position show
+    /// the surface it lies on, and a line glimpsed through a gap narrower than a pixel does not
+    /// show. Where a nearer surface covers the point, every sample around sees it.
     #[must_use]
-    pub fn shows(&self, pixel: Vec2, z: f32) -> bool {
+    pub fn shows(&self, pixel: Vec2, z: f32, reach: f32) -> bool {
         let threshold = self.ndc_of(self.distance_of(z) * (1.0 - RELATIVE_GAP));
         let k = self.k as f32;
         let (w, h) = (self.visibility.width as i64, self.visibility.height as i64);
-        let centre = pixel * k;
-        let (x0, x1) = ((centre.x - k).floor() as i64, (centre.x + k).floor() as i64);
-        let (y0, y1) = ((centre.y - k).floor() as i64, (centre.y + k).floor() as i64);
+        // Sample (i, j) is centred at (i + ½, j + ½) in samples.
+        let (centre, r) = (pixel * k - 0.5, reach * k);
+        let (x0, x1) = ((centre.x - r).ceil() as i64, (centre.x + r).floor() as i64);
+        let (y0, y1) = ((centre.y - r).ceil() as i64, (centre.y + r).floor() as i64);
         if x0 < 0 || y0 < 0 || x1 >= w || y1 >= h {
             // Part of the neighbourhood lies outside the image, where nothing is drawn.
             return true;

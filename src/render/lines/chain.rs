@@ -1,0 +1,255 @@
+//! Chains: pieces joined end to end into lines, along which visibility is decided as a whole,
+//! so that a line neither breaks into dots nor keeps stray ones where a nearer surface almost
+//! touches it.
+
+use std::collections::HashMap;
+
+use super::piece::{OnScreen, Piece};
+use super::stroke::Capsule;
+use super::visible::DepthTest;
+
+/// Samples along a line are at most this many pixels apart.
+const STEP: f32 = 0.5;
+
+/// The most samples one piece is cut into (only a piece reaching far outside the image is
+/// longer than this many steps).
+const MOST_SAMPLES: f32 = 16384.0;
+
+/// A hidden stretch of a line shorter than this (pixels), between two visible ones, is drawn:
+/// no surface nearer than the line is that thin on the image and worth a gap in it.
+const SHORTEST_GAP: f32 = 1.5;
+
+/// A visible stretch of a line shorter than this (pixels), hidden on both sides, is not drawn:
+/// it would be a dot.
+const SHORTEST_STROKE: f32 = 1.5;
+
+/// The pieces joined into chains: each chain is a list of `(piece, reversed)` in order along
+/// the line, consecutive pieces sharing an end point exactly. A chain stops where three or
+/// more pieces meet; every piece is in one chain.
+#[must_use]
+pub(crate) fn chains(pieces: &[Piece]) -> Vec<Vec<(usize, bool)>> {
+    let key = |p: &Piece, end: usize| p.ends[end].to_array().map(f64::to_bits);
+    let mut at: HashMap<[u64; 3], Vec<(usize, usize)>> = HashMap::with_capacity(2 * pieces.len());
+    for (k, p) in pieces.iter().enumerate() {
+        at.entry(key(p, 0)).or_default().push((k, 0));
+        at.entry(key(p, 1)).or_default().push((k, 1));
+    }
+    let mut used = vec![false; pieces.len()];
+    // The piece continuing a line from the end point of `(piece, end)`, if exactly one other
+    // piece ends there and it is unused: `(piece, end it enters by)`.
+    let next = |used: &[bool], piece: usize, end: usize| -> Option<(usize, usize)> {
+        match at[&key(&pieces[piece], end)][..] {
+            [a, b] => {
+                let other = if a.0 == piece { b } else { a };
+                (other.0 != piece && !used[other.0]).then_some(other)
+            }
+            _ => None,
+        }
+    };
+    let mut out = Vec::new();
+    for start in 0..pieces.len() {
+        if used[start] {
+            continue;
+        }
+        used[start] = true;
+        let mut forward = vec![(start, false)];
+        let mut end = (start, 1);
+        while let Some((piece, entered)) = next(&used, end.0, end.1) {
+            used[piece] = true;
+            forward.push((piece, entered == 1));
+            end = (piece, 1 - entered);
+        }
+        let mut backward = Vec::new();
+        let mut end = (start, 0);
+        while let Some((piece, entered)) = next(&used, end.0, end.1) {
+            used[piece] = true;
+            backward.push((piece, entered == 0));
+            end = (piece, 1 - entered);
+        }
+        backward.reverse();
+        backward.extend(forward);
+        out.push(backward);
+    }
+    out
+}
+
+/// One sample along a chain: its piece (in the chain's list), its fraction along the piece in
+/// the chain's direction, its distance along the chain in pixels, and whether it shows.
+#[derive(Clone, Copy, Debug)]
+struct Sample {
+    piece: usize,
+    t: f32,
+    at: f32,
+    shows: bool,
+}
+
+/// The capsules of `radius` that draw the visible stretches of one chain (`screen[k]` is piece
+/// k's place on the image, None off it). Each piece is cut into samples at most [`STEP`]
+/// apart and each tested against `depth`; then, along the chain, hidden stretches shorter than
+/// [`SHORTEST_GAP`] between visible ones are drawn, and visible stretches shorter than
+/// [`SHORTEST_STROKE`] between hidden ones are not.
+#[must_use]
+pub(crate) fn visible_capsules(
+    chain: &[(usize, bool)],
+    screen: &[Option<OnScreen>],
+    depth: &DepthTest,
+    radius: f32,
+) -> Vec<Capsule> {
+    let mut samples: Vec<Sample> = Vec::new();
+    let mut travelled = 0.0;
+    for (k, &(piece, reversed)) in chain.iter().enumerate() {
+        let Some(on) = &screen[piece] else {
+            // Off the image or behind the eye: a break in the line.
+            samples.push(Sample {
+                piece: k,
+                t: 0.0,
+                at: travelled,
+                shows: false,
+            });
+            continue;
+        };
+        let length = on.length();
+        let n = (length / STEP).ceil().clamp(1.0, MOST_SAMPLES) as u32;
+        for i in 0..=n {
+            let t = i as f32 / n as f32;
+            let along = if reversed { 1.0 - t } else { t };
+            samples.push(Sample {
+                piece: k,
+                t,
+                at: travelled + length * t,
+                shows: depth.shows(on.point(along), on.depth(along), on.reach_at(along)),
+            });
+        }
+        travelled += length;
+    }
+    // Runs of equal visibility: (first sample, last sample, shows).
+    let mut runs: Vec<(usize, usize, bool)> = Vec::new();
+    for (i, s) in samples.iter().enumerate() {
+        match runs.last_mut() {
+            Some(run) if run.2 == s.shows => run.1 = i,
+            _ => runs.push((i, i, s.shows)),
+        }
+    }
+    let span = |run: &(usize, usize, bool)| samples[run.1].at - samples[run.0].at;
+    for r in 1..runs.len().saturating_sub(1) {
+        if !runs[r].2
+            && span(&runs[r]) < SHORTEST_GAP
+            && screen_all(&samples, screen, chain, runs[r])
+        {
+            runs[r].2 = true;
+        }
+    }
+    let mut capsules = Vec::new();
+    let mut r = 0;
+    while r < runs.len() {
+        if !runs[r].2 {
+            r += 1;
+            continue;
+        }
+        // Merge the visible runs now adjacent.
+        let (first, mut last) = (runs[r].0, runs[r].1);
+        while r + 1 < runs.len() && runs[r + 1].2 {
+            r += 1;
+            last = runs[r].1;
+        }
+        r += 1;
+        // A short stretch between hidden ones is a dot; one at an end of the chain may go on
+        // in the next chain (where a seam cut the line), and stays.
+        let inside = first > 0 && last + 1 < samples.len();
+        if inside && samples[last].at - samples[first].at < SHORTEST_STROKE {
+            continue;
+        }
+        draw_stretch(&samples[first..=last], chain, screen, radius, &mut capsules);
+    }
+    capsules
+}
+
+/// Whether every piece a run of samples lies on is on the image (a gap across a piece off it
+/// is not filled).
+fn screen_all(
+    samples: &[Sample],
+    screen: &[Option<OnScreen>],
+    chain: &[(usize, bool)],
+    (first, last, _): (usize, usize, bool),
+) -> bool {
+    samples[first..=last]
+        .iter()
+        .all(|s| screen[chain[s.piece].0].is_some())
+}
+
+/// Capsules along the samples of one visible stretch: one per piece it crosses, from the
+/// stretch's first to its last fraction of that piece.
+fn draw_stretch(
+    stretch: &[Sample],
+    chain: &[(usize, bool)],
+    screen: &[Option<OnScreen>],
+    radius: f32,
+    capsules: &mut Vec<Capsule>,
+) {
+    let mut i = 0;
+    while i < stretch.len() {
+        let k = stretch[i].piece;
+        let mut j = i;
+        while j + 1 < stretch.len() && stretch[j + 1].piece == k {
+            j += 1;
+        }
+        let (piece, reversed) = chain[k];
+        if let Some(on) = &screen[piece] {
+            let along = |t: f32| if reversed { 1.0 - t } else { t };
+            capsules.push(on.capsule(along(stretch[i].t), along(stretch[j].t), radius));
+        }
+        i = j + 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::lines::piece::LineKind;
+    use glam::DVec3;
+
+    fn piece(a: [f64; 3], b: [f64; 3]) -> Piece {
+        let (a, b) = (DVec3::from(a), DVec3::from(b));
+        Piece {
+            ends: [a, b],
+            on_mesh: [a.as_vec3(), b.as_vec3()],
+            opacity: 1.0,
+            kind: LineKind::Silhouette,
+        }
+    }
+
+    #[test]
+    fn pieces_sharing_ends_join_into_lines_that_stop_where_three_meet() {
+        // A path a–b–c–d given out of order and with one piece reversed, a closed triangle,
+        // and a star of three pieces meeting at the origin.
+        let pieces = vec![
+            piece([1.0, 0.0, 0.0], [2.0, 0.0, 0.0]),
+            piece([3.0, 0.0, 0.0], [2.0, 0.0, 0.0]),
+            piece([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+            piece([0.0, 5.0, 0.0], [1.0, 5.0, 0.0]),
+            piece([1.0, 5.0, 0.0], [0.0, 6.0, 0.0]),
+            piece([0.0, 6.0, 0.0], [0.0, 5.0, 0.0]),
+            piece([9.0, 9.0, 0.0], [9.0, 10.0, 0.0]),
+            piece([9.0, 9.0, 0.0], [10.0, 9.0, 0.0]),
+            piece([9.0, 9.0, 0.0], [8.0, 9.0, 0.0]),
+        ];
+        let chains = chains(&pieces);
+        let mut lengths: Vec<usize> = chains.iter().map(Vec::len).collect();
+        lengths.sort_unstable();
+        assert_eq!(lengths, vec![1, 1, 1, 3, 3]);
+        // Along each chain, one piece's far end is the next one's near end.
+        let end = |&(p, reversed): &(usize, bool), far: bool| {
+            let e = pieces[p].ends;
+            if reversed == far {
+                e[0]
+            } else {
+                e[1]
+            }
+        };
+        for chain in &chains {
+            for w in chain.windows(2) {
+                assert_eq!(end(&w[0], true), end(&w[1], false), "{chain:?}");
+            }
+        }
+    }
+}

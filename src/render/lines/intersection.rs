@@ -1,0 +1,251 @@
+//! Intersection lines: the curves where the mesh's patches pass through one another (the
+//! teapot's spout and handle through its body), found once per mesh.
+
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+
+use super::super::tessellate::{Mesh, PatchGrid};
+
+/// Grid cells per side of the blocks whose bounds are compared before their triangles are.
+const BLOCK: u32 = 8;
+
+/// An axis-aligned box.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    lo: Vec3,
+    hi: Vec3,
+}
+
+impl Bounds {
+    const EMPTY: Bounds = Bounds {
+        lo: Vec3::INFINITY,
+        hi: Vec3::NEG_INFINITY,
+    };
+
+    fn grow(self, p: Vec3) -> Self {
+        Self {
+            lo: self.lo.min(p),
+            hi: self.hi.max(p),
+        }
+    }
+
+    fn overlaps(&self, other: &Bounds) -> bool {
+        self.lo.cmple(other.hi).all() && other.lo.cmple(self.hi).all()
+    }
+}
+
+/// A block of a patch's grid cells: the cells `[i0, i1) × [j0, j1)` and their bounds.
+#[derive(Clone, Copy, Debug)]
+struct Block {
+    patch: u32,
+    cells: [u32; 4],
+    bounds: Bounds,
+}
+
+/// The segments along which triangles of two different patches that share no vertex position
+/// cross each other, in world space. Patches that meet along an edge (or at a corner) are
+/// continuations of one surface and are not intersected with each other; patches that only
+/// pass through one another are. Blocks of [`BLOCK`]² cells are compared by their bounds
+/// first, so the work grows with the blocks that overlap, not with every pair of triangles.
+#[must_use]
+pub(crate) fn intersections(mesh: &Mesh) -> Vec<[Vec3; 2]> {
+    let blocks: Vec<Vec<Block>> = mesh
+        .grids
+        .iter()
+        .enumerate()
+        .map(|(patch, grid)| blocks(mesh, patch as u32, grid))
+        .collect();
+    let patch_bounds: Vec<Bounds> = blocks
+        .iter()
+        .map(|list| {
+            list.iter().fold(Bounds::EMPTY, |b, block| {
+                b.grow(block.bounds.lo).grow(block.bounds.hi)
+            })
+        })
+        .collect();
+    let touching = touching_patches(mesh);
+    let patches = blocks.len();
+    let mut pairs: Vec<(&Block, &Block)> = Vec::new();
+    for p in 0..patches {
+        for q in p + 1..patches {
+            if !patch_bounds[p].overlaps(&patch_bounds[q])
+                || touching.contains(&(p as u32, q as u32))
+            {
+                continue;
+            }
+            for a in &blocks[p] {
+                for b in blocks[q].iter().filter(|b| a.bounds.overlaps(&b.bounds)) {
+                    pairs.push((a, b));
+                }
+            }
+        }
+    }
+    pairs
+        .par_iter()
+        .flat_map_iter(|&(a, b)| block_segments(mesh, a, b))
+        .collect()
+}
+
+/// The blocks of one patch's grid.
+fn blocks(mesh: &Mesh, patch: u32, grid: &PatchGrid) -> Vec<Block> {
+    let (cu, cv) = (grid.nu.saturating_sub(1), grid.nv.saturating_sub(1));
+    let mut out = Vec::new();
+    for i0 in (0..cu).step_by(BLOCK as usize) {
+        for j0 in (0..cv).step_by(BLOCK as usize) {
+            let (i1, j1) = ((i0 + BLOCK).min(cu), (j0 + BLOCK).min(cv));
+            let mut bounds = Bounds::EMPTY;
+            for i in i0..=i1 {
+                for j in j0..=j1 {
+                    bounds = bounds.grow(mesh.positions[grid.vertex(i, j) as usize]);
+                }
+            }
+            out.push(Block {
+                patch,
+                cells: [i0, i1, j0, j1],
+                bounds,
+            });
+        }
+    }
+    out
+}
+
+/// The pairs of patches `(lower, higher)` that share a vertex position: a piece of boundary
+/// across from the other, or a corner.
+fn touching_patches(mesh: &Mesh) -> std::collections::HashSet<(u32, u32)> {
+    let mut by_position: std::collections::HashMap<[u32; 3], Vec<u32>> = Default::default();
+    for (patch, g) in mesh.grids.iter().enumerate() {
+        let (nu, nv) = (g.nu, g.nv);
+        let boundary = (0..nu)
+            .flat_map(|i| [g.vertex(i, 0), g.vertex(i, nv - 1)])
+            .chain((0..nv).flat_map(|j| [g.vertex(0, j), g.vertex(nu - 1, j)]));
+        for v in boundary {
+            let key = mesh.positions[v as usize].to_array().map(f32::to_bits);
+            let list = by_position.entry(key).or_default();
+            if list.last() != Some(&(patch as u32)) && !list.contains(&(patch as u32)) {
+                list.push(patch as u32);
+            }
+        }
+    }
+    let mut pairs = std::collections::HashSet::new();
+    for list in by_position.values() {
+        for (k, &a) in list.iter().enumerate() {
+            for &b in &list[k + 1..] {
+                pairs.insert((a.min(b), a.max(b)));
+            }
+        }
+    }
+    pairs
+}
+
+/// The triangles of a block, as vertex triples.
+fn triangles(mesh: &Mesh, block: &Block) -> Vec<[Vec3; 3]> {
+    let grid = &mesh.grids[block.patch as usize];
+    let [i0, i1, j0, j1] = block.cells;
+    let at = |i: u32, j: u32| mesh.positions[grid.vertex(i, j) as usize];
+    let mut out = Vec::with_capacity(((i1 - i0) * (j1 - j0) * 2) as usize);
+    for i in i0..i1 {
+        for j in j0..j1 {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            out.push([a, b, c]);
+            out.push([a, c, d]);
+        }
+    }
+    out
+}
+
+fn triangle_bounds(t: &[Vec3; 3]) -> Bounds {
+    t.iter().fold(Bounds::EMPTY, |b, &p| b.grow(p))
+}
+
+/// The segments where the triangles of two blocks cross.
+fn block_segments(mesh: &Mesh, a: &Block, b: &Block) -> Vec<[Vec3; 2]> {
+    let (ta, tb) = (triangles(mesh, a), triangles(mesh, b));
+    let bb: Vec<Bounds> = tb.iter().map(triangle_bounds).collect();
+    let mut out = Vec::new();
+    for t in &ta {
+        let bt = triangle_bounds(t);
+        if !bt.overlaps(&b.bounds) {
+            continue;
+        }
+        for (u, bu) in tb.iter().zip(&bb) {
+            if bt.overlaps(bu) {
+                if let Some(segment) = triangle_crossing(t, u) {
+                    out.push(segment);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Where triangle `t` crosses the plane of `u`: the segment between the two points at which
+/// its edges pass through the plane, or None when its corners lie on one side (or on the
+/// plane). Distances are signed `n·(p − u₀)`.
+fn through_plane(t: &[DVec3; 3], u: &[DVec3; 3]) -> Option<[DVec3; 2]> {
+    let n = (u[1] - u[0]).cross(u[2] - u[0]);
+    if n == DVec3::ZERO {
+        return None;
+    }
+    let d = t.map(|p| n.dot(p - u[0]));
+    let mut points = Vec::with_capacity(2);
+    for k in 0..3 {
+        let (p, q) = (k, (k + 1) % 3);
+        if (d[p] < 0.0) != (d[q] < 0.0) && d[p] != d[q] {
+            let s = d[p] / (d[p] - d[q]);
+            points.push(t[p].lerp(t[q], s));
+        }
+    }
+    match points[..] {
+        [x, y] => Some([x, y]),
+        _ => None,
+    }
+}
+
+/// The segment where triangles `t` and `u` cross, if they do: each triangle's crossing of the
+/// other's plane lies on the line the planes share, and the two overlap along it.
+fn triangle_crossing(t: &[Vec3; 3], u: &[Vec3; 3]) -> Option<[Vec3; 2]> {
+    let (t, u) = (t.map(|p| p.as_dvec3()), u.map(|p| p.as_dvec3()));
+    let s = through_plane(&t, &u)?;
+    let r = through_plane(&u, &t)?;
+    let along = s[1] - s[0];
+    let length = along.length_squared();
+    if length == 0.0 {
+        return None;
+    }
+    let param = |p: DVec3| (p - s[0]).dot(along) / length;
+    let (r0, r1) = (param(r[0]), param(r[1]));
+    let (lo, hi) = (r0.min(r1).max(0.0), r0.max(r1).min(1.0));
+    (lo < hi).then(|| [s[0] + along * lo, s[0] + along * hi].map(|p| p.as_vec3()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_crossing_triangles_meet_along_the_segment_their_planes_share_within_both() {
+        // A triangle in z = 0 and one in x = 0.25 reaching across it: they meet on the line
+        // x = 0.25, z = 0, for y where both triangles are.
+        let flat = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ];
+        let upright = [
+            Vec3::new(0.25, -1.0, -1.0),
+            Vec3::new(0.25, 2.0, -1.0),
+            Vec3::new(0.25, 0.5, 1.0),
+        ];
+        let [a, b] = triangle_crossing(&flat, &upright).unwrap();
+        let (lo, hi) = (a.y.min(b.y), a.y.max(b.y));
+        // In the flat triangle, x = 0.25 runs for y in [0, 0.75]; in the upright one, z = 0 is
+        // halfway up, where it spans y in [-0.25, 1.25].
+        for p in [a, b] {
+            assert!((p.x - 0.25).abs() < 1e-6 && p.z.abs() < 1e-6, "{p}");
+        }
+        assert!(lo.abs() < 1e-6 && (hi - 0.75).abs() < 1e-6, "{lo} {hi}");
+        // Moved aside, they miss.
+        let aside = upright.map(|p| p + Vec3::new(2.0, 0.0, 0.0));
+        assert_eq!(triangle_crossing(&flat, &aside), None);
+    }
+}
