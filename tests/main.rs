@@ -32,6 +32,7 @@ mod raster_determinism;
 mod raster_geometry;
 mod render_adaptive;
 mod render_lines;
+mod render_lines_motion;
 mod render_reuse;
 mod render_sphere;
 mod render_teapot;

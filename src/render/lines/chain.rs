@@ -4,6 +4,8 @@
 
 use std::collections::HashMap;
 
+use glam::DVec3;
+
 use super::piece::{OnScreen, Piece};
 use super::stroke::Capsule;
 use super::visible::DepthTest;
@@ -17,28 +19,31 @@ const MOST_SAMPLES: f32 = 16384.0;
 
 /// A hidden stretch of a line shorter than this (pixels), between two visible ones, is drawn:
 /// no surface nearer than the line is that thin on the image and worth a gap in it.
-const SHORTEST_GAP: f32 = 1.5;
+const SHORTEST_GAP: f32 = 3.0;
 
 /// A visible stretch of a line shorter than this (pixels), hidden on both sides, is not drawn:
 /// it would be a dot.
-const SHORTEST_STROKE: f32 = 1.5;
+const SHORTEST_STROKE: f32 = 2.0;
 
 /// The pieces joined into chains: each chain is a list of `(piece, reversed)` in order along
-/// the line, consecutive pieces sharing an end point exactly. A chain stops where three or
-/// more pieces meet; every piece is in one chain.
+/// the line, consecutive pieces sharing an end point. Ends closer than [`SAME_POINT`] of the
+/// model's extent are one point: two patches find the silhouette's crossing of the seam they
+/// share each on its own surface, a rounding error apart. A chain stops where three or more
+/// pieces meet; every piece is in one chain.
 #[must_use]
 pub(crate) fn chains(pieces: &[Piece]) -> Vec<Vec<(usize, bool)>> {
-    let key = |p: &Piece, end: usize| p.ends[end].to_array().map(f64::to_bits);
-    let mut at: HashMap<[u64; 3], Vec<(usize, usize)>> = HashMap::with_capacity(2 * pieces.len());
-    for (k, p) in pieces.iter().enumerate() {
-        at.entry(key(p, 0)).or_default().push((k, 0));
-        at.entry(key(p, 1)).or_default().push((k, 1));
+    let point_ids = same_points(pieces);
+    let key = |p: usize, end: usize| point_ids[2 * p + end];
+    let mut at: HashMap<usize, Vec<(usize, usize)>> = HashMap::with_capacity(2 * pieces.len());
+    for k in 0..pieces.len() {
+        at.entry(key(k, 0)).or_default().push((k, 0));
+        at.entry(key(k, 1)).or_default().push((k, 1));
     }
     let mut used = vec![false; pieces.len()];
     // The piece continuing a line from the end point of `(piece, end)`, if exactly one other
     // piece ends there and it is unused: `(piece, end it enters by)`.
     let next = |used: &[bool], piece: usize, end: usize| -> Option<(usize, usize)> {
-        match at[&key(&pieces[piece], end)][..] {
+        match at[&key(piece, end)][..] {
             [a, b] => {
                 let other = if a.0 == piece { b } else { a };
                 (other.0 != piece && !used[other.0]).then_some(other)
@@ -71,6 +76,50 @@ pub(crate) fn chains(pieces: &[Piece]) -> Vec<Vec<(usize, bool)>> {
         out.push(backward);
     }
     out
+}
+
+/// Ends of pieces closer than this, relative to the model's extent, are the same point.
+const SAME_POINT: f64 = 1e-7;
+
+/// Per end of each piece (`2 k + end`), an id shared by the ends within [`SAME_POINT`] of one
+/// another: each end takes the id of the first end met within that distance (looked for in
+/// the 27 grid cells around it, cells that wide), or a new one.
+fn same_points(pieces: &[Piece]) -> Vec<usize> {
+    let extent = pieces
+        .iter()
+        .flat_map(|p| p.ends)
+        .fold(1.0f64, |m, p| m.max(p.abs().max_element()));
+    let tolerance = SAME_POINT * extent;
+    let cell = |p: DVec3| (p / tolerance).floor().as_i64vec3();
+    let mut filed: HashMap<glam::I64Vec3, Vec<(DVec3, usize)>> = HashMap::new();
+    let mut ids = Vec::with_capacity(2 * pieces.len());
+    let mut count = 0;
+    for point in pieces.iter().flat_map(|p| p.ends) {
+        let home = cell(point);
+        let mut found = None;
+        'search: for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let near = home + glam::I64Vec3::new(dx, dy, dz);
+                    if let Some(list) = filed.get(&near) {
+                        if let Some(&(_, id)) =
+                            list.iter().find(|(q, _)| q.distance(point) <= tolerance)
+                        {
+                            found = Some(id);
+                            break 'search;
+                        }
+                    }
+                }
+            }
+        }
+        let id = found.unwrap_or_else(|| {
+            filed.entry(home).or_default().push((point, count));
+            count += 1;
+            count - 1
+        });
+        ids.push(id);
+    }
+    ids
 }
 
 /// One sample along a chain: its piece (in the chain's list), its fraction along the piece in
@@ -206,8 +255,6 @@ fn draw_stretch(
 mod tests {
     use super::*;
     use crate::render::lines::piece::LineKind;
-    use glam::DVec3;
-
     fn piece(a: [f64; 3], b: [f64; 3]) -> Piece {
         let (a, b) = (DVec3::from(a), DVec3::from(b));
         Piece {

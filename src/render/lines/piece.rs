@@ -72,8 +72,8 @@ impl Piece {
             depths: [za, zb],
             opacity: self.opacity,
             reach: match self.kind {
-                LineKind::Silhouette => 1.0,
-                LineKind::Crease | LineKind::Border | LineKind::Intersection => 0.5,
+                LineKind::Silhouette | LineKind::Intersection => 1.0,
+                LineKind::Crease | LineKind::Border => 0.5,
             },
         })
     }

@@ -54,9 +54,10 @@ impl<'a> DepthTest<'a> {
     /// within `reach` pixels of it (along each axis) sees no surface, or one no nearer than
     /// the point by more than [`RELATIVE_GAP`] of its distance. A silhouette takes a reach of a
     /// pixel: the background or the surface's far side lies within it, while the surface's
-    /// near side may be nearer than the silhouette itself. A line on a surface (a border, a
-    /// crease, an intersection) takes half a pixel: the samples around its own position show
-    /// the surface it lies on, and a line glimpsed through a gap narrower than a pixel does not
+    /// near side may be nearer than the silhouette itself; so does an intersection, where two
+    /// surfaces meet at an angle and one may turn away within the pixel. A line on one surface
+    /// (a border, a crease) takes half a pixel: the samples around its own position show the
+    /// surface it lies on, and a line glimpsed through a gap narrower than a pixel does not
     /// show. Where a nearer surface covers the point, every sample around sees it.
     #[must_use]
     pub fn shows(&self, pixel: Vec2, z: f32, reach: f32) -> bool {
