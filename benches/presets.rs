@@ -1,5 +1,5 @@
 //! What `final` costs against `preview`, side by side in one run: the teapot at 1280×720 (a
-//! 5-op highlight stack on every patch, outlines on) under a camera that orbits half a degree
+//! 5-op highlight stack on every patch, outlines on, and `final` without them) under a camera that orbits half a degree
 //! a frame, and the analytic sphere at 1024×1024 cycling through the hard views of the
 //! accuracy ladder, each with `preview`, `final` and refined frames with analytic edges (one
 //! sample a pixel). Every frame is a new view (the sphere's eye turns by a hundredth of a degree
@@ -42,7 +42,7 @@ fn teapot_highlight() -> PreparedExpr {
         .unwrap()
 }
 
-fn teapot_scene<'a>(library: &'a PatchLibrary, highlight: &PreparedExpr) -> Scene<'a> {
+fn teapot_scene<'a>(library: &'a PatchLibrary, highlight: &PreparedExpr, lines: bool) -> Scene<'a> {
     let tone = CelRamp::two_tone(Vec3::new(0.2, 0.25, 0.5), Vec3::new(0.4, 0.55, 0.9), 0.1);
     Scene {
         library,
@@ -56,7 +56,7 @@ fn teapot_scene<'a>(library: &'a PatchLibrary, highlight: &PreparedExpr) -> Scen
         light: Light::Directional {
             towards: Vec3::new(0.3, -0.6, 0.75).normalize(),
         },
-        outlines: Some(Outlines {
+        outlines: lines.then_some(Outlines {
             width: 2.0,
             colour: Vec3::ZERO,
             crease_degrees: 60.0,
@@ -83,9 +83,10 @@ fn teapot_variant<'a>(
     library: &'a Arc<PatchLibrary>,
     highlight: &'a PreparedExpr,
     settings: Settings,
+    lines: bool,
 ) -> Variant<'a> {
     let mut renderer = Renderer::new(Arc::clone(library));
-    let mut scene = teapot_scene(library, highlight);
+    let mut scene = teapot_scene(library, highlight, lines);
     let start = teapot::camera();
     let mut frame = 0u32;
     Variant::new(name, move || {
@@ -122,13 +123,33 @@ fn main() {
     let highlight = teapot_highlight();
     let (w, h) = (teapot::WIDTH, teapot::HEIGHT);
     let mut variants = [
-        teapot_variant("preview", &teapot, &highlight, Settings::preview(w, h)),
-        teapot_variant("final", &teapot, &highlight, Settings::final_quality(w, h)),
+        teapot_variant(
+            "preview",
+            &teapot,
+            &highlight,
+            Settings::preview(w, h),
+            true,
+        ),
+        teapot_variant(
+            "final",
+            &teapot,
+            &highlight,
+            Settings::final_quality(w, h),
+            true,
+        ),
         teapot_variant(
             "refined_analytic",
             &teapot,
             &highlight,
             refined_analytic(w, h),
+            true,
+        ),
+        teapot_variant(
+            "final_no_lines",
+            &teapot,
+            &highlight,
+            Settings::final_quality(w, h),
+            false,
         ),
     ];
     let measured = frames::measure(&mut variants, ROUNDS);
@@ -138,7 +159,9 @@ fn main() {
         ("refined_analytic", "preview"),
         ("final", "refined_analytic"),
     ];
-    measured.print_ratios("teapot frame-time ratios", &pairs);
+    let mut teapot_pairs = pairs.to_vec();
+    teapot_pairs.push(("final", "final_no_lines"));
+    measured.print_ratios("teapot frame-time ratios", &teapot_pairs);
 
     let sphere = AnalyticSphere::library();
     let views: Vec<(AnalyticSphere, PreparedExpr)> = Case::hard()

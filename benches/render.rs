@@ -1,6 +1,6 @@
 //! The teapot at 1280×720 with a 5-op highlight stack on every patch, outlines on and exact
 //! frames, against variants measured side by side in the same run, frame by frame in turn:
-//! highlights off, interpolated frames, one thread, and two effect-free shots against a
+//! highlights off, lines off, interpolated frames, one thread, and two effect-free shots against a
 //! flat-colour raster of the same mesh. Run with `cargo bench --bench render`; it prints each
 //! variant's frame time by stage, then the ratios.
 //!
@@ -87,6 +87,7 @@ fn main() {
     let two_tone = CelRamp::two_tone(Vec3::new(0.2, 0.25, 0.5), Vec3::new(0.4, 0.55, 0.9), 0.1);
     let full = scene(&library, &two_tone, true, true);
     let plain = scene(&library, &two_tone, false, true);
+    let unlined = scene(&library, &two_tone, true, false);
     let effect_free = scene(&library, &two_tone, false, false);
     let one_colour = CelRamp {
         base: Vec3::new(0.4, 0.55, 0.9),
@@ -133,6 +134,7 @@ fn main() {
     let mut variants = [
         Variant::render("full", &library, &full, &exact),
         Variant::render("no_highlights", &library, &plain, &exact),
+        Variant::render("no_lines", &library, &unlined, &exact),
         Variant::render("interpolated", &library, &full, &interpolated),
         Variant::render("one_thread", &library, &full, &one_thread),
         Variant::render("effect_free", &library, &effect_free, &interpolated),
@@ -145,6 +147,7 @@ fn main() {
         "frame-time ratios",
         &[
             ("full", "no_highlights"),
+            ("full", "no_lines"),
             ("full", "interpolated"),
             ("one_thread", "full"),
             ("effect_free", "flat_raster"),

@@ -82,9 +82,26 @@ pub(crate) fn chains(pieces: &[Piece]) -> Vec<Vec<(usize, bool)>> {
 const SAME_POINT: f64 = 1e-7;
 
 /// Per end of each piece (`2 k + end`), an id shared by the ends within [`SAME_POINT`] of one
-/// another: each end takes the id of the first end met within that distance (looked for in
-/// the 27 grid cells around it, cells that wide), or a new one.
+/// another. Ends that are bit for bit the same point (most joins: both triangles of an edge
+/// compute its crossing alike) share an id at once; an end no other matches exactly — a loose
+/// end, where a seam between patches cut the line — then takes the id of the first loose end
+/// met within that distance, looked for in the 27 grid cells around it (cells that wide).
 fn same_points(pieces: &[Piece]) -> Vec<usize> {
+    let mut exact: HashMap<[u64; 3], usize> = HashMap::with_capacity(2 * pieces.len());
+    let mut ids: Vec<usize> = pieces
+        .iter()
+        .flat_map(|p| p.ends)
+        .map(|point| {
+            let next = exact.len();
+            *exact
+                .entry(point.to_array().map(f64::to_bits))
+                .or_insert(next)
+        })
+        .collect();
+    let mut uses = vec![0u32; exact.len()];
+    for &id in &ids {
+        uses[id] += 1;
+    }
     let extent = pieces
         .iter()
         .flat_map(|p| p.ends)
@@ -92,32 +109,31 @@ fn same_points(pieces: &[Piece]) -> Vec<usize> {
     let tolerance = SAME_POINT * extent;
     let cell = |p: DVec3| (p / tolerance).floor().as_i64vec3();
     let mut filed: HashMap<glam::I64Vec3, Vec<(DVec3, usize)>> = HashMap::new();
-    let mut ids = Vec::with_capacity(2 * pieces.len());
-    let mut count = 0;
-    for point in pieces.iter().flat_map(|p| p.ends) {
+    let ends: Vec<DVec3> = pieces.iter().flat_map(|p| p.ends).collect();
+    for (k, &point) in ends.iter().enumerate() {
+        if uses[ids[k]] != 1 {
+            continue;
+        }
         let home = cell(point);
         let mut found = None;
         'search: for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
                     let near = home + glam::I64Vec3::new(dx, dy, dz);
-                    if let Some(list) = filed.get(&near) {
-                        if let Some(&(_, id)) =
-                            list.iter().find(|(q, _)| q.distance(point) <= tolerance)
-                        {
-                            found = Some(id);
-                            break 'search;
-                        }
+                    if let Some(&(_, id)) = filed
+                        .get(&near)
+                        .and_then(|list| list.iter().find(|(q, _)| q.distance(point) <= tolerance))
+                    {
+                        found = Some(id);
+                        break 'search;
                     }
                 }
             }
         }
-        let id = found.unwrap_or_else(|| {
-            filed.entry(home).or_default().push((point, count));
-            count += 1;
-            count - 1
-        });
-        ids.push(id);
+        match found {
+            Some(id) => ids[k] = id,
+            None => filed.entry(home).or_default().push((point, ids[k])),
+        }
     }
     ids
 }
@@ -132,16 +148,35 @@ struct Sample {
     shows: bool,
 }
 
+/// Per piece on the image, whether each of its samples shows: the piece cut into `n + 1`
+/// samples at most [`STEP`] apart (both ends included, from its first end), each tested
+/// against `depth`.
+#[must_use]
+pub(crate) fn sample_piece(on: &OnScreen, depth: &DepthTest) -> Vec<bool> {
+    let n = samples_along(on);
+    (0..=n)
+        .map(|i| {
+            let t = i as f32 / n as f32;
+            depth.shows(on.point(t), on.depth(t), on.reach_at(t))
+        })
+        .collect()
+}
+
+/// How many steps a piece is cut into.
+fn samples_along(on: &OnScreen) -> u32 {
+    (on.length() / STEP).ceil().clamp(1.0, MOST_SAMPLES) as u32
+}
+
 /// The capsules of `radius` that draw the visible stretches of one chain (`screen[k]` is piece
-/// k's place on the image, None off it). Each piece is cut into samples at most [`STEP`]
-/// apart and each tested against `depth`; then, along the chain, hidden stretches shorter than
-/// [`SHORTEST_GAP`] between visible ones are drawn, and visible stretches shorter than
-/// [`SHORTEST_STROKE`] between hidden ones are not.
+/// k's place on the image, None off it, and `shows[k]` its samples' visibility from
+/// [`sample_piece`]). Along the chain, hidden stretches shorter than [`SHORTEST_GAP`] between
+/// visible ones are drawn, and visible stretches shorter than [`SHORTEST_STROKE`] between
+/// hidden ones are not.
 #[must_use]
 pub(crate) fn visible_capsules(
     chain: &[(usize, bool)],
     screen: &[Option<OnScreen>],
-    depth: &DepthTest,
+    shows: &[Vec<bool>],
     radius: f32,
 ) -> Vec<Capsule> {
     let mut samples: Vec<Sample> = Vec::new();
@@ -158,15 +193,15 @@ pub(crate) fn visible_capsules(
             continue;
         };
         let length = on.length();
-        let n = (length / STEP).ceil().clamp(1.0, MOST_SAMPLES) as u32;
+        let n = samples_along(on);
         for i in 0..=n {
             let t = i as f32 / n as f32;
-            let along = if reversed { 1.0 - t } else { t };
+            let own = if reversed { n - i } else { i };
             samples.push(Sample {
                 piece: k,
                 t,
                 at: travelled + length * t,
-                shows: depth.shows(on.point(along), on.depth(along), on.reach_at(along)),
+                shows: shows[piece][own as usize],
             });
         }
         travelled += length;

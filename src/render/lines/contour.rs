@@ -11,12 +11,16 @@ use super::to_screen;
 use crate::geom::{NurbsSurface, PatchLibrary};
 
 /// The most regula falsi steps that move a point of the silhouette from the mesh onto the
-/// surface; the search stops sooner once the bracket is narrower than [`BRACKET`] of the line.
+/// surface; the search stops sooner once the bracket is narrower than [`BRACKET_PIXELS`] on
+/// the image.
 const REFINE_STEPS: usize = 12;
 
-/// A bracket this narrow (a fraction of the line searched) holds the silhouette's point to well
-/// under a thousandth of a pixel on any mesh the tessellation makes.
-const BRACKET: f64 = 1e-6;
+/// The search for a point of the silhouette stops when it is bracketed this closely (pixels).
+const BRACKET_PIXELS: f32 = 1e-3;
+
+/// A piece whose middle point of the silhouette lies this close (pixels) to its chord is not
+/// cut: the chord already follows the curve.
+const FLAT_PIXELS: f32 = 0.02;
 
 /// A silhouette piece longer than this on the image (pixels) is cut in two at a point of the
 /// true silhouette between its ends, so that its chord stays close to the curve whatever the
@@ -160,11 +164,12 @@ impl OnPatch<'_> {
     fn on_edge(&self, x: (u32, f64), y: (u32, f64)) -> Crossing {
         let ((x, gx), (y, gy)) = if x.0 < y.0 { (x, y) } else { (y, x) };
         let uv = |v: u32| self.mesh.uvs[v as usize].as_dvec2();
-        let found = self.root_on_line((uv(x), gx), (uv(y), gy));
         let (px, py) = (
             self.mesh.positions[x as usize],
             self.mesh.positions[y as usize],
         );
+        let bracket = self.bracket(px.as_dvec3(), py.as_dvec3());
+        let found = self.root_on_line((uv(x), gx), (uv(y), gy), bracket);
         let on_mesh = px.lerp(py, found.0 as f32);
         Crossing {
             uv: found.1,
@@ -190,9 +195,11 @@ impl OnPatch<'_> {
         let long = halvings < MOST_HALVINGS
             && self.screen_length(start.point, end.point) > LONGEST_PIECE_PIXELS;
         if let Some(middle) = long.then(|| self.middle(corners, start, end)).flatten() {
-            self.cut(corners, start, middle, halvings + 1, pieces);
-            self.cut(corners, middle, end, halvings + 1, pieces);
-            return;
+            if self.off_chord(start.point, end.point, middle.point) > FLAT_PIXELS {
+                self.cut(corners, start, middle, halvings + 1, pieces);
+                self.cut(corners, middle, end, halvings + 1, pieces);
+                return;
+            }
         }
         pieces.push(Piece {
             ends: [start.point, end.point],
@@ -231,7 +238,11 @@ impl OnPatch<'_> {
         if (g_far >= 0.0) == (g_lone >= 0.0) {
             return None;
         }
-        let (_, at, point) = self.root_on_line((o, g_lone), (far, g_far));
+        let bracket = self.bracket(
+            self.mesh.positions[lone as usize].as_dvec3(),
+            self.on_mesh(corners, far).as_dvec3(),
+        );
+        let (_, at, point) = self.root_on_line((o, g_lone), (far, g_far), bracket);
         let on_mesh = self.on_mesh(corners, at);
         Some(Crossing {
             uv: at,
@@ -260,14 +271,37 @@ impl OnPatch<'_> {
         screen_length(self.view_projection, self.size, a, b)
     }
 
+    /// The fraction of the line from `a` to `b` that is [`BRACKET_PIXELS`] long on the image.
+    fn bracket(&self, a: DVec3, b: DVec3) -> f64 {
+        f64::from(BRACKET_PIXELS / self.screen_length(a, b).max(BRACKET_PIXELS))
+    }
+
+    /// How far `point` lies from the chord from `a` to `b` on the image, in pixels (0 when
+    /// one is behind the eye).
+    fn off_chord(&self, a: DVec3, b: DVec3, point: DVec3) -> f32 {
+        let project = |p: DVec3| {
+            to_screen(self.view_projection * p.as_vec3().extend(1.0), self.size).map(|(s, _)| s)
+        };
+        match (project(a), project(b), project(point)) {
+            (Some(a), Some(b), Some(p)) => {
+                let ab = b - a;
+                let t =
+                    ((p - a).dot(ab) / ab.length_squared().max(f32::MIN_POSITIVE)).clamp(0.0, 1.0);
+                p.distance(a + ab * t)
+            }
+            _ => 0.0,
+        }
+    }
+
     /// Where `g` is zero on the surface along the straight line in (u, v) from `from` to `to`
-    /// (with `g` of opposite signs there): the fraction of the way, the (u, v), and the point
-    /// on the surface (None if no evaluation gave a finite one). Regula falsi (Illinois) keeps
+    /// (with `g` of opposite signs there), to within `bracket` of the way: the fraction of the
+    /// way, the (u, v), and the point on the surface (None if no evaluation gave a finite one). Regula falsi (Illinois) keeps
     /// the root bracketed, so the fraction stays in [0, 1] whatever the surface does between.
     fn root_on_line(
         &self,
         (from, g_from): (DVec2, f64),
         (to, g_to): (DVec2, f64),
+        bracket: f64,
     ) -> (f64, DVec2, Option<DVec3>) {
         let (mut lo, mut hi) = ((0.0, g_from), (1.0, g_to));
         let mut t = linear_root(lo, hi);
@@ -297,7 +331,7 @@ impl OnPatch<'_> {
                 last_side = 1;
             }
             t = linear_root(lo, hi);
-            if (hi.0 - lo.0).abs() < BRACKET {
+            if (hi.0 - lo.0).abs() < bracket {
                 break;
             }
         }

@@ -153,9 +153,17 @@ pub(super) fn draw_lines(input: &LineInput, outlines: &Outlines) -> LineImage {
         .with_min_len(256)
         .map(|piece| piece.on_screen(input.view_projection, input.size, radius))
         .collect();
+    let shows: Vec<Vec<bool>> = screen
+        .par_iter()
+        .with_min_len(64)
+        .map(|on| {
+            on.as_ref()
+                .map_or_else(Vec::new, |on| chain::sample_piece(on, &depth))
+        })
+        .collect();
     let capsules: Vec<Capsule> = chain::chains(&pieces)
         .par_iter()
-        .flat_map_iter(|line| chain::visible_capsules(line, &screen, &depth, radius))
+        .flat_map_iter(|line| chain::visible_capsules(line, &screen, &shows, radius))
         .collect();
     let mut alpha = vec![0.0; w as usize * h as usize];
     stroke::draw(&capsules, (w, h), &mut alpha);
