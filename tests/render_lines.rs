@@ -11,6 +11,8 @@ use glint::render::{
 };
 use glint::toon::CelRamp;
 
+use crate::common::labels;
+
 const SIZE: u32 = 200;
 const FOV_DEGREES: f32 = 40.0;
 
@@ -92,35 +94,9 @@ fn lines(
     )
 }
 
-/// The 8-connected components of the pixels `on` marks.
-fn components(on: &[bool], (w, h): (usize, usize)) -> usize {
-    let mut seen = vec![false; on.len()];
-    let mut count = 0;
-    for start in 0..on.len() {
-        if !on[start] || seen[start] {
-            continue;
-        }
-        count += 1;
-        let mut stack = vec![start];
-        seen[start] = true;
-        while let Some(p) = stack.pop() {
-            let (x, y) = ((p % w) as i64, (p / w) as i64);
-            for dy in -1..=1 {
-                for dx in -1..=1 {
-                    let (nx, ny) = (x + dx, y + dy);
-                    if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                        continue;
-                    }
-                    let q = ny as usize * w + nx as usize;
-                    if on[q] && !seen[q] {
-                        seen[q] = true;
-                        stack.push(q);
-                    }
-                }
-            }
-        }
-    }
-    count
+/// How many 8-connected components the pixels `on` marks form.
+fn components(on: &[bool], size: (usize, usize)) -> usize {
+    labels(on, size).1.len()
 }
 
 /// The regions of `on` pixels (4-connected) that do not touch the image's border.

@@ -68,3 +68,38 @@ pub fn run_documented(dir: &Path, command: &str) -> Output {
         .output()
         .expect("sh runs")
 }
+
+/// The 8-connected components of the pixels `on` marks: per pixel its component (or
+/// `usize::MAX`), and their sizes.
+pub fn labels(on: &[bool], (w, h): (usize, usize)) -> (Vec<usize>, Vec<usize>) {
+    let mut label = vec![usize::MAX; on.len()];
+    let mut sizes = Vec::new();
+    for start in 0..on.len() {
+        if !on[start] || label[start] != usize::MAX {
+            continue;
+        }
+        let id = sizes.len();
+        let mut size = 0;
+        let mut stack = vec![start];
+        label[start] = id;
+        while let Some(p) = stack.pop() {
+            size += 1;
+            let (x, y) = ((p % w) as i64, (p / w) as i64);
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+                        continue;
+                    }
+                    let q = ny as usize * w + nx as usize;
+                    if on[q] && label[q] == usize::MAX {
+                        label[q] = id;
+                        stack.push(q);
+                    }
+                }
+            }
+        }
+        sizes.push(size);
+    }
+    (label, sizes)
+}

@@ -138,3 +138,112 @@ fn pieces(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use glam::{DVec3, Vec3};
+
+    use super::*;
+    use crate::geom::{shapes, NamedPatch};
+    use crate::render::camera::Projection;
+    use crate::render::tessellate::{Density, Tessellator};
+
+    /// Two unit squares hinged along the y axis, the second turned up by `degrees`.
+    fn hinge(degrees: f64) -> PatchLibrary {
+        let (s, c) = degrees.to_radians().sin_cos();
+        let flat = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+        let raised = |r: f64, y: f64| DVec3::new(r * c, y, r * s);
+        let square = |p: [[DVec3; 2]; 2]| {
+            shapes::bezier(1, 1, &[vec![p[0][0], p[0][1]], vec![p[1][0], p[1][1]]]).unwrap()
+        };
+        PatchLibrary {
+            patches: vec![
+                NamedPatch {
+                    name: "flat".into(),
+                    surface: square([
+                        [flat(-1.0, 0.0), flat(-1.0, 1.0)],
+                        [flat(0.0, 0.0), flat(0.0, 1.0)],
+                    ]),
+                },
+                NamedPatch {
+                    name: "raised".into(),
+                    surface: square([
+                        [raised(0.0, 0.0), raised(0.0, 1.0)],
+                        [raised(1.0, 0.0), raised(1.0, 1.0)],
+                    ]),
+                },
+            ],
+            groups: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_crease_fades_in_over_its_band_and_open_borders_stay() {
+        // The normals of the two squares turn by the hinge's angle.
+        let angle = 40.0f32;
+        let library = Arc::new(hinge(f64::from(angle)));
+        let camera = Camera {
+            eye: Vec3::new(0.0, -4.0, 5.0),
+            target: Vec3::new(0.0, 0.5, 0.0),
+            up: Vec3::Z,
+            projection: Projection::Perspective {
+                fov_y_degrees: 40.0,
+            },
+            near: 0.1,
+            far: 100.0,
+        };
+        let view_projection = camera.view_projection(1.0);
+        let mut tessellator = Tessellator::new(Arc::clone(&library));
+        let (mesh, _) = tessellator.mesh(Density::PerSpan { u: 3, v: 3 }, view_projection, 64, 64);
+        let mut last = None;
+        for step in 0..=40 {
+            let crease = 25.0 + step as f32 * 0.75;
+            let outlines = Outlines {
+                width: 2.0,
+                colour: Vec3::ZERO,
+                crease_degrees: crease,
+                patch_borders: false,
+            };
+            let pieces = borders_and_creases(
+                mesh,
+                &library,
+                &camera,
+                view_projection,
+                (64, 64),
+                &outlines,
+            );
+            let creases: Vec<f32> = pieces
+                .iter()
+                .filter(|p| p.kind == LineKind::Crease)
+                .map(|p| p.opacity)
+                .collect();
+            let expected = crease_opacity(angle, crease);
+            // Present with the band's opacity, or absent where that is 0.
+            assert!(
+                creases.iter().all(|&o| (o - expected).abs() < 1e-3),
+                "crease {crease}: {creases:?} against {expected}"
+            );
+            assert_eq!(creases.is_empty(), expected == 0.0, "crease {crease}");
+            // The opacity steps by a fraction of the band as the threshold moves: no jump.
+            if let (Some(previous), Some(&now)) = (last, creases.first()) {
+                let previous: f32 = previous;
+                assert!((now - previous).abs() <= 0.75 / CREASE_BAND_DEGREES + 1e-3);
+            }
+            last = creases.first().copied().or(Some(0.0));
+            // The six outer sides of the two squares are borders whatever the threshold.
+            let borders = pieces.iter().filter(|p| p.kind == LineKind::Border).count();
+            assert!(borders >= 6 * 3, "{borders}");
+        }
+        assert_eq!(crease_opacity(angle, angle), 0.5);
+        assert_eq!(
+            crease_opacity(angle, angle + 0.5 * CREASE_BAND_DEGREES),
+            0.0
+        );
+        assert_eq!(
+            crease_opacity(angle, angle - 0.5 * CREASE_BAND_DEGREES),
+            1.0
+        );
+    }
+}
