@@ -87,10 +87,10 @@ const SAME_POINT: f64 = 1e-7;
 /// end, where a seam between patches cut the line — then takes the id of the first loose end
 /// met within that distance, looked for in the 27 grid cells around it (cells that wide).
 fn same_points(pieces: &[Piece]) -> Vec<usize> {
-    let mut exact: HashMap<[u64; 3], usize> = HashMap::with_capacity(2 * pieces.len());
-    let mut ids: Vec<usize> = pieces
+    let ends: Vec<DVec3> = pieces.iter().flat_map(|p| p.ends).collect();
+    let mut exact: HashMap<[u64; 3], usize> = HashMap::with_capacity(ends.len());
+    let mut ids: Vec<usize> = ends
         .iter()
-        .flat_map(|p| p.ends)
         .map(|point| {
             let next = exact.len();
             *exact
@@ -102,14 +102,12 @@ fn same_points(pieces: &[Piece]) -> Vec<usize> {
     for &id in &ids {
         uses[id] += 1;
     }
-    let extent = pieces
+    let extent = ends
         .iter()
-        .flat_map(|p| p.ends)
         .fold(1.0f64, |m, p| m.max(p.abs().max_element()));
     let tolerance = SAME_POINT * extent;
     let cell = |p: DVec3| (p / tolerance).floor().as_i64vec3();
     let mut filed: HashMap<glam::I64Vec3, Vec<(DVec3, usize)>> = HashMap::new();
-    let ends: Vec<DVec3> = pieces.iter().flat_map(|p| p.ends).collect();
     for (k, &point) in ends.iter().enumerate() {
         if uses[ids[k]] != 1 {
             continue;

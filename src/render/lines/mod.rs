@@ -37,8 +37,6 @@ use visible::DepthTest;
 /// The lines of a frame: per output pixel their coverage and colour.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct LineImage {
-    pub width: u32,
-    pub height: u32,
     /// Per pixel, the lines' coverage in [0, 1].
     pub alpha: Vec<f32>,
     /// Linear RGB of the lines.
@@ -169,8 +167,6 @@ pub(super) fn draw_lines(input: &LineInput, outlines: &Outlines) -> LineImage {
     stroke::draw(&capsules, (w, h), &mut alpha);
     let inked = alpha.iter().filter(|&&a| a > 0.0).count() as u64;
     LineImage {
-        width: w,
-        height: h,
         alpha,
         colour: outlines.colour,
         inked,
