@@ -48,6 +48,7 @@ fn teapot_scene<'a>(library: &'a PatchLibrary, highlight: &PreparedExpr, lines: 
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                lines: None,
                 tone: Tone::Cel(tone.clone()),
                 highlight: Some(highlight.clone()),
             })

@@ -4,6 +4,11 @@
 //! flat-colour raster of the same mesh. Run with `cargo bench --bench render`; it prints each
 //! variant's frame time by stage, then the ratios.
 //!
+//! Frames of one view repeated reuse the surfaces (and, with nothing about them changed, the
+//! lines), as an animator's edit of a highlight does. The `moving` pair turns the camera by a
+//! degree between frames, as a shot does, so that every frame finds its surfaces and lines
+//! again: lines on against lines off there is what lines cost a rendered shot.
+//!
 //! The effect-free comparison. The effect-free shot has cel tone only — no highlight, no
 //! outline, no AOV — and is rendered with interpolated frames, the preview setting: an exact
 //! frame per pixel is an accuracy choice a flat raster does not make, and with exact frames the
@@ -61,6 +66,7 @@ fn scene<'a>(
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                lines: None,
                 tone: Tone::Cel(tone.clone()),
                 highlight: highlights.then(|| expr.clone()),
             })
@@ -77,6 +83,22 @@ fn scene<'a>(
         }),
         aovs: Aovs::default(),
     }
+}
+
+/// A variant whose frames alternate between two views: no frame finds the previous one's
+/// surfaces.
+fn moving<'a>(
+    name: &'static str,
+    library: &Arc<PatchLibrary>,
+    views: [&'a Scene<'a>; 2],
+    settings: &'a Settings,
+) -> Variant<'a> {
+    let mut renderer = glint::render::Renderer::new(Arc::clone(library));
+    let mut turn = 0usize;
+    Variant::new(name, move || {
+        turn += 1;
+        Some(renderer.render(views[turn % 2], settings).unwrap().stats)
+    })
 }
 
 /// Rounds of frames measured.
@@ -131,6 +153,17 @@ fn main() {
         None
     };
 
+    // The camera turned about the vertical axis by a degree, for frames that move.
+    fn turned<'a>(scene: &Scene<'a>) -> Scene<'a> {
+        let mut camera = scene.camera;
+        camera.eye = glam::Quat::from_rotation_z(1f32.to_radians()) * camera.eye;
+        Scene {
+            camera,
+            ..scene.clone()
+        }
+    }
+    let (full_turned, unlined_turned) = (turned(&full), turned(&unlined));
+
     let mut variants = [
         Variant::render("full", &library, &full, &exact),
         Variant::render("no_highlights", &library, &plain, &exact),
@@ -140,6 +173,13 @@ fn main() {
         Variant::render("effect_free", &library, &effect_free, &interpolated),
         Variant::render("flat_colours", &library, &flat_colours, &interpolated),
         Variant::new("flat_raster", flat_raster),
+        moving("moving", &library, [&full, &full_turned], &exact),
+        moving(
+            "moving_no_lines",
+            &library,
+            [&unlined, &unlined_turned],
+            &exact,
+        ),
     ];
     let measured = frames::measure(&mut variants, ROUNDS);
     measured.print_frames("teapot, 1280×720: frame time by stage");
@@ -148,6 +188,7 @@ fn main() {
         &[
             ("full", "no_highlights"),
             ("full", "no_lines"),
+            ("moving", "moving_no_lines"),
             ("full", "interpolated"),
             ("one_thread", "full"),
             ("effect_free", "flat_raster"),

@@ -36,6 +36,7 @@ fn scene(library: &PatchLibrary, tone: Tone) -> Scene<'_> {
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                lines: None,
                 tone: tone.clone(),
                 highlight: None,
             })

@@ -1,5 +1,5 @@
-//! `glint bench loop`: a highlight edit re-runs only the stages after the G-buffer and a camera
-//! edit runs them all, as the benchmark reports; a missing model is bad input.
+//! `glint bench loop`: a highlight edit re-runs only the shading (the surfaces and the lines are
+//! the previous frame's) and a camera edit runs every stage, as the benchmark reports; a missing model is bad input.
 
 use crate::common::{glint_with as glint, stderr};
 
@@ -24,7 +24,7 @@ fn one_round_reports_both_edits_and_the_stages_each_ran() {
             .to_string()
     };
     assert!(
-        line("highlight").ends_with("ran shade, outline; reused tessellate, rasterize, gbuffer"),
+        line("highlight").ends_with("ran shade; reused tessellate, rasterize, gbuffer, outline"),
         "{stdout}"
     );
     assert!(

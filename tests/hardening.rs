@@ -87,16 +87,22 @@ fn colours_beyond_their_range_are_refused_where_they_are_written() {
     )
     .unwrap();
     let ball = r#"(name: "ball", file: "ball.ron", material: "m")"#;
-    for colour in [
-        "(NaN, 0.0, 0.0)",
-        "(-1.0, 0.0, 0.0)",
-        "(1e5, 0.0, 0.0)",
-        "(0.0, inf, 0.0)",
+    for (colour, says) in [
+        ("(NaN, 0.0, 0.0)", "must be finite"),
+        (
+            "(-1.0, 0.0, 0.0)",
+            "line colour (-1, 0, 0) must have components from 0 to 1e4",
+        ),
+        (
+            "(1e5, 0.0, 0.0)",
+            "line colour (100000, 0, 0) must have components from 0 to 1e4",
+        ),
+        ("(0.0, inf, 0.0)", "must be finite"),
     ] {
         let extra = format!("\n    render: (outlines: (colour: {colour})),");
         let path = shot(dir.path(), ball, &extra);
         let out = run(dir.path(), &["render", path.to_str().unwrap()]);
-        assert_refused(dir.path(), &out, "shot.ron:", "outline colour");
+        assert_refused(dir.path(), &out, "shot.ron:", says);
     }
     let layer = r#"
     highlights: [(patches: "*", expr: Layer((stack: [], epsilon: 0.1, colour: (2e4, 1.0, 1.0))))],"#;

@@ -31,6 +31,7 @@ mod raster_coverage;
 mod raster_determinism;
 mod raster_geometry;
 mod render_adaptive;
+mod render_line_styles;
 mod render_lines;
 mod render_lines_motion;
 mod render_reuse;

@@ -175,6 +175,7 @@ fn every_shipped_model_renders() {
                 .patches
                 .iter()
                 .map(|_| PatchLook {
+                    lines: None,
                     tone: Tone::Cel(CelRamp::two_tone(
                         glam::Vec3::splat(0.2),
                         glam::Vec3::splat(0.7),

@@ -33,6 +33,7 @@ fn teapot_scene(library: &PatchLibrary, outlines: bool) -> Scene<'_> {
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                lines: None,
                 tone: Tone::Cel(CelRamp::two_tone(
                     Vec3::new(0.2, 0.25, 0.5),
                     Vec3::new(0.4, 0.55, 0.9),

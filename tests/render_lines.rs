@@ -61,6 +61,7 @@ fn lines(
     let scene = Scene {
         library,
         looks: vec![PatchLook {
+            lines: None,
             tone: Tone::Cel(CelRamp::two_tone(
                 Vec3::new(0.2, 0.3, 0.5),
                 Vec3::new(0.5, 0.6, 0.9),

@@ -1,7 +1,7 @@
 //! A frame that changes only materials, highlights, the light or outline settings reuses the
-//! previous frame's mesh, visibility buffer and G-buffer, runs only the stages the change
-//! touches, and gives the bytes of a fresh renderer's frame; a change of camera or settings
-//! runs every stage.
+//! previous frame's mesh, visibility buffer and G-buffer (and its lines, unless their styles
+//! changed), runs only the stages the change touches, and gives the bytes of a fresh
+//! renderer's frame; a change of camera or settings runs every stage.
 
 use std::sync::Arc;
 
@@ -66,6 +66,7 @@ fn scene<'a>(
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                lines: None,
                 tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.7), 0.0)),
                 highlight: prepared.clone(),
             })
@@ -153,7 +154,8 @@ fn a_highlight_change_reuses_the_surfaces_and_gives_a_fresh_renderers_bytes() {
                 assert!(!reused.stats.ran(stage), "{stage} {what}");
                 assert_eq!(reused.stats[stage].pixels, 0, "{stage} {what}");
             }
-            assert!(reused.stats.ran(Stage::Shade) && reused.stats.ran(Stage::Outline));
+            // The lines, whose styles did not change, are the previous frame's.
+            assert!(reused.stats.ran(Stage::Shade) && reused.stats.reused(Stage::Outline));
             let analytic = matches!(
                 settings.antialias,
                 Antialias::Analytic | Antialias::Adaptive(_)
@@ -326,4 +328,59 @@ fn consecutive_frames_of_every_shot_give_a_fresh_jobs_bytes() {
     ] {
         assert!(reusing.iter().any(|n| n == name), "{name}: {reusing:?}");
     }
+}
+
+/// Lines depend on the surfaces, the outlines and the patches' line styles alone: a frame that
+/// changes only a highlight keeps the previous frame's lines, and one that restyles a patch's
+/// lines draws them again over the kept surfaces — each giving a fresh renderer's bytes.
+#[test]
+fn lines_are_drawn_again_only_when_their_styles_change() {
+    let library = teapot();
+    let mut renderer = Renderer::new(Arc::clone(&library));
+    let lit = Vec3::new(0.4, -0.5, 0.8);
+    let first_scene = scene(
+        &library,
+        camera(60.0),
+        Some(&highlight(0.0, 0.1)),
+        lit,
+        Aovs {
+            outline: true,
+            ..Aovs::default()
+        },
+    );
+    let settings = preview(96, 64);
+    let first = renderer.render(&first_scene, &settings).unwrap();
+    assert!(first.stats.ran(Stage::Outline));
+
+    let mut moved = scene(
+        &library,
+        camera(60.0),
+        Some(&highlight(0.3, 0.1)),
+        lit,
+        first_scene.aovs,
+    );
+    let second = renderer.render(&moved, &settings).unwrap();
+    assert!(second.stats.reused(Stage::Outline) && !second.stats.ran(Stage::Outline));
+    assert!(second.stats.ran(Stage::Shade));
+    let fresh = Renderer::new(Arc::clone(&library))
+        .render(&moved, &settings)
+        .unwrap();
+    assert!(same_output(&second, &fresh));
+
+    // One patch's lines in red: drawn again, the surfaces still kept.
+    let outlines = moved.outlines.unwrap();
+    moved.looks[3].lines = Some(glint::render::LineStyle {
+        colour: Vec3::X,
+        ..outlines.style()
+    });
+    let third = renderer.render(&moved, &settings).unwrap();
+    assert!(third.stats.ran(Stage::Outline) && third.stats.reused(Stage::Rasterize));
+    let fresh = Renderer::new(Arc::clone(&library))
+        .render(&moved, &settings)
+        .unwrap();
+    assert!(same_output(&third, &fresh));
+    assert!(
+        third.aovs.outline != second.aovs.outline,
+        "the restyled patch's lines show"
+    );
 }

@@ -306,6 +306,63 @@ const CASES: &[Case] = &[
         at: "(scale: 0.0)",
         says: &["a scale in [1e-6, 1e6]"],
     },
+    Case {
+        name: "line styles without lines on",
+        from: "    render: (preset: Preview),",
+        to: "    lines: [(patches: \"ball/*\", width: 3.0)],\n    render: (preset: Preview),",
+        file: "shot.ron",
+        at: "[(patches: \"ball/*\", width: 3.0)]",
+        says: &["line styles need lines on", "outlines: ()"],
+    },
+    Case {
+        name: "line style picking by patches and material at once",
+        from: "    render: (preset: Preview),",
+        to: "    lines: [(patches: \"ball/*\", material: \"blue\", width: 3.0)],\n    render: (preset: Preview, outlines: ()),",
+        file: "shot.ron",
+        at: "(patches: \"ball/*\", material",
+        says: &["give exactly one"],
+    },
+    Case {
+        name: "line style selector matching nothing",
+        from: "    render: (preset: Preview),",
+        to: "    lines: [(patches: \"bal/*\", width: 3.0)],\n    render: (preset: Preview, outlines: ()),",
+        file: "shot.ron",
+        at: "\"bal/*\"",
+        says: &["\"bal/*\" matches no patch", "did you mean"],
+    },
+    Case {
+        name: "line style on a material the shot lacks",
+        from: "    render: (preset: Preview),",
+        to: "    lines: [(material: \"bleu\", colour: (1.0, 0.0, 0.0))],\n    render: (preset: Preview, outlines: ()),",
+        file: "shot.ron",
+        at: "\"bleu\"",
+        says: &["no material \"bleu\"", "did you mean \"blue\""],
+    },
+    Case {
+        name: "line width out of range at a key",
+        from: "    render: (preset: Preview),",
+        to: "    lines: [(patches: \"ball/*\", width: [(1, 2.0), (10, 80.0)])],\n    render: (preset: Preview, outlines: ()),",
+        file: "shot.ron",
+        at: "(patches: \"ball/*\", width: [",
+        // Frame 9 is the first whole frame past 64 px.
+        says: &["at frame 9:", "line width 71.3", "must be between 0 and 64"],
+    },
+    Case {
+        name: "negative taper",
+        from: "    render: (preset: Preview),",
+        to: "    render: (preset: Preview, outlines: (taper: -1.0)),",
+        file: "shot.ron",
+        at: "(taper: -1.0)",
+        says: &["line taper -1 must be between 0"],
+    },
+    Case {
+        name: "unknown kind of line",
+        from: "    render: (preset: Preview),",
+        to: "    render: (preset: Preview, outlines: (kinds: [Silhouette, Outline])),",
+        file: "shot.ron",
+        at: "Outline]",
+        says: &["Outline", "Silhouette", "Intersection"],
+    },
 ];
 
 /// The 1-based line and column of the first `needle` in `text`.

@@ -105,6 +105,7 @@ fn scene(library: &PatchLibrary) -> Scene<'_> {
             .patches
             .iter()
             .map(|_| PatchLook {
+                lines: None,
                 tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.7), 0.0)),
                 highlight: Some(highlight.clone()),
             })

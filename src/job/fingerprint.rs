@@ -22,8 +22,8 @@ impl std::fmt::Display for Fingerprint {
 }
 
 /// The part of every frame's fingerprint that the whole job shares: glint's version, the
-/// settings (not the thread count, which changes no byte), the AOVs and outlines asked for, the
-/// model as placed, and the bytes of every patch file and texture. `None` when an asset cannot
+/// settings (not the thread count, which changes no byte), the AOVs asked for, the model as
+/// placed, and the bytes of every patch file and texture. `None` when an asset cannot
 /// be read (the job's frames then have no fingerprint, and are never taken as current).
 pub(super) fn job_digest(job: &RenderJob) -> Option<Sha256> {
     let shot = job.shot();
@@ -33,10 +33,9 @@ pub(super) fn job_digest(job: &RenderJob) -> Option<Sha256> {
     let mut text = String::new();
     let _ = write!(
         text,
-        "glint {}\n{settings:?}\n{:?}\n{:?}\n{:?}\n",
+        "glint {}\n{settings:?}\n{:?}\n{:?}\n",
         env!("CARGO_PKG_VERSION"),
         shot.aovs,
-        shot.outlines,
         shot.library
     );
     hash.update(text.as_bytes());
@@ -50,7 +49,7 @@ pub(super) fn job_digest(job: &RenderJob) -> Option<Sha256> {
 
 impl RenderJob {
     /// The fingerprint of frame `frame`: what the whole job shares (glint's version, the
-    /// settings but the thread count, the AOVs and outlines, the model as placed, the bytes of
+    /// settings but the thread count, the AOVs, the model as placed, the bytes of
     /// every patch file and texture) and every value the shot has at that frame
     /// ([`crate::shot::Shot::at`]). `None` when an asset cannot be read. Two frames share it only when they
     /// would be rendered from the same values, so an edit of one key changes the fingerprints
@@ -63,7 +62,14 @@ impl RenderJob {
         let _ = write!(
             text,
             "{:?}",
-            (state.camera, state.light, state.materials, state.highlights)
+            (
+                state.camera,
+                state.light,
+                state.materials,
+                state.highlights,
+                state.outlines,
+                state.lines
+            )
         );
         hash.update(text.as_bytes());
         let digest = hash.finalize();

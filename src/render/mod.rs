@@ -15,6 +15,7 @@ mod directions;
 mod edge_width;
 mod facing;
 mod gbuffer;
+mod line_style;
 mod lines;
 mod neighbourhood;
 mod plan;
@@ -36,6 +37,7 @@ mod xtoon_tone;
 
 pub use camera::{Camera, Projection};
 pub use facing::facing_frame;
+pub use line_style::{LineKind, LineKinds, LineStyle, MAX_LINE_WIDTH, MAX_TAPER};
 pub use plan::{Plan, Surfaces};
 pub use renderer::{AovImages, RenderedFrame, Renderer};
 pub use scene::{Aovs, Outlines, PatchLook, Scene, Tone};

@@ -98,9 +98,11 @@ impl Plan {
     /// - the mesh, the visibility buffer and the G-buffer (whose frames face the eye, not the
     ///   light) depend on nothing else;
     /// - the X-Toon detail reads the tone's parameters and the light, the edge widths the
-    ///   highlight's layers, and the shade stage both; the outlines draw over the shaded colour
-    ///   in the outline colour; the supersampled pixels are chosen by their shaded colour; the
-    ///   matte and `N·H` AOVs come from the shade stage, and the resolve averages its colour.
+    ///   highlight's layers, and the shade stage both; the lines read the outlines and the
+    ///   patches' line styles (a frame that keeps those too reuses them:
+    ///   [`Plan::reusing_lines`]); the supersampled pixels are chosen by their shaded colour;
+    ///   the matte and `N·H` AOVs come from the shade stage, and the resolve averages its
+    ///   colour.
     #[must_use]
     pub const fn depends_on_surfaces_only(stage: Stage) -> bool {
         match stage {
@@ -126,6 +128,19 @@ impl Plan {
                 self.runs[k] = false;
                 self.reused[k] = true;
             }
+        }
+        self
+    }
+
+    /// This plan with the lines reused: what a frame runs when it [reuses the
+    /// surfaces](Plan::reusing_surfaces) and the previous frame drew its lines with the same
+    /// outlines and line styles (the lines depend on nothing else).
+    #[must_use]
+    pub fn reusing_lines(mut self) -> Self {
+        let k = Stage::Outline.index();
+        if self.runs[k] {
+            self.runs[k] = false;
+            self.reused[k] = true;
         }
         self
     }

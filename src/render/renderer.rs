@@ -11,7 +11,8 @@ use rayon::ThreadPool;
 
 use super::edge_width::{edge_widths, EdgeWidths};
 use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
-use super::lines::{draw_lines, LineImage, LineInput, MeshLines};
+use super::line_style::{LineKind, LineStyle};
+use super::lines::{self, draw_lines, LineImage, LineInput, MeshLines};
 use super::plan::{Plan, Surfaces};
 use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
@@ -101,6 +102,16 @@ struct Stages {
     shading: ShadeBuffers,
     /// What the lines found on the mesh and keep while it stays.
     mesh_lines: MeshLines,
+    /// The last frame's lines and what they were drawn with.
+    kept_lines: Option<KeptLines>,
+}
+
+/// The lines of a frame, kept for the next: while the surfaces are reused and the outlines
+/// and every patch's line style stay the same, they are the next frame's lines too.
+struct KeptLines {
+    outlines: Outlines,
+    styles: Vec<LineStyle>,
+    image: LineImage,
 }
 
 impl Renderer {
@@ -117,6 +128,7 @@ impl Renderer {
                 gbuffer: GBuffer::default(),
                 shading: ShadeBuffers::default(),
                 mesh_lines: MeshLines::default(),
+                kept_lines: None,
             },
             library,
             pool: None,
@@ -235,6 +247,23 @@ impl Stages {
         let key = SurfaceKey::new(&scene.camera, settings, &plan);
         let reuse = self.kept.is_some_and(|kept| kept.key == key);
         let plan = if reuse { plan.reusing_surfaces() } else { plan };
+        let styles: Vec<LineStyle> = scene.outlines.map_or_else(Vec::new, |outlines| {
+            scene
+                .looks
+                .iter()
+                .map(|look| look.lines.unwrap_or(outlines.style()))
+                .collect()
+        });
+        let reuse_lines = reuse
+            && self
+                .kept_lines
+                .as_ref()
+                .is_some_and(|kept| Some(kept.outlines) == scene.outlines && kept.styles == styles);
+        let plan = if reuse_lines {
+            plan.reusing_lines()
+        } else {
+            plan
+        };
         let mut stats = RenderStats::new(plan);
         let k = settings.samples_per_side();
         let frame = Frame {
@@ -256,6 +285,7 @@ impl Stages {
             gbuffer,
             shading,
             mesh_lines,
+            kept_lines,
         } = self;
 
         // The generation of the mesh the frame draws: the cached one's, one more if rebuilt.
@@ -322,9 +352,15 @@ impl Stages {
                 (shaded, widths.filter(|_| plan.runs(Stage::Supersample)))
             }
         };
-        let lines = match (plan.runs(Stage::Outline), &scene.outlines) {
+        match (plan.runs(Stage::Outline), &scene.outlines) {
             (true, Some(outlines)) => {
-                let (intersections, seconds) = timed(|| mesh_lines.intersections(mesh, generation));
+                let (intersections, seconds) = timed(|| {
+                    if lines::draws(&styles, LineKind::Intersection) {
+                        mesh_lines.intersections(mesh, generation)
+                    } else {
+                        &[]
+                    }
+                });
                 let input = LineInput {
                     library,
                     mesh,
@@ -334,13 +370,20 @@ impl Stages {
                     visibility,
                     k,
                     size: (settings.width, settings.height),
+                    styles: &styles,
                 };
-                let lines = outline(&input, outlines, &mut stats);
+                let image = outline(&input, outlines, &mut stats);
                 stats.add_seconds(Stage::Outline, seconds);
-                Some(lines)
+                *kept_lines = Some(KeptLines {
+                    outlines: *outlines,
+                    styles,
+                    image,
+                });
             }
-            _ => None,
-        };
+            (false, Some(_)) if plan.reuses(Stage::Outline) => {}
+            (_, _) => *kept_lines = None,
+        }
+        let lines = kept_lines.as_ref().map(|kept| &kept.image);
         if let (true, Antialias::Adaptive(k)) = (plan.runs(Stage::Supersample), settings.antialias)
         {
             let straddles = widths.as_ref().map(|w| gbuffer.gather(&w.straddles, false));
@@ -358,21 +401,14 @@ impl Stages {
                 straddles: straddles.as_deref(),
                 gbuffer,
                 footprints: widths.as_ref().map(|w| w.footprints.as_slice()),
-                lines: lines.as_ref(),
+                lines,
             };
             let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
             stats.record(Stage::Supersample, done.pixels, seconds);
             stats.exact_frames += done.frames;
         }
         let aovs = if plan.runs(Stage::Aov) {
-            aov(
-                scene,
-                gbuffer,
-                lines.as_ref(),
-                &mut shaded,
-                settings,
-                &mut stats,
-            )
+            aov(scene, gbuffer, lines, &mut shaded, settings, &mut stats)
         } else {
             AovImages::default()
         };
@@ -381,7 +417,7 @@ impl Stages {
         } else {
             shaded.colour
         };
-        if let Some(lines) = &lines {
+        if let Some(lines) = lines {
             let (_, seconds) = timed(|| lines.composite(&mut colour));
             stats.add_seconds(Stage::Outline, seconds);
         }

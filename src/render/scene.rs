@@ -3,15 +3,20 @@
 use glam::Vec3;
 
 use super::camera::Camera;
+use super::line_style::LineStyle;
 use crate::geom::PatchLibrary;
 use crate::highlight::{Light, PreparedExpr};
 use crate::toon::{CelRamp, PreparedXToon};
 
-/// How one patch is drawn: its tone and, optionally, its designed highlight.
+/// How one patch is drawn: its tone, optionally its designed highlight, and how its lines are
+/// drawn when the scene has [`Outlines`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct PatchLook {
     pub tone: Tone,
     pub highlight: Option<PreparedExpr>,
+    /// The patch's own line style; None draws its lines in the outlines' own
+    /// ([`Outlines::style`]).
+    pub lines: Option<LineStyle>,
 }
 
 /// The tone of a patch.
@@ -27,17 +32,28 @@ pub enum Tone {
     XToon(PreparedXToon),
 }
 
-/// Lines drawn over the shaded image where the G-buffer is discontinuous.
+/// Lines drawn over the shaded image: silhouettes, creases, borders and intersections found
+/// on the mesh (docs/rendering.md, "Lines").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Outlines {
-    /// Line width in pixels (≥ 1).
+    /// Line width in pixels, in [0, 64], of every patch without a style of its own.
     pub width: f32,
-    /// Linear RGB.
+    /// Linear RGB, of every patch without a style of its own.
     pub colour: Vec3,
-    /// Normals turning by more than this between neighbouring pixels of a patch draw a crease.
+    /// Where the normals on the two sides of a seam turn by more than this (degrees), a crease
+    /// is drawn, fading in over a 10° band around it.
     pub crease_degrees: f32,
     /// Also draw where one patch meets another.
     pub patch_borders: bool,
+}
+
+impl Outlines {
+    /// The style of a patch without one of its own: this width and colour, every kind of line,
+    /// no taper.
+    #[must_use]
+    pub const fn style(&self) -> LineStyle {
+        LineStyle::new(self.width, self.colour)
+    }
 }
 
 /// Optional extra images (arbitrary output variables) filled beside the colour.

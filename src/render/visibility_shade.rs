@@ -242,6 +242,7 @@ mod tests {
                 library: &library,
                 looks: (0..library.patches.len())
                     .map(|patch| PatchLook {
+                        lines: None,
                         tone: Tone::Cel(if last && patch % 2 == 0 {
                             flat.clone()
                         } else {

@@ -11,13 +11,15 @@ use crate::anim::Keyed;
 use crate::formats::ron_paths::Step::{Entry, Field, Index};
 use crate::geom::MAX_COORDINATE;
 use crate::highlight::{HighlightError, Light};
+use crate::render::LineStyle;
 
-/// Checks the camera, light, materials and highlights at every frame they can take.
+/// Checks the camera, light, materials, highlights and line styles at every frame they can
+/// take.
 ///
 /// Between keys every value moves linearly, and the ranges of materials and highlights are
 /// intervals and orderings, which hold along a line once they hold at its ends: so each
-/// material, each highlight layer's own parameters and each operation is checked at its own
-/// keys (and at the first frame, for constants), and the work grows with the keys and
+/// material, each highlight layer's own parameters, each operation and each line style is
+/// checked at its own keys (and at the first frame, for constants), and the work grows with the keys and
 /// operations written, not with frames × operations. The camera is the exception — eye and
 /// target can meet, or the line of sight turn onto `up`, between two keys where both are
 /// fine — so it and the light are checked at every frame of the range and at their keys.
@@ -135,6 +137,30 @@ fn check_every_frame_counted(
                 })?;
             }
         }
+    }
+    if let Some(outlines) = &shot.outlines {
+        let frames = key_frames(first, |add| outlines.for_each_param(add));
+        check_at(&frames, shot.frames, &mut checks, |frame| {
+            outlines.at(frame).1.validate().map_err(|e| {
+                shot_source.error_at(
+                    &[Field("render"), Field("outlines")],
+                    format!("the outlines at frame {frame}: {e}"),
+                )
+            })
+        })?;
+    }
+    for (entry, line) in shot.lines.iter().enumerate() {
+        let frames = key_frames(first, |add| line.for_each_param(add));
+        // What the entry sets, over a style valid in every field.
+        let valid = LineStyle::new(1.0, glam::Vec3::ZERO);
+        check_at(&frames, shot.frames, &mut checks, |frame| {
+            line.at(frame).over(valid).validate().map_err(|e| {
+                shot_source.error_at(
+                    &[Field("lines"), Index(entry)],
+                    format!("the line style at frame {frame}: {e}"),
+                )
+            })
+        })?;
     }
     Ok(checks)
 }

@@ -10,7 +10,7 @@ use crate::anim::{Direction, Track};
 use crate::formats::parts::GroupsSpec;
 use crate::highlight::Expr;
 use crate::render::tessellate::Density;
-use crate::render::{Antialias, FrameMode};
+use crate::render::{Antialias, FrameMode, LineKind};
 use crate::toon::{DetailMap, ShapeDetail};
 
 /// A shot: `Shot(resolution: …, frames: …, …)`.
@@ -40,6 +40,10 @@ pub struct ShotFile {
     /// earlier one on the patches both pick.
     #[serde(default)]
     pub highlights: Vec<HighlightSpec>,
+    /// Line styles, each on the patches its selector or material picks; a later entry
+    /// overrides, on the patches both pick, the fields it sets.
+    #[serde(default)]
+    pub lines: Vec<LineSpec>,
     #[serde(default)]
     pub render: RenderSpec,
 }
@@ -260,21 +264,59 @@ pub enum Preset {
     Final,
 }
 
+/// Lines on (docs/rendering.md, "Lines"), and the style of every patch no `lines` entry
+/// styles.
 #[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutlinesSpec {
     #[serde(default = "outline_width")]
-    pub width: f32,
-    #[serde(default)]
-    pub colour: (f32, f32, f32),
+    pub width: Track<f32>,
+    /// Linear RGB.
+    #[serde(default = "black")]
+    pub colour: Track<Vec3>,
     #[serde(default = "crease_degrees")]
     pub crease_degrees: f32,
     #[serde(default)]
     pub patch_borders: bool,
+    /// The kinds of line drawn (default: all four).
+    #[serde(default)]
+    pub kinds: Option<Vec<LineKind>>,
+    /// Pixels over which a line narrows to its ends (default 0: round ends).
+    #[serde(default = "no_taper")]
+    pub taper: Track<f32>,
 }
 
-fn outline_width() -> f32 {
-    2.0
+fn outline_width() -> Track<f32> {
+    Track::Constant(2.0)
+}
+
+fn black() -> Track<Vec3> {
+    Track::Constant(Vec3::ZERO)
+}
+
+fn no_taper() -> Track<f32> {
+    Track::Constant(0.0)
+}
+
+/// A line style on the patches a selector picks, or on the patches of a material: each field
+/// it sets replaces the outlines' (or an earlier entry's) on those patches.
+#[derive(Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineSpec {
+    #[serde(default)]
+    pub patches: Option<Selector>,
+    /// A material's name: every patch of that material.
+    #[serde(default)]
+    pub material: Option<String>,
+    #[serde(default)]
+    pub width: Option<Track<f32>>,
+    /// Linear RGB.
+    #[serde(default)]
+    pub colour: Option<Track<Vec3>>,
+    #[serde(default)]
+    pub kinds: Option<Vec<LineKind>>,
+    #[serde(default)]
+    pub taper: Option<Track<f32>>,
 }
 
 fn crease_degrees() -> f32 {

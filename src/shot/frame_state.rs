@@ -3,10 +3,11 @@
 use std::sync::Arc;
 
 use super::file::{LightSpec, ProjectionSpec};
+use super::line_styles::LineFields;
 use super::validated::{Material, MaterialState, Shot};
 use super::ShotError;
 use crate::highlight::{Expr, Light};
-use crate::render::{Camera, PatchLook, Projection, Scene, Tone};
+use crate::render::{Camera, LineStyle, Outlines, PatchLook, Projection, Scene, Tone};
 use crate::toon::CelRamp;
 
 /// Every track of a shot read at one frame.
@@ -23,6 +24,10 @@ pub struct FrameState {
     ///
     /// [`Layer::centred_on`]: crate::highlight::Layer::centred_on
     pub highlights: Vec<Expr>,
+    /// The outlines, and the style of a patch no `lines` entry restyles; None without lines.
+    pub outlines: Option<(Outlines, LineStyle)>,
+    /// What each `lines` entry sets, in the order written.
+    pub lines: Vec<LineFields>,
 }
 
 impl Shot {
@@ -36,6 +41,8 @@ impl Shot {
             light: self.light_at(frame),
             materials: self.materials.iter().map(|(_, m)| m.at(frame)).collect(),
             highlights: Vec::new(),
+            outlines: self.outlines.as_ref().map(|o| o.at(frame)),
+            lines: self.lines.iter().map(|l| l.at(frame)).collect(),
         };
         state.highlights = self
             .highlights
@@ -135,6 +142,11 @@ impl FrameState {
             .map(|patch| PatchLook {
                 tone: tones[shot.material_of(patch)].clone(),
                 highlight: shot.highlight_of(patch).map(|h| prepared[h].clone()),
+                lines: self.outlines.map(|(_, style)| {
+                    shot.patch_lines[patch].iter().fold(style, |style, &entry| {
+                        self.lines[entry as usize].over(style)
+                    })
+                }),
             })
             .collect();
         Ok(Scene {
@@ -142,7 +154,7 @@ impl FrameState {
             looks,
             camera: self.camera,
             light: self.light,
-            outlines: shot.outlines,
+            outlines: self.outlines.map(|(outlines, _)| outlines),
             aovs: shot.aov_switches(),
         })
     }

@@ -11,6 +11,7 @@ use glam::DVec3;
 use super::every_frame::check_every_frame;
 use super::file::{HighlightSpec, InstanceSpec, LooksFile, MaterialSpec, RenderSpec, ShotFile};
 use super::glob;
+use super::line_styles::select_lines;
 use super::output::{check_numbered, resolve_path};
 use super::pin::resolve_pins;
 use super::source::Source;
@@ -21,7 +22,7 @@ use crate::formats::ron_location::closest_name;
 use crate::formats::ron_paths::Step::{Entry, Field, Index};
 use crate::formats::{load_patches, read_toon_texture};
 use crate::geom::{NamedPatch, PatchGroup, PatchLibrary, MAX_COORDINATE};
-use crate::render::{Outlines, Settings};
+use crate::render::Settings;
 use crate::toon::{AbstractShape, Abstraction, ToonTexture, XToon};
 
 /// The smallest scale of an instance's transform.
@@ -80,8 +81,14 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
     let placed = place_instances(&file.instances, &looks, shot_source, &mut inputs)?;
     let patch_highlight = select_highlights(&looks.highlights, &placed.library, &sources)?;
     let pins = resolve_pins(&looks.highlights, &placed.library, &sources)?;
-    let (accuracy, settings, outlines) =
-        render_settings(&file.render, file.resolution, shot_source)?;
+    let (accuracy, settings) = render_settings(&file.render, file.resolution, shot_source)?;
+    if file.render.outlines.is_none() && !file.lines.is_empty() {
+        return Err(shot_source.error_at(
+            &[Field("lines")],
+            "line styles need lines on: add `outlines: ()` (or your defaults) to `render`"
+                .to_string(),
+        ));
+    }
 
     let mut assets = Assets::default();
     let mut materials = Vec::with_capacity(looks.materials.len());
@@ -92,6 +99,14 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
         materials.push((name, material));
         material_sources.push(source);
     }
+    let material_names: Vec<&str> = materials.iter().map(|(n, _)| n.as_str()).collect();
+    let patch_lines = select_lines(
+        &file.lines,
+        &placed.library,
+        &placed.patch_material,
+        &material_names,
+        shot_source,
+    )?;
     let (highlights, highlights_written): (Vec<_>, Vec<_>) = looks.highlights.into_iter().unzip();
     let written_in = highlights_written
         .iter()
@@ -111,7 +126,9 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
         instances: placed.instances,
         settings,
         accuracy,
-        outlines,
+        outlines: file.render.outlines,
+        lines: file.lines,
+        patch_lines,
         aovs: file.render.aovs.clone(),
         camera: file.camera,
         light: file.light,
@@ -420,15 +437,7 @@ fn select_highlights(
                 }
             }
             if !any {
-                let names = library.names();
-                let mut message = format!("the selector \"{pattern}\" matches no patch or part");
-                match closest_name(pattern, &names) {
-                    Some(close) => message.push_str(&format!("; did you mean \"{close}\"?")),
-                    None => message.push_str(&format!(
-                        "; patches are named INSTANCE/PATCH and parts INSTANCE/PART, e.g. \"{}\"",
-                        names.first().copied().unwrap_or("ball/0")
-                    )),
-                }
+                let message = no_match_message(pattern, library);
                 return Err(sources[written.source].error_at(
                     &[
                         Field("highlights"),
@@ -444,12 +453,27 @@ fn select_highlights(
     Ok(patch_highlight)
 }
 
+/// What is said of a selector's `pattern` that picks nothing in `library`: the closest name,
+/// or how names are made.
+pub(super) fn no_match_message(pattern: &str, library: &PatchLibrary) -> String {
+    let names = library.names();
+    let mut message = format!("the selector \"{pattern}\" matches no patch or part");
+    match closest_name(pattern, &names) {
+        Some(close) => message.push_str(&format!("; did you mean \"{close}\"?")),
+        None => message.push_str(&format!(
+            "; patches are named INSTANCE/PATCH and parts INSTANCE/PART, e.g. \"{}\"",
+            names.first().copied().unwrap_or("ball/0")
+        )),
+    }
+    message
+}
+
 /// The accuracy the shot asks for, its settings at `resolution`, and its outlines.
 fn render_settings(
     render: &RenderSpec,
     resolution: (u32, u32),
     source: &Source,
-) -> Result<(Accuracy, Settings, Option<Outlines>), ShotError> {
+) -> Result<(Accuracy, Settings), ShotError> {
     let accuracy = Accuracy {
         preset: render.preset,
         tessellation: render.tessellation,
@@ -461,27 +485,14 @@ fn render_settings(
         .validate()
         .map_err(|e| source.error_at(&[Field("resolution")], e.to_string()))?;
     if let Some(o) = &render.outlines {
-        let (r, g, b) = o.colour;
-        if ![r, g, b].into_iter().all(crate::param::is_colour_component) {
+        if !o.crease_degrees.is_finite() {
             return Err(source.error_at(
-                &[Field("render"), Field("outlines"), Field("colour")],
-                format!(
-                    "the outline colour ({r}, {g}, {b}) must have components from 0 to 1e4 \
-                     (linear RGB, 1 the display's white)"
-                ),
-            ));
-        }
-        if !((1.0..=64.0).contains(&o.width) && o.crease_degrees.is_finite()) {
-            return Err(source.error_at(
-                &[Field("render"), Field("outlines")],
-                format!(
-                    "outline width {} must be between 1 and 64 pixels, and crease_degrees finite",
-                    o.width
-                ),
+                &[Field("render"), Field("outlines"), Field("crease_degrees")],
+                format!("crease_degrees {} must be finite", o.crease_degrees),
             ));
         }
     }
-    Ok((accuracy, settings, render.outlines.as_ref().map(Into::into)))
+    Ok((accuracy, settings))
 }
 
 /// Toon textures and abstracted shapes, each read or built once however many materials use it.

@@ -6,12 +6,12 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 
-use super::file::{Aov, CameraSpec, HighlightSpec, LightSpec, OutlinesSpec, Preset};
+use super::file::{Aov, CameraSpec, HighlightSpec, LightSpec, LineSpec, OutlinesSpec, Preset};
 use super::output::frame_path;
 use crate::anim::Track;
 use crate::geom::PatchLibrary;
 use crate::render::tessellate::Density;
-use crate::render::{Antialias, Aovs, FrameMode, Outlines, Settings};
+use crate::render::{Antialias, Aovs, FrameMode, Settings};
 use crate::toon::{AbstractShape, CelRamp, ToonTexture, XToon};
 
 /// A validated shot: the model with every instance placed, and every track ready to be read at
@@ -36,7 +36,12 @@ pub struct Shot {
     /// Image size, accuracy and threads as the shot asks for them.
     pub settings: Settings,
     pub(super) accuracy: Accuracy,
-    pub outlines: Option<Outlines>,
+    /// Lines on, and the style of the patches no `lines` entry restyles.
+    pub(super) outlines: Option<OutlinesSpec>,
+    /// The `lines` entries, in the order written.
+    pub(super) lines: Vec<LineSpec>,
+    /// Per patch of `library`, the `lines` entries that pick it, in order.
+    pub(super) patch_lines: Vec<Vec<u32>>,
     pub aovs: Vec<Aov>,
     pub(super) camera: CameraSpec,
     pub(super) light: LightSpec,
@@ -165,6 +170,12 @@ impl Shot {
             .unwrap_or_default()
     }
 
+    /// Whether the shot draws lines.
+    #[must_use]
+    pub fn has_lines(&self) -> bool {
+        self.outlines.is_some()
+    }
+
     /// The highlight entry of patch `patch`, if it has one.
     pub fn highlight_of(&self, patch: usize) -> Option<usize> {
         self.patch_highlight[patch]
@@ -194,17 +205,6 @@ impl Shot {
             uv: on(Aov::Uv),
             n_dot_h: on(Aov::NDotH),
             outline: on(Aov::Outline),
-        }
-    }
-}
-
-impl From<&OutlinesSpec> for Outlines {
-    fn from(spec: &OutlinesSpec) -> Self {
-        Outlines {
-            width: spec.width,
-            colour: Vec3::from(spec.colour),
-            crease_degrees: spec.crease_degrees,
-            patch_borders: spec.patch_borders,
         }
     }
 }

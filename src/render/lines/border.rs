@@ -9,8 +9,9 @@ use super::super::camera::Camera;
 use super::super::scene::Outlines;
 use super::super::tessellate::{BorderEdge, Mesh};
 use super::contour::{screen_length, EyeSide, LONGEST_PIECE_PIXELS};
-use super::piece::{LineKind, Piece};
+use super::piece::Piece;
 use crate::geom::PatchLibrary;
+use crate::render::line_style::{LineKind, LineStyle};
 
 /// Over this band of angles (degrees) around the crease angle, a crease fades in: its opacity
 /// runs from 0 at `crease − ½ band` to 1 at `crease + ½ band`, so that a crease whose angle
@@ -28,7 +29,7 @@ pub(crate) fn crease_opacity(angle: f32, crease: f32) -> f32 {
     ((angle - crease) / CREASE_BAND_DEGREES + 0.5).clamp(0.0, 1.0)
 }
 
-/// The boundary pieces of `mesh` that `outlines` draws, each on the surface's boundary curve:
+/// The boundary pieces of `mesh` that `outlines` and the patches' `styles` draw, each on the surface's boundary curve:
 /// a piece longer than [`LONGEST_PIECE_PIXELS`] on the `size` image is cut evenly in (u, v)
 /// and its points evaluated on the patch. What is drawn:
 ///
@@ -46,13 +47,20 @@ pub(crate) fn borders_and_creases(
     view_projection: Mat4,
     size: (u32, u32),
     outlines: &Outlines,
+    styles: &[LineStyle],
 ) -> Vec<Piece> {
     let facing = EyeSide::of(camera);
+    let drawn = |patch: u32, kind: LineKind| {
+        let style = &styles[patch as usize];
+        style.width > 0.0 && style.kinds.holds(kind)
+    };
     mesh.borders
         .par_iter()
         .with_min_len(256)
         .flat_map_iter(|edge| {
-            let kind = classify(mesh, facing, outlines, edge);
+            let other = edge.across.map_or(edge.patch, |(_, _, other)| other);
+            let kind = classify(mesh, facing, outlines, edge)
+                .filter(|&(kind, _)| drawn(edge.patch, kind) || drawn(other, kind));
             kind.map(|kind| {
                 let surface = &library.patches[edge.patch as usize].surface;
                 pieces(mesh, surface, edge, kind, view_projection, size)
@@ -135,6 +143,10 @@ fn pieces(
             on_mesh: [w[0].1, w[1].1],
             opacity,
             kind,
+            patches: [
+                edge.patch,
+                edge.across.map_or(edge.patch, |(_, _, other)| other),
+            ],
         })
         .collect()
 }
@@ -213,6 +225,7 @@ mod tests {
                 view_projection,
                 (64, 64),
                 &outlines,
+                &[outlines.style(); 2],
             );
             let creases: Vec<f32> = pieces
                 .iter()

@@ -25,13 +25,21 @@ const SHORTEST_GAP: f32 = 3.0;
 /// it would be a dot.
 const SHORTEST_STROKE: f32 = 2.0;
 
-/// The pieces joined into chains: each chain is a list of `(piece, reversed)` in order along
-/// the line, consecutive pieces sharing an end point. Ends closer than [`SAME_POINT`] of the
-/// model's extent are one point: two patches find the silhouette's crossing of the seam they
-/// share each on its own surface, a rounding error apart. A chain stops where three or more
-/// pieces meet; every piece is in one chain.
+/// Pieces joined end to end into one line.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Chain {
+    /// `(piece, reversed)` in order along the line, consecutive pieces sharing an end point.
+    pub pieces: Vec<(usize, bool)>,
+    /// Whether the line closes on itself: its last piece ends where its first begins.
+    pub closed: bool,
+}
+
+/// The pieces joined into chains. Ends closer than [`SAME_POINT`] of the model's extent are
+/// one point: two patches find the silhouette's crossing of the seam they share each on its
+/// own surface, a rounding error apart. A chain stops where three or more pieces meet; every
+/// piece is in one chain.
 #[must_use]
-pub(crate) fn chains(pieces: &[Piece]) -> Vec<Vec<(usize, bool)>> {
+pub(crate) fn chains(pieces: &[Piece]) -> Vec<Chain> {
     let point_ids = same_points(pieces);
     let key = |p: usize, end: usize| point_ids[2 * p + end];
     let mut at: HashMap<usize, Vec<(usize, usize)>> = HashMap::with_capacity(2 * pieces.len());
@@ -73,7 +81,15 @@ pub(crate) fn chains(pieces: &[Piece]) -> Vec<Vec<(usize, bool)>> {
         }
         backward.reverse();
         backward.extend(forward);
-        out.push(backward);
+        // The point the line starts from and the one it ends at.
+        let start = backward[0];
+        let finish = backward[backward.len() - 1];
+        let closed = backward.len() > 1
+            && key(start.0, usize::from(start.1)) == key(finish.0, usize::from(!finish.1));
+        out.push(Chain {
+            pieces: backward,
+            closed,
+        });
     }
     out
 }
@@ -165,18 +181,19 @@ fn samples_along(on: &OnScreen) -> u32 {
     (on.length() / STEP).ceil().clamp(1.0, MOST_SAMPLES) as u32
 }
 
-/// The capsules of `radius` that draw the visible stretches of one chain (`screen[k]` is piece
-/// k's place on the image, None off it, and `shows[k]` its samples' visibility from
-/// [`sample_piece`]). Along the chain, hidden stretches shorter than [`SHORTEST_GAP`] between
-/// visible ones are drawn, and visible stretches shorter than [`SHORTEST_STROKE`] between
-/// hidden ones are not.
+/// The capsules that draw the visible stretches of one chain (`screen[k]` is piece k's place
+/// on the image, None off it, and `shows[k]` its samples' visibility from [`sample_piece`]).
+/// Along the chain, hidden stretches shorter than [`SHORTEST_GAP`] between visible ones are
+/// drawn, and visible stretches shorter than [`SHORTEST_STROKE`] between hidden ones are not.
+/// Each drawn stretch narrows toward its ends over its pieces' taper; the point where a
+/// closed chain closes is not an end.
 #[must_use]
 pub(crate) fn visible_capsules(
-    chain: &[(usize, bool)],
+    line: &Chain,
     screen: &[Option<OnScreen>],
     shows: &[Vec<bool>],
-    radius: f32,
 ) -> Vec<Capsule> {
+    let chain = &line.pieces[..];
     let mut samples: Vec<Sample> = Vec::new();
     let mut travelled = 0.0;
     for (k, &(piece, reversed)) in chain.iter().enumerate() {
@@ -241,9 +258,20 @@ pub(crate) fn visible_capsules(
         if inside && samples[last].at - samples[first].at < SHORTEST_STROKE {
             continue;
         }
-        draw_stretch(&samples[first..=last], chain, screen, radius, &mut capsules);
+        let ends = Ends {
+            first: !(line.closed && first == 0),
+            last: !(line.closed && last + 1 == samples.len()),
+        };
+        draw_stretch(&samples[first..=last], ends, chain, screen, &mut capsules);
     }
     capsules
+}
+
+/// Which ends of a drawn stretch are ends of the line (where it narrows over its taper).
+#[derive(Clone, Copy, Debug)]
+struct Ends {
+    first: bool,
+    last: bool,
 }
 
 /// Whether every piece a run of samples lies on is on the image (a gap across a piece off it
@@ -260,14 +288,31 @@ fn screen_all(
 }
 
 /// Capsules along the samples of one visible stretch: one per piece it crosses, from the
-/// stretch's first to its last fraction of that piece.
+/// stretch's first to its last fraction of that piece, of the piece's radius. Within a
+/// piece's taper of an end of the line the radius is `r · s / taper`, `s` the distance along
+/// the stretch to that end, and the capsules go sample to sample.
 fn draw_stretch(
     stretch: &[Sample],
+    ends: Ends,
     chain: &[(usize, bool)],
     screen: &[Option<OnScreen>],
-    radius: f32,
     capsules: &mut Vec<Capsule>,
 ) {
+    let (start, finish) = (stretch[0].at, stretch[stretch.len() - 1].at);
+    // The distance along the stretch to its nearer end that narrows.
+    let to_end = |at: f32| {
+        let from_first = if ends.first {
+            at - start
+        } else {
+            f32::INFINITY
+        };
+        let to_last = if ends.last {
+            finish - at
+        } else {
+            f32::INFINITY
+        };
+        from_first.min(to_last)
+    };
     let mut i = 0;
     while i < stretch.len() {
         let k = stretch[i].piece;
@@ -278,7 +323,24 @@ fn draw_stretch(
         let (piece, reversed) = chain[k];
         if let Some(on) = &screen[piece] {
             let along = |t: f32| if reversed { 1.0 - t } else { t };
-            capsules.push(on.capsule(along(stretch[i].t), along(stretch[j].t), radius));
+            let radius = |s: &Sample| on.radius * (to_end(s.at) / on.taper).min(1.0);
+            let tapers =
+                on.taper > 0.0 && (to_end(stretch[i].at).min(to_end(stretch[j].at)) < on.taper);
+            if tapers {
+                for w in stretch[i..=j].windows(2) {
+                    capsules.push(on.capsule(
+                        along(w[0].t),
+                        along(w[1].t),
+                        [radius(&w[0]), radius(&w[1])],
+                    ));
+                }
+                if i == j {
+                    let t = along(stretch[i].t);
+                    capsules.push(on.capsule(t, t, [radius(&stretch[i]); 2]));
+                }
+            } else {
+                capsules.push(on.capsule(along(stretch[i].t), along(stretch[j].t), [on.radius; 2]));
+            }
         }
         i = j + 1;
     }
@@ -287,7 +349,7 @@ fn draw_stretch(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::lines::piece::LineKind;
+    use crate::render::line_style::LineKind;
     fn piece(a: [f64; 3], b: [f64; 3]) -> Piece {
         let (a, b) = (DVec3::from(a), DVec3::from(b));
         Piece {
@@ -295,6 +357,7 @@ mod tests {
             on_mesh: [a.as_vec3(), b.as_vec3()],
             opacity: 1.0,
             kind: LineKind::Silhouette,
+            patches: [0, 0],
         }
     }
 
@@ -314,9 +377,14 @@ mod tests {
             piece([9.0, 9.0, 0.0], [8.0, 9.0, 0.0]),
         ];
         let chains = chains(&pieces);
-        let mut lengths: Vec<usize> = chains.iter().map(Vec::len).collect();
+        let mut lengths: Vec<(usize, bool)> =
+            chains.iter().map(|c| (c.pieces.len(), c.closed)).collect();
         lengths.sort_unstable();
-        assert_eq!(lengths, vec![1, 1, 1, 3, 3]);
+        // The path is open, the triangle closed, the star's arms three open lines.
+        assert_eq!(
+            lengths,
+            vec![(1, false), (1, false), (1, false), (3, false), (3, true)]
+        );
         // Along each chain, one piece's far end is the next one's near end.
         let end = |&(p, reversed): &(usize, bool), far: bool| {
             let e = pieces[p].ends;
@@ -326,10 +394,68 @@ mod tests {
                 e[1]
             }
         };
-        for chain in &chains {
+        for chain in chains.iter().map(|c| &c.pieces) {
             for w in chain.windows(2) {
                 assert_eq!(end(&w[0], true), end(&w[1], false), "{chain:?}");
             }
+        }
+    }
+
+    /// The capsules of `pieces` joined into one chain, every sample shown, drawn in `style`
+    /// through a view that maps (x, y) in [−1, 1]² onto a 200 px square.
+    fn drawn(pieces: &[Piece], style: crate::render::LineStyle) -> Vec<Capsule> {
+        let screen: Vec<Option<OnScreen>> = pieces
+            .iter()
+            .map(|p| p.on_screen(glam::Mat4::IDENTITY, (200, 200), &[style], 0))
+            .collect();
+        let shows: Vec<Vec<bool>> = screen
+            .iter()
+            .map(|on| vec![true; samples_along(on.as_ref().unwrap()) as usize + 1])
+            .collect();
+        let lines = chains(pieces);
+        assert_eq!(lines.len(), 1);
+        visible_capsules(&lines[0], &screen, &shows)
+    }
+
+    #[test]
+    fn a_line_narrows_over_its_taper_at_its_ends_and_a_loop_nowhere() {
+        let style = crate::render::LineStyle {
+            taper: 10.0,
+            ..crate::render::LineStyle::new(4.0, glam::Vec3::ZERO)
+        };
+        // From x = 20 px to 180 px along y = 100 px, in eight pieces.
+        let x = |k: usize| -0.8 + 0.2 * k as f64;
+        let open: Vec<Piece> = (0..8)
+            .map(|k| piece([x(k), 0.0, 0.5], [x(k + 1), 0.0, 0.5]))
+            .collect();
+        let capsules = drawn(&open, style);
+        let expected = |px: f32| 2.0 * ((px - 20.0).min(180.0 - px) / 10.0).min(1.0);
+        let mut narrowest = f32::INFINITY;
+        for c in &capsules {
+            for (end, radius) in [(c.a, c.radii[0]), (c.b, c.radii[1])] {
+                assert!(
+                    (radius - expected(end.x)).abs() < 1e-3,
+                    "at {end}: {radius}, not {}",
+                    expected(end.x)
+                );
+                narrowest = narrowest.min(radius);
+            }
+        }
+        assert!(narrowest < 1e-3, "the ends come to a point");
+        // The line is whole: its capsules cover it end to end.
+        let covered: f32 = capsules.iter().map(|c| c.a.distance(c.b)).sum();
+        assert!((covered - 160.0).abs() < 1e-3, "{covered}");
+
+        // A square loop closes on itself: no end, no narrowing.
+        let corners = [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]];
+        let square: Vec<Piece> = (0..4)
+            .map(|k| {
+                let (a, b) = (corners[k], corners[(k + 1) % 4]);
+                piece([a[0], a[1], 0.5], [b[0], b[1], 0.5])
+            })
+            .collect();
+        for c in drawn(&square, style) {
+            assert_eq!(c.radii, [2.0, 2.0]);
         }
     }
 }

@@ -1,14 +1,17 @@
 //! Silhouettes: the curve where the surface turns from facing the eye to facing away, found on
 //! the mesh and refined onto the surface.
 
+use std::collections::HashMap;
+
 use glam::{DVec2, DVec3, Mat4, Vec3};
 use rayon::prelude::*;
 
 use super::super::camera::{Camera, Projection};
 use super::super::tessellate::{Mesh, PatchGrid};
-use super::piece::{LineKind, Piece};
+use super::piece::Piece;
 use super::to_screen;
 use crate::geom::{NurbsSurface, PatchLibrary};
+use crate::render::line_style::LineKind;
 
 /// The most regula falsi steps that move a point of the silhouette from the mesh onto the
 /// surface; the search stops sooner once the bracket is narrower than [`BRACKET_PIXELS`] on
@@ -30,6 +33,9 @@ pub(crate) const LONGEST_PIECE_PIXELS: f32 = 4.0;
 
 /// How many times a piece may be cut in two.
 const MOST_HALVINGS: u32 = 8;
+
+/// The fraction of its largest value below which `g` is taken as 0 ([`EyeSide::grazes`]).
+const GRAZING: f64 = 1e-6;
 
 /// Which side of the surface the eye is on, as a signed number: `g(P, N) = N·(P − E)` under
 /// perspective, `N·F` (F the line of sight) under orthographic projection. The silhouette is
@@ -62,6 +68,16 @@ impl EyeSide {
         }
     }
 
+    /// Whether `g` at `point` is within [`GRAZING`] of its largest possible value (`|P − E|`,
+    /// or 1 under orthographic projection): the line of sight lies within 10⁻⁶ radians of the
+    /// tangent plane, closer than the mesh's single-precision normals can tell.
+    #[inline]
+    #[must_use]
+    pub fn grazes(&self, point: DVec3, g: f64) -> bool {
+        let most = self.eye.map_or(1.0, |eye| point.distance(eye));
+        g.abs() <= GRAZING * most
+    }
+
     /// `g` at a mesh vertex.
     #[inline]
     #[must_use]
@@ -79,9 +95,15 @@ struct Crossing {
     on_mesh: Vec3,
 }
 
+/// `g` at most this fraction of the largest at a triangle's corners is rounding: the point is
+/// on the silhouette.
+const ROUNDING_SIDE: f64 = 1e-9;
+
 /// What finding silhouettes on one patch needs.
 struct OnPatch<'a> {
     mesh: &'a Mesh,
+    /// The patch's index in the library.
+    patch: u32,
     surface: &'a NurbsSurface,
     side: EyeSide,
     view_projection: Mat4,
@@ -95,8 +117,10 @@ struct OnPatch<'a> {
 /// lie on the true silhouette and the two triangles of an edge find the same point. A piece
 /// longer than [`LONGEST_PIECE_PIXELS`] on the `size` image is cut at the point of the
 /// silhouette on the line from the triangle's lone corner through its middle (in (u, v)).
+/// Only the patches `drawn` picks are searched.
 #[must_use]
 pub(crate) fn silhouettes(
+    drawn: impl Fn(u32) -> bool + Sync,
     mesh: &Mesh,
     library: &PatchLibrary,
     camera: &Camera,
@@ -104,31 +128,64 @@ pub(crate) fn silhouettes(
     size: (u32, u32),
 ) -> Vec<Piece> {
     let side = EyeSide::of(camera);
+    let g = grazing_as_zero(mesh, side);
     mesh.grids
         .par_iter()
         .zip(&library.patches)
-        .flat_map_iter(|(grid, patch)| {
+        .enumerate()
+        .filter(|&(k, _)| drawn(k as u32))
+        .flat_map_iter(|(k, (grid, patch))| {
             let on = OnPatch {
                 mesh,
+                patch: k as u32,
                 surface: &patch.surface,
                 side,
                 view_projection,
                 size,
             };
-            on.silhouettes(grid)
+            on.silhouettes(grid, &g)
+        })
+        .collect()
+}
+
+/// `g` at every vertex of `mesh`, 0 where the line of sight grazes the surface
+/// ([`EyeSide::grazes`]). There `g` is rounding alone, of either sign: along a seam the
+/// silhouette runs on (an orthographic view square to a body of revolution), the two sides'
+/// copies of a vertex, each with its own patch's normal, would take opposite signs, and the
+/// silhouette would slip between the two sides' triangles, each seeing no sign change; along
+/// the seam itself, vertices of random signs would leave it in scraps. At 0, every such vertex
+/// is on the front, and the triangles behind find the seam once.
+#[must_use]
+fn grazing_as_zero(mesh: &Mesh, side: EyeSide) -> Vec<f64> {
+    (0..mesh.positions.len() as u32)
+        .into_par_iter()
+        .with_min_len(4096)
+        .map(|v| {
+            let g = side.at_vertex(mesh, v);
+            if side.grazes(mesh.positions[v as usize].as_dvec3(), g) {
+                0.0
+            } else {
+                g
+            }
         })
         .collect()
 }
 
 impl OnPatch<'_> {
-    fn silhouettes(&self, grid: &PatchGrid) -> Vec<Piece> {
+    /// The silhouette pieces of the patch whose vertices are `grid`, `g` given at every
+    /// vertex of the mesh.
+    fn silhouettes(&self, grid: &PatchGrid, g: &[f64]) -> Vec<Piece> {
         let (nu, nv) = (grid.nu, grid.nv);
-        let g: Vec<f64> = (0..nu * nv)
-            .map(|k| self.side.at_vertex(self.mesh, grid.first + k))
-            .collect();
-        let value = |v: u32| g[(v - grid.first) as usize];
+        let value = |v: u32| g[v as usize];
         let front = |v: u32| value(v) >= 0.0;
         let mut pieces = Vec::new();
+        // Each crossed edge is met by the two triangles beside it: found once.
+        let mut crossings: HashMap<(u32, u32), Crossing> = HashMap::new();
+        let mut on_edge = |x: u32, y: u32| {
+            *crossings
+                .entry((x.min(y), x.max(y)))
+                .or_insert_with(|| self.on_edge((x, value(x)), (y, value(y))))
+        };
         for i in 0..nu.saturating_sub(1) {
             for j in 0..nv.saturating_sub(1) {
                 let (a, b, c, d) = (
@@ -149,8 +206,7 @@ impl OnPatch<'_> {
                         continue;
                     };
                     let (lone, p, q) = (triangle[k], triangle[(k + 1) % 3], triangle[(k + 2) % 3]);
-                    let start = self.on_edge((lone, value(lone)), (p, value(p)));
-                    let end = self.on_edge((lone, value(lone)), (q, value(q)));
+                    let (start, end) = (on_edge(lone, p), on_edge(lone, q));
                     let corners = [lone, p, q].map(|v| (v, value(v)));
                     self.cut(&corners, start, end, 0, &mut pieces);
                 }
@@ -206,12 +262,18 @@ impl OnPatch<'_> {
             on_mesh: [start.on_mesh, end.on_mesh],
             opacity: 1.0,
             kind: LineKind::Silhouette,
+            patches: [self.patch; 2],
         });
     }
 
     /// The point of the silhouette on the line in (u, v) from the lone corner through the
-    /// middle of `start` and `end`, up to the opposite edge; None when `g` there has the lone
-    /// corner's sign (the silhouette leaves the triangle's line).
+    /// middle `m` of `start` and `end`, up to the opposite edge; None when `g` there has the
+    /// lone corner's sign (the silhouette leaves the triangle's line).
+    ///
+    /// Where `g` is rounding alone — at most [`ROUNDING_SIDE`] of the largest at the corners —
+    /// the point is on the silhouette: at `m` itself (a silhouette running along a seam or an
+    /// edge of the mesh, where any point of the line from the lone corner is a root of noise),
+    /// or at the opposite edge.
     fn middle(
         &self,
         corners: &[(u32, f64); 3],
@@ -219,9 +281,22 @@ impl OnPatch<'_> {
         end: Crossing,
     ) -> Option<Crossing> {
         let uv = |v: u32| self.mesh.uvs[v as usize].as_dvec2();
-        let [(lone, g_lone), (p, _), (q, _)] = *corners;
+        let [(lone, g_lone), (p, g_p), (q, g_q)] = *corners;
+        let rounding = ROUNDING_SIDE * g_lone.abs().max(g_p.abs()).max(g_q.abs());
+        let on_silhouette = |at: DVec2| {
+            let frame = self.surface.frame(at.x, at.y);
+            let g = self.side.at(frame.point, frame.normal);
+            (frame.point.is_finite() && g.abs() <= rounding).then(|| Crossing {
+                uv: at,
+                point: frame.point,
+                on_mesh: self.on_mesh(corners, at),
+            })
+        };
         let (o, a, b) = (uv(lone), uv(p), uv(q));
         let m = 0.5 * (start.uv + end.uv);
+        if let Some(middle) = on_silhouette(m) {
+            return Some(middle);
+        }
         // Where the line o + s (m − o) meets the edge a + t (b − a).
         let (d, e) = (m - o, b - a);
         let det = d.perp_dot(e);
@@ -233,6 +308,9 @@ impl OnPatch<'_> {
             return None;
         }
         let far = o + d * s;
+        if let Some(middle) = on_silhouette(far) {
+            return Some(middle);
+        }
         let frame = self.surface.frame(far.x, far.y);
         let g_far = self.side.at(frame.point, frame.normal);
         if (g_far >= 0.0) == (g_lone >= 0.0) {

@@ -34,6 +34,14 @@ impl Bounds {
     }
 }
 
+/// A straight piece of an intersection curve, in world space, and the two patches that meet
+/// along it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Meeting {
+    pub ends: [Vec3; 2],
+    pub patches: [u32; 2],
+}
+
 /// A block of a patch's grid cells: the cells `[i0, i1) × [j0, j1)` and their bounds.
 #[derive(Clone, Copy, Debug)]
 struct Block {
@@ -48,7 +56,7 @@ struct Block {
 /// pass through one another are. Blocks of [`BLOCK`]² cells are compared by their bounds
 /// first, so the work grows with the blocks that overlap, not with every pair of triangles.
 #[must_use]
-pub(crate) fn intersections(mesh: &Mesh) -> Vec<[Vec3; 2]> {
+pub(crate) fn intersections(mesh: &Mesh) -> Vec<Meeting> {
     let blocks: Vec<Vec<Block>> = mesh
         .grids
         .iter()
@@ -158,7 +166,7 @@ fn triangle_bounds(t: &[Vec3; 3]) -> Bounds {
 }
 
 /// The segments where the triangles of two blocks cross.
-fn block_segments(mesh: &Mesh, a: &Block, b: &Block) -> Vec<[Vec3; 2]> {
+fn block_segments(mesh: &Mesh, a: &Block, b: &Block) -> Vec<Meeting> {
     let (ta, tb) = (triangles(mesh, a), triangles(mesh, b));
     let bb: Vec<Bounds> = tb.iter().map(triangle_bounds).collect();
     let mut out = Vec::new();
@@ -169,8 +177,11 @@ fn block_segments(mesh: &Mesh, a: &Block, b: &Block) -> Vec<[Vec3; 2]> {
         }
         for (u, bu) in tb.iter().zip(&bb) {
             if bt.overlaps(bu) {
-                if let Some(segment) = triangle_crossing(t, u) {
-                    out.push(segment);
+                if let Some(ends) = triangle_crossing(t, u) {
+                    out.push(Meeting {
+                        ends,
+                        patches: [a.patch, b.patch],
+                    });
                 }
             }
         }

@@ -10,7 +10,9 @@
 //! Pieces that share an end are joined into lines ([`chain`]); each line is cut into samples
 //! half a pixel apart, each kept when no nearer surface hides it ([`visible`]), and each
 //! visible stretch is drawn as capsules of the line's width ([`stroke`]): where capsules meet,
-//! the joins are round.
+//! the joins are round. Each patch's [`LineStyle`] says which kinds of line it draws, how wide,
+//! in what colour and with what taper; a piece on two patches (a seam, an intersection) is
+//! drawn by the wider of the styles that draw its kind.
 
 mod border;
 mod chain;
@@ -24,23 +26,32 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::camera::Camera;
-use super::gbuffer::PIXELS_PER_JOB;
+use super::line_style::{LineKind, LineStyle};
 use super::raster::VisibilityBuffer;
 use super::renderer::{premultiplied, straight};
 use super::scene::Outlines;
 use super::tessellate::Mesh;
 use crate::geom::PatchLibrary;
-use piece::{LineKind, Piece};
+use piece::Piece;
 use stroke::Capsule;
 use visible::DepthTest;
+
+pub(super) use intersection::Meeting;
 
 /// The lines of a frame: per output pixel their coverage and colour.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct LineImage {
     /// Per pixel, the lines' coverage in [0, 1].
     pub alpha: Vec<f32>,
-    /// Linear RGB of the lines.
-    pub colour: Vec3,
+    /// The lines' colours, linear RGB: one per patch, or a single one when every patch's
+    /// lines have the same.
+    palette: Vec<Vec3>,
+    /// Per pixel, its colour's index in `palette`; empty when the palette has one colour.
+    colour: Vec<u32>,
+    /// The image's width in pixels.
+    width: usize,
+    /// Per band of [`stroke::BAND`] rows, how many pixels the lines ink.
+    band_inked: Vec<u32>,
     /// How many pixels the lines ink (coverage above 0).
     pub inked: u64,
 }
@@ -54,16 +65,35 @@ impl LineImage {
 
     /// `colour` (straight alpha, one per pixel) with the lines over it:
     /// `premultiplied = α_l rgb_l + (1 − α_l) α rgb`, `α' = α_l + (1 − α_l) α`.
+    /// Bands without ink are skipped.
     pub fn composite(&self, colour: &mut [Vec4]) {
+        let band = self.width * stroke::BAND;
+        if band == 0 {
+            return;
+        }
         colour
-            .par_iter_mut()
-            .zip(&self.alpha)
-            .with_min_len(PIXELS_PER_JOB)
-            .filter(|(_, &a)| a > 0.0)
-            .for_each(|(c, &a)| {
-                let line = (self.colour * a).extend(a);
-                *c = straight(line + premultiplied(*c) * (1.0 - a));
+            .par_chunks_mut(band)
+            .zip(self.alpha.par_chunks(band))
+            .enumerate()
+            .filter(|(b, _)| self.band_inked[*b] > 0)
+            .for_each(|(b, (colours, alpha))| {
+                for (k, (c, &a)) in colours.iter_mut().zip(alpha).enumerate() {
+                    if a > 0.0 {
+                        let line = (self.colour_at(b * band + k) * a).extend(a);
+                        *c = straight(line + premultiplied(*c) * (1.0 - a));
+                    }
+                }
             });
+    }
+
+    /// The colour of the line at pixel `p`.
+    #[inline]
+    #[must_use]
+    pub fn colour_at(&self, p: usize) -> Vec3 {
+        match self.colour.get(p) {
+            Some(&index) => self.palette[index as usize],
+            None => self.palette.first().copied().unwrap_or(Vec3::ZERO),
+        }
     }
 
     /// The lines alone, straight alpha: the outline AOV.
@@ -71,9 +101,10 @@ impl LineImage {
     pub fn alone(&self) -> Vec<Vec4> {
         self.alpha
             .iter()
-            .map(|&a| {
+            .enumerate()
+            .map(|(p, &a)| {
                 if a > 0.0 {
-                    self.colour.extend(a)
+                    self.colour_at(p).extend(a)
                 } else {
                     Vec4::ZERO
                 }
@@ -89,13 +120,13 @@ pub(super) struct MeshLines {
     /// The [`Tessellator::generation`](super::tessellate::Tessellator::generation) of the mesh
     /// they were found on.
     generation: u64,
-    intersections: Vec<[Vec3; 2]>,
+    intersections: Vec<Meeting>,
 }
 
 impl MeshLines {
     /// The intersections of `mesh`, of tessellation `generation`: found again only when the
     /// mesh is not the one they were found on.
-    pub fn intersections(&mut self, mesh: &Mesh, generation: u64) -> &[[Vec3; 2]] {
+    pub fn intersections(&mut self, mesh: &Mesh, generation: u64) -> &[Meeting] {
         if self.generation != generation || generation == 0 {
             self.intersections = intersection::intersections(mesh);
             self.generation = generation;
@@ -109,7 +140,7 @@ pub(super) struct LineInput<'a> {
     pub library: &'a PatchLibrary,
     pub mesh: &'a Mesh,
     /// Where the mesh's patches pass through one another ([`MeshLines::intersections`]).
-    pub intersections: &'a [[Vec3; 2]],
+    pub intersections: &'a [Meeting],
     pub camera: &'a Camera,
     pub view_projection: Mat4,
     /// The frame's depth, `k × k` samples per pixel.
@@ -117,12 +148,42 @@ pub(super) struct LineInput<'a> {
     pub k: u32,
     /// The image in pixels.
     pub size: (u32, u32),
+    /// Per patch of the library, how its lines are drawn.
+    pub styles: &'a [LineStyle],
 }
 
-/// The lines `outlines` asks for, over an image of `input.size` pixels.
+/// Whether some patch draws lines of `kind`.
+#[must_use]
+pub(super) fn draws(styles: &[LineStyle], kind: LineKind) -> bool {
+    styles.iter().any(|s| s.width > 0.0 && s.kinds.holds(kind))
+}
+
+/// The patch whose style draws `piece`: of the patches it lies on, those whose style draws its
+/// kind at a width above 0, the widest (the first of equals); None when none does.
+#[must_use]
+fn style_of(piece: &Piece, styles: &[LineStyle]) -> Option<u32> {
+    let [p, q] = piece.patches;
+    let draws = |k: u32| {
+        let style = &styles[k as usize];
+        (style.width > 0.0 && style.kinds.holds(piece.kind)).then_some((style.width, k))
+    };
+    match (draws(p), draws(q)) {
+        (Some((wp, p)), Some((wq, q))) => Some(if wq > wp || (wq == wp && q < p) { q } else { p }),
+        (Some((_, k)), None) | (None, Some((_, k))) => Some(k),
+        (None, None) => None,
+    }
+}
+
+/// The lines `outlines` and the patches' styles ask for, over an image of `input.size` pixels.
 #[must_use]
 pub(super) fn draw_lines(input: &LineInput, outlines: &Outlines) -> LineImage {
+    let styles = input.styles;
+    let draws_silhouettes = |patch: u32| {
+        let style = &styles[patch as usize];
+        style.width > 0.0 && style.kinds.holds(LineKind::Silhouette)
+    };
     let mut pieces: Vec<Piece> = contour::silhouettes(
+        draws_silhouettes,
         input.mesh,
         input.library,
         input.camera,
@@ -136,20 +197,26 @@ pub(super) fn draw_lines(input: &LineInput, outlines: &Outlines) -> LineImage {
         input.view_projection,
         input.size,
         outlines,
+        styles,
     ));
-    pieces.extend(input.intersections.iter().map(|&[a, b]| Piece {
-        ends: [a.as_dvec3(), b.as_dvec3()],
-        on_mesh: [a, b],
+    pieces.extend(input.intersections.iter().map(|m| Piece {
+        ends: m.ends.map(|p| p.as_dvec3()),
+        on_mesh: m.ends,
         opacity: 1.0,
         kind: LineKind::Intersection,
+        patches: m.patches,
     }));
+    let (pieces, style): (Vec<Piece>, Vec<u32>) = pieces
+        .into_iter()
+        .filter_map(|piece| style_of(&piece, styles).map(|s| (piece, s)))
+        .unzip();
     let (w, h) = input.size;
     let depth = DepthTest::new(input.visibility, input.k, input.camera);
-    let radius = 0.5 * outlines.width.max(1.0);
     let screen: Vec<_> = pieces
         .par_iter()
+        .zip(&style)
         .with_min_len(256)
-        .map(|piece| piece.on_screen(input.view_projection, input.size, radius))
+        .map(|(piece, &s)| piece.on_screen(input.view_projection, input.size, styles, s))
         .collect();
     let shows: Vec<Vec<bool>> = screen
         .par_iter()
@@ -159,17 +226,34 @@ pub(super) fn draw_lines(input: &LineInput, outlines: &Outlines) -> LineImage {
                 .map_or_else(Vec::new, |on| chain::sample_piece(on, &depth))
         })
         .collect();
-    let capsules: Vec<Capsule> = chain::chains(&pieces)
+    let mut capsules: Vec<Capsule> = chain::chains(&pieces)
         .par_iter()
-        .flat_map_iter(|line| chain::visible_capsules(line, &screen, &shows, radius))
+        .flat_map_iter(|line| chain::visible_capsules(line, &screen, &shows))
         .collect();
-    let mut alpha = vec![0.0; w as usize * h as usize];
-    stroke::draw(&capsules, (w, h), &mut alpha);
-    let inked = alpha.iter().filter(|&&a| a > 0.0).count() as u64;
+    let one_colour = styles.windows(2).all(|s| s[0].colour == s[1].colour);
+    let palette: Vec<Vec3> = if one_colour {
+        styles.first().map(|s| s.colour).into_iter().collect()
+    } else {
+        styles.iter().map(|s| s.colour).collect()
+    };
+    if one_colour {
+        capsules.iter_mut().for_each(|c| c.colour = 0);
+    }
+    let pixels = w as usize * h as usize;
+    let mut alpha = vec![0.0; pixels];
+    let mut colour = if one_colour {
+        Vec::new()
+    } else {
+        vec![0; pixels]
+    };
+    let band_inked = stroke::draw(&capsules, (w, h), &mut alpha, &mut colour);
     LineImage {
         alpha,
-        colour: outlines.colour,
-        inked,
+        palette,
+        colour,
+        width: w as usize,
+        inked: band_inked.iter().map(|&n| u64::from(n)).sum(),
+        band_inked,
     }
 }
 

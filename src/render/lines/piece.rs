@@ -5,20 +5,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 
 use super::stroke::Capsule;
 use super::to_screen;
-
-/// The kinds of line: what decided that a curve is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum LineKind {
-    /// Where the surface turns from facing the eye to facing away (`N·(P − E) = 0`).
-    Silhouette,
-    /// Where two patches meet at an angle above the crease angle.
-    Crease,
-    /// A patch's boundary that no other patch continues, or (with patch borders on) one where
-    /// two patches meet.
-    Border,
-    /// Where two patches pass through each other.
-    Intersection,
-}
+use crate::render::line_style::{LineKind, LineStyle};
 
 /// A straight piece of a line between two points.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,6 +19,9 @@ pub(crate) struct Piece {
     /// How strongly the piece is inked, in [0, 1] (a crease fading with its angle).
     pub opacity: f32,
     pub kind: LineKind,
+    /// The patches it lies on: the same twice for a curve of one patch, the two patches for a
+    /// seam or an intersection.
+    pub patches: [u32; 2],
 }
 
 /// A piece seen on the image: its ends in pixels and their NDC depths.
@@ -42,6 +32,12 @@ pub(crate) struct OnScreen {
     on_mesh: [Vec2; 2],
     depths: [f32; 2],
     opacity: f32,
+    /// Half the width of its line, in pixels.
+    pub radius: f32,
+    /// Over how many pixels from a stretch's ends its line narrows ([`LineStyle::taper`]).
+    pub taper: f32,
+    /// The patch whose style draws it, which names its colour.
+    pub style: u32,
     /// How far around its points the depth test looks ([`DepthTest::shows`]).
     ///
     /// [`DepthTest::shows`]: super::visible::DepthTest::shows
@@ -49,15 +45,18 @@ pub(crate) struct OnScreen {
 }
 
 impl Piece {
-    /// The piece on an image of `size` pixels through `view_projection`; None when an end is
-    /// at or behind the eye, or the piece, widened by `radius`, misses the image.
+    /// The piece on an image of `size` pixels through `view_projection`, drawn in the style of
+    /// patch `style` (`styles[style]`); None when an end is at or behind the eye, or the piece,
+    /// widened by half its width, misses the image.
     #[must_use]
     pub fn on_screen(
         &self,
         view_projection: Mat4,
         size: (u32, u32),
-        radius: f32,
+        styles: &[LineStyle],
+        style: u32,
     ) -> Option<OnScreen> {
+        let radius = 0.5 * styles[style as usize].width;
         let project = |p: Vec3| to_screen(view_projection * p.extend(1.0), size);
         let (a, _) = project(self.ends[0].as_vec3())?;
         let (b, _) = project(self.ends[1].as_vec3())?;
@@ -71,6 +70,9 @@ impl Piece {
             on_mesh: [ma, mb],
             depths: [za, zb],
             opacity: self.opacity,
+            radius,
+            taper: styles[style as usize].taper,
+            style,
             reach: match self.kind {
                 LineKind::Silhouette | LineKind::Intersection => 1.0,
                 LineKind::Crease | LineKind::Border => 0.5,
@@ -109,14 +111,16 @@ impl OnScreen {
         self.reach + apart(0) + (apart(1) - apart(0)) * t
     }
 
-    /// The stretch from fraction `t0` to `t1` as a capsule of `radius`.
+    /// The stretch from fraction `t0` to `t1` as a capsule whose radius runs from `radii[0]`
+    /// to `radii[1]`.
     #[must_use]
-    pub fn capsule(&self, t0: f32, t1: f32, radius: f32) -> Capsule {
+    pub fn capsule(&self, t0: f32, t1: f32, radii: [f32; 2]) -> Capsule {
         Capsule {
             a: self.point(t0),
             b: self.point(t1),
-            radius,
+            radii,
             opacity: self.opacity,
+            colour: self.style,
         }
     }
 }

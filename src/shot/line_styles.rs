@@ -1,0 +1,192 @@
+//! A shot's line styles: the outlines' own, and the `lines` entries that restyle the patches
+//! they pick — which patches each entry picks, what each sets at a frame, and the style each
+//! patch ends with.
+
+use glam::Vec3;
+
+use super::file::{LineSpec, OutlinesSpec};
+use super::glob;
+use super::load::no_match_message;
+use super::source::Source;
+use super::ShotError;
+use crate::anim::Keyed;
+use crate::formats::ron_location::closest_name;
+use crate::formats::ron_paths::Step::{Field, Index};
+use crate::geom::PatchLibrary;
+use crate::render::{LineKinds, LineStyle, Outlines};
+
+/// The fields a `lines` entry sets, read at one frame; None where it leaves the field as the
+/// outlines (or an earlier entry) set it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineFields {
+    pub width: Option<f32>,
+    pub colour: Option<Vec3>,
+    pub kinds: Option<LineKinds>,
+    pub taper: Option<f32>,
+}
+
+impl LineFields {
+    /// `style` with the fields this entry sets replaced.
+    #[must_use]
+    pub fn over(&self, style: LineStyle) -> LineStyle {
+        LineStyle {
+            width: self.width.unwrap_or(style.width),
+            colour: self.colour.unwrap_or(style.colour),
+            kinds: self.kinds.unwrap_or(style.kinds),
+            taper: self.taper.unwrap_or(style.taper),
+        }
+    }
+}
+
+impl LineSpec {
+    /// The fields this entry sets, read at `frame`.
+    #[must_use]
+    pub fn at(&self, frame: f64) -> LineFields {
+        LineFields {
+            width: self.width.as_ref().map(|t| t.at(frame)),
+            colour: self.colour.as_ref().map(|t| t.at(frame)),
+            kinds: self.kinds.as_deref().map(LineKinds::of),
+            taper: self.taper.as_ref().map(|t| t.at(frame)),
+        }
+    }
+
+    /// Calls `f` with each track the entry sets.
+    pub(super) fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
+        let LineSpec {
+            patches: _,
+            material: _,
+            width,
+            colour,
+            kinds: _,
+            taper,
+        } = self;
+        if let Some(width) = width {
+            f(width);
+        }
+        if let Some(colour) = colour {
+            f(colour);
+        }
+        if let Some(taper) = taper {
+            f(taper);
+        }
+    }
+}
+
+impl OutlinesSpec {
+    /// The outlines at `frame`, and the style of a patch no `lines` entry restyles.
+    #[must_use]
+    pub fn at(&self, frame: f64) -> (Outlines, LineStyle) {
+        let outlines = Outlines {
+            width: self.width.at(frame),
+            colour: self.colour.at(frame),
+            crease_degrees: self.crease_degrees,
+            patch_borders: self.patch_borders,
+        };
+        let style = LineStyle {
+            kinds: self.kinds.as_deref().map_or(LineKinds::ALL, LineKinds::of),
+            taper: self.taper.at(frame),
+            ..outlines.style()
+        };
+        (outlines, style)
+    }
+
+    /// Calls `f` with each of its tracks.
+    pub(super) fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
+        let OutlinesSpec {
+            width,
+            colour,
+            crease_degrees: _,
+            patch_borders: _,
+            kinds: _,
+            taper,
+        } = self;
+        f(width);
+        f(colour);
+        f(taper);
+    }
+}
+
+/// Per patch of `library`, the `lines` entries (indices into `lines`) that pick it, in the
+/// order written: an entry picks the patches its `patches` selector names (patches or parts,
+/// as a highlight's selector does) or the patches of its `material` (`patch_material` and
+/// `materials` name each patch's). An entry must set exactly one of the two, and pick some
+/// patch.
+pub(super) fn select_lines(
+    lines: &[LineSpec],
+    library: &PatchLibrary,
+    patch_material: &[usize],
+    materials: &[&str],
+    source: &Source,
+) -> Result<Vec<Vec<u32>>, ShotError> {
+    let mut picked: Vec<Vec<u32>> = vec![Vec::new(); library.patches.len()];
+    for (entry, spec) in lines.iter().enumerate() {
+        let at = |steps: &[crate::formats::ron_paths::Step], message: String| {
+            let mut path = vec![Field("lines"), Index(entry)];
+            path.extend_from_slice(steps);
+            source.error_at(&path, message)
+        };
+        let mut pick = |patch: usize| {
+            if picked[patch].last() != Some(&(entry as u32)) {
+                picked[patch].push(entry as u32);
+            }
+        };
+        match (&spec.patches, &spec.material) {
+            (Some(selector), None) => {
+                for (index, pattern) in selector.patterns().iter().enumerate() {
+                    let mut any = false;
+                    for (patch, named) in library.patches.iter().enumerate() {
+                        if glob::matches(pattern, &named.name) {
+                            pick(patch);
+                            any = true;
+                        }
+                    }
+                    for group in &library.groups {
+                        if glob::matches(pattern, &group.name) {
+                            group.patches.iter().for_each(|&patch| pick(patch));
+                            any = true;
+                        }
+                    }
+                    if !any {
+                        return Err(at(
+                            &[Field("patches"), Index(index)],
+                            no_match_message(pattern, library),
+                        ));
+                    }
+                }
+            }
+            (None, Some(name)) => {
+                let Some(material) = materials.iter().position(|m| m == name) else {
+                    let mut message = format!("the shot has no material \"{name}\"");
+                    if let Some(close) = closest_name(name, materials) {
+                        message.push_str(&format!("; did you mean \"{close}\"?"));
+                    }
+                    return Err(at(&[Field("material")], message));
+                };
+                let mut any = false;
+                for (patch, _) in patch_material
+                    .iter()
+                    .enumerate()
+                    .filter(|&(_, &m)| m == material)
+                {
+                    pick(patch);
+                    any = true;
+                }
+                if !any {
+                    return Err(at(
+                        &[Field("material")],
+                        format!("no instance uses the material \"{name}\", so this entry styles nothing"),
+                    ));
+                }
+            }
+            (Some(_), Some(_)) | (None, None) => {
+                return Err(at(
+                    &[],
+                    "a lines entry picks its patches by `patches: \"PATTERN\"` or by \
+                     `material: \"NAME\"`: give exactly one"
+                        .to_string(),
+                ));
+            }
+        }
+    }
+    Ok(picked)
+}
