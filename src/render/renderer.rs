@@ -372,7 +372,8 @@ impl Stages {
                     size: (settings.width, settings.height),
                     styles: &styles,
                 };
-                let image = outline(&input, outlines, &mut stats);
+                let recycled = kept_lines.take().map(|kept| kept.image);
+                let image = outline(&input, outlines, recycled, &mut stats);
                 stats.add_seconds(Stage::Outline, seconds);
                 *kept_lines = Some(KeptLines {
                     outlines: *outlines,
@@ -548,8 +549,13 @@ fn widths(gbuffer: &GBuffer, scene: &Scene, stats: &mut RenderStats) -> EdgeWidt
 
 /// [`Stage::Outline`]: the lines, found on the mesh and tested against the frame's depth, as
 /// coverage at output resolution (composited over the colour once it is resolved).
-fn outline(input: &LineInput, outlines: &Outlines, stats: &mut RenderStats) -> LineImage {
-    let (lines, seconds) = timed(|| draw_lines(input, outlines));
+fn outline(
+    input: &LineInput,
+    outlines: &Outlines,
+    recycled: Option<LineImage>,
+    stats: &mut RenderStats,
+) -> LineImage {
+    let (lines, seconds) = timed(|| draw_lines(input, outlines, recycled));
     stats.record(Stage::Outline, lines.inked, seconds);
     lines
 }

@@ -42,16 +42,27 @@ pub(crate) struct Chain {
 pub(crate) fn chains(pieces: &[Piece]) -> Vec<Chain> {
     let point_ids = same_points(pieces);
     let key = |p: usize, end: usize| point_ids[2 * p + end];
-    let mut at: HashMap<usize, Vec<(usize, usize)>> = HashMap::with_capacity(2 * pieces.len());
-    for k in 0..pieces.len() {
-        at.entry(key(k, 0)).or_default().push((k, 0));
-        at.entry(key(k, 1)).or_default().push((k, 1));
+    // The ends at each point, `(piece, end)`: those of point `i` at `at[first[i]..first[i + 1]]`.
+    let points = point_ids.iter().max().map_or(0, |&m| m + 1);
+    let mut first = vec![0usize; points + 1];
+    for &id in &point_ids {
+        first[id + 1] += 1;
     }
+    for i in 0..points {
+        first[i + 1] += first[i];
+    }
+    let mut filled = first.clone();
+    let mut at = vec![(0usize, 0usize); point_ids.len()];
+    for (k, &id) in point_ids.iter().enumerate() {
+        at[filled[id]] = (k / 2, k % 2);
+        filled[id] += 1;
+    }
+    let ends_at = |id: usize| &at[first[id]..first[id + 1]];
     let mut used = vec![false; pieces.len()];
     // The piece continuing a line from the end point of `(piece, end)`, if exactly one other
     // piece ends there and it is unused: `(piece, end it enters by)`.
     let next = |used: &[bool], piece: usize, end: usize| -> Option<(usize, usize)> {
-        match at[&key(piece, end)][..] {
+        match *ends_at(key(piece, end)) {
             [a, b] => {
                 let other = if a.0 == piece { b } else { a };
                 (other.0 != piece && !used[other.0]).then_some(other)
@@ -98,23 +109,25 @@ pub(crate) fn chains(pieces: &[Piece]) -> Vec<Chain> {
 const SAME_POINT: f64 = 1e-7;
 
 /// Per end of each piece (`2 k + end`), an id shared by the ends within [`SAME_POINT`] of one
-/// another. Ends that are bit for bit the same point (most joins: both triangles of an edge
-/// compute its crossing alike) share an id at once; an end no other matches exactly — a loose
+/// another, the ids counting up from 0. Ends that are bit for bit the same point (most joins:
+/// both triangles of an edge compute its crossing alike) share an id at once; an end no other matches exactly — a loose
 /// end, where a seam between patches cut the line — then takes the id of the first loose end
 /// met within that distance, looked for in the 27 grid cells around it (cells that wide).
 fn same_points(pieces: &[Piece]) -> Vec<usize> {
     let ends: Vec<DVec3> = pieces.iter().flat_map(|p| p.ends).collect();
-    let mut exact: HashMap<[u64; 3], usize> = HashMap::with_capacity(ends.len());
-    let mut ids: Vec<usize> = ends
-        .iter()
-        .map(|point| {
-            let next = exact.len();
-            *exact
-                .entry(point.to_array().map(f64::to_bits))
-                .or_insert(next)
-        })
-        .collect();
-    let mut uses = vec![0u32; exact.len()];
+    // Ends sorted by their bits: equal points side by side, numbered in order.
+    let bits = |k: usize| ends[k].to_array().map(f64::to_bits);
+    let mut order: Vec<usize> = (0..ends.len()).collect();
+    order.sort_unstable_by_key(|&k| bits(k));
+    let mut ids = vec![0usize; ends.len()];
+    let mut distinct = 0;
+    for (n, &k) in order.iter().enumerate() {
+        if n > 0 && bits(order[n - 1]) != bits(k) {
+            distinct += 1;
+        }
+        ids[k] = distinct;
+    }
+    let mut uses = vec![0u32; distinct + usize::from(!ends.is_empty())];
     for &id in &ids {
         uses[id] += 1;
     }

@@ -174,9 +174,14 @@ fn style_of(piece: &Piece, styles: &[LineStyle]) -> Option<u32> {
     }
 }
 
-/// The lines `outlines` and the patches' styles ask for, over an image of `input.size` pixels.
+/// The lines `outlines` and the patches' styles ask for, over an image of `input.size` pixels,
+/// drawn into the buffers of `recycled` (an earlier frame's lines, if any) rather than new ones.
 #[must_use]
-pub(super) fn draw_lines(input: &LineInput, outlines: &Outlines) -> LineImage {
+pub(super) fn draw_lines(
+    input: &LineInput,
+    outlines: &Outlines,
+    recycled: Option<LineImage>,
+) -> LineImage {
     let styles = input.styles;
     let draws_silhouettes = |patch: u32| {
         let style = &styles[patch as usize];
@@ -240,12 +245,13 @@ pub(super) fn draw_lines(input: &LineInput, outlines: &Outlines) -> LineImage {
         capsules.iter_mut().for_each(|c| c.colour = 0);
     }
     let pixels = w as usize * h as usize;
-    let mut alpha = vec![0.0; pixels];
-    let mut colour = if one_colour {
-        Vec::new()
-    } else {
-        vec![0; pixels]
-    };
+    let (mut alpha, mut colour) = recycled.map_or_else(Default::default, |r| (r.alpha, r.colour));
+    alpha.clear();
+    alpha.resize(pixels, 0.0);
+    colour.clear();
+    if !one_colour {
+        colour.resize(pixels, 0);
+    }
     let band_inked = stroke::draw(&capsules, (w, h), &mut alpha, &mut colour);
     LineImage {
         alpha,
