@@ -7,7 +7,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
-use glint::formats::{parse_bpt, parse_patch_ron, toon_texture_from_png};
+use glint::formats::{parse_bpt, parse_patch_ron, parse_usda, toon_texture_from_png};
 use glint::job::{parse_frames, Overrides, RenderJob};
 use glint::shot::{load_shot_text, Preset};
 
@@ -245,24 +245,25 @@ fn mutated_shots_patches_and_textures_never_panic_or_render_nan() {
     for path in shipped("patches", "ron")
         .into_iter()
         .chain(shipped("patches", "bpt"))
+        .chain(shipped("patches", "usda"))
     {
         let text = std::fs::read_to_string(&path).unwrap();
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
         if name.ends_with(".parts.ron") {
             continue;
         }
-        let bpt = name.ends_with(".bpt");
+        let extension = path.extension().unwrap().to_string_lossy().into_owned();
         for _ in 0..cases {
             let mutated = mutate(&text, &mut rng);
             tally.run(&name, &mutated, |t| {
-                let read = if bpt {
-                    parse_bpt(&mutated, &name)
-                } else {
-                    parse_patch_ron(&mutated, &name)
+                let read = match extension.as_str() {
+                    "bpt" => parse_bpt(&mutated, &name),
+                    "usda" => parse_usda(&mutated, &name),
+                    _ => parse_patch_ron(&mutated, &name),
                 };
                 read.map_err(|e| e.to_string())?;
                 let dir = tempfile::tempdir().unwrap();
-                let model = dir.path().join(if bpt { "model.bpt" } else { "model.ron" });
+                let model = dir.path().join(format!("model.{extension}"));
                 std::fs::write(&model, &mutated).unwrap();
                 let shot = dir.path().join("shot.ron");
                 let text = sphere_shot("", model.to_str().unwrap());
@@ -370,6 +371,11 @@ fn the_corpus_of_inputs_that_once_broke_a_reader_is_refused_or_rendered_cleanly(
             }),
             "bpt" => tally.run(&name, &text, |_| {
                 parse_bpt(&text, &name)
+                    .map(|_| ())
+                    .map_err(|e| e.to_string())
+            }),
+            "usda" => tally.run(&name, &text, |_| {
+                parse_usda(&text, &name)
                     .map(|_| ())
                     .map_err(|e| e.to_string())
             }),

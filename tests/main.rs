@@ -49,6 +49,7 @@ mod toon_shape;
 mod toon_texture;
 mod tune_http;
 mod tutorial;
+mod usd_import;
 
 /// `autotests = false` makes this file the only test crate: a test file it does not declare
 /// would never be compiled, let alone run.

@@ -22,7 +22,7 @@ use crate::geom::Frame;
   glint probe patches/sphere.ron --patch sphere --uv 0.25,0.5
   glint probe patches/teapot.bpt --patch 20 --uv 0,0 --uv 0.5,0.5 --uv 1,1")]
 pub struct ProbeArgs {
-    /// Patch file: a RON patch library (.ron) or Bezier patches (.bpt)
+    /// Patch file: a RON patch library (.ron), Bezier patches (.bpt) or a USD text layer (.usda)
     file: PathBuf,
     /// Patch name, or its 0-based index in the file
     #[arg(long, value_name = "NAME_OR_INDEX")]

@@ -1,5 +1,5 @@
-//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, 2D toon textures,
-//! and the PNG and EXR files of rendered frames.
+//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, USD text layers,
+//! 2D toon textures, and the PNG and EXR files of rendered frames.
 
 pub mod atomic;
 mod bpt;
@@ -15,6 +15,7 @@ pub mod ron_paths;
 mod srgb;
 pub mod text_file;
 mod texture;
+mod usda;
 
 use std::path::Path;
 
@@ -29,6 +30,7 @@ pub use frame_files::{
 pub use patch_ron::parse_patch_ron;
 pub use srgb::{linear_to_srgb, srgb_to_linear};
 pub use texture::{read_toon_texture, toon_texture_from_png, toon_texture_from_srgb8};
+pub use usda::{parse_usda, MAX_PATCHES as MAX_USD_PATCHES};
 
 /// A file that could not be read, with where in it the problem is.
 #[derive(Debug, Error)]
@@ -40,6 +42,13 @@ pub enum FormatError {
     },
     #[error("{path}:{line}:{col}: {message}")]
     Ron {
+        path: String,
+        line: usize,
+        col: usize,
+        message: String,
+    },
+    #[error("{path}:{line}:{col}: {message}")]
+    Usd {
         path: String,
         line: usize,
         col: usize,
@@ -57,7 +66,7 @@ pub enum FormatError {
     #[error("{path}: cannot read the file: {message}")]
     File { path: String, message: String },
     #[error(
-        "{path}: unknown patch file type; use .ron (a patch library) or .bpt (Bezier patches)"
+        "{path}: unknown patch file type; use .ron (a patch library), .bpt (Bezier patches) or .usda (USD text)"
     )]
     UnknownKind { path: String },
     #[error(
@@ -113,6 +122,16 @@ pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
     let parse = match kind.as_deref() {
         Some("ron") => parse_patch_ron,
         Some("bpt") => parse_bpt,
+        Some("usda") => parse_usda,
+        Some("usd" | "usdc" | "usdz") => {
+            return Err(FormatError::File {
+                path: shown.clone(),
+                message: format!(
+                    "glint reads USD as text (.usda); convert this file with usdcat, from the usd-core Python package: usdcat --flatten {} -o model.usda",
+                    path.display()
+                ),
+            })
+        }
         _ => return Err(FormatError::UnknownKind { path: shown }),
     };
     let text = text_file::read_text(path).map_err(|e| match e {

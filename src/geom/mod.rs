@@ -16,7 +16,7 @@ pub use edges::Edge;
 pub use error::GeomError;
 pub use frame::Frame;
 pub use grid::GridEvaluator;
-pub use knots::KnotVector;
+pub use knots::{KnotVector, MAX_DEGREE};
 pub use library::{NamedPatch, PatchGroup, PatchLibrary, PatchNotFound};
 pub use on_ray::{RaySearch, ALL_EVALUATIONS, REFINE_STEPS};
 pub use surface::{Domain, NurbsSurface, SurfaceDerivs, MAX_COORDINATE, MAX_WEIGHT, MIN_WEIGHT};

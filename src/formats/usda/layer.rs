@@ -1,0 +1,426 @@
+//! A USDA layer read into prims, properties and values, each with where it is written; what
+//! composes layers (references, payloads, inherits, variants, sublayers), animates values (time
+//! samples, splines) or connects them is refused where it is written.
+
+use super::lexer::{Spanned, Token};
+
+/// A value as written.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Value {
+    Number(f64),
+    /// A string or token.
+    Str(String),
+    /// `(a, b, …)`
+    Tuple(Vec<Value>),
+    /// `[a, b, …]`
+    List(Vec<Value>),
+    /// A word (`None`, `true`, an identifier), a path, an asset or a dictionary: nothing glint
+    /// reads a number from.
+    Other,
+}
+
+/// An attribute or relationship.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Property {
+    /// `xformOp:translate`, `points`.
+    pub name: String,
+    /// The type as written (`double3`, `point3f`), with `[]` for arrays; `rel` for a
+    /// relationship.
+    pub type_name: String,
+    pub value: Option<Value>,
+    /// Where its name is written.
+    pub at: usize,
+}
+
+/// A prim: `def TYPE "name" (metadata) { … }`.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Prim {
+    pub type_name: Option<String>,
+    pub name: String,
+    /// Where `def` is written.
+    pub at: usize,
+    /// `active = false` in its metadata.
+    pub inactive: bool,
+    pub properties: Vec<Property>,
+    pub children: Vec<Prim>,
+}
+
+impl Prim {
+    /// The property named `name`, if written.
+    #[must_use]
+    pub fn property(&self, name: &str) -> Option<&Property> {
+        self.properties.iter().find(|p| p.name == name)
+    }
+}
+
+/// A layer: its metadata's `upAxis` and its root prims.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Layer {
+    pub up_axis: Option<(String, usize)>,
+    pub prims: Vec<Prim>,
+}
+
+/// What cannot be read, and where.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct ParseError {
+    pub at: usize,
+    pub message: String,
+}
+
+/// Metadata keys that compose other layers or variants into a prim or layer.
+const COMPOSITION: [&str; 8] = [
+    "references",
+    "payload",
+    "inherits",
+    "specializes",
+    "variantSets",
+    "variants",
+    "subLayers",
+    "relocates",
+];
+
+/// List-operation prefixes of metadata and relationships.
+const LIST_OPS: [&str; 6] = ["prepend", "append", "add", "delete", "reorder", "explicit"];
+
+/// The most prims and child prims may nest.
+const MAX_DEPTH: usize = 256;
+
+/// Reads the layer whose tokens (after the header line) are `tokens`, `end` the text's length.
+pub(super) fn parse(tokens: &[Spanned], end: usize) -> Result<Layer, ParseError> {
+    let mut p = Parser { tokens, i: 0, end };
+    let mut layer = Layer {
+        up_axis: None,
+        prims: Vec::new(),
+    };
+    if p.peek_punct('(') {
+        let meta = p.metadata("the layer")?;
+        layer.up_axis = meta.up_axis;
+    }
+    while p.i < tokens.len() {
+        layer.prims.push(p.prim(0)?);
+    }
+    Ok(layer)
+}
+
+struct Parser<'a> {
+    tokens: &'a [Spanned],
+    i: usize,
+    end: usize,
+}
+
+/// What glint reads of a metadata block.
+#[derive(Default)]
+struct Metadata {
+    up_axis: Option<(String, usize)>,
+    inactive: bool,
+}
+
+impl Parser<'_> {
+    fn at(&self) -> usize {
+        self.tokens.get(self.i).map_or(self.end, |t| t.at)
+    }
+
+    fn error<T>(&self, message: impl Into<String>) -> Result<T, ParseError> {
+        Err(ParseError {
+            at: self.at(),
+            message: message.into(),
+        })
+    }
+
+    fn peek(&self) -> Option<&Token> {
+        self.tokens.get(self.i).map(|t| &t.token)
+    }
+
+    fn peek_punct(&self, c: char) -> bool {
+        self.peek() == Some(&Token::Punct(c))
+    }
+
+    fn peek_word(&self) -> Option<&str> {
+        match self.peek() {
+            Some(Token::Word(w)) => Some(w),
+            _ => None,
+        }
+    }
+
+    fn expect_punct(&mut self, c: char, what: &str) -> Result<(), ParseError> {
+        if self.peek_punct(c) {
+            self.i += 1;
+            Ok(())
+        } else {
+            self.error(format!("expected `{c}` {what}"))
+        }
+    }
+
+    /// A prim: `def [TYPE] "name" [(metadata)] { properties and prims }`.
+    fn prim(&mut self, depth: usize) -> Result<Prim, ParseError> {
+        let at = self.at();
+        if depth > MAX_DEPTH {
+            return self.error(format!("prims nest more than {MAX_DEPTH} deep"));
+        }
+        match self.peek_word() {
+            Some("def") => self.i += 1,
+            Some(specifier @ ("over" | "class")) => {
+                return self.error(format!(
+                    "`{specifier}` prims compose opinions from other prims or layers, which glint does not read; flatten the stage (usdcat --flatten) and export again"
+                ))
+            }
+            _ => return self.error("expected a prim: `def TYPE \"name\" { … }`"),
+        }
+        let type_name = match self.peek() {
+            Some(Token::Word(w)) => {
+                let w = w.clone();
+                self.i += 1;
+                Some(w)
+            }
+            _ => None,
+        };
+        let name = match self.peek() {
+            Some(Token::Str(s)) => {
+                let s = s.clone();
+                self.i += 1;
+                s
+            }
+            _ => return self.error("expected the prim's name, in quotes"),
+        };
+        if name.is_empty() || name.contains('/') {
+            return Err(ParseError {
+                at,
+                message: format!("\"{name}\" is not a prim name"),
+            });
+        }
+        let mut inactive = false;
+        if self.peek_punct('(') {
+            let meta = self.metadata(&format!("prim \"{name}\""))?;
+            inactive = meta.inactive;
+        }
+        self.expect_punct('{', &format!("to open prim \"{name}\""))?;
+        let mut prim = Prim {
+            type_name,
+            name,
+            at,
+            inactive,
+            properties: Vec::new(),
+            children: Vec::new(),
+        };
+        loop {
+            match self.peek() {
+                None => {
+                    return Err(ParseError {
+                        at,
+                        message: format!("prim \"{}\" is not closed by `}}`", prim.name),
+                    })
+                }
+                Some(Token::Punct('}')) => {
+                    self.i += 1;
+                    return Ok(prim);
+                }
+                Some(Token::Word(w)) if w == "def" || w == "over" || w == "class" => {
+                    let child = self.prim(depth + 1)?;
+                    prim.children.push(child);
+                }
+                Some(Token::Word(w)) if w == "variantSet" => {
+                    return self.error(format!(
+                        "prim \"{}\" has a variant set, which glint does not read; choose the variant and flatten the stage (usdcat --flatten)",
+                        prim.name
+                    ))
+                }
+                Some(Token::Punct(';')) => self.i += 1,
+                _ => {
+                    if let Some(property) = self.property(&prim.name)? {
+                        prim.properties.push(property);
+                    }
+                }
+            }
+        }
+    }
+
+    /// A property: `[custom] [uniform] TYPE[[]] name[.suffix] [= value] [(metadata)]`, or
+    /// `[LIST_OP] rel name [= targets]`; None for a list edit of a relationship glint does
+    /// not read (`reorder properties`).
+    fn property(&mut self, prim: &str) -> Result<Option<Property>, ParseError> {
+        let mut list_op = false;
+        while let Some(w) = self.peek_word() {
+            if matches!(w, "custom" | "uniform" | "varying" | "config") {
+                self.i += 1;
+            } else if LIST_OPS.contains(&w) {
+                list_op = true;
+                self.i += 1;
+            } else {
+                break;
+            }
+        }
+        let Some(type_word) = self.peek_word().map(str::to_string) else {
+            return self.error(format!("expected a property of prim \"{prim}\""));
+        };
+        self.i += 1;
+        if list_op && matches!(type_word.as_str(), "nameChildren" | "properties") {
+            // `reorder nameChildren = [...]`: an ordering, nothing to read.
+            self.expect_punct('=', "after the reorder")?;
+            self.value()?;
+            return Ok(None);
+        }
+        let mut type_name = type_word;
+        if self.peek_punct('[') {
+            self.i += 1;
+            self.expect_punct(']', "to close the array type")?;
+            type_name.push_str("[]");
+        }
+        let at = self.at();
+        let name = match self.peek() {
+            Some(Token::Word(w)) => w.clone(),
+            _ => return self.error(format!("expected the name of a `{type_name}` property")),
+        };
+        self.i += 1;
+        for (suffix, what) in [(".timeSamples", "time samples"), (".spline", "a spline")] {
+            if let Some(base) = name.strip_suffix(suffix) {
+                return Err(ParseError {
+                    at,
+                    message: format!(
+                        "prim \"{prim}\": `{base}` is animated by {what}; glint reads one value per attribute (animate in the shot, or export a single frame)"
+                    ),
+                });
+            }
+        }
+        if let Some(base) = name.strip_suffix(".connect") {
+            if self.peek_punct('=') {
+                self.i += 1;
+                self.value()?;
+            }
+            return Ok(Some(Property {
+                name: base.to_string(),
+                type_name: format!("{type_name}.connect"),
+                value: None,
+                at,
+            }));
+        }
+        let value = if self.peek_punct('=') {
+            self.i += 1;
+            Some(self.value()?)
+        } else {
+            None
+        };
+        if self.peek_punct('(') {
+            self.metadata(&format!("property `{name}`"))?;
+        }
+        Ok(Some(Property {
+            name,
+            type_name,
+            value,
+            at,
+        }))
+    }
+
+    /// A metadata block `( … )` of `whose`: entries `[LIST_OP] key = value`, or a bare doc
+    /// string. Composition arcs are refused.
+    fn metadata(&mut self, whose: &str) -> Result<Metadata, ParseError> {
+        self.expect_punct('(', "to open metadata")?;
+        let mut meta = Metadata::default();
+        loop {
+            match self.peek() {
+                None => return self.error(format!("the metadata of {whose} is not closed by `)`")),
+                Some(Token::Punct(')')) => {
+                    self.i += 1;
+                    return Ok(meta);
+                }
+                Some(Token::Punct(';' | ',')) | Some(Token::Str(_)) => self.i += 1,
+                Some(Token::Word(_)) => {
+                    let entry_at = self.at();
+                    let mut key = self.peek_word().unwrap_or_default().to_string();
+                    self.i += 1;
+                    if LIST_OPS.contains(&key.as_str()) {
+                        key = self.peek_word().unwrap_or_default().to_string();
+                        self.i += 1;
+                    }
+                    if COMPOSITION.contains(&key.as_str()) {
+                        return Err(ParseError {
+                            at: entry_at,
+                            message: format!(
+                                "{whose} has `{key}`, a composition arc glint does not follow; flatten the stage into one layer (usdcat --flatten in.usda -o flat.usda)"
+                            ),
+                        });
+                    }
+                    if self.peek_punct('=') {
+                        self.i += 1;
+                        let value_at = self.at();
+                        let value = self.value()?;
+                        match (key.as_str(), value) {
+                            ("upAxis", Value::Str(axis)) => meta.up_axis = Some((axis, value_at)),
+                            ("active", Value::Other) => {
+                                meta.inactive = matches!(
+                                    self.tokens.get(self.i - 1).map(|t| &t.token),
+                                    Some(Token::Word(w)) if w == "false"
+                                );
+                            }
+                            _ => {}
+                        }
+                    }
+                }
+                _ => return self.error(format!("unexpected text in the metadata of {whose}")),
+            }
+        }
+    }
+
+    /// A value: a number, string, tuple, list, dictionary, word, path or asset.
+    fn value(&mut self) -> Result<Value, ParseError> {
+        self.value_at(0)
+    }
+
+    fn value_at(&mut self, depth: usize) -> Result<Value, ParseError> {
+        if depth > MAX_DEPTH {
+            return self.error(format!("values nest more than {MAX_DEPTH} deep"));
+        }
+        let Some(token) = self.peek().cloned() else {
+            return self.error("expected a value");
+        };
+        self.i += 1;
+        match token {
+            Token::Number(x) => Ok(Value::Number(x)),
+            Token::Str(s) => Ok(Value::Str(s)),
+            Token::Word(w) => Ok(match w.as_str() {
+                "inf" => Value::Number(f64::INFINITY),
+                "nan" => Value::Number(f64::NAN),
+                _ => Value::Other,
+            }),
+            Token::Path(_) | Token::Asset(_) => Ok(Value::Other),
+            Token::Punct(open @ ('(' | '[')) => {
+                let close = if open == '(' { ')' } else { ']' };
+                let mut items = Vec::new();
+                loop {
+                    if self.peek_punct(close) {
+                        self.i += 1;
+                        break;
+                    }
+                    items.push(self.value_at(depth + 1)?);
+                    if self.peek_punct(',') {
+                        self.i += 1;
+                    } else if !self.peek_punct(close) {
+                        return self.error(format!("expected `,` or `{close}`"));
+                    }
+                }
+                Ok(if open == '(' {
+                    Value::Tuple(items)
+                } else {
+                    Value::List(items)
+                })
+            }
+            Token::Punct('{') => {
+                // A dictionary (customData, a time-sample table read elsewhere): skipped whole.
+                let mut open = 1usize;
+                while open > 0 {
+                    match self.peek() {
+                        None => return self.error("a dictionary `{` is not closed"),
+                        Some(Token::Punct('{')) => open += 1,
+                        Some(Token::Punct('}')) => open -= 1,
+                        _ => {}
+                    }
+                    self.i += 1;
+                }
+                Ok(Value::Other)
+            }
+            Token::Punct(c) => {
+                self.i -= 1;
+                self.error(format!("expected a value, not `{c}`"))
+            }
+        }
+    }
+}

@@ -1,0 +1,264 @@
+//! A `NurbsPatch` prim as a [`NurbsSurface`]: `uVertexCount × vVertexCount` control points,
+//! row-major with u varying fastest (`points[v · uVertexCount + u]`), orders (degree + 1),
+//! knot vectors of `count + order` knots — or `count + order − 2`, Maya's own count without the
+//! end knots, which are then repeated — optional `pointWeights`, and ranges that must be the
+//! knots' whole domain.
+
+use glam::DVec3;
+
+use super::layer::{Prim, Property, Value};
+use crate::geom::{NurbsSurface, MAX_DEGREE};
+
+/// A patch that cannot be built, and where.
+pub(super) struct PatchError {
+    pub at: usize,
+    pub message: String,
+}
+
+/// The attributes of the trim-curve schema: a patch that writes any of them is trimmed.
+const TRIM_ATTRIBUTES: [&str; 6] = [
+    "trimCurve:counts",
+    "trimCurve:orders",
+    "trimCurve:vertexCounts",
+    "trimCurve:knots",
+    "trimCurve:ranges",
+    "trimCurve:points",
+];
+
+/// The surface of the `NurbsPatch` prim `prim` at `path`.
+pub(super) fn surface(prim: &Prim, path: &str) -> Result<NurbsSurface, PatchError> {
+    let err = |at: usize, message: String| PatchError {
+        at,
+        message: format!("{path}: {message}"),
+    };
+    let required = |name: &str| -> Result<&Property, PatchError> {
+        prim.property(name)
+            .ok_or_else(|| err(prim.at, format!("the NurbsPatch has no `{name}`")))
+    };
+    for name in TRIM_ATTRIBUTES {
+        if let Some(p) = prim.property(name) {
+            if !matches!(&p.value, Some(Value::List(items)) if items.is_empty()) {
+                return Err(err(
+                    p.at,
+                    "the patch is trimmed (`trimCurve:*`), and glint does not draw trim curves yet; remove the trims or split the patch at them".to_string(),
+                ));
+            }
+        }
+    }
+    for p in &prim.properties {
+        if p.type_name.ends_with(".connect") && is_read(&p.name) {
+            return Err(err(
+                p.at,
+                format!(
+                    "`{}` is connected to another attribute; glint reads written values only",
+                    p.name
+                ),
+            ));
+        }
+    }
+    let count = |name: &str| -> Result<usize, PatchError> {
+        let p = required(name)?;
+        match p.value {
+            Some(Value::Number(n)) if n.fract() == 0.0 && (1.0..=1e6).contains(&n) => {
+                Ok(n as usize)
+            }
+            _ => Err(err(
+                p.at,
+                format!("`{name}` must be a whole number from 1 to 10⁶"),
+            )),
+        }
+    };
+    let (nu, nv) = (count("uVertexCount")?, count("vVertexCount")?);
+    let order = |name: &str, vertices: usize| -> Result<usize, PatchError> {
+        let p = required(name)?;
+        let o = count(name)?;
+        if !(2..=MAX_DEGREE + 1).contains(&o) {
+            return Err(err(
+                p.at,
+                format!("`{name}` {o} is outside the orders glint evaluates, 2 to {} (degree 1 to {MAX_DEGREE})", MAX_DEGREE + 1),
+            ));
+        }
+        if o > vertices {
+            return Err(err(
+                p.at,
+                format!("`{name}` {o} is more than the {vertices} vertices along it"),
+            ));
+        }
+        Ok(o)
+    };
+    let (ou, ov) = (order("uOrder", nu)?, order("vOrder", nv)?);
+    let knots = |name: &str, vertices: usize, order: usize| -> Result<Vec<f64>, PatchError> {
+        let p = required(name)?;
+        let mut k = numbers(p).map_err(|m| err(p.at, format!("`{name}` {m}")))?;
+        if k.len() + 2 == vertices + order && !k.is_empty() {
+            // Maya's count: the end knots are implied.
+            k.insert(0, k[0]);
+            k.push(k[k.len() - 1]);
+        }
+        if k.len() != vertices + order {
+            return Err(err(
+                p.at,
+                format!("`{name}` has {} knots; {vertices} vertices of order {order} take {} (or {}, without the end knots)", k.len(), vertices + order, vertices + order - 2),
+            ));
+        }
+        if let Some(w) = k.windows(2).position(|w| w[1] < w[0]) {
+            return Err(err(
+                p.at,
+                format!(
+                    "`{name}` decreases at knot {}: {} after {}",
+                    w + 1,
+                    k[w + 1],
+                    k[w]
+                ),
+            ));
+        }
+        if k[order - 1] >= k[vertices] {
+            return Err(err(
+                p.at,
+                format!(
+                    "`{name}` spans no parameter range (knots {} to {} are equal)",
+                    order - 1,
+                    vertices
+                ),
+            ));
+        }
+        Ok(k)
+    };
+    let (ku, kv) = (knots("uKnots", nu, ou)?, knots("vKnots", nv, ov)?);
+    for (name, k, vertices, order) in [("uRange", &ku, nu, ou), ("vRange", &kv, nv, ov)] {
+        if let Some(p) = prim.property(name) {
+            let r = numbers(p).map_err(|m| err(p.at, format!("`{name}` {m}")))?;
+            let (lo, hi) = (k[order - 1], k[vertices]);
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + lo.abs().max(hi.abs()));
+            if r.len() != 2 || !close(r[0], lo) || !close(r[1], hi) {
+                return Err(err(
+                    p.at,
+                    format!("`{name}` {r:?} is not the knots' domain ({lo}, {hi}); glint draws whole patches — trim or re-knot the patch to its range"),
+                ));
+            }
+        }
+    }
+    let points_property = required("points")?;
+    let points =
+        vectors(points_property).map_err(|m| err(points_property.at, format!("`points` {m}")))?;
+    if points.len() != nu * nv {
+        return Err(err(
+            points_property.at,
+            format!(
+                "`points` has {} points; uVertexCount × vVertexCount is {nu} × {nv} = {}",
+                points.len(),
+                nu * nv
+            ),
+        ));
+    }
+    let weights = match prim.property("pointWeights") {
+        None => None,
+        Some(p) => {
+            let w = numbers(p).map_err(|m| err(p.at, format!("`pointWeights` {m}")))?;
+            if w.is_empty() {
+                None
+            } else if w.len() != nu * nv {
+                return Err(err(
+                    p.at,
+                    format!(
+                        "`pointWeights` has {} weights for {} points",
+                        w.len(),
+                        nu * nv
+                    ),
+                ));
+            } else {
+                Some(w)
+            }
+        }
+    };
+    let left_handed = matches!(
+        prim.property("orientation").and_then(|p| p.value.as_ref()),
+        Some(Value::Str(s)) if s == "leftHanded"
+    );
+    // glint's net is rows along u, each running along v.
+    let net: Vec<Vec<DVec3>> = (0..nu)
+        .map(|i| (0..nv).map(|j| points[j * nu + i]).collect())
+        .collect();
+    let weight_net: Option<Vec<Vec<f64>>> = weights.as_ref().map(|w| {
+        (0..nu)
+            .map(|i| (0..nv).map(|j| w[j * nu + i]).collect())
+            .collect()
+    });
+    let (net, weight_net, kv) = if left_handed {
+        // The other side is the front: v runs the other way.
+        let (lo, hi) = (kv[0], kv[kv.len() - 1]);
+        let flipped: Vec<f64> = kv.iter().rev().map(|&k| lo + hi - k).collect();
+        let reverse = |rows: Vec<Vec<DVec3>>| {
+            rows.into_iter()
+                .map(|r| r.into_iter().rev().collect())
+                .collect()
+        };
+        let reverse_w = |rows: Vec<Vec<f64>>| {
+            rows.into_iter()
+                .map(|r| r.into_iter().rev().collect())
+                .collect()
+        };
+        (reverse(net), weight_net.map(reverse_w), flipped)
+    } else {
+        (net, weight_net, kv)
+    };
+    NurbsSurface::new(ou - 1, ov - 1, ku, kv, &net, weight_net.as_deref())
+        .map_err(|e| err(points_property.at, e.to_string()))
+}
+
+/// Whether glint reads the attribute `name` of a NurbsPatch.
+fn is_read(name: &str) -> bool {
+    matches!(
+        name,
+        "uVertexCount"
+            | "vVertexCount"
+            | "uOrder"
+            | "vOrder"
+            | "uKnots"
+            | "vKnots"
+            | "uRange"
+            | "vRange"
+            | "points"
+            | "pointWeights"
+            | "orientation"
+    ) || name.starts_with("xformOp")
+}
+
+/// The numbers of a list or tuple of numbers.
+fn numbers(p: &Property) -> Result<Vec<f64>, String> {
+    let items = match &p.value {
+        Some(Value::List(items) | Value::Tuple(items)) => items,
+        _ => return Err("must be a list of numbers".to_string()),
+    };
+    items
+        .iter()
+        .map(|v| match v {
+            Value::Number(x) if x.is_finite() => Ok(*x),
+            Value::Number(_) => Err("must hold finite numbers".to_string()),
+            _ => Err("must be a list of numbers".to_string()),
+        })
+        .collect()
+}
+
+/// The points of a list of `(x, y, z)`.
+fn vectors(p: &Property) -> Result<Vec<DVec3>, String> {
+    let Some(Value::List(items)) = &p.value else {
+        return Err("must be a list of (x, y, z) points".to_string());
+    };
+    items
+        .iter()
+        .map(|v| match v {
+            Value::Tuple(c) if c.len() == 3 => {
+                let mut xyz = [0.0; 3];
+                for (k, value) in c.iter().enumerate() {
+                    match value {
+                        Value::Number(x) if x.is_finite() => xyz[k] = *x,
+                        _ => return Err("must hold finite numbers".to_string()),
+                    }
+                }
+                Ok(DVec3::from_array(xyz))
+            }
+            _ => Err("must be a list of (x, y, z) points".to_string()),
+        })
+        .collect()
+}

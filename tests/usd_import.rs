@@ -1,0 +1,484 @@
+//! USD text layers: the NURBS sphere and torus that the USD library writes are glint's own
+//! surfaces; transforms place patches as USD composes them; random patches written as USDA read
+//! back to the surfaces built in code; every refusal is one located line, exit 2.
+
+use glam::DVec3;
+use glint::formats::{load_patches, parse_usda};
+use glint::geom::{NurbsSurface, PatchLibrary};
+use proptest::prelude::*;
+use rand::{Rng, SeedableRng};
+
+use crate::common::{glint_with as glint, repo_file, stderr};
+
+/// The largest difference of point and first derivatives between `a` and `b` at `n` random
+/// parameters of their (shared) domain.
+fn largest_difference(a: &NurbsSurface, b: &NurbsSurface, n: usize, seed: u64) -> f64 {
+    let domain = a.domain();
+    assert_eq!(domain, b.domain());
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let mut most = 0.0f64;
+    for _ in 0..n {
+        let (u, v) = domain.lerp(rng.random::<f64>(), rng.random::<f64>());
+        let (da, db) = (a.derivs(u, v, 1), b.derivs(u, v, 1));
+        for (p, q) in [(da.point, db.point), (da.su, db.su), (da.sv, db.sv)] {
+            most = most.max((p - q).abs().max_element());
+        }
+    }
+    most
+}
+
+#[test]
+fn the_usd_library_s_sphere_and_torus_are_glint_s_own() {
+    for (usda, ron) in [
+        ("patches/sphere.usda", "patches/sphere.ron"),
+        ("patches/torus.usda", "patches/torus.ron"),
+    ] {
+        let from_usd = load_patches(&repo_file(usda)).unwrap();
+        let own = load_patches(&repo_file(ron)).unwrap();
+        assert_eq!(from_usd.patches.len(), 1, "{usda}");
+        let difference = largest_difference(
+            &from_usd.patches[0].surface,
+            &own.patches[0].surface,
+            500,
+            7,
+        );
+        assert!(difference <= 1e-12, "{usda}: {difference:e} from {ron}");
+    }
+    // And through the command line, as a user probes it.
+    let out = glint(&[
+        "probe",
+        repo_file("patches/sphere.usda").to_str().unwrap(),
+        "--patch",
+        "sphere",
+        "--uv",
+        "0.3,0.6",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}
+
+/// A bilinear patch (order 2 × 2) on the unit square, as USDA, under `/car` transformed by
+/// `ops` (the text of its xformOps and their order).
+fn hood(ops: &str, patch_ops: &str) -> String {
+    format!(
+        r#"#usda 1.0
+(
+    upAxis = "Z"
+)
+
+def Xform "car"
+{{
+{ops}
+    def Scope "panels"
+    {{
+        def NurbsPatch "hood"
+        {{
+{patch_ops}
+            int uVertexCount = 2
+            int vVertexCount = 2
+            int uOrder = 2
+            int vOrder = 2
+            double[] uKnots = [0, 0, 1, 1]
+            double[] vKnots = [0, 0, 1, 1]
+            point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0.5), (1, 1, 0.25)]
+        }}
+        def NurbsPatch "roof"
+        {{
+            int uVertexCount = 2
+            int vVertexCount = 2
+            int uOrder = 2
+            int vOrder = 2
+            double[] uKnots = [0, 0, 1, 1]
+            double[] vKnots = [0, 0, 1, 1]
+            point3f[] points = [(0, 0, 1), (1, 0, 1), (0, 1, 1), (1, 1, 1)]
+        }}
+    }}
+    def Material "paint"
+    {{
+        def Shader "surface"
+        {{
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor.connect = </car/paint/other.outputs:rgb>
+        }}
+    }}
+}}
+"#
+    )
+}
+
+#[test]
+fn prims_become_patches_and_parts_placed_by_their_transforms() {
+    let ops = r#"    double3 xformOp:translate = (10, 20, 30)
+    float3 xformOp:rotateXYZ = (90, 0, 30)
+    float3 xformOp:scale = (2, 2, 2)
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateXYZ", "xformOp:scale"]"#;
+    let patch_ops = r#"            matrix4d xformOp:transform = ( (1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 5, 1) )
+            uniform token[] xformOpOrder = ["xformOp:transform"]"#;
+    let library: PatchLibrary = parse_usda(&hood(ops, patch_ops), "car.usda").unwrap();
+    let names: Vec<&str> = library.patches.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["car/panels/hood", "car/panels/roof"]);
+    let groups: Vec<(&str, &[usize])> = library
+        .groups
+        .iter()
+        .map(|g| (g.name.as_str(), g.patches.as_slice()))
+        .collect();
+    assert!(groups.contains(&("car", &[0, 1][..])), "{groups:?}");
+    assert!(groups.contains(&("car/panels", &[0, 1][..])), "{groups:?}");
+    // The hood's corner (1, 1, 0.25), lifted by 5 in its own frame, then scaled by 2, turned
+    // 90° about x and then 30° about z, and moved by (10, 20, 30) — written out by hand.
+    let p = DVec3::new(1.0, 1.0, 5.25) * 2.0;
+    let about_x = DVec3::new(p.x, -p.z, p.y);
+    let (s, c) = 30f64.to_radians().sin_cos();
+    let about_z = DVec3::new(
+        c * about_x.x - s * about_x.y,
+        s * about_x.x + c * about_x.y,
+        about_x.z,
+    );
+    let expected = about_z + DVec3::new(10.0, 20.0, 30.0);
+    let hood = &library.patches[0].surface;
+    let corner = hood.point(1.0, 1.0);
+    assert!(
+        (corner - expected).length() < 1e-9,
+        "{corner} against {expected}"
+    );
+}
+
+#[test]
+fn a_y_up_layer_is_turned_to_z_up() {
+    let text = hood("", "").replace("upAxis = \"Z\"", "upAxis = \"Y\"");
+    let library = parse_usda(&text, "car.usda").unwrap();
+    // The roof at y = 1 in a y-up layer is at z = 1 here; its (0, 1, 1) corner at (0, -1, 1).
+    let corner = library.patches[1].surface.point(0.0, 1.0);
+    assert!(
+        (corner - DVec3::new(0.0, -1.0, 1.0)).length() < 1e-12,
+        "{corner}"
+    );
+}
+
+/// One refusal: `from` in the hood layer replaced by `to`; the error is at the first `at` of
+/// the new text and says each of `says`.
+struct Refusal {
+    name: &'static str,
+    from: &'static str,
+    to: &'static str,
+    at: &'static str,
+    says: &'static [&'static str],
+}
+
+const REFUSALS: &[Refusal] = &[
+    Refusal {
+        name: "missing attribute",
+        from: "            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
+        to: "            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
+        at: "def NurbsPatch \"hood\"",
+        says: &["/car/panels/hood", "no `uKnots`"],
+    },
+    Refusal {
+        name: "wrong array length",
+        from: "[(0, 0, 0), (1, 0, 0), (0, 1, 0.5), (1, 1, 0.25)]",
+        to: "[(0, 0, 0), (1, 0, 0), (0, 1, 0.5)]",
+        at: "points = [(0, 0, 0), (1, 0, 0), (0, 1, 0.5)]",
+        says: &["/car/panels/hood", "`points` has 3 points", "2 × 2 = 4"],
+    },
+    Refusal {
+        name: "knots not non-decreasing",
+        from: "            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
+        to: "            double[] uKnots = [0, 1, 0.5, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
+        at: "uKnots = [0, 1, 0.5, 1]",
+        says: &["`uKnots` decreases at knot 2"],
+    },
+    Refusal {
+        name: "order above the supported degree",
+        from: "            int uOrder = 2\n            int vOrder = 2\n            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
+        to: "            int uOrder = 11\n            int vOrder = 2\n            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
+        at: "uOrder = 11",
+        says: &["`uOrder` 11 is outside the orders glint evaluates, 2 to 10"],
+    },
+    Refusal {
+        name: "a reference",
+        from: "def Xform \"car\"\n{",
+        to: "def Xform \"car\" (\n    prepend references = @./body.usda@\n)\n{",
+        at: "prepend references",
+        says: &["prim \"car\"", "`references`", "flatten"],
+    },
+    Refusal {
+        name: "a variant set",
+        from: "    def Material \"paint\"",
+        to: "    variantSet \"trim\" = {\n        \"sport\" {\n        }\n    }\n    def Material \"paint\"",
+        at: "variantSet",
+        says: &["variant set"],
+    },
+    Refusal {
+        name: "an over",
+        from: "    def Material \"paint\"",
+        to: "    over \"extra\"\n    {\n    }\n    def Material \"paint\"",
+        at: "over \"extra\"",
+        says: &["`over` prims compose"],
+    },
+    Refusal {
+        name: "time samples",
+        from: "            point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0.5), (1, 1, 0.25)]",
+        to: "            point3f[] points.timeSamples = {\n                1: [(0, 0, 0), (1, 0, 0), (0, 1, 0.5), (1, 1, 0.25)],\n            }",
+        at: "points.timeSamples",
+        says: &["`points` is animated by time samples"],
+    },
+    Refusal {
+        name: "a trim loop",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2\n            int vOrder = 2\n            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
+        to: "            int[] trimCurve:counts = [1]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2\n            int vOrder = 2\n            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
+        at: "trimCurve:counts",
+        says: &["/car/panels/hood", "trimmed"],
+    },
+    Refusal {
+        name: "a mesh",
+        from: "    def Material \"paint\"",
+        to: "    def Mesh \"wheel\"\n    {\n    }\n    def Material \"paint\"",
+        at: "def Mesh",
+        says: &["/car/wheel is a Mesh", "NurbsPatch prims only"],
+    },
+    Refusal {
+        name: "an op glint does not read",
+        from: "def Xform \"car\"\n{\n",
+        to: "def Xform \"car\"\n{\n    float3 xformOp:shear = (1, 0, 0)\n    uniform token[] xformOpOrder = [\"xformOp:shear\"]\n",
+        at: "xformOp:shear = ",
+        says: &["/car", "`xformOp:shear` is not an op glint reads"],
+    },
+    Refusal {
+        name: "a sub-range",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        to: "            double2 uRange = (0, 0.5)\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        at: "uRange = (0, 0.5)",
+        says: &["`uRange`", "not the knots' domain"],
+    },
+];
+
+/// The 1-based line and column of the first `needle` in `text`.
+fn location(text: &str, needle: &str) -> (usize, usize) {
+    let offset = text
+        .find(needle)
+        .unwrap_or_else(|| panic!("{needle:?} not in the text"));
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let col = before[before.rfind('\n').map_or(0, |i| i + 1)..]
+        .chars()
+        .count()
+        + 1;
+    (line, col)
+}
+
+#[test]
+fn every_refusal_is_one_located_line_and_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = hood("", "");
+    for case in REFUSALS {
+        assert!(
+            base.contains(case.from),
+            "{}: the template lacks {:?}",
+            case.name,
+            case.from
+        );
+        let text = base.replacen(case.from, case.to, 1);
+        let path = dir.path().join("car.usda");
+        std::fs::write(&path, &text).unwrap();
+        let out = glint(&[
+            "probe",
+            path.to_str().unwrap(),
+            "--patch",
+            "0",
+            "--uv",
+            "0.5,0.5",
+        ]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{}: {err}", case.name);
+        assert_eq!(err.lines().count(), 1, "{}: {err}", case.name);
+        let (line, col) = location(&text, case.at);
+        let place = format!("car.usda:{line}:{col}: ");
+        assert!(
+            err.contains(&place),
+            "{}: expected {place} in {err}",
+            case.name
+        );
+        for says in case.says {
+            assert!(
+                err.contains(says),
+                "{}: expected {says:?} in {err}",
+                case.name
+            );
+        }
+    }
+}
+
+#[test]
+fn a_binary_layer_is_refused_with_the_conversion_to_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("car.usdc");
+    std::fs::write(&path, b"PXR-USDC\0\0\0\0").unwrap();
+    let out = glint(&[
+        "probe",
+        path.to_str().unwrap(),
+        "--patch",
+        "0",
+        "--uv",
+        "0,0",
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("usdcat") && err.contains(".usda"), "{err}");
+}
+
+/// A NURBS patch as [`NurbsSurface::new`] takes it: degrees, knots, points and weights.
+struct Net {
+    du: usize,
+    dv: usize,
+    ku: Vec<f64>,
+    kv: Vec<f64>,
+    points: Vec<Vec<DVec3>>,
+    weights: Vec<Vec<f64>>,
+}
+
+/// A random valid NURBS patch: degrees 1–4, 1–6 more points than the degree along each
+/// direction, clamped or unclamped increasing knots, coordinates and weights that are
+/// exact in single precision (USD's `point3f`).
+fn random_patch(seed: u64) -> Net {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let degree = |rng: &mut rand::rngs::StdRng| rng.random_range(1..=4usize);
+    let (du, dv) = (degree(&mut rng), degree(&mut rng));
+    let (nu, nv) = (du + rng.random_range(1..=6), dv + rng.random_range(1..=6));
+    // Distinct knots (multiplicity 1), clamped at both ends or not.
+    let knots = |rng: &mut rand::rngs::StdRng, n: usize, d: usize| {
+        let clamped = rng.random_bool(0.5);
+        let free = if clamped { n - d - 1 } else { n + d + 1 };
+        let mut pool: Vec<u32> = (1..256).collect();
+        let mut k: Vec<f64> = (0..free)
+            .map(|_| f64::from(pool.swap_remove(rng.random_range(0..pool.len()))) / 256.0)
+            .collect();
+        k.sort_by(f64::total_cmp);
+        if clamped {
+            let mut full = vec![0.0; d + 1];
+            full.extend(k);
+            full.extend(vec![1.0; d + 1]);
+            full
+        } else {
+            k
+        }
+    };
+    let (ku, kv) = (knots(&mut rng, nu, du), knots(&mut rng, nv, dv));
+    let coordinate =
+        |rng: &mut rand::rngs::StdRng| f64::from(rng.random_range(-400..400i32) as f32 * 0.25);
+    let points = (0..nu)
+        .map(|_| {
+            (0..nv)
+                .map(|_| {
+                    DVec3::new(
+                        coordinate(&mut rng),
+                        coordinate(&mut rng),
+                        coordinate(&mut rng),
+                    )
+                })
+                .collect()
+        })
+        .collect();
+    let weights = (0..nu)
+        .map(|_| {
+            (0..nv)
+                .map(|_| f64::from(rng.random_range(1..=16u32)) * 0.25)
+                .collect()
+        })
+        .collect();
+    Net {
+        du,
+        dv,
+        ku,
+        kv,
+        points,
+        weights,
+    }
+}
+
+/// The patch as USDA, points with u varying fastest.
+fn as_usda(net: &Net) -> String {
+    let Net {
+        du,
+        dv,
+        ku,
+        kv,
+        points,
+        weights,
+    } = net;
+    let (nu, nv) = (points.len(), points[0].len());
+    let list = |values: Vec<String>| format!("[{}]", values.join(", "));
+    let mut ps = Vec::new();
+    let mut ws = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let p = points[i][j];
+            ps.push(format!("({}, {}, {})", p.x, p.y, p.z));
+            ws.push(format!("{}", weights[i][j]));
+        }
+    }
+    format!(
+        "#usda 1.0\n\ndef NurbsPatch \"p\"\n{{\n    int uVertexCount = {nu}\n    int vVertexCount = {nv}\n    int uOrder = {}\n    int vOrder = {}\n    double[] uKnots = {}\n    double[] vKnots = {}\n    point3f[] points = {}\n    double[] pointWeights = {}\n}}\n",
+        du + 1,
+        dv + 1,
+        list(ku.iter().map(f64::to_string).collect()),
+        list(kv.iter().map(f64::to_string).collect()),
+        list(ps),
+        list(ws),
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn random_patches_written_as_usda_read_back_to_the_same_surface(seed in any::<u64>()) {
+        let net = random_patch(seed);
+        let built = NurbsSurface::new(net.du, net.dv, net.ku.clone(), net.kv.clone(), &net.points, Some(&net.weights)).unwrap();
+        let text = as_usda(&net);
+        let read = parse_usda(&text, "p.usda").unwrap();
+        prop_assert_eq!(read.patches.len(), 1);
+        let difference = largest_difference(&read.patches[0].surface, &built, 50, seed);
+        prop_assert_eq!(difference, 0.0, "{}", text);
+    }
+}
+
+#[test]
+fn the_documented_layer_reads_as_documented() {
+    let doc = std::fs::read_to_string(repo_file("docs/patch-format.md")).unwrap();
+    let block = doc.split("```usda\n").nth(1).unwrap();
+    let block = &block[..block.find("```").unwrap()];
+    let library = parse_usda(block, "patch-format.md").unwrap();
+    assert_eq!(library.patches.len(), 1);
+    assert_eq!(library.patches[0].name, "car/hood");
+    assert_eq!(library.groups.len(), 1);
+    assert_eq!(library.groups[0].name, "car");
+    // Turned 90° about z, then lifted by 0.5: the (0, 0) corner stays over the origin.
+    let corner = library.patches[0].surface.point(0.0, 0.0);
+    assert!(
+        (corner - DVec3::new(0.0, 0.0, 0.5)).length() < 1e-12,
+        "{corner}"
+    );
+    let far = library.patches[0].surface.point(1.0, 0.0);
+    assert!((far - DVec3::new(0.0, 2.0, 0.5)).length() < 1e-12, "{far}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Hostile text — the layer cut anywhere, or with any character replaced — is read or
+    /// refused, never a panic.
+    #[test]
+    fn a_damaged_layer_is_refused_not_a_panic(cut in 0usize..2000, at in 0usize..2000, with in any::<char>()) {
+        let text = hood("    double3 xformOp:translate = (1, 2, 3)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]", "");
+        let cut = cut.min(text.len());
+        let cut = (0..=cut).rev().find(|&k| text.is_char_boundary(k)).unwrap();
+        let _ = parse_usda(&text[..cut], "cut.usda");
+        let chars: Vec<char> = text.chars().collect();
+        let at = at % chars.len();
+        let changed: String = chars
+            .iter()
+            .enumerate()
+            .map(|(k, &c)| if k == at { with } else { c })
+            .collect();
+        let _ = parse_usda(&changed, "changed.usda");
+    }
+}
