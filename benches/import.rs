@@ -62,7 +62,9 @@ fn ron() -> String {
             .collect();
         let weights: Vec<String> = (0..NET)
             .map(|i| {
-                let row: Vec<String> = (0..NET).map(|j| format!("{:?}", point(k, i, j).1)).collect();
+                let row: Vec<String> = (0..NET)
+                    .map(|j| format!("{:?}", point(k, i, j).1))
+                    .collect();
                 format!("[{}]", row.join(", "))
             })
             .collect();
@@ -87,7 +89,7 @@ fn main() {
     let (usda, ron) = (usda(), ron());
     let (mut usd_ms, mut ron_ms, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
     for round in 0..ROUNDS + 2 {
-        let mut time = |f: &dyn Fn()| {
+        let time = |f: &dyn Fn()| {
             let start = Instant::now();
             f();
             start.elapsed().as_secs_f64() * 1e3

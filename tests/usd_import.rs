@@ -307,14 +307,20 @@ fn every_refusal_is_one_located_line_and_exit_2() {
     }
 }
 
+/// A binary layer the USD library wrote (`scripts/usd/author_models.py`).
+fn binary_fixture(name: &str) -> String {
+    repo_file(&format!("tests/data/usd/{name}"))
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+#[cfg(not(feature = "usd-binary"))]
 #[test]
 fn a_binary_layer_is_refused_with_the_conversion_to_run() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("car.usdc");
-    std::fs::write(&path, b"PXR-USDC\0\0\0\0").unwrap();
     let out = glint(&[
         "probe",
-        path.to_str().unwrap(),
+        &binary_fixture("sphere.usdc"),
         "--patch",
         "0",
         "--uv",
@@ -322,7 +328,38 @@ fn a_binary_layer_is_refused_with_the_conversion_to_run() {
     ]);
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("usdcat") && err.contains(".usda"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("usdcat --flatten") && err.contains(".usda"),
+        "{err}"
+    );
+}
+
+#[cfg(feature = "usd-binary")]
+#[test]
+fn a_binary_layer_reads_as_its_text_does_and_refuses_what_it_refuses() {
+    let binary = load_patches(std::path::Path::new(&binary_fixture("sphere.usdc"))).unwrap();
+    let own = load_patches(&repo_file("patches/sphere.ron")).unwrap();
+    assert_eq!(binary.patches[0].name, "sphere");
+    let difference =
+        largest_difference(&binary.patches[0].surface, &own.patches[0].surface, 500, 3);
+    assert!(difference <= 1e-12, "{difference:e}");
+    // A reference is composition: refused, naming the prim, exit 2.
+    let out = glint(&[
+        "probe",
+        &binary_fixture("referencing.usdc"),
+        "--patch",
+        "0",
+        "--uv",
+        "0,0",
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("/ball has references") && err.contains("flatten"),
+        "{err}"
+    );
 }
 
 /// A NURBS patch as [`NurbsSurface::new`] takes it: degrees, knots, points and weights.

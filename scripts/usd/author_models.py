@@ -4,7 +4,8 @@ files are what pipelines write.
     pip install usd-core
     python3 scripts/usd/author_models.py
 
-It writes patches/sphere.usda and patches/torus.usda: the exact NURBS sphere and torus that
+It writes patches/sphere.usda and patches/torus.usda, and binary layers for the tests in
+tests/data/usd/ (the sphere as .usdc, and a .usdc whose prim references another layer): the exact NURBS sphere and torus that
 glint builds for `Sphere(radius: 1.0)` and `Torus(major_radius: 1.0, minor_radius: 0.35)`
 (docs/patch-format.md), from the rational quadratic circle — nine control points on the
 square around the unit circle, weights 1, sqrt(1/2), 1, ..., knots 0,0,0,1/4,1/4,...,1,1,1 —
@@ -48,6 +49,8 @@ def revolve(stage, path, profile, profile_knots):
 
 
 def layer(path):
+    if os.path.exists(path):
+        os.remove(path)
     stage = Usd.Stage.CreateNew(path)
     UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
     return stage
@@ -67,6 +70,15 @@ def main():
     tube = [(major + minor * x, minor * y, w) for (x, y, w) in CIRCLE]
     revolve(stage, "/torus", tube, CIRCLE_KNOTS)
     stage.SetDefaultPrim(stage.GetPrimAtPath("/torus"))
+    stage.GetRootLayer().Save()
+
+    data = os.path.join(root, "..", "tests", "data", "usd")
+    os.makedirs(data, exist_ok=True)
+    sphere = Sdf.Layer.FindOrOpen(os.path.join(root, "sphere.usda"))
+    sphere.Export(os.path.join(data, "sphere.usdc"))
+    stage = layer(os.path.join(data, "referencing.usdc"))
+    ball = stage.DefinePrim("/ball", "Xform")
+    ball.GetReferences().AddReference("./sphere.usdc")
     stage.GetRootLayer().Save()
 
 

@@ -15,7 +15,7 @@ pub mod ron_paths;
 mod srgb;
 pub mod text_file;
 mod texture;
-mod usda;
+mod usd;
 
 use std::path::Path;
 
@@ -30,7 +30,7 @@ pub use frame_files::{
 pub use patch_ron::parse_patch_ron;
 pub use srgb::{linear_to_srgb, srgb_to_linear};
 pub use texture::{read_toon_texture, toon_texture_from_png, toon_texture_from_srgb8};
-pub use usda::{parse_usda, MAX_PATCHES as MAX_USD_PATCHES};
+pub use usd::{parse_usda, MAX_PATCHES as MAX_USD_PATCHES};
 
 /// A file that could not be read, with where in it the problem is.
 #[derive(Debug, Error)]
@@ -106,7 +106,56 @@ fn parse_ron<T: serde::de::DeserializeOwned>(text: &str, shown: &str) -> Result<
     })
 }
 
-/// Loads a model: a RON patch library (`.ron`) or Bezier patches (`.bpt`), by extension.
+/// A `.usd`, `.usdc` or `.usdz` file at `path`: a `.usd` that is text is read as `.usda`; a
+/// binary layer through the `usd-binary` feature, or refused with the conversion to run.
+fn load_binary_usd(
+    path: &Path,
+    kind: Option<&str>,
+    shown: String,
+) -> Result<PatchLibrary, FormatError> {
+    let head = std::fs::File::open(path)
+        .and_then(|mut f| {
+            let mut head = [0u8; 8];
+            let n = std::io::Read::read(&mut f, &mut head)?;
+            Ok(head[..n].to_vec())
+        })
+        .map_err(|source| FormatError::Io {
+            path: shown.clone(),
+            source,
+        })?;
+    if head.starts_with(b"#usda") && kind == Some("usd") {
+        let text = text_file::read_text(path).map_err(|e| FormatError::File {
+            path: shown.clone(),
+            message: e.to_string(),
+        })?;
+        return parse_usda(&text, &shown);
+    }
+    let convert = format!(
+        "convert it to text with usdcat, from the usd-core Python package: usdcat --flatten {} -o model.usda",
+        path.display()
+    );
+    if kind == Some("usdz") {
+        return Err(FormatError::File {
+            path: shown,
+            message: format!("glint does not open .usdz packages; {convert}"),
+        });
+    }
+    #[cfg(feature = "usd-binary")]
+    {
+        let _ = convert;
+        usd::read_usdc(path, &shown)
+    }
+    #[cfg(not(feature = "usd-binary"))]
+    Err(FormatError::File {
+        path: shown,
+        message: format!(
+            "this glint reads USD as text (.usda), built without the `usd-binary` feature; {convert}"
+        ),
+    })
+}
+
+/// Loads a model: a RON patch library (`.ron`), Bezier patches (`.bpt`) or a USD layer
+/// (`.usda`; `.usd` and `.usdc` too with the `usd-binary` feature), by extension.
 pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
     let shown = path.display().to_string();
     let kind = path
@@ -123,15 +172,7 @@ pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
         Some("ron") => parse_patch_ron,
         Some("bpt") => parse_bpt,
         Some("usda") => parse_usda,
-        Some("usd" | "usdc" | "usdz") => {
-            return Err(FormatError::File {
-                path: shown.clone(),
-                message: format!(
-                    "glint reads USD as text (.usda); convert this file with usdcat, from the usd-core Python package: usdcat --flatten {} -o model.usda",
-                    path.display()
-                ),
-            })
-        }
+        Some("usd" | "usdc" | "usdz") => return load_binary_usd(path, kind.as_deref(), shown),
         _ => return Err(FormatError::UnknownKind { path: shown }),
     };
     let text = text_file::read_text(path).map_err(|e| match e {

@@ -1,64 +1,9 @@
-//! A USDA layer read into prims, properties and values, each with where it is written; what
-//! composes layers (references, payloads, inherits, variants, sublayers), animates values (time
-//! samples, splines) or connects them is refused where it is written.
+//! A USDA text layer read into a [`Layer`]; what composes layers (references, payloads,
+//! inherits, variants, sublayers), animates values (time samples, splines) or connects them is
+//! refused where it is written.
 
+use super::layer::{Layer, Prim, Property, Value};
 use super::lexer::{Spanned, Token};
-
-/// A value as written.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) enum Value {
-    Number(f64),
-    /// A string or token.
-    Str(String),
-    /// `(a, b, …)`
-    Tuple(Vec<Value>),
-    /// `[a, b, …]`
-    List(Vec<Value>),
-    /// A word (`None`, `true`, an identifier), a path, an asset or a dictionary: nothing glint
-    /// reads a number from.
-    Other,
-}
-
-/// An attribute or relationship.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) struct Property {
-    /// `xformOp:translate`, `points`.
-    pub name: String,
-    /// The type as written (`double3`, `point3f`), with `[]` for arrays; `rel` for a
-    /// relationship.
-    pub type_name: String,
-    pub value: Option<Value>,
-    /// Where its name is written.
-    pub at: usize,
-}
-
-/// A prim: `def TYPE "name" (metadata) { … }`.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) struct Prim {
-    pub type_name: Option<String>,
-    pub name: String,
-    /// Where `def` is written.
-    pub at: usize,
-    /// `active = false` in its metadata.
-    pub inactive: bool,
-    pub properties: Vec<Property>,
-    pub children: Vec<Prim>,
-}
-
-impl Prim {
-    /// The property named `name`, if written.
-    #[must_use]
-    pub fn property(&self, name: &str) -> Option<&Property> {
-        self.properties.iter().find(|p| p.name == name)
-    }
-}
-
-/// A layer: its metadata's `upAxis` and its root prims.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) struct Layer {
-    pub up_axis: Option<(String, usize)>,
-    pub prims: Vec<Prim>,
-}
 
 /// What cannot be read, and where.
 #[derive(Clone, Debug, PartialEq)]
@@ -68,7 +13,7 @@ pub(super) struct ParseError {
 }
 
 /// Metadata keys that compose other layers or variants into a prim or layer.
-const COMPOSITION: [&str; 8] = [
+pub(super) const COMPOSITION: [&str; 8] = [
     "references",
     "payload",
     "inherits",

@@ -11,9 +11,12 @@
 //! reads, trimmed patches, and geometry glint does not draw (meshes, curves, points, implicit
 //! shapes).
 
+#[cfg(feature = "usd-binary")]
+mod binary;
 mod layer;
 mod lexer;
 mod nurbs_patch;
+mod text;
 mod xform;
 
 use glam::{DMat4, DVec3};
@@ -48,15 +51,7 @@ pub const MAX_PATCHES: usize = 100_000;
 /// `NurbsPatch` prim, named by its path without the leading `/` (`/car/hood` → `car/hood`),
 /// and one part per prim above patches (`car`), holding every patch under it.
 pub fn parse_usda(text: &str, shown: &str) -> Result<PatchLibrary, FormatError> {
-    let at = |offset: usize, message: String| {
-        let (line, col) = super::ron_location::position_of(text, offset.min(text.len()));
-        FormatError::Usd {
-            path: shown.to_string(),
-            line,
-            col,
-            message,
-        }
-    };
+    let at = |offset: usize, message: String| located(text, shown, offset, message);
     let header = text.lines().next().unwrap_or("");
     if !header.starts_with("#usda ") {
         return Err(at(
@@ -65,7 +60,38 @@ pub fn parse_usda(text: &str, shown: &str) -> Result<PatchLibrary, FormatError> 
         ));
     }
     let tokens = lexer::tokens(text).map_err(|e| at(e.at, e.message))?;
-    let layer = layer::parse(&tokens, text.len()).map_err(|e| at(e.at, e.message))?;
+    let layer = text::parse(&tokens, text.len()).map_err(|e| at(e.at, e.message))?;
+    library_of(&layer, &at)
+}
+
+/// Reads the binary USD layer at `path` (shown in errors as `shown`) as [`parse_usda`] reads a
+/// text one. Its errors name the prim, having no line and column.
+#[cfg(feature = "usd-binary")]
+pub fn read_usdc(path: &std::path::Path, shown: &str) -> Result<PatchLibrary, FormatError> {
+    let at = |_: usize, message: String| FormatError::File {
+        path: shown.to_string(),
+        message,
+    };
+    let layer = binary::read(path).map_err(|m| at(layer::NOWHERE, m))?;
+    library_of(&layer, &at)
+}
+
+/// The error `message` at byte `offset` of `text`, a file shown as `shown`.
+fn located(text: &str, shown: &str, offset: usize, message: String) -> FormatError {
+    let (line, col) = super::ron_location::position_of(text, offset.min(text.len()));
+    FormatError::Usd {
+        path: shown.to_string(),
+        line,
+        col,
+        message,
+    }
+}
+
+/// The library of `layer`, `at` placing an error at what it is about.
+fn library_of(
+    layer: &layer::Layer,
+    at: &dyn Fn(usize, String) -> FormatError,
+) -> Result<PatchLibrary, FormatError> {
     let up = match &layer.up_axis {
         None => DMat4::IDENTITY,
         Some((axis, _)) if axis == "Z" => DMat4::IDENTITY,
@@ -85,8 +111,7 @@ pub fn parse_usda(text: &str, shown: &str) -> Result<PatchLibrary, FormatError> 
     let mut library = PatchLibrary::default();
     let mut walker = Walker {
         library: &mut library,
-        text,
-        shown,
+        at,
     };
     for prim in &layer.prims {
         walker.prim(prim, "", up)?;
@@ -102,19 +127,12 @@ pub fn parse_usda(text: &str, shown: &str) -> Result<PatchLibrary, FormatError> 
 
 struct Walker<'a> {
     library: &'a mut PatchLibrary,
-    text: &'a str,
-    shown: &'a str,
+    at: &'a dyn Fn(usize, String) -> FormatError,
 }
 
 impl Walker<'_> {
     fn error(&self, offset: usize, message: String) -> FormatError {
-        let (line, col) = super::ron_location::position_of(self.text, offset.min(self.text.len()));
-        FormatError::Usd {
-            path: self.shown.to_string(),
-            line,
-            col,
-            message,
-        }
+        (self.at)(offset, message)
     }
 
     /// Reads `prim`, under the prim at `parent` (`""` at the root) whose world transform is
