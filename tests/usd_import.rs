@@ -256,13 +256,7 @@ fn location(text: &str, needle: &str) -> (usize, usize) {
     let offset = text
         .find(needle)
         .unwrap_or_else(|| panic!("{needle:?} not in the text"));
-    let before = &text[..offset];
-    let line = before.matches('\n').count() + 1;
-    let col = before[before.rfind('\n').map_or(0, |i| i + 1)..]
-        .chars()
-        .count()
-        + 1;
-    (line, col)
+    glint::formats::ron_location::position_of(text, offset)
 }
 
 #[test]
