@@ -15,7 +15,7 @@ enum Shows {
     MovingLight,
     /// The camera moves: the silhouettes change.
     MovingCamera,
-    /// The shading changes (a keyed tone or shape detail), the silhouettes stay.
+    /// The shading changes (a keyed tone, shape detail or line style), the silhouettes stay.
     AnimatedShading,
 }
 
@@ -29,9 +29,8 @@ fn purpose(name: &str) -> Shows {
         | "xtoon_aerial_perspective"
         | "xtoon_metal"
         | "xtoon_receding_shadows" => Shows::MovingCamera,
-        "xtoon_backlight" | "xtoon_plastic" | "xtoon_shape_teapot" | "xtoon_shape_torus" => {
-            Shows::AnimatedShading
-        }
+        "xtoon_backlight" | "xtoon_plastic" | "xtoon_shape_teapot" | "xtoon_shape_torus"
+        | "line_styles" => Shows::AnimatedShading,
         _ => panic!("shots/{name}.ron: say here what it shows"),
     }
 }
