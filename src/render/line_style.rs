@@ -115,6 +115,12 @@ impl LineStyle {
         }
     }
 
+    /// Whether lines of `kind` are drawn in this style: it holds the kind, at a width above 0.
+    #[must_use]
+    pub fn draws(&self, kind: LineKind) -> bool {
+        self.width > 0.0 && self.kinds.holds(kind)
+    }
+
     /// Checks the ranges: the width in [0, [`MAX_LINE_WIDTH`]], each colour component in
     /// [0, 1e4], the taper in [0, [`MAX_TAPER`]].
     pub fn validate(&self) -> Result<(), String> {

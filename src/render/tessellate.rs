@@ -87,6 +87,14 @@ pub struct BorderEdge {
     pub across: Option<(u32, u32, u32)>,
 }
 
+impl BorderEdge {
+    /// The patch across the piece: the one that continues it, or its own when none does.
+    #[must_use]
+    pub fn patch_across(&self) -> u32 {
+        self.across.map_or(self.patch, |(_, _, other)| other)
+    }
+}
+
 /// Segments per knot span of one patch, along u and along v.
 pub type Segments = (u32, u32);
 

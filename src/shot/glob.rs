@@ -1,6 +1,30 @@
 //! Glob patterns over patch names: `*` any run of characters (including none), `?` one
 //! character, `[abc]` / `[a-c]` / `[!a-c]` one character of (or not of) a set.
 
+/// Calls `pick` with every patch of `library` that `pattern` picks: the patches it names and
+/// the members of the parts it names (a patch once per part that holds it). Whether it picked
+/// any.
+pub(super) fn pick_each(
+    pattern: &str,
+    library: &crate::geom::PatchLibrary,
+    mut pick: impl FnMut(usize),
+) -> bool {
+    let mut any = false;
+    for (patch, named) in library.patches.iter().enumerate() {
+        if matches(pattern, &named.name) {
+            pick(patch);
+            any = true;
+        }
+    }
+    for group in &library.groups {
+        if matches(pattern, &group.name) {
+            group.patches.iter().for_each(|&patch| pick(patch));
+            any = true;
+        }
+    }
+    any
+}
+
 /// Whether `name` matches `pattern` as a whole.
 pub fn matches(pattern: &str, name: &str) -> bool {
     let pattern: Vec<char> = pattern.chars().collect();

@@ -133,19 +133,7 @@ pub(super) fn select_lines(
         match (&spec.patches, &spec.material) {
             (Some(selector), None) => {
                 for (index, pattern) in selector.patterns().iter().enumerate() {
-                    let mut any = false;
-                    for (patch, named) in library.patches.iter().enumerate() {
-                        if glob::matches(pattern, &named.name) {
-                            pick(patch);
-                            any = true;
-                        }
-                    }
-                    for group in &library.groups {
-                        if glob::matches(pattern, &group.name) {
-                            group.patches.iter().for_each(|&patch| pick(patch));
-                            any = true;
-                        }
-                    }
+                    let any = glob::pick_each(pattern, library, &mut pick);
                     if !any {
                         return Err(at(
                             &[Field("patches"), Index(index)],

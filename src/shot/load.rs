@@ -421,21 +421,9 @@ fn select_highlights(
     let mut patch_highlight = vec![None; library.patches.len()];
     for (entry, (spec, written)) in highlights.iter().enumerate() {
         for (index, pattern) in spec.patches.patterns().iter().enumerate() {
-            let mut any = false;
-            let mut pick = |patch: usize| {
+            let any = glob::pick_each(pattern, library, |patch| {
                 patch_highlight[patch] = Some(entry);
-                any = true;
-            };
-            for (patch, named) in library.patches.iter().enumerate() {
-                if glob::matches(pattern, &named.name) {
-                    pick(patch);
-                }
-            }
-            for group in &library.groups {
-                if glob::matches(pattern, &group.name) {
-                    group.patches.iter().for_each(|&patch| pick(patch));
-                }
-            }
+            });
             if !any {
                 let message = no_match_message(pattern, library);
                 return Err(sources[written.source].error_at(

@@ -29,9 +29,9 @@ pub(crate) fn crease_opacity(angle: f32, crease: f32) -> f32 {
     ((angle - crease) / CREASE_BAND_DEGREES + 0.5).clamp(0.0, 1.0)
 }
 
-/// The boundary pieces of `mesh` that `outlines` and the patches' `styles` draw, each on the surface's boundary curve:
-/// a piece longer than [`LONGEST_PIECE_PIXELS`] on the `size` image is cut evenly in (u, v)
-/// and its points evaluated on the patch. What is drawn:
+/// The boundary pieces of `mesh` that `outlines` and the patches' `styles` draw, each on the
+/// surface's boundary curve: a piece longer than [`LONGEST_PIECE_PIXELS`] on the `size` image
+/// is cut evenly in (u, v) and its points evaluated on the patch. What is drawn:
 ///
 /// - a boundary no other patch continues: a [`LineKind::Border`];
 /// - a seam where the eye sees one side's front and the other's back (`g` of opposite signs
@@ -50,17 +50,13 @@ pub(crate) fn borders_and_creases(
     styles: &[LineStyle],
 ) -> Vec<Piece> {
     let facing = EyeSide::of(camera);
-    let drawn = |patch: u32, kind: LineKind| {
-        let style = &styles[patch as usize];
-        style.width > 0.0 && style.kinds.holds(kind)
-    };
+    let drawn = |patch: u32, kind: LineKind| styles[patch as usize].draws(kind);
     mesh.borders
         .par_iter()
         .with_min_len(256)
         .flat_map_iter(|edge| {
-            let other = edge.across.map_or(edge.patch, |(_, _, other)| other);
             let kind = classify(mesh, facing, outlines, edge)
-                .filter(|&(kind, _)| drawn(edge.patch, kind) || drawn(other, kind));
+                .filter(|&(kind, _)| drawn(edge.patch, kind) || drawn(edge.patch_across(), kind));
             kind.map(|kind| {
                 let surface = &library.patches[edge.patch as usize].surface;
                 pieces(mesh, surface, edge, kind, view_projection, size)
@@ -143,10 +139,7 @@ fn pieces(
             on_mesh: [w[0].1, w[1].1],
             opacity,
             kind,
-            patches: [
-                edge.patch,
-                edge.across.map_or(edge.patch, |(_, _, other)| other),
-            ],
+            patches: [edge.patch, edge.patch_across()],
         })
         .collect()
 }

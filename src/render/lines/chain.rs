@@ -110,9 +110,10 @@ const SAME_POINT: f64 = 1e-7;
 
 /// Per end of each piece (`2 k + end`), an id shared by the ends within [`SAME_POINT`] of one
 /// another, the ids counting up from 0. Ends that are bit for bit the same point (most joins:
-/// both triangles of an edge compute its crossing alike) share an id at once; an end no other matches exactly — a loose
-/// end, where a seam between patches cut the line — then takes the id of the first loose end
-/// met within that distance, looked for in the 27 grid cells around it (cells that wide).
+/// both triangles of an edge compute its crossing alike) share an id at once; an end no other
+/// matches exactly — a loose end, where a seam between patches cut the line — then takes the
+/// id of the first loose end met within that distance, looked for in the 27 grid cells around
+/// it (cells that wide).
 fn same_points(pieces: &[Piece]) -> Vec<usize> {
     let ends: Vec<DVec3> = pieces.iter().flat_map(|p| p.ends).collect();
     // Ends sorted by their bits: equal points side by side, numbered in order.

@@ -373,8 +373,9 @@ impl OnPatch<'_> {
 
     /// Where `g` is zero on the surface along the straight line in (u, v) from `from` to `to`
     /// (with `g` of opposite signs there), to within `bracket` of the way: the fraction of the
-    /// way, the (u, v), and the point on the surface (None if no evaluation gave a finite one). Regula falsi (Illinois) keeps
-    /// the root bracketed, so the fraction stays in [0, 1] whatever the surface does between.
+    /// way, the (u, v), and the point on the surface (None if no evaluation gave a finite one).
+    /// Regula falsi (Illinois) keeps the root bracketed, so the fraction stays in [0, 1]
+    /// whatever the surface does between.
     fn root_on_line(
         &self,
         (from, g_from): (DVec2, f64),

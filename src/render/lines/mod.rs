@@ -155,7 +155,7 @@ pub(super) struct LineInput<'a> {
 /// Whether some patch draws lines of `kind`.
 #[must_use]
 pub(super) fn draws(styles: &[LineStyle], kind: LineKind) -> bool {
-    styles.iter().any(|s| s.width > 0.0 && s.kinds.holds(kind))
+    styles.iter().any(|s| s.draws(kind))
 }
 
 /// The patch whose style draws `piece`: of the patches it lies on, those whose style draws its
@@ -165,7 +165,7 @@ fn style_of(piece: &Piece, styles: &[LineStyle]) -> Option<u32> {
     let [p, q] = piece.patches;
     let draws = |k: u32| {
         let style = &styles[k as usize];
-        (style.width > 0.0 && style.kinds.holds(piece.kind)).then_some((style.width, k))
+        style.draws(piece.kind).then_some((style.width, k))
     };
     match (draws(p), draws(q)) {
         (Some((wp, p)), Some((wq, q))) => Some(if wq > wp || (wq == wp && q < p) { q } else { p }),
@@ -183,10 +183,7 @@ pub(super) fn draw_lines(
     recycled: Option<LineImage>,
 ) -> LineImage {
     let styles = input.styles;
-    let draws_silhouettes = |patch: u32| {
-        let style = &styles[patch as usize];
-        style.width > 0.0 && style.kinds.holds(LineKind::Silhouette)
-    };
+    let draws_silhouettes = |patch: u32| styles[patch as usize].draws(LineKind::Silhouette);
     let mut pieces: Vec<Piece> = contour::silhouettes(
         draws_silhouettes,
         input.mesh,
