@@ -38,6 +38,7 @@ mod render_reuse;
 mod render_sphere;
 mod render_teapot;
 mod render_tessellate;
+mod render_trim;
 mod shot_errors;
 mod shot_files;
 mod shot_key_edit;

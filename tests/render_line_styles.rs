@@ -22,6 +22,7 @@ const VIEW_HEIGHT: f32 = 3.2;
 fn two_spheres(x: f64) -> Arc<PatchLibrary> {
     let sphere = |name: &str, at: f64| NamedPatch {
         name: name.into(),
+        trim: None,
         surface: shapes::sphere(DVec3::new(at, 0.0, 0.0), 1.0).unwrap(),
     };
     Arc::new(PatchLibrary {
@@ -255,6 +256,7 @@ fn a_silhouette_along_a_seam_is_whole_wherever_the_rounding_falls() {
         let library = Arc::new(PatchLibrary {
             patches: vec![NamedPatch {
                 name: "ball".into(),
+                trim: None,
                 surface: sphere,
             }],
             groups: Vec::new(),

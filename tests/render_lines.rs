@@ -20,6 +20,7 @@ fn library(surface: NurbsSurface) -> Arc<PatchLibrary> {
     Arc::new(PatchLibrary {
         patches: vec![NamedPatch {
             name: "shape".into(),
+            trim: None,
             surface,
         }],
         groups: Vec::new(),

@@ -18,6 +18,7 @@ fn sphere_vertices_lie_on_the_sphere_with_its_frames() {
     let library = PatchLibrary {
         patches: vec![NamedPatch {
             name: "ball".into(),
+            trim: None,
             surface: shapes::sphere(DVec3::ZERO, 2.0).unwrap(),
         }],
         groups: Vec::new(),

@@ -28,7 +28,9 @@ fn purpose(name: &str) -> Shows {
         | "xtoon_abstraction"
         | "xtoon_aerial_perspective"
         | "xtoon_metal"
-        | "xtoon_receding_shadows" => Shows::MovingCamera,
+        | "xtoon_receding_shadows"
+        | "speaker"
+        | "car_doors" => Shows::MovingCamera,
         "xtoon_backlight" | "xtoon_plastic" | "xtoon_shape_teapot" | "xtoon_shape_torus"
         | "line_styles" => Shows::AnimatedShading,
         _ => panic!("shots/{name}.ron: say here what it shows"),

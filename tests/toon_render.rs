@@ -115,6 +115,7 @@ fn xtoon_on_the_exact_sphere_matches_the_analytic_sphere() {
     let library = Arc::new(PatchLibrary {
         patches: vec![NamedPatch {
             name: "sphere".into(),
+            trim: None,
             surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
         }],
         groups: Vec::new(),

@@ -12,6 +12,7 @@ fn sphere() -> PatchLibrary {
     PatchLibrary {
         patches: vec![NamedPatch {
             name: "sphere".into(),
+            trim: None,
             surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
         }],
         groups: Vec::new(),

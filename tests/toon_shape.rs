@@ -11,6 +11,7 @@ fn library(surface: NurbsSurface) -> PatchLibrary {
     PatchLibrary {
         patches: vec![NamedPatch {
             name: "shape".into(),
+            trim: None,
             surface,
         }],
         groups: Vec::new(),

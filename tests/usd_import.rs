@@ -222,11 +222,53 @@ const REFUSALS: &[Refusal] = &[
         says: &["`points` is animated by time samples"],
     },
     Refusal {
-        name: "a trim loop",
-        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2\n            int vOrder = 2\n            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
-        to: "            int[] trimCurve:counts = [1]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2\n            int vOrder = 2\n            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
+        name: "a trim without orders",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        to: "            int[] trimCurve:counts = [1]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
         at: "trimCurve:counts",
-        says: &["/car/panels/hood", "trimmed"],
+        says: &["/car/panels/hood", "trimmed but has no `trimCurve:orders`"],
+    },
+    Refusal {
+        name: "a trim loop that is not closed",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        to: "            int[] trimCurve:counts = [1]\n            int[] trimCurve:orders = [2]\n            int[] trimCurve:vertexCounts = [5]\n            double[] trimCurve:knots = [0, 0, 1, 2, 3, 4, 4]\n            double3[] trimCurve:points = [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (0, 0.5, 1)]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        at: "trimCurve:points",
+        says: &["/car/panels/hood", "trim loop 0 is not closed", "(0.000000, 0.500000)"],
+    },
+    Refusal {
+        name: "a trim loop running the wrong way",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        to: "            int[] trimCurve:counts = [1]\n            int[] trimCurve:orders = [2]\n            int[] trimCurve:vertexCounts = [5]\n            double[] trimCurve:knots = [0, 0, 1, 2, 3, 4, 4]\n            double3[] trimCurve:points = [(0.2, 0.2, 1), (0.2, 0.6, 1), (0.6, 0.6, 1), (0.6, 0.2, 1), (0.2, 0.2, 1)]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        at: "trimCurve:points",
+        says: &["trim loop 0 runs clockwise", "inside 0 other loop"],
+    },
+    Refusal {
+        name: "trim knots of the wrong count",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        to: "            int[] trimCurve:counts = [1]\n            int[] trimCurve:orders = [2]\n            int[] trimCurve:vertexCounts = [5]\n            double[] trimCurve:knots = [0, 0, 1, 2, 3, 4]\n            double3[] trimCurve:points = [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (0, 0, 1)]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        at: "trimCurve:knots",
+        says: &["`trimCurve:knots` has 6 knots", "take 7"],
+    },
+    Refusal {
+        name: "decreasing trim knots",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        to: "            int[] trimCurve:counts = [1]\n            int[] trimCurve:orders = [2]\n            int[] trimCurve:vertexCounts = [5]\n            double[] trimCurve:knots = [0, 0, 1, 3, 2, 4, 4]\n            double3[] trimCurve:points = [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (0, 0, 1)]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        at: "trimCurve:knots",
+        says: &["knots of trim curve 0 decrease at knot 4"],
+    },
+    Refusal {
+        name: "a trim curve of too high an order",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        to: "            int[] trimCurve:counts = [1]\n            int[] trimCurve:orders = [11]\n            int[] trimCurve:vertexCounts = [11]\n            double[] trimCurve:knots = [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n            double3[] trimCurve:points = [(0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1)]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        at: "trimCurve:orders",
+        says: &["trim curve has order 11", "orders 2 to 10"],
+    },
+    Refusal {
+        name: "a trim point of weight 0",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        to: "            int[] trimCurve:counts = [1]\n            int[] trimCurve:orders = [2]\n            int[] trimCurve:vertexCounts = [5]\n            double[] trimCurve:knots = [0, 0, 1, 2, 3, 4, 4]\n            double3[] trimCurve:points = [(0, 0, 1), (1, 0, 1), (1, 1, 0), (0, 1, 1), (0, 0, 1)]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        at: "trimCurve:points",
+        says: &["trim curve 0", "weight"],
     },
     Refusal {
         name: "a mesh",
@@ -490,6 +532,20 @@ fn the_documented_layer_reads_as_documented() {
     );
     let far = library.patches[0].surface.point(1.0, 0.0);
     assert!((far - DVec3::new(0.0, 2.0, 0.5)).length() < 1e-12, "{far}");
+
+    // The trimmed plate: a square hole [0.3, 0.7]² in (u, v), the rest kept.
+    let block = doc.split("```usda\n").nth(2).unwrap();
+    let block = &block[..block.find("```").unwrap()];
+    let plate = &parse_usda(block, "patch-format.md").unwrap().patches[0];
+    assert!(plate.trim.is_some());
+    for (u, v, kept) in [
+        (0.5, 0.5, false),
+        (0.31, 0.69, false),
+        (0.29, 0.5, true),
+        (0.9, 0.1, true),
+    ] {
+        assert_eq!(plate.keeps(u, v), kept, "({u}, {v})");
+    }
 }
 
 proptest! {
@@ -512,4 +568,84 @@ proptest! {
             .collect();
         let _ = parse_usda(&changed, "changed.usda");
     }
+}
+
+/// A flat patch over [0, 1]² with a square hole `[0.3, 0.6] × [0.2, 0.7]` in (u, v): the domain
+/// as the outer loop, counter-clockwise, the hole clockwise, each one order-2 curve; `extra`
+/// is written into the prim.
+fn holed(extra: &str) -> String {
+    format!(
+        r#"#usda 1.0
+def NurbsPatch "sheet"
+{{
+{extra}
+    int uVertexCount = 2
+    int vVertexCount = 2
+    int uOrder = 2
+    int vOrder = 2
+    double[] uKnots = [0, 0, 1, 1]
+    double[] vKnots = [0, 0, 1, 1]
+    point3f[] points = [(0, 0, 0), (2, 0, 0), (0, 1, 0.5), (2, 1, 0.25)]
+    int[] trimCurve:counts = [1, 1]
+    int[] trimCurve:orders = [2, 2]
+    int[] trimCurve:vertexCounts = [5, 5]
+    double[] trimCurve:knots = [0, 0, 1, 2, 3, 4, 4, 0, 0, 1, 2, 3, 4, 4]
+    double2[] trimCurve:ranges = [(0, 4), (0, 4)]
+    double3[] trimCurve:points = [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (0, 0, 1), (0.6, 0.4, 2), (0.6, 1.4, 2), (1.2, 1.4, 2), (1.2, 0.4, 2), (0.6, 0.4, 2)]
+}}
+"#
+    )
+}
+
+#[test]
+fn a_trimmed_patch_keeps_what_its_loops_keep_whichever_way_it_is_handed() {
+    let right = glint::formats::parse_usda(&holed(""), "sheet.usda").unwrap();
+    let left = glint::formats::parse_usda(
+        &holed("    uniform token orientation = \"leftHanded\""),
+        "sheet.usda",
+    )
+    .unwrap();
+    let (r, l) = (&right.patches[0], &left.patches[0]);
+    assert!(r.trim.is_some());
+    // The hole's points are homogeneous, weight 2: (0.3, 0.2) to (0.6, 0.7).
+    let in_hole = |u: f64, v: f64| (0.3..=0.6).contains(&u) && (0.2..=0.7).contains(&v);
+    let mut state = 7u64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..2000 {
+        let (u, v) = (next(), next());
+        let near_edge = [u - 0.3, u - 0.6, v - 0.2, v - 0.7]
+            .iter()
+            .any(|d| d.abs() < 1e-9);
+        if near_edge {
+            continue;
+        }
+        assert_eq!(r.keeps(u, v), !in_hole(u, v), "({u}, {v})");
+        // Left-handed, v runs the other way: the same point of the sheet, kept alike.
+        let (p, q) = (r.surface.point(u, v), l.surface.point(u, 1.0 - v));
+        assert!((p - q).length() < 1e-12);
+        assert_eq!(l.keeps(u, 1.0 - v), r.keeps(u, v), "({u}, {v})");
+    }
+    // `glint probe` says which points the trim cuts away.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sheet.usda");
+    std::fs::write(&path, holed("")).unwrap();
+    let out = glint(&[
+        "probe",
+        path.to_str().unwrap(),
+        "--patch",
+        "sheet",
+        "--uv",
+        "0.5,0.5",
+        "--uv",
+        "0.1,0.5",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let probes: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(probes[0]["trimmed_away"], true);
+    assert_eq!(probes[1]["trimmed_away"], false);
 }

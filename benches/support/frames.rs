@@ -118,14 +118,19 @@ impl Measured {
             print!(" {:>15.3}", quartiles(seconds.clone())[1] * 1e3);
         }
         println!();
-        print!("{:<14}", "covered");
-        for frames in &self.stats {
-            match &frames[0] {
-                Some(s) => print!(" {:>15}", s[Stage::Rasterize].pixels),
-                None => print!(" {:>15}", "-"),
+        for (label, stage) in [
+            ("covered", Stage::Rasterize),
+            ("supersampled", Stage::Supersample),
+        ] {
+            print!("{label:<14}");
+            for frames in &self.stats {
+                match &frames[0] {
+                    Some(s) => print!(" {:>15}", s[stage].pixels),
+                    None => print!(" {:>15}", "-"),
+                }
             }
+            println!();
         }
-        println!();
     }
 
     /// Prints, for each `(numerator, denominator)`, the median over rounds of the ratio of

@@ -61,6 +61,7 @@ impl AnalyticSphere {
         Arc::new(PatchLibrary {
             patches: vec![NamedPatch {
                 name: "sphere".into(),
+                trim: None,
                 surface: shapes::sphere(DVec3::ZERO, 1.0)
                     .expect("the unit sphere has a positive radius"),
             }],

@@ -59,6 +59,7 @@ pub fn copies(model: &PatchLibrary, count: usize, spacing: f64) -> PatchLibrary 
                 spacing * DVec3::new((copy % columns) as f64, (copy / columns) as f64, 0.0);
             model.patches.iter().map(move |p| NamedPatch {
                 name: format!("{}#{copy}", p.name),
+                trim: p.trim.clone(),
                 surface: p.surface.map_points(|q| q + offset),
             })
         })
@@ -256,6 +257,7 @@ mod tests {
         let model = PatchLibrary {
             patches: vec![NamedPatch {
                 name: "ball".into(),
+                trim: None,
                 surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
             }],
             groups: Vec::new(),

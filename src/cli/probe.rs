@@ -16,13 +16,13 @@ use crate::geom::Frame;
 /// For each --uv the output holds the point, the partial derivatives Su and Sv, the unit normal
 /// N and the tangents du, dv that the highlight operations move, stretch and split along, and
 /// whether the point is degenerate (a collapsed patch edge such as a sphere's pole, where the
-/// frame is the limit from inside the patch).
+/// frame is the limit from inside the patch), and whether the patch's trim cuts it away.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:
   glint probe patches/sphere.ron --patch sphere --uv 0.25,0.5
   glint probe patches/teapot.bpt --patch 20 --uv 0,0 --uv 0.5,0.5 --uv 1,1")]
 pub struct ProbeArgs {
-    /// Patch file: a RON patch library (.ron), Bezier patches (.bpt) or a USD text layer (.usda)
+    /// Patch file: a RON patch library (.ron), Bezier patches (.bpt) or a USD layer (.usda; .usd, .usdc with the usd-binary feature)
     file: PathBuf,
     /// Patch name, or its 0-based index in the file
     #[arg(long, value_name = "NAME_OR_INDEX")]
@@ -45,6 +45,8 @@ struct Probe<'a> {
     du: [f64; 3],
     dv: [f64; 3],
     degenerate: bool,
+    /// The patch is trimmed and its trim cuts this point away: it is not drawn.
+    trimmed_away: bool,
 }
 
 fn parse_uv(text: &str) -> Result<(f64, f64), String> {
@@ -97,6 +99,7 @@ pub fn run(args: &ProbeArgs) -> Result<(), CliError> {
             du: du.to_array(),
             dv: dv.to_array(),
             degenerate,
+            trimmed_away: !patch.keeps(u, v),
         });
     }
     let mut out = std::io::stdout().lock();

@@ -59,6 +59,7 @@ pub fn parse_bpt(text: &str, path: &str) -> Result<PatchLibrary, FormatError> {
         })?;
         patches.push(NamedPatch {
             name: index.to_string(),
+            trim: None,
             surface,
         });
     }

@@ -227,6 +227,7 @@ mod tests {
             .iter()
             .map(|name| NamedPatch {
                 name: (*name).into(),
+                trim: None,
                 surface: shapes::plane(1.0, 1.0).unwrap(),
             })
             .collect()

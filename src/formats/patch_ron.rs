@@ -156,6 +156,7 @@ pub fn parse_patch_ron(text: &str, path: &str) -> Result<PatchLibrary, FormatErr
         }
         patches.push(NamedPatch {
             name: spec.name,
+            trim: None,
             surface: spec.surface.0,
         });
     }

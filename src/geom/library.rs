@@ -1,14 +1,37 @@
 //! A model: named patches, looked up by name or index, and its named parts (groups of patches).
 
+use std::sync::Arc;
+
 use thiserror::Error;
 
-use super::NurbsSurface;
+use super::{NurbsSurface, Trim};
 
 /// One patch of a model.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NamedPatch {
     pub name: String,
     pub surface: NurbsSurface,
+    /// The part of the surface's domain that is drawn, when it is trimmed; shared between the
+    /// copies of a patch (instances of a model).
+    pub trim: Option<Arc<Trim>>,
+}
+
+impl NamedPatch {
+    /// The untrimmed patch `surface` named `name`.
+    #[must_use]
+    pub fn new(name: impl Into<String>, surface: NurbsSurface) -> Self {
+        Self {
+            name: name.into(),
+            surface,
+            trim: None,
+        }
+    }
+
+    /// Whether (u, v) is on the drawn part of the patch: anywhere when it is untrimmed.
+    #[must_use]
+    pub fn keeps(&self, u: f64, v: f64) -> bool {
+        self.trim.as_ref().is_none_or(|t| t.contains(u, v))
+    }
 }
 
 /// A named part of a model: a set of its patches (`lid`, `glass`). Selectors in a shot match
@@ -102,6 +125,7 @@ mod tests {
     fn find_by_name_then_index_and_list_names_when_missing() {
         let patch = |name: &str| NamedPatch {
             name: name.into(),
+            trim: None,
             surface: shapes::plane(1.0, 1.0).unwrap(),
         };
         let lib = PatchLibrary {

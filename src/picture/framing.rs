@@ -122,6 +122,7 @@ mod tests {
     fn library_of(surface: crate::geom::NurbsSurface) -> PatchLibrary {
         PatchLibrary::new(vec![NamedPatch {
             name: "s".into(),
+            trim: None,
             surface,
         }])
     }

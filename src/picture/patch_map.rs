@@ -357,6 +357,7 @@ mod tests {
                 .iter()
                 .map(|n| NamedPatch {
                     name: (*n).into(),
+                    trim: None,
                     surface: surface.clone(),
                 })
                 .collect(),

@@ -481,6 +481,7 @@ mod tests {
     fn each_sample_gets_the_frame_its_evaluation_asks_for() {
         let library = PatchLibrary::new(vec![NamedPatch {
             name: "ball".into(),
+            trim: None,
             surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
         }]);
         let camera = Camera {

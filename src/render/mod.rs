@@ -31,6 +31,7 @@ mod supersample;
 mod surface_key;
 mod surface_point;
 pub mod tessellate;
+mod trim_cut;
 mod visibility_shade;
 mod window;
 mod xtoon_tone;

@@ -14,7 +14,7 @@ use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
 use super::line_style::{LineKind, LineStyle};
 use super::lines::{self, draw_lines, LineImage, LineInput, MeshLines};
 use super::plan::{Plan, Surfaces};
-use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
+use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
 use super::settings::{Antialias, Settings};
 use super::shade::{shade, ShadeBuffers, Shaded};
@@ -23,6 +23,7 @@ use super::stats::{timed, RenderStats};
 use super::supersample;
 use super::surface_key::SurfaceKey;
 use super::tessellate::{Mesh, Tessellator};
+use super::trim_cut::MeshCut;
 use super::visibility_shade::shade_visibility;
 use super::xtoon_tone::{self, Ahead};
 use super::RenderError;
@@ -303,7 +304,9 @@ impl Stages {
                 *kept = None;
                 let mesh = tessellate(tessellator, settings, &frame, &mut stats);
                 generation += u64::from(stats.tessellation_rebuilt);
-                let covered = rasterize(rasterizer, mesh, &frame, clip, visibility, &mut stats);
+                let covered = rasterize(
+                    rasterizer, mesh, library, &frame, clip, visibility, &mut stats,
+                );
                 if plan.runs(Stage::GBuffer) {
                     fill_gbuffer(
                         gbuffer,
@@ -356,7 +359,7 @@ impl Stages {
             (true, Some(outlines)) => {
                 let (intersections, seconds) = timed(|| {
                     if lines::draws(&styles, LineKind::Intersection) {
-                        mesh_lines.intersections(mesh, generation)
+                        mesh_lines.intersections(mesh, library, generation)
                     } else {
                         &[]
                     }
@@ -454,10 +457,12 @@ fn tessellate<'t>(
 }
 
 /// [`Stage::Rasterize`]: the mesh's vertices to clip space, then its triangles into the
-/// visibility buffer at the sample resolution. Returns the samples covered.
+/// visibility buffer at the sample resolution, less what the patches' trims cut away. Returns
+/// the samples covered.
 fn rasterize(
     rasterizer: &mut Rasterizer,
     mesh: &Mesh,
+    library: &PatchLibrary,
     frame: &Frame,
     clip: &mut Vec<Vec4>,
     visibility: &mut VisibilityBuffer,
@@ -473,7 +478,15 @@ fn rasterize(
             threads: 0,
             ..RasterOptions::default()
         };
-        rasterizer.rasterize_into(frame.samples, clip, &mesh.triangles, &options, visibility)
+        let cut = MeshCut::of(mesh, library);
+        rasterizer.rasterize_cut_into(
+            frame.samples,
+            clip,
+            &mesh.triangles,
+            cut.as_ref().map(|c| c as &dyn Cut),
+            &options,
+            visibility,
+        )
     });
     stats.record(Stage::Rasterize, raster.pixels_covered, seconds);
     raster.pixels_covered

@@ -1,7 +1,7 @@
 //! The K × K samples of a marked pixel found from the refined surface points around it, by
 //! Newton steps along each sample's ray instead of rasterization.
 
-use glam::{Mat4, Vec2};
+use glam::{DVec2, Mat4, Vec2};
 use rayon::prelude::*;
 
 use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY};
@@ -11,7 +11,7 @@ use super::scene::Scene;
 use super::shade::{shade, ShadeBuffers};
 use super::supersample::{landed_depth, Resolved};
 use super::xtoon_tone::Views;
-use crate::geom::PatchLibrary;
+use crate::geom::{PatchLibrary, Region};
 use crate::highlight::Footprint;
 
 /// Pixels drawn together: the samples of one batch, and their candidates, are all the memory
@@ -89,19 +89,30 @@ pub(super) fn seedable(
 /// silhouette to be drawn from it.
 const BORDER_PIXELS: f32 = 3.0;
 
-/// Whether texel `slot` lies [`BORDER_PIXELS`] or more inside its patch's domain, measured by
-/// the slope of its (u, v) ([`uv_slopes`]); not when it has no slope along x or y (no neighbour
-/// on its patch there).
+/// Whether texel `slot` lies [`BORDER_PIXELS`] or more inside its patch's domain and from every
+/// edge of its trim, measured by the slope of its (u, v) ([`uv_slopes`]); not when it has no
+/// slope along x or y (no neighbour on its patch there).
 fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bool {
     let t = &gbuffer.texels[slot as usize];
     let (Some(along_x), Some(along_y)) = uv_slopes(gbuffer, slot) else {
         return false;
     };
     let reach = (along_x.abs() + along_y.abs()) * BORDER_PIXELS;
-    let domain = library.patches[t.patch as usize].surface.domain();
+    let patch = &library.patches[t.patch as usize];
+    let domain = patch.surface.domain();
     let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
     let (ru, rv) = (f64::from(reach.x), f64::from(reach.y));
-    u - ru > domain.u.0 && u + ru < domain.u.1 && v - rv > domain.v.0 && v + rv < domain.v.1
+    let clear_of_trim = || {
+        patch.trim.as_ref().is_none_or(|trim| {
+            let (lo, hi) = (DVec2::new(u - ru, v - rv), DVec2::new(u + ru, v + rv));
+            trim.region(lo, hi) != Region::Both
+        })
+    };
+    u - ru > domain.u.0
+        && u + ru < domain.u.1
+        && v - rv > domain.v.0
+        && v + rv < domain.v.1
+        && clear_of_trim()
 }
 
 /// The change of (u, v) per pixel at texel `slot`, along x and along y: the central (or
@@ -161,7 +172,8 @@ struct Candidate {
 /// that patch's texel nearest the sample, its (u, v) moved by the texel's slope
 /// ([`uv_slopes`]): the start is refined onto the sample's ray ([`GBuffer::refine_onto_rays`],
 /// within a probe's evaluations) and kept when the point it lands on projects within
-/// 0.05 samples of the sample's centre ([`landed_depth`]); of the points kept, the nearest
+/// 0.05 samples of the sample's centre ([`landed_depth`]) on a part of the patch its trim keeps;
+/// of the points kept, the nearest
 /// covers the sample. A pixel inside a surface with a sample that none covers is given back.
 /// The samples are shaded with their seed's footprint over the sample (a `k`-th of the
 /// pixel's), and a pixel takes the mean of its samples as the rasterized tiles do
@@ -290,6 +302,11 @@ fn draw_batch(
         let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full) else {
             continue;
         };
+        let patch = &frame.library.patches[t.patch as usize];
+        if !patch.keeps(f64::from(t.uv.x), f64::from(t.uv.y)) {
+            // It landed where the patch is trimmed away: the sample sees past it.
+            continue;
+        }
         t.depth = depth;
         let slot = &mut chosen[c.sample as usize];
         if slot.is_none_or(|(nearest, _)| depth < nearest) {

@@ -9,13 +9,14 @@ use super::dilate::dilate;
 use super::gbuffer::{Evaluate, GBuffer, EMPTY};
 use super::lines::LineImage;
 use super::neighbourhood::around;
-use super::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
+use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::renderer::{premultiplied, straight};
 use super::scene::Scene;
 use super::seeded::{self, Seeded};
 use super::settings::FrameMode;
 use super::shade::{shade, ShadeBuffers, Shaded};
 use super::tessellate::Mesh;
+use super::trim_cut::{MeshCut, Renumbered};
 use super::window::Window;
 use super::xtoon_tone::{self, Views};
 use crate::geom::PatchLibrary;
@@ -357,9 +358,9 @@ fn grow(visibility: &mut VisibilityBuffer, drawn: &[bool], grown: &mut Vec<bool>
 impl TileBuffers {
     /// Per texel, whether to keep it: every texel the mesh covers, and a grown one whose
     /// refined surface point projects (through `to_screen`, the window's view-projection) within
-    /// [`HIT_SAMPLES`] of its sample's centre — its ray hits the surface — and whose depth is
-    /// then set from that point.
-    fn grown_hits(&mut self, to_screen: Mat4, width: u32) -> Vec<bool> {
+    /// [`HIT_SAMPLES`] of its sample's centre — its ray hits the surface — on a part of its patch
+    /// the patch's trim keeps, and whose depth is then set from that point.
+    fn grown_hits(&mut self, to_screen: Mat4, width: u32, library: &PatchLibrary) -> Vec<bool> {
         let size = (width, self.gbuffer.height);
         self.gbuffer
             .texels
@@ -367,6 +368,11 @@ impl TileBuffers {
             .map(|t| {
                 if !self.grown[t.pixel as usize] {
                     return true;
+                }
+                let patch = &library.patches[t.patch as usize];
+                if !patch.keeps(f64::from(t.uv.x), f64::from(t.uv.y)) {
+                    // On a part the patch's trim cuts away: the ray passes through.
+                    return false;
                 }
                 let landed = landed_depth(to_screen, t.position, t.pixel, size);
                 if let Some(depth) = landed {
@@ -436,10 +442,16 @@ impl TileBuffers {
             threads: 0,
             ..RasterOptions::default()
         };
-        self.rasterizer.rasterize_into(
+        let mesh_cut = MeshCut::of(mesh, frame.library);
+        let cut = mesh_cut.as_ref().map(|cut| Renumbered {
+            cut,
+            triangles: bin,
+        });
+        self.rasterizer.rasterize_cut_into(
             window.viewport(),
             &self.clip,
             &self.triangles,
+            cut.as_ref().map(|c| c as &dyn Cut),
             &options,
             &mut self.visibility,
         );
@@ -493,7 +505,7 @@ impl TileBuffers {
         );
         if !self.grown.is_empty() {
             let to_screen = to_window * frame.view_projection;
-            let keep = self.grown_hits(to_screen, window.width);
+            let keep = self.grown_hits(to_screen, window.width, frame.library);
             self.gbuffer.retain(&keep);
         }
         let ahead = frame

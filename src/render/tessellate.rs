@@ -8,7 +8,7 @@ use std::sync::Arc;
 use glam::{DVec3, Mat4, Vec2, Vec3};
 use serde::Deserialize;
 
-use crate::geom::{GridEvaluator, KnotVector, NurbsSurface, PatchLibrary};
+use crate::geom::{GridEvaluator, KnotVector, NurbsSurface, PatchLibrary, Region};
 
 /// How finely patches are cut into triangles.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
@@ -52,6 +52,49 @@ pub struct Mesh {
     /// Every piece of a patch's domain boundary between two neighbouring vertices, once
     /// ([`boundary_edges`]).
     pub borders: Vec<BorderEdge>,
+    /// Where each triangle lies on its patch's trim — wholly kept, wholly cut away, or crossed
+    /// by a trim loop — decided per grid cell by the cell's (u, v) rectangle
+    /// ([`Trim::region`](crate::geom::Trim::region)); empty when no patch is trimmed.
+    pub triangle_region: Vec<Region>,
+}
+
+impl Mesh {
+    /// The mesh's point at `(u, v)` on patch `patch`: in the grid cell holding it, on the cell's
+    /// triangle holding it, by barycentric coordinates in (u, v) (linear over a triangle, since
+    /// a cell is a rectangle in (u, v)); `(u, v)` outside the domain is taken at its nearest
+    /// cell.
+    #[must_use]
+    pub fn point_on(&self, patch: u32, uv: glam::DVec2) -> Vec3 {
+        let g = self.grids[patch as usize];
+        let u_at = |i: u32| f64::from(self.uvs[g.vertex(i, 0) as usize].x);
+        let v_at = |j: u32| f64::from(self.uvs[g.vertex(0, j) as usize].y);
+        // The cell [i, i + 1] with u_at(i) ≤ u, clamped to the grid.
+        let cell = |n: u32, at: &dyn Fn(u32) -> f64, x: f64| {
+            let (mut lo, mut hi) = (0, n.saturating_sub(1).max(1));
+            while hi - lo > 1 {
+                let mid = (lo + hi) / 2;
+                if at(mid) <= x {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            lo.min(n.saturating_sub(2))
+        };
+        let (i, j) = (cell(g.nu, &u_at, uv.x), cell(g.nv, &v_at, uv.y));
+        let (u0, u1, v0, v1) = (u_at(i), u_at(i + 1), v_at(j), v_at(j + 1));
+        let s = ((uv.x - u0) / (u1 - u0)).clamp(0.0, 1.0) as f32;
+        let t = ((uv.y - v0) / (v1 - v0)).clamp(0.0, 1.0) as f32;
+        let p = |i: u32, j: u32| self.positions[g.vertex(i, j) as usize];
+        let (a, c) = (p(i, j), p(i + 1, j + 1));
+        // [(i, j), (i+1, j), (i+1, j+1)] below the diagonal s = t, [(i, j), (i+1, j+1), (i, j+1)]
+        // above it.
+        if s >= t {
+            a + (p(i + 1, j) - a) * (s - t) + (c - a) * t
+        } else {
+            a + (c - a) * s + (p(i, j + 1) - a) * (t - s)
+        }
+    }
 }
 
 /// One patch's vertices in the mesh: an `nu × nv` grid from `first`, vertex `(i, j)` (the i-th
@@ -426,9 +469,10 @@ fn direction_classes_counted(library: &PatchLibrary) -> (Vec<usize>, usize) {
 }
 
 /// The grid meshes of all patches, with boundary vertices at equal positions welded to one f32
-/// value.
+/// value, and, when a patch is trimmed, where each triangle lies on its trim.
 fn build_mesh(library: &PatchLibrary, segments: &[Segments]) -> Mesh {
     let mut mesh = Mesh::default();
+    let trimmed = library.patches.iter().any(|p| p.trim.is_some());
     let mut welded: HashMap<[i64; 3], Vec3> = HashMap::new();
     let quantum = 1e-9 * model_scale(library);
     for (patch_index, (patch, &(seg_u, seg_v))) in library.patches.iter().zip(segments).enumerate()
@@ -459,6 +503,16 @@ fn build_mesh(library: &PatchLibrary, segments: &[Segments]) -> Mesh {
         });
         let index = |i: usize, j: usize| first + (i * nv + j) as u32;
         for i in 0..nu - 1 {
+            if trimmed {
+                mesh.triangle_region.extend((0..nv - 1).flat_map(|j| {
+                    let region = patch.trim.as_ref().map_or(Region::Kept, |t| {
+                        let lo = glam::DVec2::new(us[i], vs[j]);
+                        let hi = glam::DVec2::new(us[i + 1], vs[j + 1]);
+                        t.region(lo, hi)
+                    });
+                    [region; 2]
+                }));
+            }
             for j in 0..nv - 1 {
                 let (a, b, c, d) = (
                     index(i, j),
@@ -570,6 +624,7 @@ mod tests {
                     let p = |dx: f64, dy: f64| DVec3::new(x + dx, y + dy, 0.0);
                     NamedPatch {
                         name: format!("t{k}"),
+                        trim: None,
                         surface: shapes::bezier(
                             1,
                             1,
@@ -608,10 +663,12 @@ mod tests {
             patches: vec![
                 NamedPatch {
                     name: "sphere".into(),
+                    trim: None,
                     surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
                 },
                 NamedPatch {
                     name: "torus".into(),
+                    trim: None,
                     surface: shapes::torus(2.0, 0.5).unwrap(),
                 },
             ],

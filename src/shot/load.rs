@@ -399,6 +399,7 @@ fn place_instances(
             }
             placed.library.patches.push(NamedPatch {
                 name: format!("{}/{}", spec.name, patch.name),
+                trim: patch.trim.clone(),
                 surface,
             });
             placed.patch_material.push(material);

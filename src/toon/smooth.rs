@@ -269,6 +269,7 @@ mod tests {
         let library = PatchLibrary {
             patches: vec![NamedPatch {
                 name: "plane".into(),
+                trim: None,
                 surface: shapes::plane(2.0, 1.0).unwrap(),
             }],
             groups: Vec::new(),

@@ -252,6 +252,7 @@ mod tests {
         let library = PatchLibrary {
             patches: vec![NamedPatch {
                 name: "sphere".into(),
+                trim: None,
                 surface: shapes::sphere(DVec3::ZERO, 2.0).unwrap(),
             }],
             groups: Vec::new(),

@@ -2,14 +2,15 @@
 //! `Xform` ancestors, named by their prim paths and grouped by their parents.
 //!
 //! What is read: `def` prims; `Xform`, `Scope` and untyped prims as groups (an `Xform`'s ops
-//! transform everything under it); `NurbsPatch` prims ([`nurbs_patch`]); the layer's `upAxis`
+//! transform everything under it); `NurbsPatch` prims ([`nurbs_patch`]) and their trim curves
+//! ([`trim_curves`]); the layer's `upAxis`
 //! (a `"Y"`-up layer is turned to glint's z up: `(x, y, z) ↦ (x, −z, y)`). Prims that are
 //! inactive or invisible are left out, with everything under them, and so are prims of types
 //! that draw nothing (materials, shaders, cameras, lights). What is refused, where it is
 //! written: composition (`over`, `class`, references, payloads, inherits, specializes,
 //! variants, sublayers), animated values (time samples, splines), connected attributes glint
-//! reads, trimmed patches, and geometry glint does not draw (meshes, curves, points, implicit
-//! shapes).
+//! reads, trim loops that are not closed or run the wrong way, and geometry glint does not draw
+//! (meshes, curves, points, implicit shapes).
 
 #[cfg(feature = "usd-binary")]
 mod binary;
@@ -17,6 +18,7 @@ mod layer;
 mod lexer;
 mod nurbs_patch;
 mod text;
+mod trim_curves;
 mod xform;
 
 use glam::{DMat4, DVec3};
@@ -182,12 +184,15 @@ impl Walker<'_> {
                     format!("the file has more than {MAX_PATCHES} patches"),
                 ));
             }
-            let surface =
+            let (surface, mirrored) =
                 nurbs_patch::surface(prim, &shown_path).map_err(|e| self.error(e.at, e.message))?;
+            let trim = trim_curves::trim(prim, &shown_path, surface.domain(), mirrored)
+                .map_err(|e| self.error(e.at, e.message))?;
             let placed = place(&surface, world)
                 .map_err(|m| self.error(prim.at, format!("{shown_path}: {m}")))?;
             self.library.patches.push(NamedPatch {
                 name: path.clone(),
+                trim,
                 surface: placed,
             });
         }

@@ -15,18 +15,13 @@ pub(super) struct PatchError {
     pub message: String,
 }
 
-/// The attributes of the trim-curve schema: a patch that writes any of them is trimmed.
-const TRIM_ATTRIBUTES: [&str; 6] = [
-    "trimCurve:counts",
-    "trimCurve:orders",
-    "trimCurve:vertexCounts",
-    "trimCurve:knots",
-    "trimCurve:ranges",
-    "trimCurve:points",
-];
-
-/// The surface of the `NurbsPatch` prim `prim` at `path`.
-pub(super) fn surface(prim: &Prim, path: &str) -> Result<NurbsSurface, PatchError> {
+/// The surface of the `NurbsPatch` prim `prim` at `path`, and, when the patch is left-handed
+/// (its v reversed to make it right-handed), the first and last of its v knots, about whose
+/// middle v was mirrored.
+pub(super) fn surface(
+    prim: &Prim,
+    path: &str,
+) -> Result<(NurbsSurface, Option<(f64, f64)>), PatchError> {
     let err = |at: usize, message: String| PatchError {
         at,
         message: format!("{path}: {message}"),
@@ -35,16 +30,6 @@ pub(super) fn surface(prim: &Prim, path: &str) -> Result<NurbsSurface, PatchErro
         prim.property(name)
             .ok_or_else(|| err(prim.at, format!("the NurbsPatch has no `{name}`")))
     };
-    for name in TRIM_ATTRIBUTES {
-        if let Some(p) = prim.property(name) {
-            if !matches!(&p.value, Some(Value::List(items)) if items.is_empty()) {
-                return Err(err(
-                    p.at,
-                    "the patch is trimmed (`trimCurve:*`), and glint does not draw trim curves yet; remove the trims or split the patch at them".to_string(),
-                ));
-            }
-        }
-    }
     for p in &prim.properties {
         if p.type_name.ends_with(".connect") && is_read(&p.name) {
             return Err(err(
@@ -133,7 +118,7 @@ pub(super) fn surface(prim: &Prim, path: &str) -> Result<NurbsSurface, PatchErro
             if r.len() != 2 || !close(r[0], lo) || !close(r[1], hi) {
                 return Err(err(
                     p.at,
-                    format!("`{name}` {r:?} is not the knots' domain ({lo}, {hi}); glint draws whole patches — trim or re-knot the patch to its range"),
+                    format!("`{name}` {r:?} is not the knots' domain ({lo}, {hi}); glint draws a patch over its knots' whole domain — re-knot the patch to its range, or trim it with `trimCurve:*`"),
                 ));
             }
         }
@@ -184,9 +169,9 @@ pub(super) fn surface(prim: &Prim, path: &str) -> Result<NurbsSurface, PatchErro
             .map(|i| (0..nv).map(|j| w[j * nu + i]).collect())
             .collect()
     });
-    let (net, weight_net, kv) = if left_handed {
+    let mirrored = left_handed.then(|| (kv[0], kv[kv.len() - 1]));
+    let (net, weight_net, kv) = if let Some((lo, hi)) = mirrored {
         // The other side is the front: v runs the other way.
-        let (lo, hi) = (kv[0], kv[kv.len() - 1]);
         let flipped: Vec<f64> = kv.iter().rev().map(|&k| lo + hi - k).collect();
         let reverse = |rows: Vec<Vec<DVec3>>| {
             rows.into_iter()
@@ -203,6 +188,7 @@ pub(super) fn surface(prim: &Prim, path: &str) -> Result<NurbsSurface, PatchErro
         (net, weight_net, kv)
     };
     NurbsSurface::new(ou - 1, ov - 1, ku, kv, &net, weight_net.as_deref())
+        .map(|s| (s, mirrored))
         .map_err(|e| err(points_property.at, e.to_string()))
 }
 
@@ -222,10 +208,11 @@ fn is_read(name: &str) -> bool {
             | "pointWeights"
             | "orientation"
     ) || name.starts_with("xformOp")
+        || name.starts_with("trimCurve:")
 }
 
 /// The numbers of a list or tuple of numbers.
-fn numbers(p: &Property) -> Result<Vec<f64>, String> {
+pub(super) fn numbers(p: &Property) -> Result<Vec<f64>, String> {
     let items = match &p.value {
         Some(Value::List(items) | Value::Tuple(items)) => items,
         _ => return Err("must be a list of numbers".to_string()),
@@ -241,7 +228,7 @@ fn numbers(p: &Property) -> Result<Vec<f64>, String> {
 }
 
 /// The points of a list of `(x, y, z)`.
-fn vectors(p: &Property) -> Result<Vec<DVec3>, String> {
+pub(super) fn vectors(p: &Property) -> Result<Vec<DVec3>, String> {
     let Some(Value::List(items)) = &p.value else {
         return Err("must be a list of (x, y, z) points".to_string());
     };

@@ -1,6 +1,7 @@
 //! Borders and creases: the pieces of the patches' domain boundaries that are drawn — a
 //! boundary no patch continues, a seam where two patches meet at an angle, a seam the
-//! silhouette runs along, and (when asked) every seam between two patches.
+//! silhouette runs along, and (when asked) every seam between two patches — on what the
+//! patches' trims keep of them.
 
 use glam::Mat4;
 use rayon::prelude::*;
@@ -39,6 +40,9 @@ pub(crate) fn crease_opacity(angle: f32, crease: f32) -> f32 {
 /// - a seam between two patches, with patch borders on: a border;
 /// - otherwise a seam whose normals turn by more than the crease angle (less the half band):
 ///   a crease, with [`crease_opacity`] of the mean angle at its two ends.
+///
+/// Where a trim cuts the boundary away on one side, what the other side keeps of it is a
+/// border; where both sides cut it away, nothing is drawn ([`sides_kept`]).
 #[must_use]
 pub(crate) fn borders_and_creases(
     mesh: &Mesh,
@@ -55,14 +59,84 @@ pub(crate) fn borders_and_creases(
         .par_iter()
         .with_min_len(256)
         .flat_map_iter(|edge| {
-            let kind = classify(mesh, facing, outlines, edge)
-                .filter(|&(kind, _)| drawn(edge.patch, kind) || drawn(edge.patch_across(), kind));
-            kind.map(|kind| {
-                let surface = &library.patches[edge.patch as usize].surface;
-                pieces(mesh, surface, edge, kind, view_projection, size)
-            })
-            .into_iter()
-            .flatten()
+            let surface = &library.patches[edge.patch as usize].surface;
+            let draw = |span: (f64, f64), kind: Option<(LineKind, f32)>, patches: [u32; 2]| {
+                kind.filter(|&(kind, _)| drawn(patches[0], kind) || drawn(patches[1], kind))
+                    .map(|kind| {
+                        pieces(
+                            mesh,
+                            surface,
+                            edge,
+                            span,
+                            kind,
+                            patches,
+                            view_projection,
+                            size,
+                        )
+                    })
+                    .into_iter()
+                    .flatten()
+            };
+            let whole = [edge.patch, edge.patch_across()];
+            sides_kept(mesh, library, edge)
+                .into_iter()
+                .flat_map(move |(span, here, across)| match (here, across) {
+                    (true, true) => draw(span, classify(mesh, facing, outlines, edge), whole),
+                    // What a trim leaves of the boundary on one side only is an open border.
+                    (true, false) => draw(span, Some((LineKind::Border, 1.0)), [edge.patch; 2]),
+                    (false, true) => {
+                        let other = edge.patch_across();
+                        draw(span, Some((LineKind::Border, 1.0)), [other; 2])
+                    }
+                    (false, false) => draw(span, None, whole),
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// The boundary piece `edge` cut where the trims of the patches on its two sides start or stop
+/// keeping it: per part, its interval of the piece's parameter (0 at `a`, 1 at `b`) and whether
+/// the patch on each side keeps it there (the side across counts as keeping a piece nothing
+/// continues). An untrimmed piece is one part, kept on both sides.
+fn sides_kept(
+    mesh: &Mesh,
+    library: &PatchLibrary,
+    edge: &BorderEdge,
+) -> Vec<((f64, f64), bool, bool)> {
+    let uv = |v: u32| mesh.uvs[v as usize].as_dvec2();
+    let kept = |patch: u32, a: u32, b: u32| {
+        library.patches[patch as usize]
+            .trim
+            .as_ref()
+            .map(|t| t.kept_spans(uv(a), uv(b)))
+    };
+    let here = kept(edge.patch, edge.a, edge.b);
+    let across = edge.across.and_then(|(a, b, other)| kept(other, a, b));
+    if here.is_none() && across.is_none() {
+        return vec![((0.0, 1.0), true, true)];
+    }
+    let inside = |spans: &Option<Vec<(f64, f64)>>, t: f64| {
+        spans
+            .as_ref()
+            .is_none_or(|s| s.iter().any(|&(t0, t1)| t0 <= t && t <= t1))
+    };
+    let mut cuts: Vec<f64> = [0.0, 1.0]
+        .into_iter()
+        .chain(
+            here.iter()
+                .chain(&across)
+                .flatten()
+                .flat_map(|&(t0, t1)| [t0, t1]),
+        )
+        .collect();
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    cuts.windows(2)
+        .filter(|w| w[1] > w[0])
+        .map(|w| {
+            let middle = 0.5 * (w[0] + w[1]);
+            ((w[0], w[1]), inside(&here, middle), inside(&across, middle))
         })
         .collect()
 }
@@ -96,29 +170,33 @@ fn classify(
     (opacity > 0.0).then_some((LineKind::Crease, opacity))
 }
 
-/// The boundary from vertex `a` to `b` of `edge` as pieces no longer than
-/// [`LONGEST_PIECE_PIXELS`] on the image, their ends on the surface.
+/// The part `[t0, t1]` of the boundary from vertex `a` to `b` of `edge` (on `patches`) as
+/// pieces no longer than [`LONGEST_PIECE_PIXELS`] on the image, their ends on the surface.
+#[allow(clippy::too_many_arguments)]
 fn pieces(
     mesh: &Mesh,
     surface: &crate::geom::NurbsSurface,
     edge: &BorderEdge,
+    (t0, t1): (f64, f64),
     (kind, opacity): (LineKind, f32),
+    patches: [u32; 2],
     view_projection: Mat4,
     size: (u32, u32),
 ) -> Vec<Piece> {
     let position = |v: u32| mesh.positions[v as usize];
     let uv = |v: u32| mesh.uvs[v as usize].as_dvec2();
     let (pa, pb) = (position(edge.a), position(edge.b));
-    let length = screen_length(view_projection, size, pa.as_dvec3(), pb.as_dvec3());
+    let length =
+        (t1 - t0) as f32 * screen_length(view_projection, size, pa.as_dvec3(), pb.as_dvec3());
     let n = (length / LONGEST_PIECE_PIXELS).ceil().clamp(1.0, 64.0) as u32;
     let at = |k: u32| {
-        if k == 0 {
+        let t = t0 + (t1 - t0) * f64::from(k) / f64::from(n);
+        if t <= 0.0 {
             return (pa.as_dvec3(), pa);
         }
-        if k == n {
+        if t >= 1.0 {
             return (pb.as_dvec3(), pb);
         }
-        let t = f64::from(k) / f64::from(n);
         let p = uv(edge.a).lerp(uv(edge.b), t);
         let on_mesh = pa.lerp(pb, t as f32);
         let point = surface.point(p.x, p.y);
@@ -139,7 +217,7 @@ fn pieces(
             on_mesh: [w[0].1, w[1].1],
             opacity,
             kind,
-            patches: [edge.patch, edge.patch_across()],
+            patches,
         })
         .collect()
 }
@@ -167,6 +245,7 @@ mod tests {
             patches: vec![
                 NamedPatch {
                     name: "flat".into(),
+                    trim: None,
                     surface: square([
                         [flat(-1.0, 0.0), flat(-1.0, 1.0)],
                         [flat(0.0, 0.0), flat(0.0, 1.0)],
@@ -174,6 +253,7 @@ mod tests {
                 },
                 NamedPatch {
                     name: "raised".into(),
+                    trim: None,
                     surface: square([
                         [raised(0.0, 0.0), raised(0.0, 1.0)],
                         [raised(1.0, 0.0), raised(1.0, 1.0)],

@@ -10,7 +10,7 @@ use super::super::camera::{Camera, Projection};
 use super::super::tessellate::{Mesh, PatchGrid};
 use super::piece::Piece;
 use super::to_screen;
-use crate::geom::{NurbsSurface, PatchLibrary};
+use crate::geom::{NurbsSurface, PatchLibrary, Trim};
 use crate::render::line_style::LineKind;
 
 /// The most regula falsi steps that move a point of the silhouette from the mesh onto the
@@ -105,6 +105,8 @@ struct OnPatch<'a> {
     /// The patch's index in the library.
     patch: u32,
     surface: &'a NurbsSurface,
+    /// The patch's trim: silhouettes are drawn only on what it keeps.
+    trim: Option<&'a Trim>,
     side: EyeSide,
     view_projection: Mat4,
     size: (u32, u32),
@@ -117,7 +119,8 @@ struct OnPatch<'a> {
 /// lie on the true silhouette and the two triangles of an edge find the same point. A piece
 /// longer than [`LONGEST_PIECE_PIXELS`] on the `size` image is cut at the point of the
 /// silhouette on the line from the triangle's lone corner through its middle (in (u, v)).
-/// Only the patches `drawn` picks are searched.
+/// On a trimmed patch, a piece is cut where a trim loop crosses it and only what the trim keeps
+/// is drawn. Only the patches `drawn` picks are searched.
 #[must_use]
 pub(crate) fn silhouettes(
     drawn: impl Fn(u32) -> bool + Sync,
@@ -139,6 +142,7 @@ pub(crate) fn silhouettes(
                 mesh,
                 patch: k as u32,
                 surface: &patch.surface,
+                trim: patch.trim.as_deref(),
                 side,
                 view_projection,
                 size,
@@ -257,13 +261,45 @@ impl OnPatch<'_> {
                 return;
             }
         }
-        pieces.push(Piece {
+        let Some(trim) = self.trim else {
+            pieces.push(self.piece(start, end));
+            return;
+        };
+        // Only the parts the trim keeps, cut where a trim loop crosses the piece in (u, v).
+        let at = |t: f64| {
+            if t <= 0.0 {
+                start
+            } else if t >= 1.0 {
+                end
+            } else {
+                let uv = start.uv.lerp(end.uv, t);
+                let on_mesh = self.on_mesh(corners, uv);
+                let point = self.surface.point(uv.x, uv.y);
+                Crossing {
+                    uv,
+                    point: if point.is_finite() {
+                        point
+                    } else {
+                        on_mesh.as_dvec3()
+                    },
+                    on_mesh,
+                }
+            }
+        };
+        for (t0, t1) in trim.kept_spans(start.uv, end.uv) {
+            pieces.push(self.piece(at(t0), at(t1)));
+        }
+    }
+
+    /// The silhouette piece from `start` to `end`.
+    fn piece(&self, start: Crossing, end: Crossing) -> Piece {
+        Piece {
             ends: [start.point, end.point],
             on_mesh: [start.on_mesh, end.on_mesh],
             opacity: 1.0,
             kind: LineKind::Silhouette,
             patches: [self.patch; 2],
-        });
+        }
     }
 
     /// The point of the silhouette on the line in (u, v) from the lone corner through the

@@ -1,10 +1,11 @@
 //! Intersection lines: the curves where the mesh's patches pass through one another (the
 //! teapot's spout and handle through its body), found once per mesh.
 
-use glam::{DVec3, Vec3};
+use glam::{DVec2, DVec3, Vec3};
 use rayon::prelude::*;
 
 use super::super::tessellate::{Mesh, PatchGrid};
+use crate::geom::{PatchLibrary, Region};
 
 /// Grid cells per side of the blocks whose bounds are compared before their triangles are.
 const BLOCK: u32 = 8;
@@ -55,8 +56,10 @@ struct Block {
 /// continuations of one surface and are not intersected with each other; patches that only
 /// pass through one another are. Blocks of [`BLOCK`]² cells are compared by their bounds
 /// first, so the work grows with the blocks that overlap, not with every pair of triangles.
+/// On trimmed patches, triangles cut away whole are skipped and a segment is kept where both
+/// patches' trims keep it.
 #[must_use]
-pub(crate) fn intersections(mesh: &Mesh) -> Vec<Meeting> {
+pub(crate) fn intersections(mesh: &Mesh, library: &PatchLibrary) -> Vec<Meeting> {
     let blocks: Vec<Vec<Block>> = mesh
         .grids
         .iter()
@@ -90,7 +93,7 @@ pub(crate) fn intersections(mesh: &Mesh) -> Vec<Meeting> {
     }
     pairs
         .par_iter()
-        .flat_map_iter(|&(a, b)| block_segments(mesh, a, b))
+        .flat_map_iter(|&(a, b)| block_segments(mesh, library, a, b))
         .collect()
 }
 
@@ -145,44 +148,107 @@ fn touching_patches(mesh: &Mesh) -> std::collections::HashSet<(u32, u32)> {
     pairs
 }
 
-/// The triangles of a block, as vertex triples.
-fn triangles(mesh: &Mesh, block: &Block) -> Vec<[Vec3; 3]> {
+/// The triangles of a block, as vertex triples with their corners' (u, v); none that the
+/// patch's trim cuts away whole.
+fn triangles(mesh: &Mesh, library: &PatchLibrary, block: &Block) -> Vec<([Vec3; 3], [DVec2; 3])> {
     let grid = &mesh.grids[block.patch as usize];
+    let trim = library.patches[block.patch as usize].trim.as_deref();
     let [i0, i1, j0, j1] = block.cells;
-    let at = |i: u32, j: u32| mesh.positions[grid.vertex(i, j) as usize];
+    let at = |i: u32, j: u32| {
+        let v = grid.vertex(i, j) as usize;
+        (mesh.positions[v], mesh.uvs[v].as_dvec2())
+    };
     let mut out = Vec::with_capacity(((i1 - i0) * (j1 - j0) * 2) as usize);
     for i in i0..i1 {
         for j in j0..j1 {
             let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-            out.push([a, b, c]);
-            out.push([a, c, d]);
+            if trim.is_some_and(|t| t.region(a.1, c.1) == Region::Cut) {
+                continue;
+            }
+            out.push(([a.0, b.0, c.0], [a.1, b.1, c.1]));
+            out.push(([a.0, c.0, d.0], [a.1, c.1, d.1]));
         }
     }
     out
+}
+
+/// The (u, v) at `p`, a point of triangle `t` whose corners are at `uv`, by its barycentric
+/// coordinates on the triangle.
+fn uv_at(t: &[Vec3; 3], uv: &[DVec2; 3], p: Vec3) -> DVec2 {
+    let [a, b, c] = t.map(|q| q.as_dvec3());
+    let (e1, e2, d) = (b - a, c - a, p.as_dvec3() - a);
+    let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let (d1, d2) = (d.dot(e1), d.dot(e2));
+    let det = d11 * d22 - d12 * d12;
+    if det == 0.0 {
+        return uv[0];
+    }
+    let (wb, wc) = ((d22 * d1 - d12 * d2) / det, (d11 * d2 - d12 * d1) / det);
+    uv[0] + (uv[1] - uv[0]) * wb + (uv[2] - uv[0]) * wc
+}
+
+/// The parts of the segment `ends`, where triangles `t` (of patch `p`) and `u` (of patch `q`)
+/// cross, that both patches' trims keep, as intervals of its parameter.
+fn kept_by_both(
+    library: &PatchLibrary,
+    ends: [Vec3; 2],
+    (p, t): (u32, &([Vec3; 3], [DVec2; 3])),
+    (q, u): (u32, &([Vec3; 3], [DVec2; 3])),
+) -> Vec<(f64, f64)> {
+    let spans = |patch: u32, (corners, uv): &([Vec3; 3], [DVec2; 3])| {
+        library.patches[patch as usize].trim.as_ref().map_or_else(
+            || vec![(0.0, 1.0)],
+            |trim| trim.kept_spans(uv_at(corners, uv, ends[0]), uv_at(corners, uv, ends[1])),
+        )
+    };
+    let (a, b) = (spans(p, t), spans(q, u));
+    let mut both = Vec::new();
+    for &(a0, a1) in &a {
+        for &(b0, b1) in &b {
+            let (lo, hi) = (a0.max(b0), a1.min(b1));
+            if lo < hi {
+                both.push((lo, hi));
+            }
+        }
+    }
+    both
 }
 
 fn triangle_bounds(t: &[Vec3; 3]) -> Bounds {
     t.iter().fold(Bounds::EMPTY, |b, &p| b.grow(p))
 }
 
-/// The segments where the triangles of two blocks cross.
-fn block_segments(mesh: &Mesh, a: &Block, b: &Block) -> Vec<Meeting> {
-    let (ta, tb) = (triangles(mesh, a), triangles(mesh, b));
-    let bb: Vec<Bounds> = tb.iter().map(triangle_bounds).collect();
+/// The segments where the triangles of two blocks cross, on what both patches' trims keep.
+fn block_segments(mesh: &Mesh, library: &PatchLibrary, a: &Block, b: &Block) -> Vec<Meeting> {
+    let (ta, tb) = (triangles(mesh, library, a), triangles(mesh, library, b));
+    let trimmed = [a.patch, b.patch]
+        .iter()
+        .any(|&p| library.patches[p as usize].trim.is_some());
+    let bb: Vec<Bounds> = tb.iter().map(|(t, _)| triangle_bounds(t)).collect();
     let mut out = Vec::new();
     for t in &ta {
-        let bt = triangle_bounds(t);
+        let bt = triangle_bounds(&t.0);
         if !bt.overlaps(&b.bounds) {
             continue;
         }
         for (u, bu) in tb.iter().zip(&bb) {
-            if bt.overlaps(bu) {
-                if let Some(ends) = triangle_crossing(t, u) {
-                    out.push(Meeting {
-                        ends,
-                        patches: [a.patch, b.patch],
-                    });
-                }
+            if !bt.overlaps(bu) {
+                continue;
+            }
+            let Some(ends) = triangle_crossing(&t.0, &u.0) else {
+                continue;
+            };
+            let patches = [a.patch, b.patch];
+            if !trimmed {
+                out.push(Meeting { ends, patches });
+                continue;
+            }
+            for (t0, t1) in kept_by_both(library, ends, (a.patch, t), (b.patch, u)) {
+                let at = |s: f64| ends[0].lerp(ends[1], s as f32);
+                out.push(Meeting {
+                    ends: [at(t0), at(t1)],
+                    patches,
+                });
             }
         }
     }

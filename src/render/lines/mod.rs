@@ -4,7 +4,8 @@
 //!
 //! The curves are decided on the surface, not by comparing neighbouring pixels, so that a line
 //! does not break up when the view turns: a silhouette is where `N·(P − E)` changes sign
-//! ([`contour`]), a border or crease is a piece of a patch's domain boundary ([`border`]), an
+//! ([`contour`]), a border or crease is a piece of a patch's domain boundary ([`border`]) or of
+//! a trimmed patch's trim loops ([`trim_edge`]), an
 //! intersection is where two patches pass through each other ([`intersection`], found once per
 //! mesh: [`MeshLines`]).
 //! Pieces that share an end are joined into lines ([`chain`]); each line is cut into samples
@@ -20,6 +21,7 @@ mod contour;
 mod intersection;
 mod piece;
 mod stroke;
+mod trim_edge;
 mod visible;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
@@ -124,11 +126,17 @@ pub(super) struct MeshLines {
 }
 
 impl MeshLines {
-    /// The intersections of `mesh`, of tessellation `generation`: found again only when the
-    /// mesh is not the one they were found on.
-    pub fn intersections(&mut self, mesh: &Mesh, generation: u64) -> &[Meeting] {
+    /// The intersections of `mesh` (of `library`'s patches, whose trims they respect), of
+    /// tessellation `generation`: found again only when the mesh is not the one they were found
+    /// on.
+    pub fn intersections(
+        &mut self,
+        mesh: &Mesh,
+        library: &PatchLibrary,
+        generation: u64,
+    ) -> &[Meeting] {
         if self.generation != generation || generation == 0 {
-            self.intersections = intersection::intersections(mesh);
+            self.intersections = intersection::intersections(mesh, library);
             self.generation = generation;
         }
         &self.intersections
@@ -199,6 +207,13 @@ pub(super) fn draw_lines(
         input.view_projection,
         input.size,
         outlines,
+        styles,
+    ));
+    pieces.extend(trim_edge::trim_edges(
+        input.mesh,
+        input.library,
+        input.view_projection,
+        input.size,
         styles,
     ));
     pieces.extend(input.intersections.iter().map(|m| Piece {

@@ -50,6 +50,8 @@ use std::ops::{Add, Mul};
 use glam::{DVec2, Vec4};
 use rayon::prelude::*;
 
+use crate::geom::Region;
+
 use bin::{Bins, TileGrid};
 use clip::{Planes, Verdict};
 use setup::{Screen, ScreenVertex, TriangleSetup};
@@ -159,7 +161,8 @@ pub struct RasterStats {
     /// Triangles skipped for an index out of range or a NaN or infinite vertex coordinate.
     pub triangles_invalid: usize,
     /// Triangles that reached no pixel centre's bounding box: outside the view frustum, behind
-    /// the camera, zero-area after snapping, or between pixel centres.
+    /// the camera, zero-area after snapping, or between pixel centres; and triangles a
+    /// [`Cut`] cuts away whole.
     pub triangles_culled: usize,
     /// Triangles clipped against the near or far plane or the guard band (culled ones included
     /// when nothing of them remained).
@@ -197,6 +200,18 @@ where
     T: Mul<f32, Output = T> + Add<Output = T>,
 {
     a0 * (1.0 - b[0] - b[1]) + a1 * b[0] + a2 * b[1]
+}
+
+/// Which parts of the triangles are drawn, when not all are: the samples a trimmed patch's trim
+/// cuts away are not, so that what is behind them shows.
+pub trait Cut: Sync {
+    /// Where triangle `triangle` lies: wholly drawn, wholly cut away (never set up), or to be
+    /// asked sample by sample ([`Cut::keeps`]).
+    fn region(&self, triangle: u32) -> Region;
+
+    /// Whether the sample at the perspective-correct barycentrics `b` of triangle `triangle`
+    /// (one whose region is [`Region::Both`]) is drawn.
+    fn keeps(&self, triangle: u32, b: [f32; 2]) -> bool;
 }
 
 /// Triangles set up per parallel job; the output does not depend on it.
@@ -254,6 +269,25 @@ impl Rasterizer {
         options: &RasterOptions,
         buffer: &mut VisibilityBuffer,
     ) -> RasterStats {
+        self.rasterize_cut_into(viewport, positions, triangles, None, options, buffer)
+    }
+
+    /// [`Rasterizer::rasterize_into`] drawing only what `cut` keeps of the triangles: those it
+    /// cuts away whole are culled, and a pixel of one it crosses is drawn only where it keeps
+    /// the pixel's centre. A pixel cut away is not written, so the nearest surface behind it
+    /// shows.
+    ///
+    /// # Panics
+    /// As [`rasterize`].
+    pub fn rasterize_cut_into(
+        &mut self,
+        viewport: Viewport,
+        positions: &[ClipVertex],
+        triangles: &[[u32; 3]],
+        cut: Option<&dyn Cut>,
+        options: &RasterOptions,
+        buffer: &mut VisibilityBuffer,
+    ) -> RasterStats {
         assert!(
             viewport.width <= MAX_VIEWPORT_SIDE && viewport.height <= MAX_VIEWPORT_SIDE,
             "viewport {}×{} exceeds {MAX_VIEWPORT_SIDE} pixels a side",
@@ -277,7 +311,7 @@ impl Rasterizer {
                     ..RasterStats::default()
                 };
             }
-            self.rasterize_in_pool(viewport, positions, triangles, tile_size, buffer)
+            self.rasterize_in_pool(viewport, positions, triangles, cut, tile_size, buffer)
         })
     }
 
@@ -286,6 +320,7 @@ impl Rasterizer {
         viewport: Viewport,
         positions: &[ClipVertex],
         triangles: &[[u32; 3]],
+        cut: Option<&dyn Cut>,
         tile_size: u32,
         buffer: &mut VisibilityBuffer,
     ) -> RasterStats {
@@ -301,6 +336,7 @@ impl Rasterizer {
             vertices: &self.vertices,
             planes,
             screen,
+            cut,
         };
         let grid = TileGrid::new(screen.bounds, tile_size);
         let runs = triangles.chunks(CHUNK_TRIANGLES).len();
@@ -325,7 +361,7 @@ impl Rasterizer {
                         .iter()
                         .map(|&i| &chunk.setups[i as usize])
                 });
-                tile::render_tile(target, binned, scratch)
+                tile::render_tile(target, binned, cut, scratch)
             })
             .reduce(tile::TileCounts::default, |a, b| tile::TileCounts {
                 fragments: a.fragments + b.fragments,
@@ -379,6 +415,7 @@ struct Scene<'a> {
     vertices: &'a [Vertex],
     planes: Planes,
     screen: Screen,
+    cut: Option<&'a dyn Cut>,
 }
 
 /// A run of consecutive input triangles, set up and binned.
@@ -420,6 +457,14 @@ impl Scene<'_> {
             stats.triangles_invalid += 1;
             return;
         };
+        let tested = match self.cut.map_or(Region::Kept, |c| c.region(index)) {
+            Region::Kept => false,
+            Region::Both => true,
+            Region::Cut => {
+                stats.triangles_culled += 1;
+                return;
+            }
+        };
         let before = out.len();
         match clip::classify(vertices.map(|v| v.outcode)) {
             Verdict::Invalid => {
@@ -443,6 +488,9 @@ impl Scene<'_> {
             }
         }
         stats.triangles_culled += usize::from(out.len() == before);
+        for setup in &mut out[before..] {
+            setup.tested = tested;
+        }
     }
 
     /// The three vertices of a triangle, or `None` if an index is out of range.

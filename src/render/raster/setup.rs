@@ -191,6 +191,9 @@ pub(super) struct TriangleSetup {
     perspective: [[f64; 3]; 3],
     /// Index of the original triangle.
     pub triangle: u32,
+    /// Whether each covered pixel must be asked of the [`Cut`](super::Cut) before it is drawn
+    /// (a triangle a trim loop crosses).
+    pub tested: bool,
 }
 
 impl TriangleSetup {
@@ -233,6 +236,7 @@ impl TriangleSetup {
             perspective: [(v0, o0), (v1, o1), (v2, o2)]
                 .map(|(v, o)| [o.x * v.inv_w, o.y * v.inv_w, v.inv_w]),
             triangle,
+            tested: false,
         })
     }
 

@@ -3,7 +3,7 @@
 
 use super::bin::TileGrid;
 use super::setup::{PixelRect, TriangleSetup};
-use super::VisibilityBuffer;
+use super::{Cut, VisibilityBuffer};
 
 /// The pixels of one tile in the frame buffers, as one slice per pixel row.
 pub(super) struct TileTarget<'a> {
@@ -90,12 +90,13 @@ pub(super) struct TileCounts {
 pub(super) fn render_tile<'s>(
     target: TileTarget<'_>,
     triangles: impl Iterator<Item = &'s TriangleSetup>,
+    cut: Option<&dyn Cut>,
     scratch: &mut Scratch<'s>,
 ) -> TileCounts {
     let width = (target.rect.x1 - target.rect.x0 + 1) as usize;
     scratch.reset(width * target.depth.len());
     let fragments = triangles
-        .map(|setup| draw(setup, &target.rect, width, scratch))
+        .map(|setup| draw(setup, &target.rect, width, cut, scratch))
         .sum();
     let pixels = resolve(target, width, scratch);
     TileCounts { fragments, pixels }
@@ -104,13 +105,17 @@ pub(super) fn render_tile<'s>(
 /// The depth test over the pixels of `tile` (row width `width`) that `setup` covers, stepping
 /// the edge functions incrementally: `E(x + 1, y) = E(x, y) + step_x`,
 /// `E(x, y + 1) = E(x, y) + step_y`. A pixel centre is covered when every biased edge value is
-/// non-negative, i.e. when their bitwise or is. Returns the number of covered pixel centres.
+/// non-negative, i.e. when their bitwise or is. A pixel of a [`TriangleSetup::tested`]
+/// triangle that would win is drawn only when `cut` keeps it. Returns the number of covered
+/// pixel centres.
 fn draw<'s>(
     setup: &'s TriangleSetup,
     tile: &PixelRect,
     width: usize,
+    cut: Option<&dyn Cut>,
     scratch: &mut Scratch<'s>,
 ) -> u64 {
+    let cut = cut.filter(|_| setup.tested);
     let r = setup.rect.intersection(tile);
     if r.is_empty() {
         return 0;
@@ -129,12 +134,14 @@ fn draw<'s>(
         let winner = &mut scratch.winner[start..start + span];
         let mut e = row;
         let mut entered = false;
-        for (stored, won) in depth.iter_mut().zip(winner) {
+        for (x, (stored, won)) in (r.x0..).zip(depth.iter_mut().zip(winner)) {
             if (e[0] | e[1] | e[2]) >= 0 {
                 entered = true;
                 fragments += 1;
                 let z = setup.depth_at(e);
-                if z < *stored {
+                if z < *stored
+                    && cut.is_none_or(|c| c.keeps(setup.triangle, setup.barycentric(x, y)))
+                {
                     *stored = z;
                     *won = Some(setup);
                 }
