@@ -202,10 +202,10 @@ impl Trim {
             .map(|s| [s.a, s.b])
     }
 
-    /// Whether (u, v) is kept: moved [`INSET`] inside the domain, it lies inside an odd
-    /// number of loops. The count is found from the point's cell ([`Cells`]): the centre's,
-    /// changed by each of the cell's segments the straight way from the centre to the point
-    /// crosses ([`crosses`]).
+    /// Whether (u, v) is kept: moved 10⁻⁷ of the domain's larger side inside the domain, it
+    /// lies inside an odd number of loops. The count is found from the point's cell of a grid
+    /// over the domain: the cell centre's, changed by each of the cell's segments the straight
+    /// way from the centre to the point crosses.
     #[must_use]
     pub fn contains(&self, u: f64, v: f64) -> bool {
         let p = self.inset(DVec2::new(u, v));

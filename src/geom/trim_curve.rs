@@ -79,7 +79,7 @@ impl TrimCurve {
     /// Each knot span inside the range is followed on its own, since the curve may turn a
     /// corner at a knot: a degree-1 span is its chord; a higher one is halved until the point
     /// at the middle of each piece lies within `tolerance` of the piece's chord, at least
-    /// four pieces and at most [`MAX_PIECES_PER_SPAN`] a span.
+    /// four pieces and at most 2¹⁰ a span.
     pub fn follow(&self, tolerance: f64, out: &mut Vec<DVec2>) {
         let knots = self.knots.knots();
         let mut cuts: Vec<f64> = knots

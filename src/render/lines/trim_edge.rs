@@ -15,10 +15,11 @@ const FLAT_PIXELS: f32 = 0.02;
 
 /// The pieces along the trim edges of every trimmed patch whose style draws borders: each run of
 /// a loop that cuts the surface (its segments along the domain's sides left out,
-/// [`Trim::edges`](crate::geom::Trim::edges)), its points on the surface. Consecutive segments
-/// are drawn as one piece while it stays within [`FLAT_PIXELS`] of the points it passes and no
-/// longer than [`LONGEST_PIECE_PIXELS`] on the `size` image; a longer segment is cut evenly in
-/// (u, v). The pieces of a loop share their ends exactly, so they chain into one line.
+/// [`Trim::edges`](crate::geom::Trim::edges)), its ends on the surface. Consecutive segments
+/// are drawn as one piece while it stays within [`FLAT_PIXELS`] of the points it passes (on the
+/// mesh, as seen on the `size` image) and no longer than [`LONGEST_PIECE_PIXELS`]; a longer
+/// segment is cut evenly in (u, v). The pieces of a loop share their ends exactly, so they chain
+/// into one line.
 #[must_use]
 pub(crate) fn trim_edges(
     mesh: &Mesh,
@@ -62,11 +63,12 @@ fn runs(edges: impl Iterator<Item = [DVec2; 2]>) -> Vec<Vec<DVec2>> {
     runs
 }
 
-/// A point of a trim edge: on the surface, on the mesh, and on the image (None behind the eye).
+/// A point of a trim edge: on the mesh, and there on the image (None behind the eye). The
+/// mesh lies within the tessellation's tolerance of the surface, which is all the choice of
+/// pieces needs; the surface is evaluated at the pieces' ends alone.
 #[derive(Clone, Copy)]
 struct Point {
     uv: DVec2,
-    surface: DVec3,
     mesh: Vec3,
     screen: Option<Vec2>,
 }
@@ -83,22 +85,17 @@ struct OnPatch<'a> {
 impl OnPatch<'_> {
     fn point(&self, uv: DVec2) -> Point {
         let mesh = self.mesh.point_on(self.patch, uv);
-        let surface = self.surface.point(uv.x, uv.y);
-        let surface = if surface.is_finite() {
+        let screen = to_screen(self.view_projection * mesh.extend(1.0), self.size).map(|(p, _)| p);
+        Point { uv, mesh, screen }
+    }
+
+    /// The surface's point at `p`, or the mesh's where the surface has none.
+    fn on_surface(&self, p: &Point) -> DVec3 {
+        let surface = self.surface.point(p.uv.x, p.uv.y);
+        if surface.is_finite() {
             surface
         } else {
-            mesh.as_dvec3()
-        };
-        let screen = to_screen(
-            self.view_projection * surface.as_vec3().extend(1.0),
-            self.size,
-        )
-        .map(|(p, _)| p);
-        Point {
-            uv,
-            surface,
-            mesh,
-            screen,
+            p.mesh.as_dvec3()
         }
     }
 
@@ -106,13 +103,14 @@ impl OnPatch<'_> {
     fn run(&self, run: &[DVec2], pieces: &mut Vec<Piece>) {
         let points: Vec<Point> = run.iter().map(|&uv| self.point(uv)).collect();
         let mut start = 0;
+        let mut from = self.on_surface(&points[0]);
         while start + 1 < points.len() {
             // The farthest point the piece from `start` may reach.
             let mut end = start + 1;
             while end + 1 < points.len() && self.straight(&points[start..=end + 1]) {
                 end += 1;
             }
-            self.cut(points[start], points[end], pieces);
+            from = self.cut((points[start], from), points[end], pieces);
             start = end;
         }
     }
@@ -139,29 +137,31 @@ impl OnPatch<'_> {
             })
     }
 
-    /// The piece from `a` to `b`, cut evenly in (u, v) into pieces no longer than
-    /// [`LONGEST_PIECE_PIXELS`] on the image.
-    fn cut(&self, a: Point, b: Point, pieces: &mut Vec<Piece>) {
+    /// The piece from `a` (with its point on the surface) to `b`, cut evenly in (u, v) into
+    /// pieces no longer than [`LONGEST_PIECE_PIXELS`] on the image; returns `b` on the surface.
+    fn cut(&self, (a, on_a): (Point, DVec3), b: Point, pieces: &mut Vec<Piece>) -> DVec3 {
         let length = match (a.screen, b.screen) {
             (Some(p), Some(q)) => p.distance(q),
             _ => 0.0,
         };
         let n = (length / LONGEST_PIECE_PIXELS).ceil().clamp(1.0, 64.0) as u32;
-        let mut from = a;
+        let (mut from, mut from_mesh) = (on_a, a.mesh);
         for i in 1..=n {
             let to = if i == n {
                 b
             } else {
                 self.point(a.uv.lerp(b.uv, f64::from(i) / f64::from(n)))
             };
+            let on_to = self.on_surface(&to);
             pieces.push(Piece {
-                ends: [from.surface, to.surface],
-                on_mesh: [from.mesh, to.mesh],
+                ends: [from, on_to],
+                on_mesh: [from_mesh, to.mesh],
                 opacity: 1.0,
                 kind: LineKind::Border,
                 patches: [self.patch; 2],
             });
-            from = to;
+            (from, from_mesh) = (on_to, to.mesh);
         }
+        from
     }
 }
