@@ -194,7 +194,8 @@ fn assert_alpha_matches(
         )
         .unwrap();
     let alpha: Vec<f32> = frame.colour.iter().map(|c| c.w).collect();
-    assert!(alpha.iter().all(|a| a.is_finite()));
+    // Every pixel finite, the limit normals at the sphere's poles (collapsed edges) included.
+    assert!(frame.colour.iter().all(|c| c.is_finite()));
     let score = soft_iou(&alpha, coverage);
     assert!(score >= 0.998, "soft IoU of the alpha {score}");
     let stray = (0..alpha.len())

@@ -649,3 +649,29 @@ fn a_trimmed_patch_keeps_what_its_loops_keep_whichever_way_it_is_handed() {
     assert_eq!(probes[0]["trimmed_away"], true);
     assert_eq!(probes[1]["trimmed_away"], false);
 }
+
+#[test]
+fn glint_patches_counts_the_trim_loops_of_the_shipped_trimmed_models() {
+    let out = glint(&[
+        "patches",
+        repo_file("patches/speaker.usda").to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let listing: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let loops = |name: &str| {
+        listing["patches"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["name"] == name)
+            .unwrap_or_else(|| panic!("no patch {name}"))["trim_loops"]
+            .as_u64()
+            .unwrap()
+    };
+    // The front: its outer boundary, the port and the grille's 20 holes; a side: its boundary
+    // and a handle slot; the caps untrimmed.
+    assert_eq!(loops("speaker/body/front"), 22);
+    assert_eq!(loops("speaker/body/left"), 2);
+    assert_eq!(loops("speaker/body/top"), 0);
+}

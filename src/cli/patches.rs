@@ -19,8 +19,9 @@ use crate::shot::{load_shot, Shot};
 /// List the patches and named parts (groups) of a patch file, or of a shot's instances.
 ///
 /// Given a shot, the names are the ones its selectors match: `INSTANCE/PATCH` and
-/// `INSTANCE/PART`. For each patch: its index, name, degrees, parameter domain, knot spans and
-/// the edges that collapse to a point (where the frame is the limit from inside the patch).
+/// `INSTANCE/PART`. For each patch: its index, name, degrees, parameter domain, knot spans, the
+/// edges that collapse to a point (where the frame is the limit from inside the patch) and how
+/// many trim loops cut it.
 /// Each part is listed with the patches it groups. Parts come from a patch library's `groups`,
 /// from a `NAME.parts.ron` file beside the model (`teapot.bpt` → `teapot.parts.ron`), and from
 /// an instance's `groups` in the shot.
@@ -64,6 +65,8 @@ struct PatchRow {
     domain: [[f64; 2]; 2],
     spans: [usize; 2],
     collapsed: Vec<String>,
+    /// The trim loops that cut the patch (0 when it is untrimmed).
+    trim_loops: usize,
     parts: Vec<String>,
 }
 
@@ -138,6 +141,7 @@ fn listing(library: &PatchLibrary) -> Listing {
                     spans(s.knots_v().knots(), s.knots_v().degree(), s.count_v()),
                 ],
                 collapsed: s.collapsed_edges().iter().map(Edge::to_string).collect(),
+                trim_loops: patch.trim.as_ref().map_or(0, |t| t.loops().len()),
                 parts: library.groups_of(index).map(|g| g.name.clone()).collect(),
             }
         })
@@ -179,8 +183,8 @@ fn write_table(out: &mut dyn Write, file: &Path, listing: &Listing) -> std::io::
         .max(4);
     writeln!(
         out,
-        "{:>5}  {:<width$}  {:<6}  {:<27}  {:<5}  {:<15}  parts",
-        "index", "name", "degree", "domain (u × v)", "spans", "collapsed"
+        "{:>5}  {:<width$}  {:<6}  {:<27}  {:<5}  {:<15}  {:<8}  parts",
+        "index", "name", "degree", "domain (u × v)", "spans", "collapsed", "trim"
     )?;
     for p in &listing.patches {
         let domain = format!(
@@ -192,15 +196,21 @@ fn write_table(out: &mut dyn Write, file: &Path, listing: &Listing) -> std::io::
         } else {
             p.collapsed.join(" ")
         };
+        let trim = match p.trim_loops {
+            0 => "-".to_string(),
+            1 => "1 loop".to_string(),
+            n => format!("{n} loops"),
+        };
         writeln!(
             out,
-            "{:>5}  {:<width$}  {:<6}  {:<27}  {:<5}  {:<15}  {}",
+            "{:>5}  {:<width$}  {:<6}  {:<27}  {:<5}  {:<15}  {:<8}  {}",
             p.index,
             p.name,
             format!("{}×{}", p.degree[0], p.degree[1]),
             domain,
             format!("{}×{}", p.spans[0], p.spans[1]),
             collapsed,
+            trim,
             p.parts.join(" ")
         )?;
     }
