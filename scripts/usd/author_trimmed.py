@@ -37,7 +37,10 @@ Every loop's direction is then set from its signed area in (u, v).
 import math
 import os
 
-from pxr import Gf, Usd, UsdGeom, Vt
+from pxr import Gf, UsdGeom, Vt
+
+# A new z-up layer at a path, replacing what was there.
+from author_models import layer as new_stage
 
 W = math.sqrt(0.5)
 CIRCLE_KNOTS = [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1]
@@ -578,14 +581,6 @@ def car_doors(path):
         group.AddTranslateOp().Set(Gf.Vec3d(centre, 0, 0))
     stage.SetDefaultPrim(root.GetPrim())
     stage.GetRootLayer().Save()
-
-
-def new_stage(path):
-    if os.path.exists(path):
-        os.remove(path)
-    stage = Usd.Stage.CreateNew(path)
-    UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.z)
-    return stage
 
 
 def main():
