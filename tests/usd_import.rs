@@ -609,13 +609,8 @@ fn a_trimmed_patch_keeps_what_its_loops_keep_whichever_way_it_is_handed() {
     assert!(r.trim.is_some());
     // The hole's points are homogeneous, weight 2: (0.3, 0.2) to (0.6, 0.7).
     let in_hole = |u: f64, v: f64| (0.3..=0.6).contains(&u) && (0.2..=0.7).contains(&v);
-    let mut state = 7u64;
-    let mut next = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+    let mut next = || rng.random::<f64>();
     for _ in 0..2000 {
         let (u, v) = (next(), next());
         let near_edge = [u - 0.3, u - 0.6, v - 0.2, v - 0.7]

@@ -530,6 +530,9 @@ fn segment_meets_box(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> bool {
 
 #[cfg(test)]
 mod tests {
+    use rand::rngs::StdRng;
+    use rand::{Rng, SeedableRng};
+
     use super::*;
 
     fn unit() -> Domain {
@@ -569,13 +572,8 @@ mod tests {
         let trim = Trim::new(vec![square(0.0, 1.0, true), hole], unit()).unwrap();
         // Against the exact circle: points away from its polyline (within 2 × 10⁻⁵ of the
         // circle) by more than the chords' sagitta.
-        let mut state = 12345u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = StdRng::seed_from_u64(12345);
+        let mut next = || rng.random::<f64>();
         for _ in 0..20_000 {
             let (u, v) = (next(), next());
             let r = (DVec2::new(u, v) - DVec2::splat(0.5)).length();
@@ -629,13 +627,8 @@ mod tests {
             }
         }
         let trim = Trim::new(loops, unit()).unwrap();
-        let mut state = 99u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = StdRng::seed_from_u64(99);
+        let mut next = || rng.random::<f64>();
         let mut cut = 0;
         for _ in 0..50_000 {
             let p = DVec2::new(next(), next());

@@ -76,9 +76,7 @@ pub(super) fn surface(
         let p = required(name)?;
         let mut k = numbers(p).map_err(|m| err(p.at, format!("`{name}` {m}")))?;
         if k.len() + 2 == vertices + order && !k.is_empty() {
-            // Maya's count: the end knots are implied.
-            k.insert(0, k[0]);
-            k.push(k[k.len() - 1]);
+            repeat_end_knots(&mut k);
         }
         if k.len() != vertices + order {
             return Err(err(
@@ -86,16 +84,8 @@ pub(super) fn surface(
                 format!("`{name}` has {} knots; {vertices} vertices of order {order} take {} (or {}, without the end knots)", k.len(), vertices + order, vertices + order - 2),
             ));
         }
-        if let Some(w) = k.windows(2).position(|w| w[1] < w[0]) {
-            return Err(err(
-                p.at,
-                format!(
-                    "`{name}` decreases at knot {}: {} after {}",
-                    w + 1,
-                    k[w + 1],
-                    k[w]
-                ),
-            ));
+        if let Some(at) = first_decrease(&k) {
+            return Err(err(p.at, format!("`{name}` decreases {at}")));
         }
         if k[order - 1] >= k[vertices] {
             return Err(err(
@@ -190,6 +180,26 @@ pub(super) fn surface(
     NurbsSurface::new(ou - 1, ov - 1, ku, kv, &net, weight_net.as_deref())
         .map(|s| (s, mirrored))
         .map_err(|e| err(points_property.at, e.to_string()))
+}
+
+/// Maya's knot vector, which leaves out the end knots, made whole: its first and last knots
+/// repeated once more.
+pub(super) fn repeat_end_knots(knots: &mut Vec<f64>) {
+    if let (Some(&first), Some(&last)) = (knots.first(), knots.last()) {
+        knots.insert(0, first);
+        knots.push(last);
+    }
+}
+
+/// Where `knots` first decrease, as `at knot i: kᵢ after kᵢ₋₁`; None when they never do.
+pub(super) fn first_decrease(knots: &[f64]) -> Option<String> {
+    let w = knots.windows(2).position(|w| w[1] < w[0])?;
+    Some(format!(
+        "at knot {}: {} after {}",
+        w + 1,
+        knots[w + 1],
+        knots[w]
+    ))
 }
 
 /// Whether glint reads the attribute `name` of a NurbsPatch.

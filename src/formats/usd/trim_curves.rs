@@ -6,7 +6,7 @@ use std::sync::Arc;
 use glam::{DVec2, DVec3};
 
 use super::layer::{Prim, Property, Value};
-use super::nurbs_patch::{numbers, vectors, PatchError};
+use super::nurbs_patch::{first_decrease, numbers, repeat_end_knots, vectors, PatchError};
 use crate::geom::{Domain, Trim, TrimCurve, MAX_DEGREE, MAX_TRIM_SEGMENTS};
 
 /// How closely a polyline follows its trim curve, as a fraction of the domain's larger side: a
@@ -181,18 +181,12 @@ pub(super) fn trim(
         let mut k = knots[next_knot..next_knot + take].to_vec();
         next_knot += take;
         if maya {
-            k.insert(0, k[0]);
-            k.push(k[k.len() - 1]);
+            repeat_end_knots(&mut k);
         }
-        if let Some(w) = k.windows(2).position(|w| w[1] < w[0]) {
+        if let Some(at) = first_decrease(&k) {
             return Err(err(
                 knots_property.at,
-                format!(
-                    "the knots of trim curve {c} decrease at knot {}: {} after {}",
-                    w + 1,
-                    k[w + 1],
-                    k[w]
-                ),
+                format!("the knots of trim curve {c} decrease {at}"),
             ));
         }
         let homogeneous: Vec<DVec3> = points[next_point..next_point + n]

@@ -47,6 +47,8 @@ pub(crate) struct Meeting {
 #[derive(Clone, Copy, Debug)]
 struct Block {
     patch: u32,
+    /// The patch's first triangle in the mesh.
+    first_triangle: usize,
     cells: [u32; 4],
     bounds: Bounds,
 }
@@ -60,11 +62,16 @@ struct Block {
 /// patches' trims keep it.
 #[must_use]
 pub(crate) fn intersections(mesh: &Mesh, library: &PatchLibrary) -> Vec<Meeting> {
+    let mut first_triangle = 0;
     let blocks: Vec<Vec<Block>> = mesh
         .grids
         .iter()
         .enumerate()
-        .map(|(patch, grid)| blocks(mesh, patch as u32, grid))
+        .map(|(patch, grid)| {
+            let list = blocks(mesh, patch as u32, first_triangle, grid);
+            first_triangle += 2 * (grid.nu as usize - 1) * (grid.nv as usize - 1);
+            list
+        })
         .collect();
     let patch_bounds: Vec<Bounds> = blocks
         .iter()
@@ -97,8 +104,8 @@ pub(crate) fn intersections(mesh: &Mesh, library: &PatchLibrary) -> Vec<Meeting>
         .collect()
 }
 
-/// The blocks of one patch's grid.
-fn blocks(mesh: &Mesh, patch: u32, grid: &PatchGrid) -> Vec<Block> {
+/// The blocks of one patch's grid, whose first triangle in the mesh is `first_triangle`.
+fn blocks(mesh: &Mesh, patch: u32, first_triangle: usize, grid: &PatchGrid) -> Vec<Block> {
     let (cu, cv) = (grid.nu.saturating_sub(1), grid.nv.saturating_sub(1));
     let mut out = Vec::new();
     for i0 in (0..cu).step_by(BLOCK as usize) {
@@ -112,6 +119,7 @@ fn blocks(mesh: &Mesh, patch: u32, grid: &PatchGrid) -> Vec<Block> {
             }
             out.push(Block {
                 patch,
+                first_triangle,
                 cells: [i0, i1, j0, j1],
                 bounds,
             });
@@ -149,11 +157,14 @@ fn touching_patches(mesh: &Mesh) -> std::collections::HashSet<(u32, u32)> {
 }
 
 /// The triangles of a block, as vertex triples with their corners' (u, v); none that the
-/// patch's trim cuts away whole.
-fn triangles(mesh: &Mesh, library: &PatchLibrary, block: &Block) -> Vec<([Vec3; 3], [DVec2; 3])> {
+/// patch's trim cuts away whole ([`Mesh::triangle_region`]).
+fn triangles(mesh: &Mesh, block: &Block) -> Vec<([Vec3; 3], [DVec2; 3])> {
     let grid = &mesh.grids[block.patch as usize];
-    let trim = library.patches[block.patch as usize].trim.as_deref();
     let [i0, i1, j0, j1] = block.cells;
+    let cut = |i: u32, j: u32| {
+        let t = block.first_triangle + 2 * (i * (grid.nv - 1) + j) as usize;
+        mesh.triangle_region.get(t) == Some(&Region::Cut)
+    };
     let at = |i: u32, j: u32| {
         let v = grid.vertex(i, j) as usize;
         (mesh.positions[v], mesh.uvs[v].as_dvec2())
@@ -162,7 +173,7 @@ fn triangles(mesh: &Mesh, library: &PatchLibrary, block: &Block) -> Vec<([Vec3; 
     for i in i0..i1 {
         for j in j0..j1 {
             let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-            if trim.is_some_and(|t| t.region(a.1, c.1) == Region::Cut) {
+            if cut(i, j) {
                 continue;
             }
             out.push(([a.0, b.0, c.0], [a.1, b.1, c.1]));
@@ -220,7 +231,7 @@ fn triangle_bounds(t: &[Vec3; 3]) -> Bounds {
 
 /// The segments where the triangles of two blocks cross, on what both patches' trims keep.
 fn block_segments(mesh: &Mesh, library: &PatchLibrary, a: &Block, b: &Block) -> Vec<Meeting> {
-    let (ta, tb) = (triangles(mesh, library, a), triangles(mesh, library, b));
+    let (ta, tb) = (triangles(mesh, a), triangles(mesh, b));
     let trimmed = [a.patch, b.patch]
         .iter()
         .any(|&p| library.patches[p as usize].trim.is_some());
