@@ -25,6 +25,8 @@ pub enum Surfaces {
 pub struct Plan {
     /// Where the shade stage reads the surface.
     pub surfaces: Surfaces,
+    /// The frames the G-buffer of the frame's one sample a pixel holds ([`Plan::first_frames`]).
+    pub frames: FrameMode,
     /// Per stage in [`Stage::ALL`] order, whether it runs.
     runs: [bool; Stage::COUNT],
     /// Per stage in [`Stage::ALL`] order, whether the previous frame's result serves instead.
@@ -44,7 +46,8 @@ impl Plan {
     ///   abstracted frame before they start);
     /// - edge widths only under analytic or adaptive anti-aliasing on a frame with highlights;
     /// - outlines and AOVs when the scene asks for them, the resolve under supersampling, and
-    ///   the supersampling of the pixels that need it under adaptive anti-aliasing.
+    ///   the supersampling of the pixels that need it under adaptive anti-aliasing;
+    /// - the G-buffer holds the frames [`Plan::first_frames`] decides.
     #[must_use]
     pub fn new(scene: &Scene, settings: &Settings) -> Self {
         let highlights = scene.looks.iter().any(|look| look.highlight.is_some());
@@ -86,8 +89,48 @@ impl Plan {
         });
         Self {
             surfaces,
+            frames: Self::first_frames(scene, settings),
             runs,
             reused: [false; Stage::COUNT],
+        }
+    }
+
+    /// The frames of the one-sample G-buffer: the settings' own, except under adaptive
+    /// anti-aliasing with exact or refined frames on a frame whose colour is flat between its
+    /// edges — every tone a cel ramp, and no AOV that reads a texel's frame, (u, v) or depth
+    /// (the normal, `uv`, `depth` and `N·H` AOVs) — where they are interpolated.
+    ///
+    /// There the exact or refined frames change a pixel's colour only near an edge (of a
+    /// highlight, a tone band, a surface), and the pixels near edges are those the supersample
+    /// stage draws again, each of their samples with the settings' frames; the interpolated
+    /// frames of a mesh as fine as `final`'s (0.05 px) place every edge within a small part of
+    /// a pixel of where the exact ones do, so they mark the same pixels. X-Toon tones vary
+    /// continuously over the surface: every pixel's colour reads its frame, so they keep the
+    /// settings' frames.
+    #[must_use]
+    pub fn first_frames(scene: &Scene, settings: &Settings) -> FrameMode {
+        let adaptive = match settings.antialias {
+            Antialias::Adaptive(_) => true,
+            Antialias::None | Antialias::Analytic | Antialias::Supersample(_) => false,
+        };
+        let Aovs {
+            matte: _,
+            patch_id: _,
+            outline: _,
+            depth,
+            normal,
+            uv,
+            n_dot_h,
+        } = scene.aovs;
+        let frames_read = depth || normal || uv || n_dot_h;
+        let cel = scene
+            .looks
+            .iter()
+            .all(|look| matches!(look.tone, Tone::Cel(_)));
+        if adaptive && cel && !frames_read {
+            FrameMode::Interpolated
+        } else {
+            settings.frames
         }
     }
 

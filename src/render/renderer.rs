@@ -16,7 +16,7 @@ use super::lines::{self, draw_lines, LineImage, LineInput, MeshLines};
 use super::plan::{Plan, Surfaces};
 use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
-use super::settings::{Antialias, Settings};
+use super::settings::{Antialias, FrameMode, Settings};
 use super::shade::{shade, ShadeBuffers, Shaded};
 use super::stage::Stage;
 use super::stats::{timed, RenderStats};
@@ -314,7 +314,7 @@ impl Stages {
                         mesh,
                         library,
                         scene,
-                        settings,
+                        plan.frames,
                         frame.view_projection,
                         &mut stats,
                     );
@@ -513,8 +513,8 @@ fn shade_from_visibility(
     }
 }
 
-/// [`Stage::GBuffer`]: the texels of the covered samples, with the outline pass's edge
-/// surfaces into `edges` when it runs.
+/// [`Stage::GBuffer`]: the texels of the covered samples, their frames as `frames` (the
+/// plan's, [`Plan::first_frames`]) gives them.
 #[allow(clippy::too_many_arguments)]
 fn fill_gbuffer(
     gbuffer: &mut GBuffer,
@@ -522,7 +522,7 @@ fn fill_gbuffer(
     mesh: &Mesh,
     library: &PatchLibrary,
     scene: &Scene,
-    settings: &Settings,
+    frames: FrameMode,
     view_projection: Mat4,
     stats: &mut RenderStats,
 ) {
@@ -533,7 +533,7 @@ fn fill_gbuffer(
             library,
             &scene.camera,
             view_projection,
-            settings.frames,
+            frames,
             None,
         )
     });

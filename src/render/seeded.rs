@@ -1,4 +1,4 @@
-//! The K × K samples of a marked pixel found from the refined surface points around it, by
+//! The K × K samples of a marked pixel found from the surface points around it, by
 //! Newton steps along each sample's ray instead of rasterization.
 
 use glam::{DVec2, Mat4, Vec2};
@@ -28,7 +28,7 @@ pub(super) struct Seeded<'a> {
     pub library: &'a PatchLibrary,
     pub scene: &'a Scene<'a>,
     pub view_projection: Mat4,
-    /// The one-sample G-buffer, its frames refined onto the pixels' rays.
+    /// The one-sample G-buffer: its (u, v) are where the samples start from.
     pub gbuffer: &'a GBuffer,
     /// Per texel of `gbuffer`, its footprint from the edge-width stage, when edges are analytic.
     pub footprints: Option<&'a [Footprint]>,

@@ -34,6 +34,7 @@ pub(super) struct Frame<'a> {
     /// The mesh's vertices in the image's clip space.
     pub clip: &'a [Vec4],
     pub view_projection: Mat4,
+    /// The samples' frames: the settings' (the one-sample G-buffer's may be interpolated).
     pub frames: FrameMode,
     /// Samples per pixel side.
     pub k: u32,
@@ -211,7 +212,7 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
 
 /// The marked pixels split in two: those left to the rasterized tiles, as a mask, and those the
 /// seeded path draws ([`seeded::draw`]), as a list. The seeded path takes a marked pixel when
-/// frames are refined (it refines its samples' (u, v) from the refined points around them),
+/// frames are refined (it refines its samples' (u, v) from the points around them),
 /// nothing runs ahead of shading (the X-Toon detail reads a neighbourhood of samples), and its
 /// neighbourhood shows the surfaces to start from ([`seeded::seedable`]).
 fn split_seeded(frame: &Frame, mut marked: Vec<bool>) -> (Vec<bool>, Vec<u32>) {

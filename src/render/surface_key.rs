@@ -8,7 +8,7 @@ use super::tessellate::Density;
 
 /// What the stages that [depend on surfaces only](Plan::depends_on_surfaces_only) read of a
 /// frame besides the model: the camera, the image in samples, the tessellation density and the
-/// frame mode, where the shade stage reads surfaces, and whether the G-buffer also holds the
+/// frame mode of the G-buffer ([`Plan::frames`]), where the shade stage reads surfaces, and whether the G-buffer also holds the
 /// outline pass's edge surfaces. Not the thread count: output does not depend on it.
 ///
 /// Numbers are compared bit for bit (−0 is not 0), so that equal keys give equal bytes.
@@ -34,7 +34,7 @@ impl SurfaceKey {
                 Density::PerSpan { u, v } => [0, u, v],
                 Density::ScreenTolerance { pixels } => [1, pixels.to_bits(), 0],
             },
-            frames: settings.frames,
+            frames: plan.frames,
             surfaces: plan.surfaces,
         }
     }
@@ -88,9 +88,9 @@ mod tests {
         }
     }
 
-    /// The plan of a scene with no patches: the shade stage reads the visibility buffer
-    /// unless the scene asks for outlines or an AOV.
-    fn plan(outlines: bool, depth_aov: bool) -> Plan {
+    /// The plan of a scene with no patches under `settings`: the shade stage reads the
+    /// visibility buffer unless the scene asks for an AOV.
+    fn plan_under(settings: &Settings, outlines: bool, depth_aov: bool) -> Plan {
         let library = PatchLibrary::default();
         let scene = Scene {
             library: &library,
@@ -108,7 +108,12 @@ mod tests {
                 ..Aovs::default()
             },
         };
-        Plan::new(&scene, &Settings::preview(64, 48))
+        Plan::new(&scene, settings)
+    }
+
+    /// [`plan_under`] the preview settings.
+    fn plan(outlines: bool, depth_aov: bool) -> Plan {
+        plan_under(&Settings::preview(64, 48), outlines, depth_aov)
     }
 
     #[test]
@@ -161,12 +166,28 @@ mod tests {
                 ..settings
             },
         ] {
+            let planned = plan_under(&other, false, true);
             assert_ne!(
                 key,
-                SurfaceKey::new(&camera(), &other, &texels),
+                SurfaceKey::new(&camera(), &other, &planned),
                 "{other:?}"
             );
         }
+        // Under adaptive anti-aliasing the G-buffer's frames follow the AOVs: refined when the
+        // depth AOV reads them, interpolated otherwise.
+        let adaptive = Settings::final_quality(64, 48);
+        let (read, flat) = (
+            plan_under(&adaptive, false, true),
+            plan_under(&adaptive, false, false),
+        );
+        assert_eq!(
+            (read.frames, flat.frames),
+            (FrameMode::Refined, FrameMode::Interpolated)
+        );
+        assert_ne!(
+            SurfaceKey::new(&camera(), &adaptive, &read),
+            SurfaceKey::new(&camera(), &adaptive, &flat)
+        );
         let visibility = plan(false, false);
         assert_eq!(visibility.surfaces, Surfaces::Visibility);
         assert_ne!(key, SurfaceKey::new(&camera(), &settings, &visibility));
