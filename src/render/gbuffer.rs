@@ -47,7 +47,7 @@ pub struct GBuffer {
 pub(crate) const PIXELS_PER_JOB: usize = 2048;
 
 /// What a texel holds before it is filled.
-const UNFILLED: Texel = Texel {
+pub(super) const UNFILLED: Texel = Texel {
     pixel: 0,
     depth: 0.0,
     patch: 0,

@@ -4,7 +4,7 @@
 use glam::{DVec2, Mat4, Vec2};
 use rayon::prelude::*;
 
-use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY};
+use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
 use super::neighbourhood::around;
 use super::raster::Viewport;
 use super::scene::Scene;
@@ -158,11 +158,133 @@ fn covered_around(gbuffer: &GBuffer, pixel: u32) -> bool {
 }
 
 /// One candidate for a sample: the sample and the texel it starts from.
+#[derive(Clone, Copy, Debug, Default)]
 struct Candidate {
     /// The sample's index in the batch: `pixel_in_batch · k² + sy · k + sx`.
     sample: u32,
     /// The seed texel's index in the one-sample G-buffer.
     seed: u32,
+}
+
+/// A covered pixel around a marked one, as a start for its samples.
+#[derive(Clone, Copy, Debug, Default)]
+struct Seed {
+    /// Its texel's index in the one-sample G-buffer.
+    slot: u32,
+    patch: u32,
+    /// Its centre in pixels.
+    centre: Vec2,
+    /// The change of its (u, v) per pixel along x and y ([`uv_slopes`]; zero where none).
+    slopes: (Vec2, Vec2),
+}
+
+/// The covered pixels of a marked pixel's 3 × 3 neighbourhood, and how many patches they show.
+#[derive(Clone, Copy, Debug, Default)]
+struct Seeds {
+    seeds: [Seed; 9],
+    count: usize,
+    patches: usize,
+}
+
+impl Seeds {
+    /// The seeds around `pixel` in `gbuffer`.
+    fn around(gbuffer: &GBuffer, pixel: u32) -> Self {
+        let w = gbuffer.width as usize;
+        let mut seeds = Self::default();
+        for n in around(pixel as usize, (w, gbuffer.height as usize)) {
+            let slot = gbuffer.slot[n];
+            if slot == EMPTY {
+                continue;
+            }
+            let patch = gbuffer.texels[slot as usize].patch;
+            if seeds.seeds[..seeds.count].iter().all(|s| s.patch != patch) {
+                seeds.patches += 1;
+            }
+            let (along_x, along_y) = uv_slopes(gbuffer, slot);
+            seeds.seeds[seeds.count] = Seed {
+                slot,
+                patch,
+                centre: Vec2::new((n % w) as f32, (n / w) as f32) + 0.5,
+                slopes: (along_x.unwrap_or(Vec2::ZERO), along_y.unwrap_or(Vec2::ZERO)),
+            };
+            seeds.count += 1;
+        }
+        seeds
+    }
+
+    /// Fills `candidates` and `texels` (one per patch per sample, `k² · patches` of each) for
+    /// pixel `j` of the batch, at `pixel`: each sample's start on each patch is that patch's
+    /// seed nearest the sample, its (u, v) moved by the seed's slopes to the sample's offset.
+    fn fill(
+        &self,
+        frame: &Seeded,
+        (j, pixel): (usize, u32),
+        candidates: &mut [Candidate],
+        texels: &mut [Texel],
+    ) {
+        let (k, w) = (frame.k, frame.image.width);
+        let full_width = w * k;
+        let (px, py) = (pixel % w, pixel / w);
+        let mut out = candidates.iter_mut().zip(texels.iter_mut());
+        for s in 0..k * k {
+            let (sx, sy) = (s % k, s / k);
+            let centre = Vec2::new(
+                px as f32 + (sx as f32 + 0.5) / k as f32,
+                py as f32 + (sy as f32 + 0.5) / k as f32,
+            );
+            let global = (py * k + sy) * full_width + px * k + sx;
+            // The nearest seed of each patch: (patch, distance², its index in `seeds`).
+            let mut nearest = [(EMPTY, 0f32, 0usize); 9];
+            let mut patches = 0;
+            for (i, seed) in self.seeds[..self.count].iter().enumerate() {
+                let d = centre.distance_squared(seed.centre);
+                match nearest[..patches].iter_mut().find(|n| n.0 == seed.patch) {
+                    Some(n) if d < n.1 => (n.1, n.2) = (d, i),
+                    Some(_) => {}
+                    None => {
+                        nearest[patches] = (seed.patch, d, i);
+                        patches += 1;
+                    }
+                }
+            }
+            for &(_, _, i) in &nearest[..patches] {
+                let Some((candidate, texel)) = out.next() else {
+                    return;
+                };
+                let seed = &self.seeds[i];
+                let t = frame.gbuffer.texels[seed.slot as usize];
+                let domain = frame.library.patches[t.patch as usize].surface.domain();
+                let offset = centre - seed.centre;
+                let uv = t.uv + (seed.slopes.0 * offset.x + seed.slopes.1 * offset.y);
+                *candidate = Candidate {
+                    sample: j as u32 * k * k + s,
+                    seed: seed.slot,
+                };
+                *texel = Texel {
+                    pixel: global,
+                    uv: Vec2::new(
+                        uv.x.clamp(domain.u.0 as f32, domain.u.1 as f32),
+                        uv.y.clamp(domain.v.0 as f32, domain.v.1 as f32),
+                    ),
+                    ..t
+                };
+            }
+        }
+    }
+}
+
+/// A worker's memory for one batch after another.
+#[derive(Default)]
+pub(super) struct Buffers {
+    shading: ShadeBuffers,
+    seeds: Vec<Seeds>,
+    candidates: Vec<Candidate>,
+    texels: Vec<Texel>,
+    /// Per sample of the batch, the nearest candidate that landed on its ray: (depth, index).
+    chosen: Vec<Option<(f32, u32)>>,
+    /// The samples chosen, as a G-buffer, and their footprints.
+    samples: GBuffer,
+    footprints: Vec<Footprint>,
 }
 
 /// Draws each of `pixels` at `frame.k × frame.k` samples and returns their averages, the pixels
@@ -178,12 +300,7 @@ struct Candidate {
 /// The samples are shaded with their seed's footprint over the sample (a `k`-th of the
 /// pixel's), and a pixel takes the mean of its samples as the rasterized tiles do
 /// ([`Resolved::average`]).
-pub(super) fn draw(
-    frame: &Seeded,
-    views: &Views,
-    pixels: &[u32],
-    buffers: &mut ShadeBuffers,
-) -> Drawn {
+pub(super) fn draw(frame: &Seeded, views: &Views, pixels: &[u32], buffers: &mut Buffers) -> Drawn {
     let mut drawn = Drawn {
         resolved: Vec::with_capacity(pixels.len()),
         failed: Vec::new(),
@@ -212,83 +329,48 @@ fn draw_batch(
     frame: &Seeded,
     views: &Views,
     pixels: &[u32],
-    buffers: &mut ShadeBuffers,
+    buffers: &mut Buffers,
     (resolved, failed): (&mut Vec<Resolved>, &mut Vec<u32>),
 ) -> u64 {
     let (k, image, gbuffer) = (frame.k, frame.image, frame.gbuffer);
     let per_pixel = (k * k) as usize;
     let full = (image.width * k, image.height * k);
-    let w = image.width as usize;
+    let Buffers {
+        shading,
+        seeds,
+        candidates,
+        texels,
+        chosen,
+        samples,
+        footprints,
+    } = buffers;
 
-    // The candidates: per sample, the nearest texel of each patch around its pixel.
-    let (candidates, mut texels): (Vec<Candidate>, Vec<Texel>) = pixels
+    // The candidates: per sample, the nearest texel of each patch around its pixel, each
+    // pixel's written in place at its offset (k² per patch its neighbourhood shows).
+    pixels
         .par_iter()
+        .map(|&pixel| Seeds::around(gbuffer, pixel))
+        .collect_into_vec(seeds);
+    let total: usize = seeds.iter().map(|s| s.patches * per_pixel).sum();
+    candidates.resize(total, Candidate::default());
+    texels.resize(total, UNFILLED);
+    let mut pieces = Vec::with_capacity(pixels.len());
+    let (mut rest_c, mut rest_t) = (&mut candidates[..], &mut texels[..]);
+    for s in seeds.iter() {
+        let n = s.patches * per_pixel;
+        let (c, more_c) = std::mem::take(&mut rest_c).split_at_mut(n);
+        let (t, more_t) = std::mem::take(&mut rest_t).split_at_mut(n);
+        pieces.push((c, t));
+        (rest_c, rest_t) = (more_c, more_t);
+    }
+    pieces
+        .into_par_iter()
+        .zip(seeds.par_iter())
+        .zip(pixels.par_iter())
         .enumerate()
-        .flat_map_iter(|(j, &pixel)| {
-            let (px, py) = (pixel as usize % w, pixel as usize / w);
-            // The covered pixels around: (slot, patch, centre, (u, v) slopes along x and y).
-            let mut seeds = [(0u32, 0u32, Vec2::ZERO, (Vec2::ZERO, Vec2::ZERO)); 9];
-            let mut count = 0;
-            for n in around(pixel as usize, (w, image.height as usize)) {
-                let slot = gbuffer.slot[n];
-                if slot != EMPTY {
-                    let patch = gbuffer.texels[slot as usize].patch;
-                    let centre = Vec2::new((n % w) as f32, (n / w) as f32) + 0.5;
-                    let (along_x, along_y) = uv_slopes(gbuffer, slot);
-                    let slopes = (along_x.unwrap_or(Vec2::ZERO), along_y.unwrap_or(Vec2::ZERO));
-                    seeds[count] = (slot, patch, centre, slopes);
-                    count += 1;
-                }
-            }
-            (0..per_pixel as u32).flat_map(move |s| {
-                let (sx, sy) = (s % k, s / k);
-                let centre = Vec2::new(
-                    px as f32 + (sx as f32 + 0.5) / k as f32,
-                    py as f32 + (sy as f32 + 0.5) / k as f32,
-                );
-                let global = (py as u32 * k + sy) * full.0 + px as u32 * k + sx;
-                // The nearest seed of each patch: (patch, distance², its index in `seeds`).
-                let mut nearest = [(EMPTY, 0f32, 0usize); 9];
-                let mut patches = 0;
-                for (i, &(_, patch, at, _)) in seeds[..count].iter().enumerate() {
-                    let d = centre.distance_squared(at);
-                    match nearest[..patches].iter_mut().find(|n| n.0 == patch) {
-                        Some(n) if d < n.1 => (n.1, n.2) = (d, i),
-                        Some(_) => {}
-                        None => {
-                            nearest[patches] = (patch, d, i);
-                            patches += 1;
-                        }
-                    }
-                }
-                (0..patches).map(move |n| {
-                    let (slot, _, at, (along_x, along_y)) = seeds[nearest[n].2];
-                    let seed = gbuffer.texels[slot as usize];
-                    let domain = frame.library.patches[seed.patch as usize].surface.domain();
-                    let offset = centre - at;
-                    let uv = seed.uv + (along_x * offset.x + along_y * offset.y);
-                    let uv = Vec2::new(
-                        uv.x.clamp(domain.u.0 as f32, domain.u.1 as f32),
-                        uv.y.clamp(domain.v.0 as f32, domain.v.1 as f32),
-                    );
-                    let candidate = Candidate {
-                        sample: (j * per_pixel) as u32 + s,
-                        seed: slot,
-                    };
-                    (
-                        candidate,
-                        Texel {
-                            pixel: global,
-                            uv,
-                            ..seed
-                        },
-                    )
-                })
-            })
-        })
-        .unzip();
+        .for_each(|(j, (((c, t), s), &pixel))| s.fill(frame, (j, pixel), c, t));
     let frames = GBuffer::refine_onto_rays(
-        &mut texels,
+        texels,
         frame.library,
         &frame.scene.camera,
         frame.view_projection,
@@ -297,7 +379,8 @@ fn draw_batch(
     );
 
     // Per sample, the nearest candidate that landed on its ray.
-    let mut chosen: Vec<Option<(f32, u32)>> = vec![None; pixels.len() * per_pixel];
+    chosen.clear();
+    chosen.resize(pixels.len() * per_pixel, None);
     for (index, (c, t)) in candidates.iter().zip(texels.iter_mut()).enumerate() {
         let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full) else {
             continue;
@@ -315,13 +398,12 @@ fn draw_batch(
     }
 
     // The samples as a G-buffer k wide, one k × k block per pixel down it.
-    let mut samples = GBuffer {
-        width: k,
-        height: k * pixels.len() as u32,
-        slot: vec![EMPTY; chosen.len()],
-        texels: Vec::with_capacity(chosen.len()),
-    };
-    let mut footprints = Vec::with_capacity(chosen.len());
+    samples.width = k;
+    samples.height = k * pixels.len() as u32;
+    samples.slot.clear();
+    samples.slot.resize(chosen.len(), EMPTY);
+    samples.texels.clear();
+    footprints.clear();
     for (s, choice) in chosen.iter().enumerate() {
         let Some((_, index)) = *choice else {
             continue;
@@ -339,12 +421,12 @@ fn draw_batch(
         });
     }
     let shaded = shade(
-        &samples,
+        samples,
         frame.scene,
         views,
         None,
         frame.footprints.map(|_| footprints.as_slice()),
-        buffers,
+        shading,
     );
 
     for (j, &pixel) in pixels.iter().enumerate() {

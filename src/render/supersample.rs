@@ -169,7 +169,7 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
             image: frame.image,
             k: frame.k,
         };
-        let drawn = seeded::draw(&input, &views, &seeded, &mut ShadeBuffers::default());
+        let drawn = seeded::draw(&input, &views, &seeded, &mut seeded::Buffers::default());
         for &p in &drawn.failed {
             marked[p as usize] = true;
         }
