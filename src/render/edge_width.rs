@@ -1,11 +1,10 @@
 //! Edge widths for analytic anti-aliasing: per texel, how fast the highlight's signed inside
 //! value changes across the pixel (its [`Footprint`]).
 
-use glam::Vec3;
 use rayon::prelude::*;
 
 use super::directions::initial_half_vector;
-use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
+use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
 use super::scene::Scene;
 use crate::highlight::{Footprint, PreparedLayer};
 
@@ -30,17 +29,6 @@ const PEAK_RATIO: f32 = 4.0;
 /// there the surface turns away within the pixel, and the edge is left hard, for the
 /// silhouette's own anti-aliasing (supersampling) to smooth.
 pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
-    let half_vectors: Vec<Option<Vec3>> = gbuffer
-        .texels
-        .par_iter()
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|t| {
-            scene.looks[t.patch as usize]
-                .highlight
-                .as_ref()
-                .map(|_| initial_half_vector(scene, t))
-        })
-        .collect();
     let layer_lists: Vec<Vec<&PreparedLayer>> = scene
         .looks
         .iter()
@@ -51,20 +39,25 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
         })
         .collect();
     let most = layer_lists.iter().map(Vec::len).max().unwrap_or(0);
-    // signed[k * most + j]: layer j's signed value at texel k.
-    let signed: Vec<f32> = gbuffer
-        .texels
-        .par_iter()
-        .zip(&half_vectors)
-        .with_min_len(PIXELS_PER_JOB)
-        .flat_map_iter(|(t, h)| {
-            let layers = &layer_lists[t.patch as usize];
-            (0..most).map(move |j| match (h, layers.get(j)) {
-                (Some(h), Some(layer)) => layer.signed(&t.frame, *h),
-                _ => 0.0,
-            })
-        })
-        .collect();
+    let highlighted = |t: &Texel| scene.looks[t.patch as usize].highlight.is_some();
+    // signed[k * most + j]: layer j's signed value at texel k (0 past its patch's layers).
+    let mut signed = vec![0.0f32; gbuffer.texels.len() * most];
+    if most > 0 {
+        signed
+            .par_chunks_mut(most * PIXELS_PER_JOB)
+            .zip(gbuffer.texels.par_chunks(PIXELS_PER_JOB))
+            .for_each(|(values, texels)| {
+                for (t, values) in texels.iter().zip(values.chunks_exact_mut(most)) {
+                    if !highlighted(t) {
+                        continue;
+                    }
+                    let h = initial_half_vector(scene, t);
+                    for (value, layer) in values.iter_mut().zip(&layer_lists[t.patch as usize]) {
+                        *value = layer.signed(&t.frame, h);
+                    }
+                }
+            });
+    }
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     let (footprints, straddles) = gbuffer
         .texels
@@ -72,7 +65,7 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
         .with_min_len(PIXELS_PER_JOB)
         .enumerate()
         .map(|(k, t)| {
-            if half_vectors[k].is_none() {
+            if !highlighted(t) {
                 return (Footprint::HARD, false);
             }
             let i = t.pixel as usize;
