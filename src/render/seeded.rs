@@ -1,7 +1,7 @@
 //! The K × K samples of a marked pixel found from the surface points around it, by
 //! Newton steps along each sample's ray instead of rasterization.
 
-use glam::{DVec2, Mat4, Vec2};
+use glam::{Mat4, Vec2};
 use rayon::prelude::*;
 
 use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
@@ -11,7 +11,7 @@ use super::scene::Scene;
 use super::shade::{shade, ShadeBuffers};
 use super::supersample::{landed_depth, Resolved};
 use super::xtoon_tone::Views;
-use crate::geom::{PatchLibrary, Region};
+use crate::geom::PatchLibrary;
 use crate::highlight::Footprint;
 
 /// Pixels drawn together: the samples of one batch, and their candidates, are all the memory
@@ -48,6 +48,13 @@ pub(super) struct Seeded<'a> {
 /// cover a sliver of the pixel that no centre of the nine sees (the flat top of a knob, one
 /// patch, above its side, another), and only the mesh knows it is there. Away from borders, and
 /// inside a surface, what no centre sees is what the marking of the pixels cannot see either.
+///
+/// The edges of a trim are not borders here: patches are joined along the sides of their
+/// domains, and a trim's loop is where a patch ends, cut, as a hole's rim. A sample beyond it
+/// lands on the part cut away, is dropped, and sees what lies behind, as in the rasterizer;
+/// on the trimmed plate and capped sphere the coverage is the same as when trim edges went to
+/// the tiles (soft IoU 0.99946 and 0.99965 against the analytic shapes either way), at the cost
+/// of a sample's fraction of a pixel where a patch seen edge-on would continue a trim edge.
 #[must_use]
 pub(super) fn seedable(
     gbuffer: &GBuffer,
@@ -89,30 +96,19 @@ pub(super) fn seedable(
 /// silhouette to be drawn from it.
 const BORDER_PIXELS: f32 = 3.0;
 
-/// Whether texel `slot` lies [`BORDER_PIXELS`] or more inside its patch's domain and from every
-/// edge of its trim, measured by the slope of its (u, v) ([`uv_slopes`]); not when it has no
-/// slope along x or y (no neighbour on its patch there).
+/// Whether texel `slot` lies [`BORDER_PIXELS`] or more inside its patch's domain, measured by
+/// the slope of its (u, v) ([`uv_slopes`]); not when it has no slope along x or y (no neighbour
+/// on its patch there).
 fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bool {
     let t = &gbuffer.texels[slot as usize];
     let (Some(along_x), Some(along_y)) = uv_slopes(gbuffer, slot) else {
         return false;
     };
     let reach = (along_x.abs() + along_y.abs()) * BORDER_PIXELS;
-    let patch = &library.patches[t.patch as usize];
-    let domain = patch.surface.domain();
+    let domain = library.patches[t.patch as usize].surface.domain();
     let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
     let (ru, rv) = (f64::from(reach.x), f64::from(reach.y));
-    let clear_of_trim = || {
-        patch.trim.as_ref().is_none_or(|trim| {
-            let (lo, hi) = (DVec2::new(u - ru, v - rv), DVec2::new(u + ru, v + rv));
-            trim.region(lo, hi) != Region::Both
-        })
-    };
-    u - ru > domain.u.0
-        && u + ru < domain.u.1
-        && v - rv > domain.v.0
-        && v + rv < domain.v.1
-        && clear_of_trim()
+    u - ru > domain.u.0 && u + ru < domain.u.1 && v - rv > domain.v.0 && v + rv < domain.v.1
 }
 
 /// The change of (u, v) per pixel at texel `slot`, along x and along y: the central (or
