@@ -263,21 +263,27 @@ impl Sweep {
                 );
                 for &rung in &self.rungs {
                     let settings = rung.settings(size, self.threads);
-                    let with_aovs = sphere.scene(
-                        &library,
-                        &highlight,
-                        Aovs {
-                            matte: true,
-                            normal: true,
-                            ..Aovs::default()
-                        },
-                    );
-                    let frame = renderer.render(&with_aovs, &settings)?;
+                    let with = |aovs| sphere.scene(&library, &highlight, aovs);
+                    let matte_only = Aovs {
+                        matte: true,
+                        ..Aovs::default()
+                    };
+                    let frame = renderer.render(&with(matte_only), &settings)?;
                     let alpha: Vec<f32> = frame.colour.iter().map(|c| c.w).collect();
-                    let (matte, normals) = (
-                        frame.aovs.matte.unwrap_or_default(),
-                        frame.aovs.normal.unwrap_or_default(),
-                    );
+                    let matte = frame.aovs.matte.unwrap_or_default();
+                    // The normals from a frame of their own: the normal AOV reads every
+                    // pixel's frame, which an adaptive frame's one-sample pass otherwise
+                    // interpolates (`Plan::first_frames`), so that the mattes above are those
+                    // of a frame without it.
+                    let normal_only = Aovs {
+                        normal: true,
+                        ..Aovs::default()
+                    };
+                    let normals = renderer
+                        .render(&with(normal_only), &settings)?
+                        .aovs
+                        .normal
+                        .unwrap_or_default();
                     let normal = sphere
                         .normal_errors(&normals, size, settings.samples_per_side())
                         .unwrap_or(NormalErrors {
