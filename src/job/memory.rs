@@ -25,9 +25,10 @@ const BYTES_PER_VERTEX: u64 = 200;
 const BASE_BYTES: u64 = 64 << 20;
 
 /// What each worker holds while it supersamples a tile under adaptive anti-aliasing: a window
-/// of at most (32 · 8 + apron)² samples at about 250 B each at 8 × 8, rounded up; at 4 × 4 a
-/// quarter of it. The batch of pixels drawn from the refined points around them (1024 pixels'
-/// samples with their candidates, about 650 B a sample at most) takes as much once more.
+/// of at most (16 · 8 + apron)² samples at about 250 B each at 8 × 8, rounded up; at 4 × 4 a
+/// quarter of it. The batch of pixels drawn from the points around them (1024 pixels' samples
+/// with their candidates, about 650 B a sample at most: 42 MB at 8 × 8) takes as much once
+/// more.
 const TILE_BYTES_PER_SAMPLE_SIDE: u64 = 1 << 20;
 
 /// The peak memory of rendering one frame with `settings` and a mesh of `vertices` vertices,

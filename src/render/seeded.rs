@@ -269,7 +269,7 @@ impl Seeds {
     }
 }
 
-/// A worker's memory for one batch after another.
+/// The memory of the seeded path, kept from one batch to the next.
 #[derive(Default)]
 pub(super) struct Buffers {
     shading: ShadeBuffers,
