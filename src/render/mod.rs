@@ -39,7 +39,7 @@ mod xtoon_tone;
 pub use camera::{Camera, Projection};
 pub use facing::facing_frame;
 pub use line_style::{LineKind, LineKinds, LineStyle, MAX_LINE_WIDTH, MAX_TAPER};
-pub use plan::{Plan, Surfaces};
+pub use plan::{Plan, Surfaces, FINE_MESH_PIXELS};
 pub use renderer::{AovImages, RenderedFrame, Renderer};
 pub use scene::{Aovs, Outlines, PatchLook, Scene, Tone};
 pub use settings::{Antialias, FrameMode, Settings, MAX_SIDE, MAX_THREADS};
