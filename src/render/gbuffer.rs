@@ -473,7 +473,6 @@ pub(super) const NO_FRAME: Frame = Frame {
 mod tests {
     use super::*;
     use crate::geom::{shapes, NamedPatch};
-    use crate::render::camera::Projection;
     use crate::render::raster::{RasterOptions, Rasterizer, Viewport};
     use crate::render::tessellate::{Density, Tessellator};
 
@@ -486,13 +485,7 @@ mod tests {
         }]);
         let camera = Camera {
             eye: Vec3::new(0.3, -5.0, 0.8),
-            target: Vec3::ZERO,
-            up: Vec3::Z,
-            projection: Projection::Perspective {
-                fov_y_degrees: 30.0,
-            },
-            near: 0.1,
-            far: 100.0,
+            ..crate::render::plan::tests::camera()
         };
         let (width, height) = (64, 64);
         let view_projection = camera.view_projection(1.0);

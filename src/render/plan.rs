@@ -230,7 +230,7 @@ impl Plan {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use glam::Vec3;
 
     use super::*;
@@ -238,20 +238,26 @@ mod tests {
     use crate::highlight::Light;
     use crate::render::{Camera, Projection};
 
-    fn scene(library: &PatchLibrary, aovs: Aovs) -> Scene<'_> {
+    /// A camera 6 units out along −y, looking at the origin.
+    pub(in crate::render) fn camera() -> Camera {
+        Camera {
+            eye: Vec3::new(0.0, -6.0, 1.0),
+            target: Vec3::ZERO,
+            up: Vec3::Z,
+            projection: Projection::Perspective {
+                fov_y_degrees: 30.0,
+            },
+            near: 0.1,
+            far: 100.0,
+        }
+    }
+
+    /// A scene of `library` with no looks, seen by [`camera`], asking for `aovs`.
+    pub(in crate::render) fn empty_scene(library: &PatchLibrary, aovs: Aovs) -> Scene<'_> {
         Scene {
             library,
             looks: Vec::new(),
-            camera: Camera {
-                eye: Vec3::new(0.0, -6.0, 1.0),
-                target: Vec3::ZERO,
-                up: Vec3::Z,
-                projection: Projection::Perspective {
-                    fov_y_degrees: 30.0,
-                },
-                near: 0.1,
-                far: 100.0,
-            },
+            camera: camera(),
             light: Light::Directional { towards: Vec3::Z },
             outlines: None,
             aovs,
@@ -261,39 +267,25 @@ mod tests {
     #[test]
     fn the_one_sample_pass_interpolates_only_a_fine_adaptive_frame_whose_frames_no_aov_reads() {
         let library = PatchLibrary::default();
-        let plain = scene(&library, Aovs::default());
+        let plain = empty_scene(&library, Aovs::default());
         let first = |scene: &Scene, settings: Settings| Plan::new(scene, &settings).frames;
         let final_quality = Settings::final_quality(64, 48);
         assert_eq!(first(&plain, final_quality), FrameMode::Interpolated);
         // Mattes and patch ids read no frame.
-        let matte = scene(
-            &library,
-            Aovs {
-                matte: true,
-                patch_id: true,
-                ..Aovs::default()
-            },
-        );
+        let with = |set: fn(&mut Aovs)| {
+            let mut aovs = Aovs::default();
+            set(&mut aovs);
+            aovs
+        };
+        let matte = empty_scene(&library, with(|a| (a.matte, a.patch_id) = (true, true)));
         assert_eq!(first(&matte, final_quality), FrameMode::Interpolated);
         for aovs in [
-            Aovs {
-                normal: true,
-                ..Aovs::default()
-            },
-            Aovs {
-                uv: true,
-                ..Aovs::default()
-            },
-            Aovs {
-                depth: true,
-                ..Aovs::default()
-            },
-            Aovs {
-                n_dot_h: true,
-                ..Aovs::default()
-            },
+            with(|a| a.normal = true),
+            with(|a| a.uv = true),
+            with(|a| a.depth = true),
+            with(|a| a.n_dot_h = true),
         ] {
-            let reading = scene(&library, aovs);
+            let reading = empty_scene(&library, aovs);
             assert_eq!(
                 first(&reading, final_quality),
                 FrameMode::Refined,

@@ -72,41 +72,25 @@ mod tests {
 
     use super::*;
     use crate::geom::PatchLibrary;
-    use crate::highlight::Light;
+    use crate::render::plan::tests::{camera, empty_scene};
     use crate::render::{Aovs, Outlines, Scene};
-
-    fn camera() -> Camera {
-        Camera {
-            eye: Vec3::new(0.0, -6.0, 1.0),
-            target: Vec3::ZERO,
-            up: Vec3::Z,
-            projection: Projection::Perspective {
-                fov_y_degrees: 30.0,
-            },
-            near: 0.1,
-            far: 100.0,
-        }
-    }
 
     /// The plan of a scene with no patches under `settings`: the shade stage reads the
     /// visibility buffer unless the scene asks for an AOV.
     fn plan_under(settings: &Settings, outlines: bool, depth_aov: bool) -> Plan {
         let library = PatchLibrary::default();
+        let aovs = Aovs {
+            depth: depth_aov,
+            ..Aovs::default()
+        };
         let scene = Scene {
-            library: &library,
-            looks: Vec::new(),
-            camera: camera(),
-            light: Light::Directional { towards: Vec3::Z },
             outlines: outlines.then_some(Outlines {
                 width: 1.0,
                 colour: Vec3::ZERO,
                 crease_degrees: 60.0,
                 patch_borders: false,
             }),
-            aovs: Aovs {
-                depth: depth_aov,
-                ..Aovs::default()
-            },
+            ..empty_scene(&library, aovs)
         };
         Plan::new(&scene, settings)
     }
