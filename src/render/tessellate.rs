@@ -100,12 +100,15 @@ impl Mesh {
 /// One patch's vertices in the mesh: an `nu × nv` grid from `first`, vertex `(i, j)` (the i-th
 /// u sample, the j-th v sample) at `first + i nv + j`. Each grid cell `(i, j)` is cut into the
 /// triangles `[(i, j), (i+1, j), (i+1, j+1)]` and `[(i, j), (i+1, j+1), (i, j+1)]`, in that
-/// order, from triangle `2 Σ (cells of the patches before) + 2 (i (nv − 1) + j)`.
+/// order, from triangle `2 Σ (cells of the patches before) + 2 (i (nv − 1) + j)`
+/// ([`PatchGrid::triangle`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PatchGrid {
     pub first: u32,
     pub nu: u32,
     pub nv: u32,
+    /// The patch's first triangle in the mesh: `2 Σ (cells of the patches before)`.
+    pub first_triangle: u32,
 }
 
 impl PatchGrid {
@@ -114,6 +117,13 @@ impl PatchGrid {
     #[must_use]
     pub fn vertex(&self, i: u32, j: u32) -> u32 {
         self.first + i * self.nv + j
+    }
+
+    /// The first of the two triangles of cell `(i, j)`: `first_triangle + 2 (i (nv − 1) + j)`.
+    #[inline]
+    #[must_use]
+    pub fn triangle(&self, i: u32, j: u32) -> u32 {
+        self.first_triangle + 2 * (i * (self.nv - 1) + j)
     }
 }
 
@@ -500,6 +510,7 @@ fn build_mesh(library: &PatchLibrary, segments: &[Segments]) -> Mesh {
             first,
             nu: nu as u32,
             nv: nv as u32,
+            first_triangle: mesh.triangles.len() as u32,
         });
         let index = |i: usize, j: usize| first + (i * nv + j) as u32;
         for i in 0..nu - 1 {

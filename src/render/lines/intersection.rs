@@ -47,8 +47,6 @@ pub(crate) struct Meeting {
 #[derive(Clone, Copy, Debug)]
 struct Block {
     patch: u32,
-    /// The patch's first triangle in the mesh.
-    first_triangle: usize,
     cells: [u32; 4],
     bounds: Bounds,
 }
@@ -62,16 +60,11 @@ struct Block {
 /// patches' trims keep it.
 #[must_use]
 pub(crate) fn intersections(mesh: &Mesh, library: &PatchLibrary) -> Vec<Meeting> {
-    let mut first_triangle = 0;
     let blocks: Vec<Vec<Block>> = mesh
         .grids
         .iter()
         .enumerate()
-        .map(|(patch, grid)| {
-            let list = blocks(mesh, patch as u32, first_triangle, grid);
-            first_triangle += 2 * (grid.nu as usize - 1) * (grid.nv as usize - 1);
-            list
-        })
+        .map(|(patch, grid)| blocks(mesh, patch as u32, grid))
         .collect();
     let patch_bounds: Vec<Bounds> = blocks
         .iter()
@@ -104,8 +97,8 @@ pub(crate) fn intersections(mesh: &Mesh, library: &PatchLibrary) -> Vec<Meeting>
         .collect()
 }
 
-/// The blocks of one patch's grid, whose first triangle in the mesh is `first_triangle`.
-fn blocks(mesh: &Mesh, patch: u32, first_triangle: usize, grid: &PatchGrid) -> Vec<Block> {
+/// The blocks of one patch's grid.
+fn blocks(mesh: &Mesh, patch: u32, grid: &PatchGrid) -> Vec<Block> {
     let (cu, cv) = (grid.nu.saturating_sub(1), grid.nv.saturating_sub(1));
     let mut out = Vec::new();
     for i0 in (0..cu).step_by(BLOCK as usize) {
@@ -119,7 +112,6 @@ fn blocks(mesh: &Mesh, patch: u32, first_triangle: usize, grid: &PatchGrid) -> V
             }
             out.push(Block {
                 patch,
-                first_triangle,
                 cells: [i0, i1, j0, j1],
                 bounds,
             });
@@ -162,8 +154,7 @@ fn triangles(mesh: &Mesh, block: &Block) -> Vec<([Vec3; 3], [DVec2; 3])> {
     let grid = &mesh.grids[block.patch as usize];
     let [i0, i1, j0, j1] = block.cells;
     let cut = |i: u32, j: u32| {
-        let t = block.first_triangle + 2 * (i * (grid.nv - 1) + j) as usize;
-        mesh.triangle_region.get(t) == Some(&Region::Cut)
+        mesh.triangle_region.get(grid.triangle(i, j) as usize) == Some(&Region::Cut)
     };
     let at = |i: u32, j: u32| {
         let v = grid.vertex(i, j) as usize;
