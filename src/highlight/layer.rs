@@ -296,7 +296,12 @@ impl PreparedLayer {
 
     /// `s` at each vector of a chunk of initial highlight vectors, into `out`; `scratch` is
     /// overwritten.
-    fn signed_chunk(&self, initial: &LocalChunk, scratch: &mut LocalChunk, out: &mut [f32]) {
+    pub(crate) fn signed_chunk(
+        &self,
+        initial: &LocalChunk,
+        scratch: &mut LocalChunk,
+        out: &mut [f32],
+    ) {
         *scratch = *initial;
         self.stack.apply_chunk(initial, scratch);
         let (x, y, z) = scratch.lanes();

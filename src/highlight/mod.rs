@@ -23,10 +23,11 @@ mod ops;
 mod pin;
 mod stack;
 
+pub use crate::math::box_coverage;
 pub use error::HighlightError;
 pub(crate) use expr::ChunkScratch;
 pub use expr::{Boolean, Expr, PreparedExpr, Shade};
-pub use footprint::{box_coverage, Footprint};
+pub use footprint::Footprint;
 pub use frame::TangentFrame;
 pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View};
 pub use inside::{coverage_from_signed, inside, signed_inside};

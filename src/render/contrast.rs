@@ -13,7 +13,8 @@ pub const CONTRAST: f32 = 0.5 / 255.0;
 
 /// Per pixel of a `width × height` image, whether it or one of its eight neighbours differs from
 /// it by more than [`CONTRAST`] in premultiplied `colour` (straight alpha in, so that coverage
-/// counts) or in `matte`; and every pixel `also` marks.
+/// counts) or in `matte`, unless `tone_only` says of the two (by pixel index) that their colours
+/// may differ, each drawn right at one sample; and every pixel `also` marks.
 ///
 /// A cel-shaded image is flat between edges, so this finds every edge a pixel centre on either
 /// side of it sees: silhouettes (alpha), occlusion and patch edges where the tone differs,
@@ -26,16 +27,18 @@ pub fn pixels_to_supersample(
     colour: &[Vec4],
     matte: Option<&[f32]>,
     also: Option<&[bool]>,
+    tone_only: Option<&(dyn Fn(usize, usize) -> bool + Sync)>,
     width: u32,
     height: u32,
 ) -> Vec<bool> {
     let (w, h) = (width as usize, height as usize);
     let differs = |a: usize, b: usize| {
-        (premultiplied(colour[a]) - premultiplied(colour[b]))
+        ((premultiplied(colour[a]) - premultiplied(colour[b]))
             .abs()
             .max_element()
             > CONTRAST
-            || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST)
+            || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST))
+            && !tone_only.is_some_and(|alike| alike(a, b))
     };
     // Each pair of neighbours compared once, from the upper or left one: bit 0 its right
     // neighbour, 1 the one below, 2 below right, 3 below left.
@@ -87,7 +90,7 @@ mod tests {
                 }
             })
             .collect();
-        let marked = pixels_to_supersample(&colour, None, None, w, h);
+        let marked = pixels_to_supersample(&colour, None, None, None, w, h);
         for (i, &m) in marked.iter().enumerate() {
             let x = i as u32 % w;
             assert_eq!(m, x == 2 || x == 3, "pixel {i}");
@@ -100,7 +103,7 @@ mod tests {
         // One covered pixel in the corner: all four pixels around the corner are marked.
         let mut colour = vec![Vec4::ZERO; 9];
         colour[0] = Vec4::new(0.0, 0.0, 0.0, 1.0);
-        let marked = pixels_to_supersample(&colour, None, None, w, h);
+        let marked = pixels_to_supersample(&colour, None, None, None, w, h);
         assert_eq!(
             marked,
             [true, true, false, true, true, false, false, false, false]
@@ -109,14 +112,14 @@ mod tests {
         let colour = vec![Vec4::ONE; 9];
         let mut matte = vec![0.0; 9];
         matte[8] = 0.5;
-        let marked = pixels_to_supersample(&colour, Some(&matte), None, w, h);
+        let marked = pixels_to_supersample(&colour, Some(&matte), None, None, w, h);
         assert_eq!(
             marked,
             [false, false, false, false, true, true, false, true, true]
         );
         // Below the contrast, nothing.
         matte[8] = CONTRAST * 0.9;
-        assert!(!pixels_to_supersample(&colour, Some(&matte), None, w, h).contains(&true));
+        assert!(!pixels_to_supersample(&colour, Some(&matte), None, None, w, h).contains(&true));
     }
 
     #[test]
@@ -141,7 +144,7 @@ mod tests {
             let matte: Vec<f32> = (0..w * h).map(|_| (next() % 3) as f32 * 0.4).collect();
             let also: Vec<bool> = (0..w * h).map(|_| next() % 17 == 0).collect();
             let marked =
-                pixels_to_supersample(&colour, Some(&matte), Some(&also), w as u32, h as u32);
+                pixels_to_supersample(&colour, Some(&matte), Some(&also), None, w as u32, h as u32);
             for y in 0..h {
                 for x in 0..w {
                     let i = y * w + x;

@@ -3,10 +3,13 @@
 
 use rayon::prelude::*;
 
-use super::directions::initial_half_vector;
+use glam::Vec3;
+
+use super::directions::{initial_half_vectors, view_lanes};
 use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
 use super::scene::Scene;
-use crate::highlight::{Footprint, PreparedLayer};
+use crate::highlight::{Footprint, LocalChunk, PreparedLayer};
+use crate::math::{Lanes, LANES};
 
 /// What the edge-width stage finds per texel.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -16,6 +19,39 @@ pub(super) struct EdgeWidths {
     /// Whether some layer's `s` may change sign within the pixel ([`straddles_zero`]): a
     /// highlight edge may cross it though no neighbour's colour shows it.
     pub straddles: Vec<bool>,
+}
+
+/// The working memory of the signed values of up to [`LANES`] texels of one patch.
+struct SignedScratch {
+    view: Lanes,
+    half_vectors: [Vec3; LANES],
+    /// The half vectors in the texels' frames.
+    initial: LocalChunk,
+    vectors: LocalChunk,
+    out: [f32; LANES],
+}
+
+impl Default for SignedScratch {
+    fn default() -> Self {
+        Self {
+            view: Lanes::default(),
+            half_vectors: [Vec3::ZERO; LANES],
+            initial: LocalChunk::default(),
+            vectors: LocalChunk::default(),
+            out: [0.0; LANES],
+        }
+    }
+}
+
+impl SignedScratch {
+    /// The initial half vectors of `texels` (up to [`LANES`], on one patch) in their frames.
+    fn fill(&mut self, scene: &Scene, texels: &[Texel]) {
+        let n = texels.len();
+        view_lanes(scene, texels, &mut self.view);
+        initial_half_vectors(scene, texels, &self.view, &mut self.half_vectors[..n]);
+        let hs = &self.half_vectors;
+        self.initial.set(n, |k| texels[k].frame.to_local(hs[k]));
+    }
 }
 
 /// At a peak or dip of `s`, the most one one-sided slope may exceed the other by and still be
@@ -40,20 +76,32 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
         .collect();
     let most = layer_lists.iter().map(Vec::len).max().unwrap_or(0);
     let highlighted = |t: &Texel| scene.looks[t.patch as usize].highlight.is_some();
-    // signed[k * most + j]: layer j's signed value at texel k (0 past its patch's layers).
+    // signed[k * most + j]: layer j's signed value at texel k (0 past its patch's layers),
+    // for runs of texels on one patch up to LANES at a time, side by side.
     let mut signed = vec![0.0f32; gbuffer.texels.len() * most];
     if most > 0 {
         signed
             .par_chunks_mut(most * PIXELS_PER_JOB)
             .zip(gbuffer.texels.par_chunks(PIXELS_PER_JOB))
-            .for_each(|(values, texels)| {
-                for (t, values) in texels.iter().zip(values.chunks_exact_mut(most)) {
-                    if !highlighted(t) {
-                        continue;
-                    }
-                    let h = initial_half_vector(scene, t);
-                    for (value, layer) in values.iter_mut().zip(&layer_lists[t.patch as usize]) {
-                        *value = layer.signed(&t.frame, h);
+            .for_each_init(SignedScratch::default, |scratch, (values, texels)| {
+                let mut start = 0;
+                for run in texels.chunk_by(|a, b| a.patch == b.patch) {
+                    let layers = &layer_lists[run[0].patch as usize];
+                    for piece in run.chunks(LANES) {
+                        let n = piece.len();
+                        let values = &mut values[start * most..(start + n) * most];
+                        start += n;
+                        if layers.is_empty() {
+                            continue;
+                        }
+                        scratch.fill(scene, piece);
+                        for (j, layer) in layers.iter().enumerate() {
+                            let out = &mut scratch.out[..n];
+                            layer.signed_chunk(&scratch.initial, &mut scratch.vectors, out);
+                            for (texel, &s) in values.chunks_exact_mut(most).zip(out.iter()) {
+                                texel[j] = s;
+                            }
+                        }
                     }
                 }
             });

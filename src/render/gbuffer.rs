@@ -189,12 +189,39 @@ impl GBuffer {
         size: (u32, u32),
         evaluate: Evaluate,
     ) -> u64 {
+        Self::evaluate_frames(
+            texels,
+            library,
+            camera,
+            view_projection,
+            size,
+            FrameMode::Refined,
+            evaluate,
+        )
+    }
+
+    /// The frames of `texels` in `mode`, as [`fill`](Self::fill) evaluates them: with
+    /// [`FrameMode::Refined`] as [`refine_onto_rays`](Self::refine_onto_rays), with
+    /// [`FrameMode::Exact`] on the patch at each texel's (u, v), and with
+    /// [`FrameMode::Interpolated`] as they are. Returns the frames evaluated.
+    pub(super) fn evaluate_frames(
+        texels: &mut [Texel],
+        library: &PatchLibrary,
+        camera: &Camera,
+        view_projection: Mat4,
+        size: (u32, u32),
+        mode: FrameMode,
+        evaluate: Evaluate,
+    ) -> u64 {
+        if mode == FrameMode::Interpolated {
+            return 0;
+        }
         let frames = Frames {
             library,
             camera,
             inverse_view_projection: view_projection.inverse(),
             size,
-            mode: FrameMode::Refined,
+            mode,
         };
         texels.par_chunks_mut(PIXELS_PER_JOB).for_each_init(
             FrameScratch::default,

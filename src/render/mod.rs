@@ -8,6 +8,7 @@
 //! A stage the scene does not use does not run, and [`RenderStats`] shows it. Writing the
 //! images to files is not rendering: see [`crate::formats`].
 
+mod band_edge;
 pub mod camera;
 mod contrast;
 mod dilate;

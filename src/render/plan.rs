@@ -45,19 +45,22 @@ impl Plan {
     ///
     /// - tessellation, rasterization and shading always run;
     /// - the G-buffer is built unless the only effect is the cel tone over interpolated frames
-    ///   (with or without lines, which are found on the mesh): highlights need the frame's
-    ///   tangents and (u, v), AOVs read stored texels, X-Toon reads each texel's position and
-    ///   frame, and exact or refined frames are evaluated per texel;
+    ///   (with or without lines, which are found on the mesh) with hard band edges: highlights
+    ///   need the frame's tangents and (u, v), AOVs read stored texels, X-Toon reads each
+    ///   texel's position and frame, analytic band edges the normals around each texel, and
+    ///   exact or refined frames are evaluated per texel;
     /// - the X-Toon detail runs as a stage of its own only when some patch's designed highlight
     ///   is evaluated in its X-Toon tone's abstracted frame (the highlights then need every
     ///   abstracted frame before they start);
-    /// - edge widths only under analytic or adaptive anti-aliasing on a frame with highlights;
+    /// - edge widths only under analytic or adaptive anti-aliasing on a frame with highlights or
+    ///   band edges;
     /// - outlines and AOVs when the scene asks for them, the resolve under supersampling, and
     ///   the supersampling of the pixels that need it under adaptive anti-aliasing;
     /// - the G-buffer holds the frames [`Plan::first_frames`] decides.
     #[must_use]
     pub fn new(scene: &Scene, settings: &Settings) -> Self {
-        let highlights = scene.looks.iter().any(|look| look.highlight.is_some());
+        let highlights = scene.has_highlights();
+        let bands = scene.has_band_edges();
         let outlines = scene.outlines.is_some();
         let aovs = scene.aovs != Aovs::default();
         // The AOVs read from texels: all but the lines.
@@ -73,22 +76,23 @@ impl Plan {
             look.highlight.is_some()
                 && matches!(&look.tone, Tone::XToon(tone) if tone.abstracts_highlights())
         });
-        let tone_only = !highlights && !texel_aovs && !xtoon;
+        let analytic = match settings.antialias {
+            Antialias::Analytic | Antialias::Adaptive(_) => true,
+            Antialias::None | Antialias::Supersample(_) => false,
+        };
+        let analytic_bands = analytic && bands;
+        let tone_only = !(highlights || texel_aovs || xtoon || analytic_bands);
         let surfaces = if tone_only && settings.frames == FrameMode::Interpolated {
             Surfaces::Visibility
         } else {
             Surfaces::Texels
         };
         let texels = surfaces == Surfaces::Texels;
-        let analytic = match settings.antialias {
-            Antialias::Analytic | Antialias::Adaptive(_) => true,
-            Antialias::None | Antialias::Supersample(_) => false,
-        };
         let runs = Stage::ALL.map(|stage| match stage {
             Stage::Tessellate | Stage::Rasterize | Stage::Shade => true,
             Stage::GBuffer => texels,
             Stage::Detail => texels && abstracted_highlights,
-            Stage::EdgeWidths => texels && highlights && analytic,
+            Stage::EdgeWidths => texels && (highlights || bands) && analytic,
             Stage::Outline => outlines,
             Stage::Supersample => matches!(settings.antialias, Antialias::Adaptive(_)),
             Stage::Aov => aovs,
@@ -236,7 +240,8 @@ pub(super) mod tests {
     use super::*;
     use crate::geom::PatchLibrary;
     use crate::highlight::Light;
-    use crate::render::{Camera, Projection};
+    use crate::render::{Camera, PatchLook, Projection};
+    use crate::toon::CelRamp;
 
     /// A camera 6 units out along −y, looking at the origin.
     pub(in crate::render) fn camera() -> Camera {
@@ -307,5 +312,59 @@ pub(super) mod tests {
             ..final_quality
         };
         assert_eq!(first(&plain, analytic), FrameMode::Refined);
+    }
+
+    #[test]
+    fn band_edges_run_the_edge_stage_only_under_analytic_edges_and_need_texels() {
+        let library = PatchLibrary::default();
+        let with_tone = |bands: Vec<(f32, Vec3)>| {
+            let mut scene = empty_scene(&library, Aovs::default());
+            scene.looks.push(PatchLook {
+                tone: Tone::Cel(CelRamp {
+                    base: Vec3::ZERO,
+                    bands,
+                }),
+                highlight: None,
+                lines: None,
+            });
+            scene
+        };
+        let banded = with_tone(vec![(0.1, Vec3::ONE)]);
+        let flat = with_tone(Vec::new());
+        let interpolated = |antialias| Settings {
+            frames: FrameMode::Interpolated,
+            antialias,
+            ..Settings::preview(64, 48)
+        };
+        for (scene, settings, edges, surfaces) in [
+            (
+                &banded,
+                Settings::final_quality(64, 48),
+                true,
+                Surfaces::Texels,
+            ),
+            (
+                &banded,
+                interpolated(Antialias::Analytic),
+                true,
+                Surfaces::Texels,
+            ),
+            (
+                &banded,
+                interpolated(Antialias::None),
+                false,
+                Surfaces::Visibility,
+            ),
+            (
+                &flat,
+                interpolated(Antialias::Analytic),
+                false,
+                Surfaces::Visibility,
+            ),
+        ] {
+            let plan = Plan::new(scene, &settings);
+            assert_eq!(plan.runs(Stage::EdgeWidths), edges, "{settings:?}");
+            assert_eq!(plan.surfaces, surfaces, "{settings:?}");
+        }
     }
 }

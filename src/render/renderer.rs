@@ -9,6 +9,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
+use super::band_edge::{band_edges, settle_straight_edges, BandEdge};
 use super::edge_width::{edge_widths, EdgeWidths};
 use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
 use super::line_style::{LineKind, LineStyle};
@@ -17,7 +18,7 @@ use super::plan::{Plan, Surfaces};
 use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
 use super::settings::{Antialias, FrameMode, Settings};
-use super::shade::{shade, ShadeBuffers, Shaded};
+use super::shade::{shade, Edges, ShadeBuffers, Shaded};
 use super::stage::Stage;
 use super::stats::{timed, RenderStats};
 use super::supersample;
@@ -323,10 +324,10 @@ impl Stages {
                 (mesh, covered)
             }
         };
-        let (mut shaded, widths) = match plan.surfaces {
+        let (mut shaded, edges) = match plan.surfaces {
             Surfaces::Visibility => (
                 shade_from_visibility(visibility, mesh, scene, covered, &mut stats),
-                None,
+                Edged::default(),
             ),
             Surfaces::Texels => {
                 let views = xtoon_tone::views(scene);
@@ -335,9 +336,13 @@ impl Stages {
                     .then(|| detail(gbuffer, scene, &views, &mut stats));
                 // Highlights see the abstracted frames of the X-Toon patches that ask for them.
                 let highlight_gbuffer = ahead.as_ref().map_or(&*gbuffer, |a| &a.gbuffer);
-                let widths = plan
-                    .runs(Stage::EdgeWidths)
-                    .then(|| widths(highlight_gbuffer, scene, &mut stats));
+                let edges = if plan.runs(Stage::EdgeWidths) {
+                    let settle = (plan.frames != settings.frames)
+                        .then_some((frame.view_projection, settings.frames));
+                    widths(highlight_gbuffer, scene, settle, &mut stats)
+                } else {
+                    Edged::default()
+                };
                 let tones = ahead.as_ref().map(|a| a.tones.as_slice());
                 let (shaded, seconds) = timed(|| {
                     shade(
@@ -345,14 +350,14 @@ impl Stages {
                         scene,
                         &views,
                         tones,
-                        widths.as_ref().map(|w| w.footprints.as_slice()),
+                        edges.shading(settings.antialias),
                         shading,
                     )
                 });
                 stats.record(Stage::Shade, shaded.shaded, seconds);
                 stats.highlight_pixels = shaded.highlighted;
                 stats.xtoon_pixels = shaded.xtoon;
-                (shaded, widths.filter(|_| plan.runs(Stage::Supersample)))
+                (shaded, edges)
             }
         };
         match (plan.runs(Stage::Outline), &scene.outlines) {
@@ -390,7 +395,8 @@ impl Stages {
         let lines = kept_lines.as_ref().map(|kept| &kept.image);
         if let (true, Antialias::Adaptive(k)) = (plan.runs(Stage::Supersample), settings.antialias)
         {
-            let straddles = widths.as_ref().map(|w| gbuffer.gather(&w.straddles, false));
+            let widths = edges.widths.as_ref();
+            let straddles = widths.map(|w| gbuffer.gather(&w.straddles, false));
             let input = supersample::Frame {
                 library,
                 scene,
@@ -401,10 +407,12 @@ impl Stages {
                 k,
                 image: frame.samples,
                 detail: plan.uses(Stage::Detail),
-                widths: plan.uses(Stage::EdgeWidths),
+                widths: widths.is_some(),
                 straddles: straddles.as_deref(),
                 gbuffer,
-                footprints: widths.as_ref().map(|w| w.footprints.as_slice()),
+                footprints: widths.map(|w| w.footprints.as_slice()),
+                bands: edges.bands.as_deref(),
+                highlights: shading.highlights(),
                 lines,
             };
             let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
@@ -553,11 +561,61 @@ fn detail(
     ahead
 }
 
-/// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint.
-fn widths(gbuffer: &GBuffer, scene: &Scene, stats: &mut RenderStats) -> EdgeWidths {
-    let (widths, seconds) = timed(|| edge_widths(gbuffer, scene));
-    stats.record(Stage::EdgeWidths, widths.footprints.len() as u64, seconds);
-    widths
+/// What [`Stage::EdgeWidths`] finds per texel.
+#[derive(Default)]
+struct Edged {
+    /// The highlight's edge widths, on a frame with highlights.
+    widths: Option<EdgeWidths>,
+    /// How the tone's band edges meet the pixel, on a frame with banded cel ramps.
+    bands: Option<Vec<BandEdge>>,
+}
+
+impl Edged {
+    /// What the one-sample shading takes of them under `antialias`: under adaptive
+    /// anti-aliasing no highlight footprints, since a pixel a highlight edge crosses differs
+    /// from the neighbour across it and is drawn again at k × k samples, each with its own
+    /// footprint; hard edges there mark only the pixels the edges cross, where analytic ones
+    /// also mark their neighbours, which a partly covered pixel beside them differs from.
+    fn shading(&self, antialias: Antialias) -> Edges<'_> {
+        let adaptive = match antialias {
+            Antialias::Adaptive(_) => true,
+            Antialias::None | Antialias::Analytic | Antialias::Supersample(_) => false,
+        };
+        Edges {
+            widths: self
+                .widths
+                .as_ref()
+                .filter(|_| !adaptive)
+                .map(|w| w.footprints.as_slice()),
+            bands: self.bands.as_deref(),
+        }
+    }
+}
+
+/// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint
+/// and how the tone's band edges meet the pixel; with `settle`, the view-projection and the
+/// settings' frames where the G-buffer's are interpolated, the band edges crossing pixels are
+/// placed by those frames ([`settle_straight_edges`]).
+fn widths(
+    gbuffer: &GBuffer,
+    scene: &Scene,
+    settle: Option<(Mat4, FrameMode)>,
+    stats: &mut RenderStats,
+) -> Edged {
+    let mut frames = 0;
+    let (edged, seconds) = timed(|| Edged {
+        widths: scene.has_highlights().then(|| edge_widths(gbuffer, scene)),
+        bands: scene.has_band_edges().then(|| {
+            let mut bands = band_edges(gbuffer, scene);
+            if let Some((view_projection, mode)) = settle {
+                frames = settle_straight_edges(&mut bands, gbuffer, scene, view_projection, mode);
+            }
+            bands
+        }),
+    });
+    stats.record(Stage::EdgeWidths, gbuffer.texels.len() as u64, seconds);
+    stats.exact_frames += frames;
+    edged
 }
 
 /// [`Stage::Outline`]: the lines, found on the mesh and tested against the frame's depth, as

@@ -88,3 +88,19 @@ pub struct Scene<'a> {
     pub outlines: Option<Outlines>,
     pub aovs: Aovs,
 }
+
+impl Scene<'_> {
+    /// Whether some patch has a designed highlight.
+    #[must_use]
+    pub fn has_highlights(&self) -> bool {
+        self.looks.iter().any(|look| look.highlight.is_some())
+    }
+
+    /// Whether some patch's tone is a cel ramp with band edges (more than one colour).
+    #[must_use]
+    pub fn has_band_edges(&self) -> bool {
+        self.looks
+            .iter()
+            .any(|look| matches!(&look.tone, Tone::Cel(ramp) if !ramp.bands.is_empty()))
+    }
+}

@@ -8,7 +8,7 @@ use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
 use super::neighbourhood::around;
 use super::raster::Viewport;
 use super::scene::Scene;
-use super::shade::{shade, ShadeBuffers};
+use super::shade::{shade, Edges, ShadeBuffers};
 use super::supersample::{landed_depth, Resolved};
 use super::xtoon_tone::Views;
 use crate::geom::PatchLibrary;
@@ -421,7 +421,10 @@ fn draw_batch(
         frame.scene,
         views,
         None,
-        frame.footprints.map(|_| footprints.as_slice()),
+        Edges {
+            widths: frame.footprints.map(|_| footprints.as_slice()),
+            bands: None,
+        },
         shading,
     );
 

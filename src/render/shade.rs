@@ -3,6 +3,7 @@
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
+use super::band_edge::BandEdge;
 use super::directions::{initial_half_vector, initial_half_vectors, view_lanes};
 use super::gbuffer::{GBuffer, Texel, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
@@ -33,7 +34,16 @@ pub(super) struct Shaded {
 #[derive(Debug, Default)]
 pub(super) struct ShadeBuffers {
     colour: Vec<Vec4>,
-    coverage: Vec<f32>,
+    /// Per texel, its highlight premultiplied: `(c h, c)`, zero without one.
+    highlight: Vec<Vec4>,
+}
+
+impl ShadeBuffers {
+    /// Per texel of the G-buffer last shaded, its highlight premultiplied, `(c h, c)` for
+    /// coverage c and colour h (zero on a patch without one).
+    pub(super) fn highlights(&self) -> &[Vec4] {
+        &self.highlight
+    }
 }
 
 /// Shades every texel of `gbuffer`: `tone = ramp(N·L)`, or the X-Toon tone of its patch's
@@ -44,35 +54,40 @@ pub(super) struct ShadeBuffers {
 /// With edge `widths` (analytic anti-aliasing, [`edge_widths`](super::edge_width::edge_widths)),
 /// each highlight edge covers the pixel as a straight edge with the pixel's footprint of the
 /// signed inside value `s = ε − ‖N − H'‖²/2` would ([`Footprint::coverage`]). Without them,
-/// edges are hard (the paper's look).
+/// edges are hard (the paper's look). Likewise with `bands`
+/// ([`band_edges`](super::band_edge::band_edges)), a cel tone whose band edge crosses the pixel
+/// straight takes the box's mean colour ([`CelRamp::shade_over_box`](crate::toon::CelRamp::shade_over_box)).
 pub(super) fn shade(
     gbuffer: &GBuffer,
     scene: &Scene,
     views: &Views,
     ahead: Option<&[Vec3]>,
-    widths: Option<&[Footprint]>,
+    edges: Edges<'_>,
     buffers: &mut ShadeBuffers,
 ) -> Shaded {
     let texels = gbuffer.texels.len();
     buffers.colour.resize(texels, Vec4::ZERO);
-    buffers.coverage.resize(texels, 0.0);
+    buffers.highlight.resize(texels, Vec4::ZERO);
     let counts = gbuffer
         .texels
         .par_chunks(PIXELS_PER_JOB)
         .zip(buffers.colour.par_chunks_mut(PIXELS_PER_JOB))
-        .zip(buffers.coverage.par_chunks_mut(PIXELS_PER_JOB))
+        .zip(buffers.highlight.par_chunks_mut(PIXELS_PER_JOB))
         .enumerate()
         .map_init(
             RunScratch::new,
-            |scratch, (chunk, ((texels, colour), coverage))| {
+            |scratch, (chunk, ((texels, colour), highlight))| {
                 let range = chunk * PIXELS_PER_JOB..chunk * PIXELS_PER_JOB + texels.len();
-                let widths = widths.map(|w| &w[range.clone()]);
+                let edges = Edges {
+                    widths: edges.widths.map(|w| &w[range.clone()]),
+                    bands: edges.bands.map(|b| &b[range.clone()]),
+                };
                 let xtoon = XToonTones {
                     views,
                     ahead: ahead.map(|tones| &tones[range]),
                 };
-                let out = Out { colour, coverage };
-                shade_texels(scene, texels, widths, &xtoon, out, scratch)
+                let out = Out { colour, highlight };
+                shade_texels(scene, texels, edges, &xtoon, out, scratch)
             },
         )
         .reduce(Counts::default, Counts::add);
@@ -87,15 +102,23 @@ pub(super) fn shade(
     });
     Shaded {
         colour: gbuffer.gather(&buffers.colour, Vec4::ZERO),
-        matte: scene
-            .aovs
-            .matte
-            .then(|| gbuffer.gather(&buffers.coverage, 0.0)),
+        matte: scene.aovs.matte.then(|| {
+            let coverage: Vec<f32> = buffers.highlight.iter().map(|h| h.w).collect();
+            gbuffer.gather(&coverage, 0.0)
+        }),
         n_dot_h,
         shaded: texels as u64,
         highlighted: counts.highlighted,
         xtoon: counts.xtoon,
     }
+}
+
+/// Per texel, what the shade stage knows of the pixel's box for analytic anti-aliasing: the
+/// footprints of the highlight's edges and how the tone's band edges meet it (`None`: hard).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Edges<'a> {
+    pub widths: Option<&'a [Footprint]>,
+    pub bands: Option<&'a [BandEdge]>,
 }
 
 /// The cel tone `ramp(N·L)` at a point of `patch` with unit normal `n` (black on an X-Toon
@@ -105,6 +128,20 @@ pub(super) fn cel_tone(scene: &Scene, patch: u32, position: Vec3, n: Vec3) -> Ve
     match &scene.looks[patch as usize].tone {
         Tone::Cel(ramp) => ramp.shade(n.dot(scene.light.direction(position, n))),
         Tone::XToon(_) => Vec3::ZERO,
+    }
+}
+
+/// The cel tone of texel `t` over its pixel's box: [`cel_tone`], or where a band edge crosses
+/// the box straight, the box's mean colour about the edge's `n·l` at the centre ([`CelRamp::shade_over_box`](crate::toon::CelRamp::shade_over_box)).
+#[inline]
+fn cel_tone_over_box(scene: &Scene, t: &Texel, edge: BandEdge) -> Vec3 {
+    match (&scene.looks[t.patch as usize].tone, edge) {
+        (Tone::Cel(ramp), BandEdge::Straight { n_dot_l, footprint }) => {
+            ramp.shade_over_box(n_dot_l, footprint.x, footprint.y)
+        }
+        (_, BandEdge::Clear | BandEdge::Hard | BandEdge::Straight { .. }) => {
+            cel_tone(scene, t.patch, t.position, t.frame.n)
+        }
     }
 }
 
@@ -140,10 +177,10 @@ const NO_HIGHLIGHT: Shade = Shade {
     colour: Vec3::ZERO,
 };
 
-/// Where the shade of a run of texels goes: colour and highlight coverage per texel.
+/// Where the shade of a run of texels goes: colour and premultiplied highlight per texel.
 struct Out<'a> {
     colour: &'a mut [Vec4],
-    coverage: &'a mut [f32],
+    highlight: &'a mut [Vec4],
 }
 
 /// The inputs and results of the tone and the highlight expression for up to [`LANES`] texels
@@ -174,14 +211,14 @@ impl RunScratch {
     }
 }
 
-/// Shades `texels` (in pixel order) into `out`, given their edge widths for analytic edges.
+/// Shades `texels` (in pixel order) into `out`, given their edges for analytic anti-aliasing.
 /// Runs of texels on one patch go through the highlight expression together, [`LANES`] at a
 /// time; with per-pixel widths, one by one. Their tones are computed first, in a loop of their
 /// own with the X-Toon tone inlined whole into it, rather than called texel by texel.
 fn shade_texels(
     scene: &Scene,
     texels: &[Texel],
-    widths: Option<&[Footprint]>,
+    edges: Edges<'_>,
     xtoon: &XToonTones,
     out: Out<'_>,
     scratch: &mut RunScratch,
@@ -197,18 +234,27 @@ fn shade_texels(
             || (xtoon.ahead.is_none() && view.is_some_and(ViewXToon::uses_view));
         for piece in run.chunks(LANES) {
             let range = start..start + piece.len();
-            let widths = widths.map(|w| &w[range.clone()]);
+            let widths = edges.widths.map(|w| &w[range.clone()]);
             if reads_view {
                 view_lanes(scene, piece, &mut scratch.view);
             }
             let mut tones = [Vec3::ZERO; LANES];
             let tones = &mut tones[..piece.len()];
             match (view, xtoon.ahead) {
-                (None, _) => {
-                    for (tone, t) in tones.iter_mut().zip(piece) {
-                        *tone = cel_tone(scene, t.patch, t.position, t.frame.n);
+                (None, _) => match edges.bands {
+                    Some(bands) => {
+                        for ((tone, t), &edge) in
+                            tones.iter_mut().zip(piece).zip(&bands[range.clone()])
+                        {
+                            *tone = cel_tone_over_box(scene, t, edge);
+                        }
                     }
-                }
+                    None => {
+                        for (tone, t) in tones.iter_mut().zip(piece) {
+                            *tone = cel_tone(scene, t.patch, t.position, t.frame.n);
+                        }
+                    }
+                },
                 (Some(_), Some(ahead)) => tones.copy_from_slice(&ahead[range.clone()]),
                 (Some(view), None) => {
                     xtoon_tone::shade_texels(
@@ -228,7 +274,7 @@ fn shade_texels(
             for (k, &tone) in tones.iter().enumerate() {
                 let shade = shades.map_or(NO_HIGHLIGHT, |s| s[k]);
                 out.colour[start + k] = tone.lerp(shade.colour, shade.coverage).extend(1.0);
-                out.coverage[start + k] = shade.coverage;
+                out.highlight[start + k] = (shade.colour * shade.coverage).extend(shade.coverage);
             }
             start = range.end;
         }

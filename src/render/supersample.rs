@@ -4,7 +4,8 @@
 use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::contrast::pixels_to_supersample;
+use super::band_edge::BandEdge;
+use super::contrast::{pixels_to_supersample, CONTRAST};
 use super::dilate::dilate;
 use super::gbuffer::{Evaluate, GBuffer, EMPTY};
 use super::lines::LineImage;
@@ -14,7 +15,7 @@ use super::renderer::{premultiplied, straight};
 use super::scene::Scene;
 use super::seeded::{self, Seeded};
 use super::settings::FrameMode;
-use super::shade::{shade, ShadeBuffers, Shaded};
+use super::shade::{shade, Edges, ShadeBuffers, Shaded};
 use super::tessellate::Mesh;
 use super::trim_cut::{MeshCut, Renumbered};
 use super::window::Window;
@@ -56,6 +57,11 @@ pub(super) struct Frame<'a> {
     /// The frame's lines, when the scene draws them: a pixel they wholly ink is not drawn
     /// again.
     pub lines: Option<&'a LineImage>,
+    /// Per texel of `gbuffer`, how the tone's band edges met its pixel in the one-sample pass,
+    /// when they were drawn analytically there.
+    pub bands: Option<&'a [BandEdge]>,
+    /// Per texel of `gbuffer`, its highlight premultiplied in the one-sample pass, `(c h, c)`.
+    pub highlights: &'a [Vec4],
 }
 
 /// What the stage did.
@@ -141,10 +147,32 @@ pub(super) fn landed_depth(
 /// Memory is one tile per worker.
 pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     let (w, h) = (frame.image.width, frame.image.height);
+    let gbuffer = frame.gbuffer;
+    // Two pixels inside one patch, each with its band edges drawn, and with the same
+    // highlight, differ by their tone alone, which the one-sample pass drew right.
+    let tone_only = frame.bands.map(|bands| {
+        move |a: usize, b: usize| {
+            let (sa, sb) = (gbuffer.slot[a], gbuffer.slot[b]);
+            if sa == EMPTY || sb == EMPTY {
+                return false;
+            }
+            let (sa, sb) = (sa as usize, sb as usize);
+            gbuffer.texels[sa].patch == gbuffer.texels[sb].patch
+                && bands[sa].is_drawn()
+                && bands[sb].is_drawn()
+                && (frame.highlights[sa] - frame.highlights[sb])
+                    .abs()
+                    .max_element()
+                    <= CONTRAST
+        }
+    });
     let mut marked = pixels_to_supersample(
         &shaded.colour,
         shaded.matte.as_deref(),
         frame.straddles,
+        tone_only
+            .as_ref()
+            .map(|f| f as &(dyn Fn(usize, usize) -> bool + Sync)),
         w,
         h,
     );
@@ -525,7 +553,10 @@ impl TileBuffers {
             scene,
             views,
             tones,
-            widths.as_deref(),
+            Edges {
+                widths: widths.as_deref(),
+                bands: None,
+            },
             &mut self.shading,
         );
 
