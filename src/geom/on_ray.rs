@@ -32,7 +32,9 @@ pub struct RaySearch {
     pub direction: DVec3,
     /// The most surface evaluations to spend, the start's included: [`ALL_EVALUATIONS`] for
     /// the full search; fewer to ask only whether the ray meets the surface close to the start,
-    /// where a ray that passes beside it would spend the rest approaching its outline.
+    /// where a ray that passes beside it would spend the rest approaching its outline. Such a
+    /// probe also stops when two steps in a row are held on the same side of the domain, or
+    /// one is held where it stands: the ray passes beyond the patch's edge.
     pub evaluations: u32,
 }
 
@@ -139,7 +141,12 @@ fn newton_on_ray(
     let (mut u, mut v) = start;
     let mut s = derivs(u, v);
     let (mut f1, mut f2, mut error, mut distance) = residual(s.point);
-    for _ in 0..REFINE_STEPS {
+    // A probe asks only whether the ray meets the surface near the start: two steps in a row
+    // held on the same side of the domain they would have left, or a step the domain holds
+    // where it is, say that the ray passes beyond it.
+    let probe = search.evaluations < ALL_EVALUATIONS;
+    let mut pressed = 0u8;
+    'steps: for _ in 0..REFINE_STEPS {
         if error <= ON_RAY * distance {
             break;
         }
@@ -160,21 +167,33 @@ fn newton_on_ray(
                 break;
             }
             left -= 1;
-            let nu = (u - t * step_u).clamp(domain.u.0, domain.u.1);
-            let nv = (v - t * step_v).clamp(domain.v.0, domain.v.1);
+            let (ru, rv) = (u - t * step_u, v - t * step_v);
+            let nu = ru.clamp(domain.u.0, domain.u.1);
+            let nv = rv.clamp(domain.v.0, domain.v.1);
+            if probe && (nu, nv) == (u, v) {
+                break 'steps;
+            }
             let ns = derivs(nu, nv);
             let (g1, g2, g_error, g_distance) = residual(ns.point);
             if g_error < error {
-                better = Some((nu, nv, ns, (g1, g2, g_error, g_distance)));
+                let against = u8::from(ru < nu)
+                    | u8::from(ru > nu) << 1
+                    | u8::from(rv < nv) << 2
+                    | u8::from(rv > nv) << 3;
+                better = Some((nu, nv, ns, (g1, g2, g_error, g_distance), against));
                 break;
             }
             t *= 0.5;
         }
-        let Some((nu, nv, ns, g)) = better else {
+        let Some((nu, nv, ns, g, against)) = better else {
             break;
         };
         (u, v, s) = (nu, nv, ns);
         (f1, f2, error, distance) = g;
+        if probe && against != 0 && against == pressed {
+            break;
+        }
+        pressed = against;
     }
     (s, Some((u, v)))
 }
@@ -280,6 +299,48 @@ mod tests {
             (u - 0.3).abs() < 1e-6 && (v - 0.6).abs() < 1e-6,
             "({u}, {v})"
         );
+    }
+
+    #[test]
+    fn a_probe_past_the_domain_stops_once_two_steps_end_on_its_edge() {
+        // A ray that meets the plane's extension beyond u's upper end: each step heads past it
+        // and is held on the edge. A probe gives up after two such steps; the full search goes
+        // on to its end (and finds no nearer point either way); a ray inside is unaffected.
+        let plane = crate::geom::shapes::plane(2.0, 2.0).unwrap();
+        let domain = plane.domain();
+        let at = |u: f64, v: f64| {
+            let (u0, u1) = domain.u;
+            let (v0, v1) = domain.v;
+            plane.point(u0 + u * (u1 - u0), v0 + v * (v1 - v0))
+        };
+        let inside = at(0.9, 0.5);
+        let beyond = inside + (at(1.0, 0.5) - at(0.9, 0.5)) * 3.0;
+        let origin = DVec3::new(0.1, 0.2, 4.0);
+        let search = |target: DVec3, evaluations| RaySearch {
+            start: (
+                domain.u.0 + 0.8 * (domain.u.1 - domain.u.0),
+                domain.v.0 + 0.5 * (domain.v.1 - domain.v.0),
+            ),
+            origin,
+            direction: target - origin,
+            evaluations,
+        };
+        let count = |search: RaySearch| {
+            let mut spent = 0;
+            let (d, found) = newton_on_ray(&plane, &search, |u, v| {
+                spent += 1;
+                plane.derivs(u, v, 1)
+            });
+            (spent, found, d.point)
+        };
+        let (probe, _, point) = count(search(beyond, 5));
+        assert_eq!(probe, 3, "start and two steps held on the edge");
+        let off = (point - origin).reject_from(beyond - origin).length();
+        assert!(off > 0.1, "{off}");
+        let (full, _, _) = count(search(beyond, ALL_EVALUATIONS));
+        assert!(full > 3, "{full}");
+        let (_, found, point) = count(search(inside, 5));
+        assert!(found.is_some() && (point - inside).length() < 1e-9);
     }
 
     #[test]
