@@ -33,6 +33,10 @@ pub fn pixels_to_supersample(
 ) -> Vec<bool> {
     let (w, h) = (width as usize, height as usize);
     let differs = |a: usize, b: usize| {
+        // Most neighbours of a cel-shaded frame are the same colour to the bit.
+        if colour[a] == colour[b] && matte.is_none_or(|m| m[a] == m[b]) {
+            return false;
+        }
         ((premultiplied(colour[a]) - premultiplied(colour[b]))
             .abs()
             .max_element()

@@ -28,13 +28,16 @@ pub enum Antialias {
     #[default]
     None,
     /// One sample per pixel; highlight edges smoothed over the pixel's footprint of the signed
-    /// inside value (its screen-space derivatives). Silhouettes stay hard.
+    /// inside value (its screen-space derivatives), and cel band edges that cross a pixel
+    /// straight inside one patch covering it as straight edges of `N·L`. Silhouettes stay
+    /// hard.
     Analytic,
     /// K × K samples per pixel, box-filtered (K from 2 to 8).
     Supersample(u32),
-    /// One sample per pixel with analytic highlight edges, then K × K samples (K from 2 to 8),
-    /// each with analytic edges at its own footprint, in just the pixels whose colour differs
-    /// from a neighbour's: silhouettes, highlight and tone edges, lines. A pixel whose eight
+    /// One sample per pixel with analytic band edges, then K × K samples (K from 2 to 8), each
+    /// with analytic highlight edges at its own footprint, in just the pixels whose colour
+    /// differs from a neighbour's by more than an analytic band edge explains: silhouettes,
+    /// highlight edges, band edges that bend or meet another patch, lines. A pixel whose eight
     /// neighbours agree with it is shaded once. Memory is that of one sample per pixel plus a
     /// small tile per worker.
     Adaptive(u32),
