@@ -34,15 +34,17 @@ pub(super) struct Shaded {
 #[derive(Debug, Default)]
 pub(super) struct ShadeBuffers {
     colour: Vec<Vec4>,
-    /// Per texel, its highlight premultiplied: `(c h, c)`, zero without one.
-    highlight: Vec<Vec4>,
+    /// Per texel, its highlight's coverage.
+    coverage: Vec<f32>,
+    /// Per texel, its highlight's colour times its coverage, when band edges are analytic.
+    paint: Vec<Vec3>,
 }
 
 impl ShadeBuffers {
-    /// Per texel of the G-buffer last shaded, its highlight premultiplied, `(c h, c)` for
-    /// coverage c and colour h (zero on a patch without one).
-    pub(super) fn highlights(&self) -> &[Vec4] {
-        &self.highlight
+    /// Per texel of the G-buffer last shaded, its highlight's coverage c and, when its band
+    /// edges were given, its colour h times c (zero on a patch without one).
+    pub(super) fn highlights(&self) -> (&[f32], &[Vec3]) {
+        (&self.coverage, &self.paint)
     }
 }
 
@@ -67,16 +69,26 @@ pub(super) fn shade(
 ) -> Shaded {
     let texels = gbuffer.texels.len();
     buffers.colour.resize(texels, Vec4::ZERO);
-    buffers.highlight.resize(texels, Vec4::ZERO);
+    buffers.coverage.resize(texels, 0.0);
+    // The paints are kept only for the marking of pixels beside analytic band edges.
+    let paints = if edges.bands.is_some() { texels } else { 0 };
+    buffers.paint.resize(paints, Vec3::ZERO);
+    buffers.paint.shrink_to(paints);
+    let paint_chunks: Vec<Option<&mut [Vec3]>> = if paints > 0 {
+        buffers.paint.chunks_mut(PIXELS_PER_JOB).map(Some).collect()
+    } else {
+        (0..texels.div_ceil(PIXELS_PER_JOB)).map(|_| None).collect()
+    };
     let counts = gbuffer
         .texels
         .par_chunks(PIXELS_PER_JOB)
         .zip(buffers.colour.par_chunks_mut(PIXELS_PER_JOB))
-        .zip(buffers.highlight.par_chunks_mut(PIXELS_PER_JOB))
+        .zip(buffers.coverage.par_chunks_mut(PIXELS_PER_JOB))
+        .zip(paint_chunks)
         .enumerate()
         .map_init(
             RunScratch::new,
-            |scratch, (chunk, ((texels, colour), highlight))| {
+            |scratch, (chunk, (((texels, colour), coverage), paint))| {
                 let range = chunk * PIXELS_PER_JOB..chunk * PIXELS_PER_JOB + texels.len();
                 let edges = Edges {
                     widths: edges.widths.map(|w| &w[range.clone()]),
@@ -86,7 +98,11 @@ pub(super) fn shade(
                     views,
                     ahead: ahead.map(|tones| &tones[range]),
                 };
-                let out = Out { colour, highlight };
+                let out = Out {
+                    colour,
+                    coverage,
+                    paint,
+                };
                 shade_texels(scene, texels, edges, &xtoon, out, scratch)
             },
         )
@@ -102,10 +118,10 @@ pub(super) fn shade(
     });
     Shaded {
         colour: gbuffer.gather(&buffers.colour, Vec4::ZERO),
-        matte: scene.aovs.matte.then(|| {
-            let coverage: Vec<f32> = buffers.highlight.iter().map(|h| h.w).collect();
-            gbuffer.gather(&coverage, 0.0)
-        }),
+        matte: scene
+            .aovs
+            .matte
+            .then(|| gbuffer.gather(&buffers.coverage, 0.0)),
         n_dot_h,
         shaded: texels as u64,
         highlighted: counts.highlighted,
@@ -177,10 +193,12 @@ const NO_HIGHLIGHT: Shade = Shade {
     colour: Vec3::ZERO,
 };
 
-/// Where the shade of a run of texels goes: colour and premultiplied highlight per texel.
+/// Where the shade of a run of texels goes: colour and highlight coverage per texel, and the
+/// highlight's colour times its coverage where it is kept.
 struct Out<'a> {
     colour: &'a mut [Vec4],
-    highlight: &'a mut [Vec4],
+    coverage: &'a mut [f32],
+    paint: Option<&'a mut [Vec3]>,
 }
 
 /// The inputs and results of the tone and the highlight expression for up to [`LANES`] texels
@@ -220,7 +238,7 @@ fn shade_texels(
     texels: &[Texel],
     edges: Edges<'_>,
     xtoon: &XToonTones,
-    out: Out<'_>,
+    mut out: Out<'_>,
     scratch: &mut RunScratch,
 ) -> Counts {
     let mut counts = Counts::default();
@@ -274,7 +292,10 @@ fn shade_texels(
             for (k, &tone) in tones.iter().enumerate() {
                 let shade = shades.map_or(NO_HIGHLIGHT, |s| s[k]);
                 out.colour[start + k] = tone.lerp(shade.colour, shade.coverage).extend(1.0);
-                out.highlight[start + k] = (shade.colour * shade.coverage).extend(shade.coverage);
+                out.coverage[start + k] = shade.coverage;
+                if let Some(paint) = out.paint.as_deref_mut() {
+                    paint[start + k] = shade.colour * shade.coverage;
+                }
             }
             start = range.end;
         }

@@ -60,8 +60,9 @@ pub(super) struct Frame<'a> {
     /// Per texel of `gbuffer`, how the tone's band edges met its pixel in the one-sample pass,
     /// when they were drawn analytically there.
     pub bands: Option<&'a [BandEdge]>,
-    /// Per texel of `gbuffer`, its highlight premultiplied in the one-sample pass, `(c h, c)`.
-    pub highlights: &'a [Vec4],
+    /// Per texel of `gbuffer`, its highlight in the one-sample pass: its coverage c and, with
+    /// `bands`, its colour times c.
+    pub highlights: (&'a [f32], &'a [Vec3]),
 }
 
 /// What the stage did.
@@ -150,6 +151,7 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     let gbuffer = frame.gbuffer;
     // Two pixels inside one patch, each with its band edges drawn, and with the same
     // highlight, differ by their tone alone, which the one-sample pass drew right.
+    let (coverage, paint) = frame.highlights;
     let tone_only = frame.bands.map(|bands| {
         move |a: usize, b: usize| {
             let (sa, sb) = (gbuffer.slot[a], gbuffer.slot[b]);
@@ -160,10 +162,8 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
             gbuffer.texels[sa].patch == gbuffer.texels[sb].patch
                 && bands[sa].is_drawn()
                 && bands[sb].is_drawn()
-                && (frame.highlights[sa] - frame.highlights[sb])
-                    .abs()
-                    .max_element()
-                    <= CONTRAST
+                && (coverage[sa] - coverage[sb]).abs() <= CONTRAST
+                && (paint[sa] - paint[sb]).abs().max_element() <= CONTRAST
         }
     });
     let mut marked = pixels_to_supersample(
