@@ -2,6 +2,7 @@
 //! request, and what the memory ceiling refuses.
 
 use crate::render::{Antialias, FrameMode, Settings};
+use crate::shot::Aov;
 
 /// Bytes held per sample of the whole-image buffers while a frame renders (its G-buffer entry,
 /// visibility and shading, the resolved colour and the images written, shared out): with
@@ -31,21 +32,35 @@ const BASE_BYTES: u64 = 64 << 20;
 /// more.
 const TILE_BYTES_PER_SAMPLE_SIDE: u64 = 1 << 20;
 
-/// The peak memory of rendering one frame with `settings` and a mesh of `vertices` vertices,
-/// an upper estimate from measured peaks (the README's farm table):
+/// Bytes a pixel holds for an AOV while its frame renders and is written (its image, the
+/// shading it keeps, its PNG and its layer of the EXR), rounded up from the teapot turntable
+/// at `final`, 3840 × 2160: the matte adds 164 MB (20 B a pixel), the normal 281 MB (34 B: it
+/// also has the one-sample pass refine its frames, as `uv`, `depth` and `N·H` do), all seven
+/// 955 MB (115 B).
+fn aov_bytes_per_pixel(aov: Aov) -> u64 {
+    match aov {
+        Aov::Normal | Aov::Uv | Aov::Depth | Aov::NDotH => 36,
+        Aov::Matte | Aov::PatchId | Aov::Outline => 24,
+    }
+}
+
+/// The peak memory of rendering one frame with `settings`, the AOVs `aovs` and a mesh of
+/// `vertices` vertices, an upper estimate from measured peaks (the README's farm table):
 /// `64 MiB + pixels × samples × (90 B interpolated, 150 B exact or refined) + vertices × 200 B`,
+/// plus per pixel 36 B for each AOV that reads the pixels' frames and 24 B for each other;
 /// and under adaptive anti-aliasing `K²` MiB more per worker thread for its tile, and once more
 /// for the batch of samples drawn without tiles.
 #[must_use]
-pub fn estimate_peak_bytes(settings: &Settings, vertices: u64) -> u64 {
-    image_bytes(settings)
+pub fn estimate_peak_bytes(settings: &Settings, aovs: &[Aov], vertices: u64) -> u64 {
+    image_bytes(settings, aovs)
         .saturating_add(BASE_BYTES)
         .saturating_add(vertices.saturating_mul(BYTES_PER_VERTEX))
 }
 
 /// The part of [`estimate_peak_bytes`] that grows with the image (and the workers' tiles).
-fn image_bytes(settings: &Settings) -> u64 {
+fn image_bytes(settings: &Settings, aovs: &[Aov]) -> u64 {
     let pixels = u64::from(settings.width) * u64::from(settings.height);
+    let aov_bytes: u64 = aovs.iter().map(|&aov| aov_bytes_per_pixel(aov)).sum();
     let samples = u64::from(settings.samples_per_side()).pow(2);
     let tiles = match settings.antialias {
         Antialias::None | Antialias::Analytic | Antialias::Supersample(_) => 0,
@@ -57,13 +72,15 @@ fn image_bytes(settings: &Settings) -> u64 {
             u64::from(k).pow(2) * TILE_BYTES_PER_SAMPLE_SIDE * (workers as u64 + 1)
         }
     };
-    pixels * samples * bytes_per_sample(settings.frames) + tiles
+    pixels * (samples * bytes_per_sample(settings.frames) + aov_bytes) + tiles
 }
 
-/// The most vertices a mesh may have beside a frame of `settings` within `ceiling` bytes.
+/// The most vertices a mesh may have beside a frame of `settings` with the AOVs `aovs` within
+/// `ceiling` bytes.
 #[must_use]
-pub fn max_mesh_vertices(settings: &Settings, ceiling: u64) -> u64 {
-    ceiling.saturating_sub(BASE_BYTES.saturating_add(image_bytes(settings))) / BYTES_PER_VERTEX
+pub fn max_mesh_vertices(settings: &Settings, aovs: &[Aov], ceiling: u64) -> u64 {
+    ceiling.saturating_sub(BASE_BYTES.saturating_add(image_bytes(settings, aovs)))
+        / BYTES_PER_VERTEX
 }
 
 /// The frames of `frames` the memory of a job is estimated at: at most 16, evenly spaced,
@@ -187,7 +204,7 @@ mod tests {
                 140_000_000,
             ),
         ] {
-            let estimate = estimate_peak_bytes(&settings, vertices);
+            let estimate = estimate_peak_bytes(&settings, &[], vertices);
             assert!(
                 estimate >= measured,
                 "{settings:?}: {estimate} < {measured}"
@@ -200,14 +217,34 @@ mod tests {
     }
 
     #[test]
+    fn the_estimate_covers_the_measured_peaks_with_aovs() {
+        // The teapot turntable at `final`, 3840 × 2160, measured with /usr/bin/time: the matte
+        // alone, and all seven AOVs.
+        let mesh = 32 * 65 * 65;
+        let settings = Settings::final_quality(3840, 2160);
+        for (aovs, measured) in [
+            (vec![Aov::Matte], 910_000_000u64),
+            (vec![Aov::Normal], 1_030_000_000),
+            (Aov::ALL.to_vec(), 1_700_000_000),
+        ] {
+            let estimate = estimate_peak_bytes(&settings, &aovs, mesh);
+            assert!(estimate >= measured, "{aovs:?}: {estimate} < {measured}");
+            assert!(estimate < measured * 2, "{aovs:?}: {estimate}");
+        }
+    }
+
+    #[test]
     fn the_room_left_for_the_mesh_is_what_the_estimate_allows() {
         let settings = Settings::preview(640, 360);
         let ceiling = 1 << 30;
-        let most = max_mesh_vertices(&settings, ceiling);
-        assert!(estimate_peak_bytes(&settings, most) <= ceiling);
-        assert!(estimate_peak_bytes(&settings, most + 1) > ceiling);
+        let most = max_mesh_vertices(&settings, &[], ceiling);
+        assert!(estimate_peak_bytes(&settings, &[], most) <= ceiling);
+        assert!(estimate_peak_bytes(&settings, &[], most + 1) > ceiling);
+        let matte = max_mesh_vertices(&settings, &[Aov::Matte], ceiling);
+        assert!(estimate_peak_bytes(&settings, &[Aov::Matte], matte) <= ceiling);
+        assert!(matte < most);
         assert_eq!(
-            max_mesh_vertices(&Settings::final_quality(4096, 4096), ceiling),
+            max_mesh_vertices(&Settings::final_quality(4096, 4096), &[], ceiling),
             0
         );
         // Adaptive samples take tiles per worker, not K² times the image.
@@ -217,12 +254,12 @@ mod tests {
             ..Settings::final_quality(1920, 1080)
         };
         let (four, eight) = (
-            estimate_peak_bytes(&adaptive(4, 2), 0),
-            estimate_peak_bytes(&adaptive(8, 2), 0),
+            estimate_peak_bytes(&adaptive(4, 2), &[], 0),
+            estimate_peak_bytes(&adaptive(8, 2), &[], 0),
         );
         assert_eq!(eight - four, 3 * (64 - 16) * TILE_BYTES_PER_SAMPLE_SIDE);
         assert_eq!(
-            estimate_peak_bytes(&adaptive(4, 8), 0) - four,
+            estimate_peak_bytes(&adaptive(4, 8), &[], 0) - four,
             6 * 16 * TILE_BYTES_PER_SAMPLE_SIDE
         );
     }

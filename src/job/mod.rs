@@ -136,7 +136,7 @@ fn frame_memory(shot: &Shot, settings: &Settings, frames: &[i64], renderer: &Ren
         .map(|frame| renderer.mesh_vertices(&shot.camera_at(frame as f64), settings))
         .max()
         .unwrap_or(0);
-    estimate_peak_bytes(settings, vertices)
+    estimate_peak_bytes(settings, &shot.aovs, vertices)
 }
 
 /// Refuses a job whose frames would need more memory than the ceiling `overrides` sets
@@ -187,7 +187,7 @@ fn limit_memory(
             bytes_text(needed)
         )));
     }
-    renderer.set_max_mesh_vertices(Some(memory::max_mesh_vertices(settings, limit)));
+    renderer.set_max_mesh_vertices(Some(memory::max_mesh_vertices(settings, &shot.aovs, limit)));
     Ok(())
 }
 
