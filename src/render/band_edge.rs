@@ -54,16 +54,21 @@ const JUMP: f32 = 0.5;
 /// the image, uncovered or on another patch, or the tone is not a cel ramp.
 #[must_use]
 pub(super) fn band_edges(gbuffer: &GBuffer, scene: &Scene) -> Vec<BandEdge> {
-    let n_dot_l: Vec<f32> = gbuffer
+    // Per texel its patch and n·l, side by side: the neighbours are looked up by them, and the
+    // texels themselves are large.
+    let seen: Vec<(u32, f32)> = gbuffer
         .texels
         .par_iter()
         .with_min_len(PIXELS_PER_JOB)
-        .map(|t| match &scene.looks[t.patch as usize].tone {
-            Tone::Cel(_) => {
-                let n = t.frame.n;
-                n.dot(scene.light.direction(t.position, n))
-            }
-            Tone::XToon(_) => 0.0,
+        .map(|t| {
+            let n_dot_l = match &scene.looks[t.patch as usize].tone {
+                Tone::Cel(_) => {
+                    let n = t.frame.n;
+                    n.dot(scene.light.direction(t.position, n))
+                }
+                Tone::XToon(_) => 0.0,
+            };
+            (t.patch, n_dot_l)
         })
         .collect();
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
@@ -85,10 +90,14 @@ pub(super) fn band_edges(gbuffer: &GBuffer, scene: &Scene) -> Vec<BandEdge> {
             for (dy, row) in values.iter_mut().enumerate() {
                 for (dx, value) in row.iter_mut().enumerate() {
                     let slot = gbuffer.slot[(y + dy - 1) * w + x + dx - 1];
-                    if slot == EMPTY || gbuffer.texels[slot as usize].patch != t.patch {
+                    if slot == EMPTY {
                         return BandEdge::Hard;
                     }
-                    *value = n_dot_l[slot as usize];
+                    let (patch, n_dot_l) = seen[slot as usize];
+                    if patch != t.patch {
+                        return BandEdge::Hard;
+                    }
+                    *value = n_dot_l;
                 }
             }
             classify(ramp, &values)

@@ -107,6 +107,9 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
             });
     }
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    // The texels' patches side by side: the neighbours are looked up by patch, and the texels
+    // themselves are large.
+    let patches: Vec<u32> = gbuffer.texels.iter().map(|t| t.patch).collect();
     let (footprints, straddles) = gbuffer
         .texels
         .par_iter()
@@ -121,8 +124,7 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
             // The texel of a neighbour on the same patch.
             let same_patch = |pixel: Option<usize>| {
                 let slot = gbuffer.slot[pixel?];
-                (slot != EMPTY && gbuffer.texels[slot as usize].patch == t.patch)
-                    .then_some(slot as usize)
+                (slot != EMPTY && patches[slot as usize] == t.patch).then_some(slot as usize)
             };
             // A neighbour inside the image that no surface covers: the texel is on a silhouette.
             let empty = |pixel: Option<usize>| pixel.is_some_and(|p| gbuffer.slot[p] == EMPTY);
