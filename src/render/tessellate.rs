@@ -6,9 +6,10 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::{DVec3, Mat4, Vec2, Vec3};
+use rayon::prelude::*;
 use serde::Deserialize;
 
-use crate::geom::{GridEvaluator, KnotVector, NurbsSurface, PatchLibrary, Region};
+use crate::geom::{Frame, GridEvaluator, KnotVector, NurbsSurface, PatchLibrary, Region};
 
 /// How finely patches are cut into triangles.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
@@ -485,26 +486,35 @@ fn build_mesh(library: &PatchLibrary, segments: &[Segments]) -> Mesh {
     let trimmed = library.patches.iter().any(|p| p.trim.is_some());
     let mut welded: HashMap<[i64; 3], Vec3> = HashMap::new();
     let quantum = 1e-9 * model_scale(library);
-    for (patch_index, (patch, &(seg_u, seg_v))) in library.patches.iter().zip(segments).enumerate()
-    {
-        let s = &patch.surface;
-        let us = span_samples(s.knots_u(), seg_u);
-        let vs = span_samples(s.knots_v(), seg_v);
-        let grid = GridEvaluator::new(s, &us, &vs);
+    // The grids' frames, patch by patch in parallel; the vertices are then welded and laid
+    // out in patch order, as one patch at a time would.
+    let grids: Vec<(Vec<f64>, Vec<f64>, Vec<Frame>)> = library
+        .patches
+        .par_iter()
+        .zip(segments)
+        .map(|(patch, &(seg_u, seg_v))| {
+            let s = &patch.surface;
+            let us = span_samples(s.knots_u(), seg_u);
+            let vs = span_samples(s.knots_v(), seg_v);
+            let grid = GridEvaluator::new(s, &us, &vs);
+            let frames = (0..us.len()).flat_map(|i| grid.row_frames(i)).collect();
+            (us, vs, frames)
+        })
+        .collect();
+    for (patch_index, (patch, (us, vs, frames))) in library.patches.iter().zip(&grids).enumerate() {
         let first = mesh.positions.len() as u32;
         let (nu, nv) = (us.len(), vs.len());
-        for (i, &u) in us.iter().enumerate() {
-            for (j, f) in grid.row_frames(i).enumerate() {
-                let mut position = f.point.as_vec3();
-                if i == 0 || j == 0 || i + 1 == nu || j + 1 == nv {
-                    let key = (f.point / quantum).round().as_i64vec3().to_array();
-                    position = *welded.entry(key).or_insert(position);
-                }
-                mesh.positions.push(position);
-                mesh.normals.push(f.normal.as_vec3());
-                mesh.tangents_u.push(f.du.as_vec3());
-                mesh.uvs.push(Vec2::new(u as f32, vs[j] as f32));
+        for (k, f) in frames.iter().enumerate() {
+            let (i, j) = (k / nv, k % nv);
+            let mut position = f.point.as_vec3();
+            if i == 0 || j == 0 || i + 1 == nu || j + 1 == nv {
+                let key = (f.point / quantum).round().as_i64vec3().to_array();
+                position = *welded.entry(key).or_insert(position);
             }
+            mesh.positions.push(position);
+            mesh.normals.push(f.normal.as_vec3());
+            mesh.tangents_u.push(f.du.as_vec3());
+            mesh.uvs.push(Vec2::new(us[i] as f32, vs[j] as f32));
         }
         mesh.grids.push(PatchGrid {
             first,
