@@ -1,9 +1,8 @@
 //! Tone-band edges for analytic anti-aliasing: per texel, how the edges of its cel ramp's
 //! bands meet its pixel.
 
-use rayon::prelude::*;
-
 use glam::Mat4;
+use rayon::prelude::*;
 
 use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
