@@ -175,35 +175,14 @@ impl GBuffer {
         }
     }
 
-    /// Moves each of `texels` onto its pixel's ray, as [`fill`](Self::fill) does with
-    /// [`FrameMode::Refined`], and puts the frame there: each texel holds its patch, the (u, v)
-    /// to start from, a normal facing the eye (in `frame.n`: where the refined point faces away,
-    /// the near crossing is looked for) and its `pixel` index in a `size` image seen through
-    /// `view_projection`. Each search spends what `evaluate` allows. Texels on one patch are
-    /// best kept together. Returns the frames evaluated.
-    pub(super) fn refine_onto_rays(
-        texels: &mut [Texel],
-        library: &PatchLibrary,
-        camera: &Camera,
-        view_projection: Mat4,
-        size: (u32, u32),
-        evaluate: Evaluate,
-    ) -> u64 {
-        Self::evaluate_frames(
-            texels,
-            library,
-            camera,
-            view_projection,
-            size,
-            FrameMode::Refined,
-            evaluate,
-        )
-    }
-
     /// The frames of `texels` in `mode`, as [`fill`](Self::fill) evaluates them: with
-    /// [`FrameMode::Refined`] as [`refine_onto_rays`](Self::refine_onto_rays), with
-    /// [`FrameMode::Exact`] on the patch at each texel's (u, v), and with
-    /// [`FrameMode::Interpolated`] as they are. Returns the frames evaluated.
+    /// [`FrameMode::Refined`] each texel is moved onto its pixel's ray and takes the frame
+    /// there — each holds its patch, the (u, v) to start from, a normal facing the eye (in
+    /// `frame.n`: where the refined point faces away, the near crossing is looked for) and its
+    /// `pixel` index in a `size` image seen through `view_projection`, and each search spends
+    /// what `evaluate` allows; with [`FrameMode::Exact`] the frame on the patch at each texel's
+    /// (u, v); with [`FrameMode::Interpolated`] they stay as they are. Texels on one patch are
+    /// best kept together. Returns the frames evaluated.
     pub(super) fn evaluate_frames(
         texels: &mut [Texel],
         library: &PatchLibrary,

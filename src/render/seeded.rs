@@ -8,6 +8,7 @@ use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
 use super::neighbourhood::around;
 use super::raster::Viewport;
 use super::scene::Scene;
+use super::settings::FrameMode;
 use super::shade::{shade, Edges, ShadeBuffers};
 use super::supersample::{landed_depth, Resolved};
 use super::xtoon_tone::Views;
@@ -288,11 +289,10 @@ pub(super) struct Buffers {
 ///
 /// Each sample is tried from each patch its pixel's 3 × 3 neighbourhood shows, starting from
 /// that patch's texel nearest the sample, its (u, v) moved by the texel's slope
-/// ([`uv_slopes`]): the start is refined onto the sample's ray ([`GBuffer::refine_onto_rays`],
-/// within a probe's evaluations) and kept when the point it lands on projects within
-/// 0.05 samples of the sample's centre ([`landed_depth`]) on a part of the patch its trim keeps;
-/// of the points kept, the nearest
-/// covers the sample. A pixel inside a surface with a sample that none covers is given back.
+/// ([`uv_slopes`]): the start is refined onto the sample's ray ([`GBuffer::evaluate_frames`]
+/// with refined frames, within a probe's evaluations) and kept when the point it lands on
+/// projects within 0.05 samples of the sample's centre ([`landed_depth`]) on a part of the
+/// patch its trim keeps; of the points kept, the nearest covers the sample. A pixel inside a surface with a sample that none covers is given back.
 /// The samples are shaded with their seed's footprint over the sample (a `k`-th of the
 /// pixel's), and a pixel takes the mean of its samples as the rasterized tiles do
 /// ([`Resolved::average`]).
@@ -365,12 +365,13 @@ fn draw_batch(
         .zip(pixels.par_iter())
         .enumerate()
         .for_each(|(j, (((c, t), s), &pixel))| s.fill(frame, (j, pixel), c, t));
-    let frames = GBuffer::refine_onto_rays(
+    let frames = GBuffer::evaluate_frames(
         texels,
         frame.library,
         &frame.scene.camera,
         frame.view_projection,
         full,
+        FrameMode::Refined,
         Evaluate::Probe,
     );
 

@@ -71,10 +71,12 @@ pub(super) fn shade(
     buffers.colour.resize(texels, Vec4::ZERO);
     buffers.coverage.resize(texels, 0.0);
     // The paints are kept only for the marking of pixels beside analytic band edges.
-    let paints = if edges.bands.is_some() { texels } else { 0 };
-    buffers.paint.resize(paints, Vec3::ZERO);
-    buffers.paint.shrink_to(paints);
-    let paint_chunks: Vec<Option<&mut [Vec3]>> = if paints > 0 {
+    if edges.bands.is_some() {
+        buffers.paint.resize(texels, Vec3::ZERO);
+    } else {
+        buffers.paint = Vec::new();
+    }
+    let paint_chunks: Vec<Option<&mut [Vec3]>> = if edges.bands.is_some() {
         buffers.paint.chunks_mut(PIXELS_PER_JOB).map(Some).collect()
     } else {
         (0..texels.div_ceil(PIXELS_PER_JOB)).map(|_| None).collect()
@@ -259,20 +261,12 @@ fn shade_texels(
             let mut tones = [Vec3::ZERO; LANES];
             let tones = &mut tones[..piece.len()];
             match (view, xtoon.ahead) {
-                (None, _) => match edges.bands {
-                    Some(bands) => {
-                        for ((tone, t), &edge) in
-                            tones.iter_mut().zip(piece).zip(&bands[range.clone()])
-                        {
-                            *tone = cel_tone_over_box(scene, t, edge);
-                        }
+                (None, _) => {
+                    for (k, (tone, t)) in tones.iter_mut().zip(piece).enumerate() {
+                        let edge = edges.bands.map_or(BandEdge::Hard, |b| b[start + k]);
+                        *tone = cel_tone_over_box(scene, t, edge);
                     }
-                    None => {
-                        for (tone, t) in tones.iter_mut().zip(piece) {
-                            *tone = cel_tone(scene, t.patch, t.position, t.frame.n);
-                        }
-                    }
-                },
+                }
                 (Some(_), Some(ahead)) => tones.copy_from_slice(&ahead[range.clone()]),
                 (Some(view), None) => {
                     xtoon_tone::shade_texels(
