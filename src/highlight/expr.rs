@@ -321,6 +321,56 @@ impl PreparedExpr {
         }
     }
 
+    /// [`eval`](Self::eval) with hard edges but that of layer `layer` (numbered left to right,
+    /// as [`layers`](Self::layers) lists them), which covers `edge(s)` of the pixel from its
+    /// signed value `s` ([`PreparedLayer::shape_by`]). Where one layer's edge crosses a pixel
+    /// and every other layer covers all of it or none, each Boolean is that of a constant with
+    /// the one edge's coverage, and the result is the pixel's mean highlight.
+    #[must_use]
+    pub fn eval_with_edge(
+        &self,
+        frame: &TangentFrame,
+        uv: Vec2,
+        h: Vec3,
+        layer: usize,
+        edge: &dyn Fn(f32) -> f32,
+    ) -> Shade {
+        let mut next = 0;
+        let (shape, paint) = self.shape_with_edge(frame, uv, h, (layer, edge), &mut next);
+        Shade {
+            coverage: shape * paint.opacity,
+            colour: paint.colour,
+        }
+    }
+
+    /// The shape and paint of [`eval_with_edge`](Self::eval_with_edge); `next` numbers the
+    /// layers as they are met.
+    fn shape_with_edge(
+        &self,
+        frame: &TangentFrame,
+        uv: Vec2,
+        h: Vec3,
+        edge: (usize, &dyn Fn(f32) -> f32),
+        next: &mut usize,
+    ) -> (f32, Paint) {
+        match self {
+            PreparedExpr::Layer(l) => {
+                let shape = if *next == edge.0 {
+                    l.shape_by(frame, uv, h, edge.1)
+                } else {
+                    l.shape(frame, uv, h, Footprint::HARD)
+                };
+                *next += 1;
+                (shape, l.paint())
+            }
+            PreparedExpr::Combine(op, a, b) => {
+                let a = a.shape_with_edge(frame, uv, h, edge, next);
+                let b = b.shape_with_edge(frame, uv, h, edge, next);
+                op.combine(a, b)
+            }
+        }
+    }
+
     fn shape(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, footprint: Footprint) -> (f32, Paint) {
         match self {
             PreparedExpr::Layer(l) => (l.shape(frame, uv, h, footprint), l.paint()),
@@ -400,6 +450,33 @@ mod tests {
         let ring = e.eval(&frame, Vec2::ZERO, h, Footprint::HARD);
         assert_eq!(ring.coverage, 0.5);
         assert_eq!(ring.colour.x, 0.5);
+    }
+
+    #[test]
+    fn one_layer_edge_given_the_others_hard() {
+        // A \ B at h in the ring (inside A, ε 0.5; outside B, ε 0.1), opacity 0.5.
+        let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
+        let e = Expr::Subtract(Box::new(layer(0.5, 0.5)), Box::new(layer(0.1, 1.0)))
+            .prepare()
+            .unwrap();
+        let h = Vec3::new(0.6, 0.0, 0.8);
+        // B's edge covering 0.3 of the pixel cuts 0.3 of A's.
+        let cut = e.eval_with_edge(&frame, Vec2::ZERO, h, 1, &|_| 0.3);
+        assert!((cut.coverage - 0.5 * 0.7).abs() < 1e-6, "{cut:?}");
+        assert_eq!(cut.colour.x, 0.5);
+        // A's edge covering 0.3 of it, B hard outside: 0.3 of A. The edge sees A's own s,
+        // ε − (1 − cos) = 0.5 − 0.2.
+        let s_of_a = std::cell::Cell::new(0.0);
+        let edge = |s: f32| {
+            s_of_a.set(s);
+            0.3
+        };
+        let part = e.eval_with_edge(&frame, Vec2::ZERO, h, 0, &edge);
+        assert!((part.coverage - 0.5 * 0.3).abs() < 1e-6, "{part:?}");
+        assert!((s_of_a.get() - 0.3).abs() < 1e-6, "{}", s_of_a.get());
+        // With every edge hard otherwise, as eval.
+        let hard = e.eval_with_edge(&frame, Vec2::ZERO, h, 0, &|s| f32::from(s > 0.0));
+        assert_eq!(hard, e.eval(&frame, Vec2::ZERO, h, Footprint::HARD));
     }
 
     #[test]

@@ -330,11 +330,32 @@ impl PreparedLayer {
     /// coverage of the pixel ([`Footprint::coverage`]) times the mask.
     #[inline]
     fn shape_from_signed(&self, s: f32, uv: Vec2, footprint: Footprint) -> f32 {
-        let c = footprint.coverage(s, self.feather);
+        self.masked(footprint.coverage(s, self.feather), uv)
+    }
+
+    /// The edge's coverage `c` of the pixel times the mask at `uv`.
+    #[inline]
+    fn masked(&self, c: f32, uv: Vec2) -> f32 {
         match &self.mask {
             Some(m) if c > 0.0 => c * m.factor(uv),
             _ => c,
         }
+    }
+
+    /// Shape coverage in [0, 1] before opacity where the edge covers `edge(s)` of the pixel,
+    /// from the signed value `s` at the point, times the mask at `uv`: for a pixel whose cover
+    /// the renderer finds otherwise than from a footprint (the feather is the caller's to
+    /// heed).
+    #[inline]
+    #[must_use]
+    pub fn shape_by(
+        &self,
+        frame: &TangentFrame,
+        uv: Vec2,
+        h: Vec3,
+        edge: &dyn Fn(f32) -> f32,
+    ) -> f32 {
+        self.masked(edge(self.signed(frame, h)).clamp(0.0, 1.0), uv)
     }
 
     /// Shape coverage in [0, 1] before opacity: the edge's coverage of the pixel whose
@@ -374,6 +395,19 @@ impl PreparedLayer {
     #[must_use]
     pub fn paint(&self) -> Paint {
         self.paint
+    }
+
+    /// The width in `s` over which the edge fades (0: a hard edge): its coverage rises from 0
+    /// at `s = −feather/2` to 1 at `s = feather/2`.
+    #[must_use]
+    pub fn feather(&self) -> f32 {
+        self.feather
+    }
+
+    /// Whether a parameter-space mask cuts the layer.
+    #[must_use]
+    pub fn is_masked(&self) -> bool {
+        self.mask.is_some()
     }
 }
 

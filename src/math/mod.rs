@@ -1,13 +1,15 @@
 //! Numerical building blocks the highlight model and the tone share: vectors side by side in
-//! lanes, guarded normalization, exponents raised by multiplication where they are integers, and
-//! the box coverage of a straight edge.
+//! lanes, guarded normalization, exponents raised by multiplication where they are integers,
+//! the box coverage of a straight edge, and a quadratic over a pixel's box.
 
 mod box_coverage;
+mod box_quadratic;
 mod exponent;
 mod lanes;
 mod normalize;
 
 pub use box_coverage::box_coverage;
+pub use box_quadratic::{BoxQuadratic, LevelCrossing};
 pub(crate) use exponent::int_pow;
 pub use exponent::Exponent;
 pub use lanes::{Lanes, LANES};

@@ -1,13 +1,13 @@
 //! Tone-band edges for analytic anti-aliasing: per texel, how the edges of its cel ramp's
 //! bands meet its pixel.
 
-use glam::Mat4;
 use rayon::prelude::*;
 
-use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
+use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
-use super::settings::FrameMode;
+use super::settled::Settled;
 use crate::highlight::Footprint;
+use crate::math::{BoxQuadratic, LevelCrossing};
 use crate::toon::CelRamp;
 
 /// How a pixel's cel tone meets the edges of its ramp's bands.
@@ -46,7 +46,7 @@ pub(super) const STRAIGHT_AREA: f32 = 0.02;
 /// The most the slope of `n·l` may change along itself from one pixel to the next, against
 /// itself, for the quadratic to stand for `n·l` over the box: more is a jump, one part of a
 /// patch in front of another, or the surface turning away toward a silhouette.
-const JUMP: f32 = 0.5;
+pub(super) const JUMP: f32 = 0.5;
 
 /// Per texel of `gbuffer`, how its cel tone's band edges meet its pixel ([`classify`] of `n·l`
 /// at the nine texels of its 3 × 3 neighbourhood), [`BandEdge::Hard`] where a neighbour is off
@@ -104,102 +104,52 @@ pub(super) fn band_edges(gbuffer: &GBuffer, scene: &Scene) -> Vec<BandEdge> {
         .collect()
 }
 
-/// Puts in each [`BandEdge::Straight`] of `edges` (per texel of `gbuffer`) the `n·l` of its
-/// texel's frame evaluated in `mode` ([`GBuffer::evaluate_frames`]): where the G-buffer holds
-/// interpolated frames and the settings ask for better ones, the pixels a band edge crosses at
-/// one sample take their colour from where the edge is, a small part of a pixel from where
-/// the interpolated normals put it (the slopes stay the interpolated ones: an error in them
-/// moves the edge by its distance from the centre times their relative error). Returns the
-/// frames evaluated.
-pub(super) fn settle_straight_edges(
-    edges: &mut [BandEdge],
-    gbuffer: &GBuffer,
-    scene: &Scene,
-    view_projection: Mat4,
-    mode: FrameMode,
-) -> u64 {
-    let straight = |e: &BandEdge| matches!(e, BandEdge::Straight { .. });
-    let mut texels: Vec<Texel> = edges
-        .iter()
-        .zip(&gbuffer.texels)
-        .filter(|(e, _)| straight(e))
-        .map(|(_, t)| *t)
-        .collect();
-    let frames = GBuffer::evaluate_frames(
-        &mut texels,
-        scene.library,
-        &scene.camera,
-        view_projection,
-        (gbuffer.width, gbuffer.height),
-        mode,
-        Evaluate::Full,
-    );
-    for (edge, t) in edges.iter_mut().filter(|e| straight(e)).zip(&texels) {
-        if let BandEdge::Straight { n_dot_l, .. } = edge {
+/// Puts in each [`BandEdge::Straight`] of `edges` (per texel) the `n·l` of its texel's settled
+/// frame, where `settled` has one.
+pub(super) fn settle_straight_edges(edges: &mut [BandEdge], settled: &Settled, scene: &Scene) {
+    for (slot, t) in settled.iter() {
+        if let BandEdge::Straight { n_dot_l, .. } = &mut edges[slot] {
             let n = t.frame.n;
             *n_dot_l = n.dot(scene.light.direction(t.position, n));
         }
     }
-    frames
 }
 
 /// How the bands of `ramp` meet a pixel from `n·l` at its 3 × 3 neighbourhood (`d[y][x]`, the
-/// pixel at `d[1][1]`), one surface across it. Over the box, `n·l` is taken as the quadratic
-/// through the nine: slope `g = ((d₊ₓ − d₋ₓ)/2, (d₊ᵧ − d₋ᵧ)/2)` and second differences
-/// `c_xx = d₊ₓ + d₋ₓ − 2d`, `c_yy` likewise, `c_xy = (d₊₊ − d₊₋ − d₋₊ + d₋₋)/4`. Within the box
-/// (`|x|, |y| ≤ ½`) its linear part moves by at most `(|g_x| + |g_y|)/2` and its quadratic part
-/// by at most `(|c_xx| + |c_yy|)/8 + |c_xy|/4`:
+/// pixel at `d[1][1]`), one surface across it, taken as the quadratic through the nine
+/// ([`BoxQuadratic`]):
 ///
-/// - no threshold within that reach of `d`: [`BandEdge::Clear`];
-/// - else, where drawing the edge of the nearest threshold `t` straight misplaces less than
-///   [`STRAIGHT_AREA`] of the pixel: [`BandEdge::Straight`] with `d` and the footprint
-///   `(|g_x|, |g_y|)`.
-///   With `c_gg` and `c_pp` the second derivatives along `g` and across it, the straight edge
-///   lies at `r = (t − d)/‖g‖` along `g`; the curvature along `g` moves it by `c_gg r²/(2‖g‖)`,
-///   and the bend across `g` (`c_pp x²/(2‖g‖)` at `x` along the edge) takes the mean of that
-///   over the box's width, `c_pp/(24‖g‖)`; and the slope changes along itself by at most
-///   [`JUMP`] of itself from one pixel to the next (`|c_gg| ≤ JUMP ‖g‖`);
+/// - no threshold within its [reach](BoxQuadratic::reach) of `d`: [`BandEdge::Clear`];
+/// - else, where the edge of the nearest threshold crosses the box straight, misplaced by
+///   less than [`STRAIGHT_AREA`] of the pixel and with the slope changing by at most [`JUMP`]
+///   of itself ([`BoxQuadratic::crossing`]): [`BandEdge::Straight`] with `d` and the footprint
+///   `(|g_x|, |g_y|)`;
 /// - else (a bend, or a jump: one part of the patch in front of another) [`BandEdge::Hard`].
 #[must_use]
 fn classify(ramp: &CelRamp, d: &[[f32; 3]; 3]) -> BandEdge {
-    let centre = d[1][1];
-    let (gx, gy) = (0.5 * (d[1][2] - d[1][0]), 0.5 * (d[2][1] - d[0][1]));
-    let cxx = d[1][2] + d[1][0] - 2.0 * centre;
-    let cyy = d[2][1] + d[0][1] - 2.0 * centre;
-    let cxy = 0.25 * (d[2][2] - d[2][0] - d[0][2] + d[0][0]);
-    let bend = 0.125 * (cxx.abs() + cyy.abs()) + 0.25 * cxy.abs();
-    let reach = 0.5 * (gx.abs() + gy.abs()) + bend;
-    if !(reach.is_finite() && centre.is_finite()) {
+    let q = BoxQuadratic::through(d);
+    let reach = q.reach();
+    if !(reach.is_finite() && q.centre.is_finite()) {
         return BandEdge::Hard;
     }
     if ramp
-        .uniform_between(centre - reach, centre + reach)
+        .uniform_between(q.centre - reach, q.centre + reach)
         .is_some()
     {
         return BandEdge::Clear;
     }
-    let slope2 = gx * gx + gy * gy;
-    let slope = slope2.sqrt();
-    let Some(threshold) = ramp.nearest_threshold(centre) else {
+    let Some(threshold) = ramp.nearest_threshold(q.centre) else {
         return BandEdge::Hard;
     };
-    if slope2 <= 0.0 {
-        return BandEdge::Hard;
-    }
-    let along = (gx * gx * cxx + 2.0 * gx * gy * cxy + gy * gy * cyy) / slope2;
-    let across = (gy * gy * cxx - 2.0 * gx * gy * cxy + gx * gx * cyy) / slope2;
-    let r = (threshold - centre) / slope;
-    let misplaced = (0.5 * along.abs() * r * r + across.abs() / 24.0) / slope;
-    if misplaced <= STRAIGHT_AREA && along.abs() <= JUMP * slope {
-        BandEdge::Straight {
-            n_dot_l: centre,
+    match q.crossing(threshold, STRAIGHT_AREA, JUMP) {
+        Some(LevelCrossing::Straight) => BandEdge::Straight {
+            n_dot_l: q.centre,
             footprint: Footprint {
-                x: gx.abs(),
-                y: gy.abs(),
+                x: q.gx.abs(),
+                y: q.gy.abs(),
             },
-        }
-    } else {
-        BandEdge::Hard
+        },
+        Some(LevelCrossing::Bent) | None => BandEdge::Hard,
     }
 }
 

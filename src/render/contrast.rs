@@ -11,10 +11,11 @@ use super::renderer::premultiplied;
 /// 8-bit image.
 pub const CONTRAST: f32 = 0.5 / 255.0;
 
-/// Per pixel of a `width × height` image, whether it or one of its eight neighbours differs from
-/// it by more than [`CONTRAST`] in premultiplied `colour` (straight alpha in, so that coverage
-/// counts) or in `matte`, unless `tone_only` says of the two (by pixel index) that their colours
-/// may differ, each drawn right at one sample; and every pixel `also` marks.
+/// Per pixel of a `width × height` image, whether one of its eight neighbours differs from it by
+/// more than [`CONTRAST`] in premultiplied `colour` (straight alpha in, so that coverage
+/// counts) or in `matte`, or `also` marks it; but never a pixel `drawn` says was drawn right at
+/// one sample (its box lies inside one surface, and every edge there is clear of it or drawn
+/// straight across it), whatever its neighbours.
 ///
 /// A cel-shaded image is flat between edges, so this finds every edge a pixel centre on either
 /// side of it sees: silhouettes (alpha), occlusion and patch edges where the tone differs,
@@ -27,22 +28,25 @@ pub fn pixels_to_supersample(
     colour: &[Vec4],
     matte: Option<&[f32]>,
     also: Option<&[bool]>,
-    tone_only: Option<&(dyn Fn(usize, usize) -> bool + Sync)>,
+    drawn: Option<&[bool]>,
     width: u32,
     height: u32,
 ) -> Vec<bool> {
     let (w, h) = (width as usize, height as usize);
+    let is_drawn = |i: usize| drawn.is_some_and(|d| d[i]);
     let differs = |a: usize, b: usize| {
         // Most neighbours of a cel-shaded frame are the same colour to the bit.
         if colour[a] == colour[b] && matte.is_none_or(|m| m[a] == m[b]) {
             return false;
         }
-        ((premultiplied(colour[a]) - premultiplied(colour[b]))
+        if is_drawn(a) && is_drawn(b) {
+            return false;
+        }
+        (premultiplied(colour[a]) - premultiplied(colour[b]))
             .abs()
             .max_element()
             > CONTRAST
-            || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST))
-            && !tone_only.is_some_and(|alike| alike(a, b))
+            || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST)
     };
     // Each pair of neighbours compared once, from the upper or left one: bit 0 its right
     // neighbour, 1 the one below, 2 below right, 3 below left.
@@ -66,12 +70,13 @@ pub fn pixels_to_supersample(
             let above = y > 0 && pairs[i - w] & 2 != 0;
             let above_left = x > 0 && y > 0 && pairs[i - w - 1] & 4 != 0;
             let above_right = x + 1 < w && y > 0 && pairs[i - w + 1] & 8 != 0;
-            *mark = pairs[i] != 0
-                || left
-                || above
-                || above_left
-                || above_right
-                || also.is_some_and(|also| also[i]);
+            *mark = !is_drawn(i)
+                && (pairs[i] != 0
+                    || left
+                    || above
+                    || above_left
+                    || above_right
+                    || also.is_some_and(|also| also[i]));
         }
     });
     marked

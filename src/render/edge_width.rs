@@ -58,13 +58,27 @@ impl SignedScratch {
 /// taken for a smooth extremum rather than a jump (an occlusion within a patch).
 const PEAK_RATIO: f32 = 4.0;
 
-/// Per texel, the footprint of the signed value `s` over the layers of its patch's highlight,
-/// the largest `|∂s/∂x|` and `|∂s/∂y|` ([`Footprint::HARD`] without one), each from
-/// [`axis_slope`] over the neighbours on the same patch along that axis. Across a silhouette
-/// (a neighbour inside the image that no surface covers) the footprint is 0 along that axis:
-/// there the surface turns away within the pixel, and the edge is left hard, for the
-/// silhouette's own anti-aliasing (supersampling) to smooth.
-pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
+/// Per texel of a G-buffer, the signed value `s` of each layer of its patch's highlight.
+pub(super) struct SignedValues<'s> {
+    /// Per patch, its highlight's layers, left to right (none without a highlight).
+    pub layers: Vec<Vec<&'s PreparedLayer>>,
+    /// The most layers a patch has: the stride of `values`.
+    most: usize,
+    /// `values[k * most + j]`: layer `j`'s `s` at texel `k` (0 past its patch's layers).
+    values: Vec<f32>,
+}
+
+impl SignedValues<'_> {
+    /// Layer `layer`'s `s` at texel `texel`.
+    #[inline]
+    pub fn at(&self, texel: usize, layer: usize) -> f32 {
+        self.values[texel * self.most + layer]
+    }
+}
+
+/// Per texel of `gbuffer`, the signed value of each layer of its patch's highlight, for runs of
+/// texels on one patch up to [`LANES`] at a time, side by side.
+pub(super) fn signed_values<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> SignedValues<'s> {
     let layer_lists: Vec<Vec<&PreparedLayer>> = scene
         .looks
         .iter()
@@ -75,9 +89,6 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
         })
         .collect();
     let most = layer_lists.iter().map(Vec::len).max().unwrap_or(0);
-    let highlighted = |t: &Texel| scene.looks[t.patch as usize].highlight.is_some();
-    // signed[k * most + j]: layer j's signed value at texel k (0 past its patch's layers),
-    // for runs of texels on one patch up to LANES at a time, side by side.
     let mut signed = vec![0.0f32; gbuffer.texels.len() * most];
     if most > 0 {
         signed
@@ -106,6 +117,30 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
                 }
             });
     }
+    SignedValues {
+        layers: layer_lists,
+        most,
+        values: signed,
+    }
+}
+
+/// Per texel, the footprint of the signed value `s` over the layers of its patch's highlight,
+/// the largest `|∂s/∂x|` and `|∂s/∂y|` ([`Footprint::HARD`] without one), each from
+/// [`axis_slope`] over the neighbours on the same patch along that axis. Across a silhouette
+/// (a neighbour inside the image that no surface covers) the footprint is 0 along that axis:
+/// there the surface turns away within the pixel, and the edge is left hard, for the
+/// silhouette's own anti-aliasing (supersampling) to smooth.
+pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
+    edge_widths_of(gbuffer, &signed_values(gbuffer, scene), None)
+}
+
+/// [`edge_widths`] from the signed values of the layers at the texels of `gbuffer`, at the
+/// texels `wanted` marks (all without it; [`Footprint::HARD`] and no straddle elsewhere).
+pub(super) fn edge_widths_of(
+    gbuffer: &GBuffer,
+    signed: &SignedValues,
+    wanted: Option<&[bool]>,
+) -> EdgeWidths {
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     // The texels' patches side by side: the neighbours are looked up by patch, and the texels
     // themselves are large.
@@ -116,7 +151,8 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
         .with_min_len(PIXELS_PER_JOB)
         .enumerate()
         .map(|(k, t)| {
-            if !highlighted(t) {
+            let layers = signed.layers[t.patch as usize].len();
+            if layers == 0 || wanted.is_some_and(|wanted| !wanted[k]) {
                 return (Footprint::HARD, false);
             }
             let i = t.pixel as usize;
@@ -138,9 +174,9 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
                 same_patch((y > 0).then(|| i - w)),
                 same_patch((y + 1 < h).then(|| i + w)),
             );
-            (0..layer_lists[t.patch as usize].len())
+            (0..layers)
                 .map(|j| {
-                    let at = |n: usize| signed[n * most + j];
+                    let at = |n: usize| signed.at(n, j);
                     let s = at(k);
                     let derivative = |before: Option<usize>, after: Option<usize>| {
                         axis_slope(s, before.map(at), after.map(at))

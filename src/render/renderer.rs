@@ -10,14 +10,17 @@ use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::band_edge::{band_edges, settle_straight_edges, BandEdge};
-use super::edge_width::{edge_widths, EdgeWidths};
-use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use super::edge_width::{edge_widths_of, signed_values, EdgeWidths};
+use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
+use super::highlight_edge::{highlight_edges, HighlightEdge, HighlightEdges};
 use super::line_style::{LineKind, LineStyle};
 use super::lines::{self, draw_lines, LineImage, LineInput, MeshLines};
+use super::neighbourhood::around;
 use super::plan::{Plan, Surfaces};
 use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
-use super::scene::{Outlines, Scene};
+use super::scene::{Outlines, Scene, Tone};
 use super::settings::{Antialias, FrameMode, Settings};
+use super::settled::Settled;
 use super::shade::{shade, Edges, ShadeBuffers, Shaded};
 use super::stage::Stage;
 use super::stats::{timed, RenderStats};
@@ -339,7 +342,8 @@ impl Stages {
                 let edges = if plan.runs(Stage::EdgeWidths) {
                     let settle = (plan.frames != settings.frames)
                         .then_some((frame.view_projection, settings.frames));
-                    widths(highlight_gbuffer, scene, settle, &mut stats)
+                    let adaptive = matches!(settings.antialias, Antialias::Adaptive(_));
+                    widths(highlight_gbuffer, scene, adaptive, settle, &mut stats)
                 } else {
                     Edged::default()
                 };
@@ -411,8 +415,7 @@ impl Stages {
                 straddles: straddles.as_deref(),
                 gbuffer,
                 footprints: widths.map(|w| w.footprints.as_slice()),
-                bands: edges.bands.as_deref(),
-                highlights: shading.highlights(),
+                drawn: edges.drawn.as_deref(),
                 lines,
             };
             let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
@@ -568,14 +571,24 @@ struct Edged {
     widths: Option<EdgeWidths>,
     /// How the tone's band edges meet the pixel, on a frame with banded cel ramps.
     bands: Option<Vec<BandEdge>>,
+    /// How the highlight's edges meet the pixel, on a frame with highlights under adaptive
+    /// anti-aliasing.
+    highlights: Option<HighlightEdges>,
+    /// Whether the pixel's colour is right as drawn at one sample, under adaptive
+    /// anti-aliasing ([`drawn`]).
+    drawn: Option<Vec<bool>>,
+    /// The texels whose edges are drawn straight, with the settings' frames, where the
+    /// G-buffer's are interpolated.
+    settled: Settled,
 }
 
 impl Edged {
-    /// What the one-sample shading takes of them under `antialias`: under adaptive
-    /// anti-aliasing no highlight footprints, since a pixel a highlight edge crosses differs
-    /// from the neighbour across it and is drawn again at k × k samples, each with its own
-    /// footprint; hard edges there mark only the pixels the edges cross, where analytic ones
-    /// also mark their neighbours, which a partly covered pixel beside them differs from.
+    /// What the one-sample shading takes of them under `antialias`: under analytic
+    /// anti-aliasing the highlight footprints of every pixel; under adaptive anti-aliasing the
+    /// straight edges alone, since a pixel any other highlight edge crosses is drawn again at
+    /// k × k samples, each with its own footprint (hard edges there mark only the pixels the
+    /// edges cross, where analytic ones also mark their neighbours, which a partly covered
+    /// pixel beside them differs from).
     fn shading(&self, antialias: Antialias) -> Edges<'_> {
         let adaptive = match antialias {
             Antialias::Adaptive(_) => true,
@@ -588,34 +601,136 @@ impl Edged {
                 .filter(|_| !adaptive)
                 .map(|w| w.footprints.as_slice()),
             bands: self.bands.as_deref(),
+            highlights: self.highlights.as_ref(),
+            settled: Some(&self.settled),
         }
     }
 }
 
 /// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint
-/// and how the tone's band edges meet the pixel; with `settle`, the view-projection and the
-/// settings' frames where the G-buffer's are interpolated, the band edges crossing pixels are
-/// placed by those frames ([`settle_straight_edges`]).
+/// and how the tone's band edges meet the pixel; under `adaptive` anti-aliasing also how the
+/// highlight's edges meet it and whether it is [`drawn`] right at one sample. With `settle`,
+/// the view-projection and the settings' frames where the G-buffer's are interpolated, the
+/// texels whose edges cross their pixels straight are evaluated again in those frames
+/// ([`Settled`]).
 fn widths(
     gbuffer: &GBuffer,
     scene: &Scene,
+    adaptive: bool,
     settle: Option<(Mat4, FrameMode)>,
     stats: &mut RenderStats,
 ) -> Edged {
     let mut frames = 0;
-    let (edged, seconds) = timed(|| Edged {
-        widths: scene.has_highlights().then(|| edge_widths(gbuffer, scene)),
-        bands: scene.has_band_edges().then(|| {
-            let mut bands = band_edges(gbuffer, scene);
-            if let Some((view_projection, mode)) = settle {
-                frames = settle_straight_edges(&mut bands, gbuffer, scene, view_projection, mode);
+    let (edged, seconds) = timed(|| {
+        let signed = scene
+            .has_highlights()
+            .then(|| signed_values(gbuffer, scene));
+        let highlights = signed
+            .as_ref()
+            .filter(|_| adaptive)
+            .map(|s| highlight_edges(gbuffer, s));
+        let mut bands = scene.has_band_edges().then(|| band_edges(gbuffer, scene));
+        let mut highlights = highlights;
+        let settled = match settle {
+            Some((view_projection, mode)) => {
+                // The centres of the pixels a band edge crosses straight, and the
+                // neighbourhoods of those a highlight edge crosses smoothly.
+                let mut picked = vec![false; gbuffer.texels.len()];
+                for (pick, band) in picked.iter_mut().zip(bands.iter().flatten()) {
+                    *pick = matches!(band, BandEdge::Straight { .. });
+                }
+                for slot in highlights.iter().flat_map(|h| h.neighbourhoods(gbuffer)) {
+                    picked[slot] = true;
+                }
+                let (settled, evaluated) =
+                    Settled::evaluate(gbuffer, scene, view_projection, mode, &picked);
+                frames = evaluated;
+                if let Some(bands) = &mut bands {
+                    settle_straight_edges(bands, &settled, scene);
+                }
+                if let Some(highlights) = &mut highlights {
+                    highlights.settle(gbuffer, scene, &settled);
+                }
+                settled
             }
-            bands
-        }),
+            None => Settled::default(),
+        };
+        let drawn = adaptive.then(|| {
+            let kinds = highlights.as_ref().map(|h| h.kinds.as_slice());
+            drawn(gbuffer, scene, bands.as_deref(), kinds)
+        });
+        // Under adaptive anti-aliasing the widths serve the samples of the pixels that are
+        // not drawn (started from the texels around them) and mark those a highlight may
+        // cross unseen: they are wanted only beside such pixels.
+        let wanted = drawn.as_ref().map(|drawn| beside_undrawn(gbuffer, drawn));
+        let widths = signed
+            .as_ref()
+            .map(|s| edge_widths_of(gbuffer, s, wanted.as_deref()));
+        Edged {
+            widths,
+            bands,
+            highlights,
+            drawn,
+            settled,
+        }
     });
     stats.record(Stage::EdgeWidths, gbuffer.texels.len() as u64, seconds);
     stats.exact_frames += frames;
     edged
+}
+
+/// Per texel of `gbuffer`, whether some pixel of its 3 × 3 neighbourhood is uncovered or not
+/// `drawn` (per texel).
+#[must_use]
+fn beside_undrawn(gbuffer: &GBuffer, drawn: &[bool]) -> Vec<bool> {
+    let size = (gbuffer.width as usize, gbuffer.height as usize);
+    gbuffer
+        .texels
+        .par_iter()
+        .with_min_len(PIXELS_PER_JOB)
+        .map(|t| {
+            around(t.pixel as usize, size).any(|n| {
+                let slot = gbuffer.slot[n];
+                slot == EMPTY || !drawn[slot as usize]
+            })
+        })
+        .collect()
+}
+
+/// Per texel of `gbuffer`, whether its pixel's colour is right as drawn at one sample: its box
+/// lies inside one patch, its tone is a cel ramp whose band edges are clear of the box or
+/// cross it straight (any cel ramp without `bands`), its highlight's edges are clear of the box
+/// or cross it straight (any highlight without `highlights`), and not both a band edge and a
+/// highlight edge cross it. More samples would not change such a pixel; at least one of `bands`
+/// and `highlights` is given, each of which sees whether the box lies inside one patch.
+#[must_use]
+fn drawn(
+    gbuffer: &GBuffer,
+    scene: &Scene,
+    bands: Option<&[BandEdge]>,
+    highlights: Option<&[HighlightEdge]>,
+) -> Vec<bool> {
+    gbuffer
+        .texels
+        .par_iter()
+        .enumerate()
+        .with_min_len(PIXELS_PER_JOB)
+        .map(|(k, t)| {
+            let band = match bands {
+                Some(bands) => bands[k],
+                None => match scene.looks[t.patch as usize].tone {
+                    Tone::Cel(_) => BandEdge::Clear,
+                    Tone::XToon(_) => BandEdge::Hard,
+                },
+            };
+            let highlight = highlights.map_or(HighlightEdge::Clear, |h| h[k]);
+            let both = matches!(
+                (band, highlight),
+                (BandEdge::Straight { .. }, HighlightEdge::Smooth)
+            );
+            band.is_drawn() && highlight.is_drawn() && !both
+        })
+        .collect()
 }
 
 /// [`Stage::Outline`]: the lines, found on the mesh and tested against the frame's depth, as

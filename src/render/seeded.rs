@@ -425,6 +425,8 @@ fn draw_batch(
         Edges {
             widths: frame.footprints.map(|_| footprints.as_slice()),
             bands: None,
+            highlights: None,
+            settled: None,
         },
         shading,
     );

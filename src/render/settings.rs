@@ -34,12 +34,13 @@ pub enum Antialias {
     Analytic,
     /// K × K samples per pixel, box-filtered (K from 2 to 8).
     Supersample(u32),
-    /// One sample per pixel with analytic band edges, then K × K samples (K from 2 to 8), each
-    /// with analytic highlight edges at its own footprint, in just the pixels whose colour
-    /// differs from a neighbour's by more than an analytic band edge explains: silhouettes,
-    /// highlight edges, band edges that bend or meet another patch, lines. A pixel whose eight
-    /// neighbours agree with it is shaded once. Memory is that of one sample per pixel plus a
-    /// small tile per worker.
+    /// One sample per pixel with analytic band edges and the highlight edges that cross a
+    /// pixel smoothly drawn from the quadratic of their signed value, then K × K samples (K
+    /// from 2 to 8), each with analytic highlight edges at its own footprint, in just the
+    /// pixels the one sample did not draw right and whose colour differs from a neighbour's:
+    /// silhouettes, edges that bend sharply or meet another patch, two edges in one pixel,
+    /// lines. A pixel whose eight neighbours agree with it is shaded once. Memory is that of
+    /// one sample per pixel plus a small tile per worker.
     Adaptive(u32),
 }
 

@@ -6,7 +6,9 @@ use rayon::prelude::*;
 use super::band_edge::BandEdge;
 use super::directions::{initial_half_vector, initial_half_vectors, view_lanes};
 use super::gbuffer::{GBuffer, Texel, PIXELS_PER_JOB};
+use super::highlight_edge::{HighlightEdge, HighlightEdges};
 use super::scene::{Scene, Tone};
+use super::settled::Settled;
 use super::xtoon_tone::{self, Views};
 use crate::highlight::{ChunkScratch, Footprint, LocalChunk, Shade};
 use crate::math::{Lanes, LANES};
@@ -36,16 +38,6 @@ pub(super) struct ShadeBuffers {
     colour: Vec<Vec4>,
     /// Per texel, its highlight's coverage.
     coverage: Vec<f32>,
-    /// Per texel, its highlight's colour times its coverage, when band edges are analytic.
-    paint: Vec<Vec3>,
-}
-
-impl ShadeBuffers {
-    /// Per texel of the G-buffer last shaded, its highlight's coverage c and, when its band
-    /// edges were given, its colour h times c (zero on a patch without one).
-    pub(super) fn highlights(&self) -> (&[f32], &[Vec3]) {
-        (&self.coverage, &self.paint)
-    }
 }
 
 /// Shades every texel of `gbuffer`: `tone = ramp(N·L)`, or the X-Toon tone of its patch's
@@ -70,42 +62,29 @@ pub(super) fn shade(
     let texels = gbuffer.texels.len();
     buffers.colour.resize(texels, Vec4::ZERO);
     buffers.coverage.resize(texels, 0.0);
-    // The paints are kept only for the marking of pixels beside analytic band edges.
-    if edges.bands.is_some() {
-        buffers.paint.resize(texels, Vec3::ZERO);
-    } else {
-        buffers.paint = Vec::new();
-    }
-    let paint_chunks: Vec<Option<&mut [Vec3]>> = if edges.bands.is_some() {
-        buffers.paint.chunks_mut(PIXELS_PER_JOB).map(Some).collect()
-    } else {
-        (0..texels.div_ceil(PIXELS_PER_JOB)).map(|_| None).collect()
-    };
     let counts = gbuffer
         .texels
         .par_chunks(PIXELS_PER_JOB)
         .zip(buffers.colour.par_chunks_mut(PIXELS_PER_JOB))
         .zip(buffers.coverage.par_chunks_mut(PIXELS_PER_JOB))
-        .zip(paint_chunks)
         .enumerate()
         .map_init(
             RunScratch::new,
-            |scratch, (chunk, (((texels, colour), coverage), paint))| {
-                let range = chunk * PIXELS_PER_JOB..chunk * PIXELS_PER_JOB + texels.len();
+            |scratch, (chunk, ((texels, colour), coverage))| {
+                let first = chunk * PIXELS_PER_JOB;
+                let range = first..first + texels.len();
                 let edges = Edges {
                     widths: edges.widths.map(|w| &w[range.clone()]),
                     bands: edges.bands.map(|b| &b[range.clone()]),
+                    highlights: edges.highlights,
+                    settled: edges.settled,
                 };
                 let xtoon = XToonTones {
                     views,
                     ahead: ahead.map(|tones| &tones[range]),
                 };
-                let out = Out {
-                    colour,
-                    coverage,
-                    paint,
-                };
-                shade_texels(scene, texels, edges, &xtoon, out, scratch)
+                let out = Out { colour, coverage };
+                shade_texels(scene, (first, texels), edges, &xtoon, out, scratch)
             },
         )
         .reduce(Counts::default, Counts::add);
@@ -132,11 +111,18 @@ pub(super) fn shade(
 }
 
 /// Per texel, what the shade stage knows of the pixel's box for analytic anti-aliasing: the
-/// footprints of the highlight's edges and how the tone's band edges meet it (`None`: hard).
-#[derive(Clone, Copy, Debug, Default)]
+/// footprints of the highlight's edges, or which of them cross the box straight, and how the
+/// tone's band edges meet it (`None`: hard).
+#[derive(Clone, Copy, Debug)]
 pub(super) struct Edges<'a> {
+    /// Every texel's footprint (analytic anti-aliasing).
     pub widths: Option<&'a [Footprint]>,
     pub bands: Option<&'a [BandEdge]>,
+    /// Without `widths`, how the highlight's edges meet each texel's box: one crossing it
+    /// smoothly is drawn from its quadratic about its settled texel where there is one
+    /// (adaptive anti-aliasing). For the whole G-buffer, by slot.
+    pub highlights: Option<&'a HighlightEdges>,
+    pub settled: Option<&'a Settled>,
 }
 
 /// The cel tone `ramp(N·L)` at a point of `patch` with unit normal `n` (black on an X-Toon
@@ -195,12 +181,10 @@ const NO_HIGHLIGHT: Shade = Shade {
     colour: Vec3::ZERO,
 };
 
-/// Where the shade of a run of texels goes: colour and highlight coverage per texel, and the
-/// highlight's colour times its coverage where it is kept.
+/// Where the shade of a run of texels goes: colour and highlight coverage per texel.
 struct Out<'a> {
     colour: &'a mut [Vec4],
     coverage: &'a mut [f32],
-    paint: Option<&'a mut [Vec3]>,
 }
 
 /// The inputs and results of the tone and the highlight expression for up to [`LANES`] texels
@@ -237,10 +221,10 @@ impl RunScratch {
 /// own with the X-Toon tone inlined whole into it, rather than called texel by texel.
 fn shade_texels(
     scene: &Scene,
-    texels: &[Texel],
+    (first, texels): (usize, &[Texel]),
     edges: Edges<'_>,
     xtoon: &XToonTones,
-    mut out: Out<'_>,
+    out: Out<'_>,
     scratch: &mut RunScratch,
 ) -> Counts {
     let mut counts = Counts::default();
@@ -255,6 +239,7 @@ fn shade_texels(
         for piece in run.chunks(LANES) {
             let range = start..start + piece.len();
             let widths = edges.widths.map(|w| &w[range.clone()]);
+            let smooth = edges.highlights.map(|h| (first + start, h));
             if reads_view {
                 view_lanes(scene, piece, &mut scratch.view);
             }
@@ -279,7 +264,7 @@ fn shade_texels(
                     );
                 }
             }
-            let shades = highlight(scene, piece, widths, scratch);
+            let shades = highlight(scene, piece, widths, smooth, edges.settled, scratch);
             let len = piece.len() as u64;
             counts.highlighted += if shades.is_some() { len } else { 0 };
             counts.xtoon += if view.is_some() { len } else { 0 };
@@ -287,9 +272,6 @@ fn shade_texels(
                 let shade = shades.map_or(NO_HIGHLIGHT, |s| s[k]);
                 out.colour[start + k] = tone.lerp(shade.colour, shade.coverage).extend(1.0);
                 out.coverage[start + k] = shade.coverage;
-                if let Some(paint) = out.paint.as_deref_mut() {
-                    paint[start + k] = shade.colour * shade.coverage;
-                }
             }
             start = range.end;
         }
@@ -298,11 +280,17 @@ fn shade_texels(
 }
 
 /// The highlight shades of up to [`LANES`] texels on one patch, or `None` when the patch has no
-/// highlight (no half vector is built then).
+/// highlight (no half vector is built then): with `widths`, each with its footprint; else hard,
+/// but where `smooth` (the first texel's slot, and how each texel's edges meet its box) has an
+/// edge crossing the box smoothly, with that edge's cover of the box
+/// ([`SmoothEdge::coverage`](super::highlight_edge::SmoothEdge::coverage)) about the `s` of the
+/// texel's settled copy where there is one.
 fn highlight<'s>(
     scene: &Scene,
     texels: &[Texel],
     widths: Option<&[Footprint]>,
+    smooth: Option<(usize, &HighlightEdges)>,
+    settled: Option<&Settled>,
     scratch: &'s mut RunScratch,
 ) -> Option<&'s [Shade]> {
     let expr = scene.looks[texels[0].patch as usize].highlight.as_ref()?;
@@ -329,6 +317,24 @@ fn highlight<'s>(
                 &mut scratch.expr,
                 shades,
             );
+            let Some((first, edges)) = smooth else {
+                return Some(shades);
+            };
+            for (k, shade) in shades.iter_mut().enumerate() {
+                let slot = first + k;
+                match edges.kinds[slot] {
+                    HighlightEdge::Smooth => {
+                        let Some(edge) = edges.smooth(slot) else {
+                            continue;
+                        };
+                        let t = settled.and_then(|s| s.get(slot)).unwrap_or(&texels[k]);
+                        let h = initial_half_vector(scene, t);
+                        let cover = |s: f32| edge.coverage(s);
+                        *shade = expr.eval_with_edge(&t.frame, t.uv, h, edge.layer, &cover);
+                    }
+                    HighlightEdge::Clear | HighlightEdge::Hard => {}
+                }
+            }
         }
     }
     Some(shades)

@@ -4,8 +4,7 @@
 use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::band_edge::BandEdge;
-use super::contrast::{pixels_to_supersample, CONTRAST};
+use super::contrast::pixels_to_supersample;
 use super::dilate::dilate;
 use super::gbuffer::{Evaluate, GBuffer, EMPTY};
 use super::lines::LineImage;
@@ -57,12 +56,9 @@ pub(super) struct Frame<'a> {
     /// The frame's lines, when the scene draws them: a pixel they wholly ink is not drawn
     /// again.
     pub lines: Option<&'a LineImage>,
-    /// Per texel of `gbuffer`, how the tone's band edges met its pixel in the one-sample pass,
-    /// when they were drawn analytically there.
-    pub bands: Option<&'a [BandEdge]>,
-    /// Per texel of `gbuffer`, its highlight in the one-sample pass: its coverage c and, with
-    /// `bands`, its colour times c.
-    pub highlights: (&'a [f32], &'a [Vec3]),
+    /// Per texel of `gbuffer`, whether the one-sample pass drew its pixel's colour right
+    /// (its edges clear of the box or straight across it), when it classified them.
+    pub drawn: Option<&'a [bool]>,
 }
 
 /// What the stage did.
@@ -149,30 +145,12 @@ pub(super) fn landed_depth(
 pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     let (w, h) = (frame.image.width, frame.image.height);
     let gbuffer = frame.gbuffer;
-    // Two pixels inside one patch, each with its band edges drawn, and with the same
-    // highlight, differ by their tone alone, which the one-sample pass drew right.
-    let (coverage, paint) = frame.highlights;
-    let tone_only = frame.bands.map(|bands| {
-        move |a: usize, b: usize| {
-            let (sa, sb) = (gbuffer.slot[a], gbuffer.slot[b]);
-            if sa == EMPTY || sb == EMPTY {
-                return false;
-            }
-            let (sa, sb) = (sa as usize, sb as usize);
-            gbuffer.texels[sa].patch == gbuffer.texels[sb].patch
-                && bands[sa].is_drawn()
-                && bands[sb].is_drawn()
-                && (coverage[sa] - coverage[sb]).abs() <= CONTRAST
-                && (paint[sa] - paint[sb]).abs().max_element() <= CONTRAST
-        }
-    });
+    let drawn = frame.drawn.map(|drawn| gbuffer.gather(drawn, false));
     let mut marked = pixels_to_supersample(
         &shaded.colour,
         shaded.matte.as_deref(),
         frame.straddles,
-        tone_only
-            .as_ref()
-            .map(|f| f as &(dyn Fn(usize, usize) -> bool + Sync)),
+        drawn.as_deref(),
         w,
         h,
     );
@@ -556,6 +534,8 @@ impl TileBuffers {
             Edges {
                 widths: widths.as_deref(),
                 bands: None,
+                highlights: None,
+                settled: None,
             },
             &mut self.shading,
         );
