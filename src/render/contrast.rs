@@ -4,7 +4,26 @@
 use glam::Vec4;
 use rayon::prelude::*;
 
+use super::gbuffer::EMPTY;
 use super::renderer::premultiplied;
+
+/// Which pixels of an image the one-sample pass drew right: per pixel the slot of its texel
+/// ([`EMPTY`] for none), and per texel whether its pixel was drawn right.
+#[derive(Clone, Copy, Debug)]
+pub struct DrawnRight<'a> {
+    pub slot: &'a [u32],
+    pub texels: &'a [bool],
+}
+
+impl DrawnRight<'_> {
+    /// Whether pixel `pixel` was drawn right.
+    #[inline]
+    #[must_use]
+    pub fn at(&self, pixel: usize) -> bool {
+        let slot = self.slot[pixel];
+        slot != EMPTY && self.texels[slot as usize]
+    }
+}
 
 /// The largest difference in any channel of premultiplied colour (or of the highlight matte)
 /// between a pixel and a neighbour that still counts as the same colour: half a step of an
@@ -28,12 +47,12 @@ pub fn pixels_to_supersample(
     colour: &[Vec4],
     matte: Option<&[f32]>,
     also: Option<&[bool]>,
-    drawn: Option<&[bool]>,
+    drawn: Option<DrawnRight<'_>>,
     width: u32,
     height: u32,
 ) -> Vec<bool> {
     let (w, h) = (width as usize, height as usize);
-    let is_drawn = |i: usize| drawn.is_some_and(|d| d[i]);
+    let is_drawn = |i: usize| drawn.is_some_and(|d| d.at(i));
     let differs = |a: usize, b: usize| {
         // Most neighbours of a cel-shaded frame are the same colour to the bit.
         if colour[a] == colour[b] && matte.is_none_or(|m| m[a] == m[b]) {
@@ -133,7 +152,8 @@ mod tests {
 
     #[test]
     fn each_pixel_is_marked_exactly_when_one_of_its_eight_neighbours_differs() {
-        // Random blocky images against the definition, neighbour by neighbour.
+        // Random blocky images against the definition, neighbour by neighbour: a pixel drawn
+        // right is never marked, and one that is not is marked by any neighbour that differs.
         let (w, h) = (13usize, 9usize);
         let mut state = 0x2545_f491_4f6c_dd1d_u64;
         let mut next = || {
@@ -152,11 +172,39 @@ mod tests {
                 .collect();
             let matte: Vec<f32> = (0..w * h).map(|_| (next() % 3) as f32 * 0.4).collect();
             let also: Vec<bool> = (0..w * h).map(|_| next() % 17 == 0).collect();
-            let marked =
-                pixels_to_supersample(&colour, Some(&matte), Some(&also), None, w as u32, h as u32);
+            // Every other image with some pixels drawn right: uncovered ones (no texel) never
+            // are, and the texels are numbered backwards.
+            let with_drawn = next() % 2 == 0;
+            let slot: Vec<u32> = (0..w * h)
+                .map(|i| {
+                    if i % 7 == 3 {
+                        EMPTY
+                    } else {
+                        (w * h - 1 - i) as u32
+                    }
+                })
+                .collect();
+            let texels: Vec<bool> = (0..w * h).map(|_| next() % 3 != 0).collect();
+            let drawn = with_drawn.then_some(DrawnRight {
+                slot: &slot,
+                texels: &texels,
+            });
+            let is_drawn = |i: usize| with_drawn && slot[i] != EMPTY && texels[w * h - 1 - i];
+            let marked = pixels_to_supersample(
+                &colour,
+                Some(&matte),
+                Some(&also),
+                drawn,
+                w as u32,
+                h as u32,
+            );
             for y in 0..h {
                 for x in 0..w {
                     let i = y * w + x;
+                    if is_drawn(i) {
+                        assert!(!marked[i], "({x}, {y}) was drawn right");
+                        continue;
+                    }
                     let mut expected = also[i];
                     for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
                         for nx in x.saturating_sub(1)..=(x + 1).min(w - 1) {

@@ -4,7 +4,7 @@
 use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::contrast::pixels_to_supersample;
+use super::contrast::{pixels_to_supersample, DrawnRight};
 use super::dilate::dilate;
 use super::gbuffer::{Evaluate, GBuffer, EMPTY};
 use super::lines::LineImage;
@@ -145,18 +145,21 @@ pub(super) fn landed_depth(
 pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     let (w, h) = (frame.image.width, frame.image.height);
     let gbuffer = frame.gbuffer;
-    let drawn = frame.drawn.map(|drawn| gbuffer.gather(drawn, false));
+    let drawn = frame.drawn.map(|texels| DrawnRight {
+        slot: &gbuffer.slot,
+        texels,
+    });
     let mut marked = pixels_to_supersample(
         &shaded.colour,
         shaded.matte.as_deref(),
         frame.straddles,
-        drawn.as_deref(),
+        drawn,
         w,
         h,
     );
     if let (Some(lines), None, None) = (frame.lines, &shaded.matte, &shaded.n_dot_h) {
-        for (p, m) in marked.iter_mut().enumerate() {
-            *m &= !lines.hides(p);
+        for (p, m) in marked.iter_mut().enumerate().filter(|(_, m)| **m) {
+            *m = !lines.hides(p);
         }
     }
     let pixels = marked.iter().filter(|&&m| m).count() as u64;
