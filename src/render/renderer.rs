@@ -679,22 +679,22 @@ fn widths(
     edged
 }
 
-/// Per texel of `gbuffer`, whether some pixel of its 3 × 3 neighbourhood is uncovered or not
-/// `drawn` (per texel).
+/// Per texel of `gbuffer`, whether some texel of its 3 × 3 neighbourhood is not `drawn` (per
+/// texel): the neighbourhoods of the few texels that are not, marked from each. A texel beside
+/// an uncovered pixel is never drawn right, so it marks itself.
 #[must_use]
 fn beside_undrawn(gbuffer: &GBuffer, drawn: &[bool]) -> Vec<bool> {
     let size = (gbuffer.width as usize, gbuffer.height as usize);
-    gbuffer
-        .texels
-        .par_iter()
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|t| {
-            around(t.pixel as usize, size).any(|n| {
-                let slot = gbuffer.slot[n];
-                slot == EMPTY || !drawn[slot as usize]
-            })
-        })
-        .collect()
+    let mut beside = vec![false; drawn.len()];
+    for (t, _) in gbuffer.texels.iter().zip(drawn).filter(|(_, &d)| !d) {
+        for n in around(t.pixel as usize, size) {
+            let slot = gbuffer.slot[n];
+            if slot != EMPTY {
+                beside[slot as usize] = true;
+            }
+        }
+    }
+    beside
 }
 
 /// Per texel of `gbuffer`, whether its pixel's colour is right as drawn at one sample: its box
