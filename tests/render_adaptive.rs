@@ -232,6 +232,22 @@ fn a_cel_frame_finds_its_edges_on_interpolated_frames_and_draws_them_refined() {
     assert!(differing <= covered / 1000, "{differing} pixels differ");
 }
 
+/// `scene` rendered at `size × size` with `final`'s settings but `antialias`.
+fn final_with(
+    library: &Arc<PatchLibrary>,
+    scene: &Scene,
+    size: u32,
+    antialias: Antialias,
+) -> RenderedFrame {
+    let settings = Settings {
+        antialias,
+        ..Settings::final_quality(size, size)
+    };
+    Renderer::new(Arc::clone(library))
+        .render(scene, &settings)
+        .unwrap()
+}
+
 #[test]
 fn a_band_edge_straight_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
     // The unit sphere lit from the side, black below n·l = 0.2 and white above: the terminator
@@ -264,15 +280,7 @@ fn a_band_edge_straight_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
         outlines: None,
         aovs: Aovs::default(),
     };
-    let render = |scene: &Scene, antialias| {
-        let settings = Settings {
-            antialias,
-            ..Settings::final_quality(size, size)
-        };
-        Renderer::new(Arc::clone(&library))
-            .render(scene, &settings)
-            .unwrap()
-    };
+    let render = |scene: &Scene, antialias| final_with(&library, scene, size, antialias);
     // Per pixel, of 16 × 16 rays: the fraction that meet the sphere, and that meet it lit.
     let k = 16u32;
     let truth: Vec<(f32, f32)> = (0..size * size)
@@ -359,15 +367,7 @@ fn a_highlight_edge_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
         ..Aovs::default()
     };
     let scene = view.scene(&library, &crescent, aovs);
-    let render = |scene: &Scene, antialias| {
-        let settings = Settings {
-            antialias,
-            ..Settings::final_quality(size, size)
-        };
-        Renderer::new(Arc::clone(&library))
-            .render(scene, &settings)
-            .unwrap()
-    };
+    let render = |scene: &Scene, antialias| final_with(&library, scene, size, antialias);
     let truth = view.coverage(&crescent, size, 16);
     // The pixels wholly on the sphere (its four corners are: the disc is convex) that an edge
     // of the crescent crosses.

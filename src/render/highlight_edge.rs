@@ -104,21 +104,19 @@ impl HighlightEdges {
         })
     }
 
-    /// Makes each smooth edge's quadratic again of `s` at its nine texels' settled copies
+    /// Makes each smooth edge's quadratic again of `s` (of its layer in `signed`) at its nine
+    /// texels' settled copies
     /// (where `settled` has them): where the G-buffer's frames are interpolated, they place `s`
     /// a small part of a pixel off, and the quadratic's slopes and bends with it. An edge that
     /// no longer crosses its box smoothly is made [`HighlightEdge::Hard`].
-    pub fn settle(&mut self, gbuffer: &GBuffer, scene: &Scene, settled: &Settled) {
+    pub fn settle(
+        &mut self,
+        gbuffer: &GBuffer,
+        scene: &Scene,
+        signed: &SignedValues,
+        settled: &Settled,
+    ) {
         let size = (gbuffer.width as usize, gbuffer.height as usize);
-        let lists: Vec<Vec<&PreparedLayer>> = scene
-            .looks
-            .iter()
-            .map(|look| {
-                look.highlight
-                    .as_ref()
-                    .map_or_else(Vec::new, |h| h.layers())
-            })
-            .collect();
         let smooth: Vec<bool> = self
             .smooth_slots
             .par_iter()
@@ -126,7 +124,7 @@ impl HighlightEdges {
             .with_min_len(PIXELS_PER_JOB / 16)
             .map(|(&slot, edge)| {
                 let t = &gbuffer.texels[slot as usize];
-                let layer = lists[t.patch as usize][edge.layer];
+                let layer = signed.layers[t.patch as usize][edge.layer];
                 let mut values = [0.0f32; 9];
                 for (value, n) in values.iter_mut().zip(around(t.pixel as usize, size)) {
                     let n = gbuffer.slot[n] as usize;

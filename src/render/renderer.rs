@@ -577,18 +577,19 @@ struct Edged {
     /// Whether the pixel's colour is right as drawn at one sample, under adaptive
     /// anti-aliasing ([`drawn`]).
     drawn: Option<Vec<bool>>,
-    /// The texels whose edges are drawn straight, with the settings' frames, where the
-    /// G-buffer's are interpolated.
+    /// Where the G-buffer's frames are interpolated, the texels the one-sample pass draws its
+    /// edges from, with the settings' frames: the centres of the pixels a band edge crosses
+    /// straight, and the neighbourhoods of those a highlight edge crosses smoothly.
     settled: Settled,
 }
 
 impl Edged {
     /// What the one-sample shading takes of them under `antialias`: under analytic
     /// anti-aliasing the highlight footprints of every pixel; under adaptive anti-aliasing the
-    /// straight edges alone, since a pixel any other highlight edge crosses is drawn again at
-    /// k × k samples, each with its own footprint (hard edges there mark only the pixels the
-    /// edges cross, where analytic ones also mark their neighbours, which a partly covered
-    /// pixel beside them differs from).
+    /// highlight edges that cross a pixel smoothly alone, since a pixel any other highlight
+    /// edge crosses is drawn again at k × k samples, each with its own footprint (hard edges
+    /// there mark only the pixels the edges cross, where analytic ones also mark their
+    /// neighbours, which a partly covered pixel beside them differs from).
     fn shading(&self, antialias: Antialias) -> Edges<'_> {
         let adaptive = match antialias {
             Antialias::Adaptive(_) => true,
@@ -611,8 +612,8 @@ impl Edged {
 /// and how the tone's band edges meet the pixel; under `adaptive` anti-aliasing also how the
 /// highlight's edges meet it and whether it is [`drawn`] right at one sample. With `settle`,
 /// the view-projection and the settings' frames where the G-buffer's are interpolated, the
-/// texels whose edges cross their pixels straight are evaluated again in those frames
-/// ([`Settled`]).
+/// texels the straight band edges and smooth highlight edges are drawn from are evaluated
+/// again in those frames ([`Settled`]).
 fn widths(
     gbuffer: &GBuffer,
     scene: &Scene,
@@ -625,12 +626,11 @@ fn widths(
         let signed = scene
             .has_highlights()
             .then(|| signed_values(gbuffer, scene));
-        let highlights = signed
+        let mut highlights = signed
             .as_ref()
             .filter(|_| adaptive)
             .map(|s| highlight_edges(gbuffer, s));
         let mut bands = scene.has_band_edges().then(|| band_edges(gbuffer, scene));
-        let mut highlights = highlights;
         let settled = match settle {
             Some((view_projection, mode)) => {
                 // The centres of the pixels a band edge crosses straight, and the
@@ -648,8 +648,8 @@ fn widths(
                 if let Some(bands) = &mut bands {
                     settle_straight_edges(bands, &settled, scene);
                 }
-                if let Some(highlights) = &mut highlights {
-                    highlights.settle(gbuffer, scene, &settled);
+                if let (Some(highlights), Some(signed)) = (&mut highlights, &signed) {
+                    highlights.settle(gbuffer, scene, signed, &settled);
                 }
                 settled
             }
@@ -700,7 +700,7 @@ fn beside_undrawn(gbuffer: &GBuffer, drawn: &[bool]) -> Vec<bool> {
 /// Per texel of `gbuffer`, whether its pixel's colour is right as drawn at one sample: its box
 /// lies inside one patch, its tone is a cel ramp whose band edges are clear of the box or
 /// cross it straight (any cel ramp without `bands`), its highlight's edges are clear of the box
-/// or cross it straight (any highlight without `highlights`), and not both a band edge and a
+/// or cross it smoothly (any highlight without `highlights`), and not both a band edge and a
 /// highlight edge cross it. More samples would not change such a pixel; at least one of `bands`
 /// and `highlights` is given, each of which sees whether the box lies inside one patch.
 #[must_use]

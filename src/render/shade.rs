@@ -48,7 +48,9 @@ pub(super) struct ShadeBuffers {
 /// With edge `widths` (analytic anti-aliasing, [`edge_widths`](super::edge_width::edge_widths)),
 /// each highlight edge covers the pixel as a straight edge with the pixel's footprint of the
 /// signed inside value `s = ε − ‖N − H'‖²/2` would ([`Footprint::coverage`]). Without them,
-/// edges are hard (the paper's look). Likewise with `bands`
+/// edges are hard (the paper's look), but where `highlights` (adaptive anti-aliasing,
+/// [`highlight_edges`](super::highlight_edge::highlight_edges)) has one layer's edge crossing a
+/// pixel smoothly, which covers it as the quadratic of that layer's `s` does. Likewise with `bands`
 /// ([`band_edges`](super::band_edge::band_edges)), a cel tone whose band edge crosses the pixel
 /// straight takes the box's mean colour ([`CelRamp::shade_over_box`](crate::toon::CelRamp::shade_over_box)).
 pub(super) fn shade(
@@ -111,7 +113,7 @@ pub(super) fn shade(
 }
 
 /// Per texel, what the shade stage knows of the pixel's box for analytic anti-aliasing: the
-/// footprints of the highlight's edges, or which of them cross the box straight, and how the
+/// footprints of the highlight's edges, or which of them cross the box smoothly, and how the
 /// tone's band edges meet it (`None`: hard).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Edges<'a> {
