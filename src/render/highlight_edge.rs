@@ -1,5 +1,6 @@
 //! Highlight edges for adaptive anti-aliasing: per texel, whether its highlight's edges cross
-//! its pixel straight enough to be drawn at one sample.
+//! its pixel smoothly enough to be drawn at one sample, from the quadratic of a layer's signed
+//! value over the pixel.
 
 use rayon::prelude::*;
 
@@ -91,9 +92,7 @@ impl HighlightEdges {
         let i = self.smooth_slots.binary_search(&slot).ok()?;
         Some(&self.smooth[i])
     }
-}
 
-impl HighlightEdges {
     /// The slots of the texels whose values the smooth edges' quadratics are made of: the 3 × 3
     /// neighbourhood of each smooth texel of `gbuffer`, unordered, some more than once.
     pub fn neighbourhoods<'g>(&'g self, gbuffer: &'g GBuffer) -> impl Iterator<Item = usize> + 'g {
@@ -105,10 +104,10 @@ impl HighlightEdges {
     }
 
     /// Makes each smooth edge's quadratic again of `s` (of its layer in `signed`) at its nine
-    /// texels' settled copies
-    /// (where `settled` has them): where the G-buffer's frames are interpolated, they place `s`
-    /// a small part of a pixel off, and the quadratic's slopes and bends with it. An edge that
-    /// no longer crosses its box smoothly is made [`HighlightEdge::Hard`].
+    /// texels' settled copies (where `settled` has them): where the G-buffer's frames are
+    /// interpolated, they place `s` a small part of a pixel off, and the quadratic's slopes and
+    /// bends with it. An edge that no longer crosses its box smoothly is made
+    /// [`HighlightEdge::Hard`].
     pub fn settle(
         &mut self,
         gbuffer: &GBuffer,
