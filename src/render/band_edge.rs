@@ -3,7 +3,8 @@
 
 use rayon::prelude::*;
 
-use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
+use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use super::neighbourhood::one_patch_around;
 use super::scene::{Scene, Tone};
 use super::settled::Settled;
 use crate::highlight::Footprint;
@@ -50,27 +51,24 @@ pub(super) const JUMP: f32 = 0.5;
 
 /// Per texel of `gbuffer`, how its cel tone's band edges meet its pixel ([`classify`] of `n·l`
 /// at the nine texels of its 3 × 3 neighbourhood), [`BandEdge::Hard`] where a neighbour is off
-/// the image, uncovered or on another patch, or the tone is not a cel ramp.
+/// the image, uncovered or on another patch ([`one_patch_around`], `patches` per texel), or
+/// the tone is not a cel ramp.
 #[must_use]
-pub(super) fn band_edges(gbuffer: &GBuffer, scene: &Scene) -> Vec<BandEdge> {
-    // Per texel its patch and n·l, side by side: the neighbours are looked up by them, and the
-    // texels themselves are large.
-    let seen: Vec<(u32, f32)> = gbuffer
+pub(super) fn band_edges(gbuffer: &GBuffer, scene: &Scene, patches: &[u32]) -> Vec<BandEdge> {
+    // Per texel its n·l, side by side: the neighbours are looked up by it, and the texels
+    // themselves are large.
+    let n_dot_l: Vec<f32> = gbuffer
         .texels
         .par_iter()
         .with_min_len(PIXELS_PER_JOB)
-        .map(|t| {
-            let n_dot_l = match &scene.looks[t.patch as usize].tone {
-                Tone::Cel(_) => {
-                    let n = t.frame.n;
-                    n.dot(scene.light.direction(t.position, n))
-                }
-                Tone::XToon(_) => 0.0,
-            };
-            (t.patch, n_dot_l)
+        .map(|t| match &scene.looks[t.patch as usize].tone {
+            Tone::Cel(_) => {
+                let n = t.frame.n;
+                n.dot(scene.light.direction(t.position, n))
+            }
+            Tone::XToon(_) => 0.0,
         })
         .collect();
-    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     gbuffer
         .texels
         .par_iter()
@@ -80,26 +78,10 @@ pub(super) fn band_edges(gbuffer: &GBuffer, scene: &Scene) -> Vec<BandEdge> {
                 Tone::Cel(ramp) => ramp,
                 Tone::XToon(_) => return BandEdge::Hard,
             };
-            let i = t.pixel as usize;
-            let (x, y) = (i % w, i / w);
-            if x == 0 || y == 0 || x + 1 >= w || y + 1 >= h {
-                return BandEdge::Hard;
+            match one_patch_around(gbuffer, patches, t) {
+                Some(slots) => classify(ramp, &slots.map(|row| row.map(|k| n_dot_l[k]))),
+                None => BandEdge::Hard,
             }
-            let mut values = [[0.0f32; 3]; 3];
-            for (dy, row) in values.iter_mut().enumerate() {
-                for (dx, value) in row.iter_mut().enumerate() {
-                    let slot = gbuffer.slot[(y + dy - 1) * w + x + dx - 1];
-                    if slot == EMPTY {
-                        return BandEdge::Hard;
-                    }
-                    let (patch, n_dot_l) = seen[slot as usize];
-                    if patch != t.patch {
-                        return BandEdge::Hard;
-                    }
-                    *value = n_dot_l;
-                }
-            }
-            classify(ramp, &values)
         })
         .collect()
 }

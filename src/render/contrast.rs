@@ -34,7 +34,7 @@ pub const CONTRAST: f32 = 0.5 / 255.0;
 /// more than [`CONTRAST`] in premultiplied `colour` (straight alpha in, so that coverage
 /// counts) or in `matte`, or `also` marks it; but never a pixel `drawn` says was drawn right at
 /// one sample (its box lies inside one surface, and every edge there is clear of it or drawn
-/// straight across it), whatever its neighbours.
+/// across it at one sample), whatever its neighbours.
 ///
 /// A cel-shaded image is flat between edges, so this finds every edge a pixel centre on either
 /// side of it sees: silhouettes (alpha), occlusion and patch edges where the tone differs,

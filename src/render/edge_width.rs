@@ -131,20 +131,21 @@ pub(super) fn signed_values<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> SignedVa
 /// there the surface turns away within the pixel, and the edge is left hard, for the
 /// silhouette's own anti-aliasing (supersampling) to smooth.
 pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
-    edge_widths_of(gbuffer, &signed_values(gbuffer, scene), None)
+    let patches: Vec<u32> = gbuffer.texels.iter().map(|t| t.patch).collect();
+    edge_widths_of(gbuffer, &signed_values(gbuffer, scene), &patches, None)
 }
 
-/// [`edge_widths`] from the signed values of the layers at the texels of `gbuffer`, at the
-/// texels `wanted` marks (all without it; [`Footprint::HARD`] and no straddle elsewhere).
+/// [`edge_widths`] from the signed values of the layers at the texels of `gbuffer` and the
+/// texels' `patches` (side by side: the neighbours are looked up by patch, and the texels
+/// themselves are large), at the texels `wanted` marks (all without it; [`Footprint::HARD`]
+/// and no straddle elsewhere).
 pub(super) fn edge_widths_of(
     gbuffer: &GBuffer,
     signed: &SignedValues,
+    patches: &[u32],
     wanted: Option<&[bool]>,
 ) -> EdgeWidths {
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
-    // The texels' patches side by side: the neighbours are looked up by patch, and the texels
-    // themselves are large.
-    let patches: Vec<u32> = gbuffer.texels.iter().map(|t| t.patch).collect();
     let (footprints, straddles) = gbuffer
         .texels
         .par_iter()

@@ -7,8 +7,8 @@ use rayon::prelude::*;
 use super::band_edge::JUMP;
 use super::directions::initial_half_vector;
 use super::edge_width::SignedValues;
-use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
-use super::neighbourhood::around;
+use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use super::neighbourhood::{around, one_patch_around};
 use super::scene::Scene;
 use super::settled::Settled;
 use crate::highlight::PreparedLayer;
@@ -160,32 +160,23 @@ enum Classified {
 
 /// Per texel of `gbuffer`, how its highlight's edges meet its pixel ([`classify`] of the
 /// layers' `s` at the nine texels of its 3 × 3 neighbourhood), [`HighlightEdge::Hard`] where a
-/// neighbour is off the image, uncovered or on another patch.
+/// neighbour is off the image, uncovered or on another patch ([`one_patch_around`], `patches`
+/// per texel).
 #[must_use]
-pub(super) fn highlight_edges(gbuffer: &GBuffer, signed: &SignedValues) -> HighlightEdges {
-    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
-    // The texels' patches side by side: the neighbours are looked up by patch, and the texels
-    // themselves are large.
-    let patches: Vec<u32> = gbuffer.texels.iter().map(|t| t.patch).collect();
+pub(super) fn highlight_edges(
+    gbuffer: &GBuffer,
+    signed: &SignedValues,
+    patches: &[u32],
+) -> HighlightEdges {
     let classify_texel = |k: usize| {
         let t = &gbuffer.texels[k];
-        let i = t.pixel as usize;
-        let (x, y) = (i % w, i / w);
-        if x == 0 || y == 0 || x + 1 >= w || y + 1 >= h {
-            return Classified::Hard;
-        }
-        let mut slots = [[0usize; 3]; 3];
-        for (dy, row) in slots.iter_mut().enumerate() {
-            for (dx, slot) in row.iter_mut().enumerate() {
-                let n = gbuffer.slot[(y + dy - 1) * w + x + dx - 1];
-                if n == EMPTY || patches[n as usize] != t.patch {
-                    return Classified::Hard;
-                }
-                *slot = n as usize;
+        match one_patch_around(gbuffer, patches, t) {
+            Some(slots) => {
+                let layers = &signed.layers[t.patch as usize];
+                classify(layers, |j| slots.map(|row| row.map(|k| signed.at(k, j))))
             }
+            None => Classified::Hard,
         }
-        let layers = &signed.layers[t.patch as usize];
-        classify(layers, |j| slots.map(|row| row.map(|k| signed.at(k, j))))
     };
     // Chunk by chunk, so that only the smooth edges are kept beside the kinds.
     // Per chunk, its texels' kinds and the smooth edges among them, by slot.

@@ -623,14 +623,19 @@ fn widths(
 ) -> Edged {
     let mut frames = 0;
     let (edged, seconds) = timed(|| {
+        // The texels' patches side by side: the neighbours are looked up by patch, and the
+        // texels themselves are large.
+        let patches: Vec<u32> = gbuffer.texels.iter().map(|t| t.patch).collect();
         let signed = scene
             .has_highlights()
             .then(|| signed_values(gbuffer, scene));
         let mut highlights = signed
             .as_ref()
             .filter(|_| adaptive)
-            .map(|s| highlight_edges(gbuffer, s));
-        let mut bands = scene.has_band_edges().then(|| band_edges(gbuffer, scene));
+            .map(|s| highlight_edges(gbuffer, s, &patches));
+        let mut bands = scene
+            .has_band_edges()
+            .then(|| band_edges(gbuffer, scene, &patches));
         let settled = match settle {
             Some((view_projection, mode)) => {
                 // The centres of the pixels a band edge crosses straight, and the
@@ -665,7 +670,7 @@ fn widths(
         let wanted = drawn.as_ref().map(|drawn| beside_undrawn(gbuffer, drawn));
         let widths = signed
             .as_ref()
-            .map(|s| edge_widths_of(gbuffer, s, wanted.as_deref()));
+            .map(|s| edge_widths_of(gbuffer, s, &patches, wanted.as_deref()));
         Edged {
             widths,
             bands,

@@ -292,7 +292,8 @@ pub(super) struct Buffers {
 /// ([`uv_slopes`]): the start is refined onto the sample's ray ([`GBuffer::evaluate_frames`]
 /// with refined frames, within a probe's evaluations) and kept when the point it lands on
 /// projects within 0.05 samples of the sample's centre ([`landed_depth`]) on a part of the
-/// patch its trim keeps; of the points kept, the nearest covers the sample. A pixel inside a surface with a sample that none covers is given back.
+/// patch its trim keeps; of the points kept, the nearest covers the sample. A pixel inside a
+/// surface with a sample that none covers is given back.
 /// The samples are shaded with their seed's footprint over the sample (a `k`-th of the
 /// pixel's), and a pixel takes the mean of its samples as the rasterized tiles do
 /// ([`Resolved::average`]).

@@ -57,7 +57,8 @@ pub(super) struct Frame<'a> {
     /// again.
     pub lines: Option<&'a LineImage>,
     /// Per texel of `gbuffer`, whether the one-sample pass drew its pixel's colour right
-    /// (its edges clear of the box or straight across it), when it classified them.
+    /// (each edge clear of the box, or drawn across it at one sample: a band edge straight, a
+    /// highlight edge smooth), when it classified them.
     pub drawn: Option<&'a [bool]>,
 }
 
