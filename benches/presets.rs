@@ -13,10 +13,6 @@ mod frames;
 #[path = "support/teapot.rs"]
 mod teapot;
 
-/// The allocator the `glint` binary uses.
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 use std::sync::Arc;
 
 use frames::Variant;

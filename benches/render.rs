@@ -33,10 +33,6 @@ mod teapot;
 use frames::Variant;
 use teapot::{camera, HEIGHT, WIDTH};
 
-/// The allocator the `glint` binary uses.
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 use std::hint::black_box;
 use std::sync::Arc;
 

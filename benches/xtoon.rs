@@ -13,10 +13,6 @@ mod teapot;
 
 use frames::Variant;
 
-/// The allocator the `glint` binary uses.
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 use std::path::Path;
 use std::sync::Arc;
 
