@@ -348,7 +348,13 @@ fn draw_batch(
         .par_iter()
         .map(|&pixel| Seeds::around(gbuffer, pixel))
         .collect_into_vec(seeds);
-    let total: usize = seeds.iter().map(|s| s.patches * per_pixel).sum();
+    // Pixel j's candidates are `first[j]..first[j + 1]`.
+    let mut first = Vec::with_capacity(pixels.len() + 1);
+    first.push(0);
+    for s in seeds.iter() {
+        first.push(first.last().copied().unwrap_or(0) + s.patches * per_pixel);
+    }
+    let total = first.last().copied().unwrap_or(0);
     candidates.resize(total, Candidate::default());
     texels.resize(total, UNFILLED);
     let mut pieces = Vec::with_capacity(pixels.len());
@@ -376,24 +382,32 @@ fn draw_batch(
         Evaluate::Probe,
     );
 
-    // Per sample, the nearest candidate that landed on its ray.
+    // Per sample, the nearest candidate that landed on its ray on a part of its patch the trim
+    // keeps, pixel by pixel.
     chosen.clear();
     chosen.resize(pixels.len() * per_pixel, None);
-    for (index, (c, t)) in candidates.iter().zip(texels.iter_mut()).enumerate() {
-        let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full) else {
-            continue;
-        };
-        let patch = &frame.library.patches[t.patch as usize];
-        if !patch.keeps(f64::from(t.uv.x), f64::from(t.uv.y)) {
-            // It landed where the patch is trimmed away: the sample sees past it.
-            continue;
-        }
-        t.depth = depth;
-        let slot = &mut chosen[c.sample as usize];
-        if slot.is_none_or(|(nearest, _)| depth < nearest) {
-            *slot = Some((depth, index as u32));
-        }
-    }
+    chosen
+        .par_chunks_mut(per_pixel)
+        .zip(first.par_windows(2))
+        .enumerate()
+        .for_each(|(j, (chosen, range))| {
+            for index in range[0]..range[1] {
+                let t = &texels[index];
+                let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full)
+                else {
+                    continue;
+                };
+                let slot = &mut chosen[candidates[index].sample as usize - j * per_pixel];
+                if slot.is_some_and(|(nearest, _)| depth >= nearest) {
+                    continue;
+                }
+                let patch = &frame.library.patches[t.patch as usize];
+                // One that landed where the patch is trimmed away lets the sample see past it.
+                if patch.keeps(f64::from(t.uv.x), f64::from(t.uv.y)) {
+                    *slot = Some((depth, index as u32));
+                }
+            }
+        });
 
     // The samples as a G-buffer k wide, one k × k block per pixel down it.
     samples.width = k;
@@ -403,12 +417,13 @@ fn draw_batch(
     samples.texels.clear();
     footprints.clear();
     for (s, choice) in chosen.iter().enumerate() {
-        let Some((_, index)) = *choice else {
+        let Some((depth, index)) = *choice else {
             continue;
         };
         samples.slot[s] = samples.texels.len() as u32;
         samples.texels.push(Texel {
             pixel: s as u32,
+            depth,
             ..texels[index as usize]
         });
         let seed = candidates[index as usize].seed as usize;
