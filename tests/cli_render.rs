@@ -210,3 +210,49 @@ fn inspect_prints_the_interpolated_value_between_keys() {
         .arg(&shot));
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// The peak memory of `glint render` over two frames of the teapot turntable at 1920 × 1080
+/// with two workers, as its `--report` gives it (the process's peak resident set); `None`
+/// where the system does not say.
+fn peak_memory_of_two_1080p_frames(preset: &str) -> Option<u64> {
+    let dir = tempfile::tempdir().unwrap();
+    let report = dir.path().join("report.jsonl");
+    let out = dir.path().join("t.#.png");
+    succeed(glint().args([
+        "render",
+        "shots/teapot_turntable.ron",
+        "--frames",
+        "1-2",
+        "--preset",
+        preset,
+        "--size",
+        "1920x1080",
+        "--threads",
+        "2",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+    ]));
+    let text = std::fs::read_to_string(&report).unwrap();
+    let last = text.lines().last().unwrap();
+    let line: serde_json::Value = serde_json::from_str(last).unwrap();
+    line["peak_memory_bytes"].as_u64()
+}
+
+#[test]
+fn a_1080p_frame_holds_no_more_memory_than_a_farm_slot_is_promised() {
+    // What the README's farm section promises a task at 1920 × 1080.
+    for (preset, most) in [("preview", 200u64 << 20), ("final", 400 << 20)] {
+        let Some(peak) = peak_memory_of_two_1080p_frames(preset) else {
+            // Not Linux: the process's peak is not known.
+            return;
+        };
+        assert!(
+            peak > 20 << 20,
+            "{preset}: {peak} B is too little to be the peak"
+        );
+        assert!(peak <= most, "{preset}: {} MB", peak >> 20);
+    }
+}
