@@ -46,6 +46,17 @@ impl BoxQuadratic {
         }
     }
 
+    /// The same quadratic about `(x, y)`: the box of the pixel that far from this one's.
+    #[must_use]
+    pub fn moved_to(&self, x: f32, y: f32) -> Self {
+        Self {
+            centre: self.at(x, y),
+            gx: self.gx + self.cxx * x + self.cxy * y,
+            gy: self.gy + self.cxy * x + self.cyy * y,
+            ..*self
+        }
+    }
+
     /// Its value at `(x, y)` about the centre.
     #[inline]
     #[must_use]
@@ -131,6 +142,18 @@ mod tests {
     /// `f` at the nine centres around the pixel.
     fn around(f: impl Fn(f32, f32) -> f32) -> [[f32; 3]; 3] {
         std::array::from_fn(|y| std::array::from_fn(|x| f(x as f32 - 1.0, y as f32 - 1.0)))
+    }
+
+    #[test]
+    fn a_moved_quadratic_takes_the_same_values() {
+        let q = BoxQuadratic::through(&around(|x, y| {
+            0.3 + 0.2 * x - 0.1 * y + 0.5 * 0.04 * x * x + 0.07 * x * y - 0.5 * 0.06 * y * y
+        }));
+        let moved = q.moved_to(1.0, -1.0);
+        for (x, y) in [(0.0, 0.0), (0.4, -0.3), (-0.5, 0.5), (1.0, 1.0)] {
+            let (a, b) = (moved.at(x, y), q.at(x + 1.0, y - 1.0));
+            assert!((a - b).abs() < 1e-6, "({x}, {y}): {a} against {b}");
+        }
     }
 
     #[test]

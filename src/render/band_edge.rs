@@ -97,6 +97,13 @@ pub(super) fn settle_straight_edges(edges: &mut [BandEdge], settled: &Settled, s
     }
 }
 
+/// Whether no band edge of `ramp` reaches the box, from `n·l` at its 3 × 3 neighbourhood
+/// ([`classify`]).
+#[must_use]
+pub(super) fn band_clear_of_box(ramp: &CelRamp, d: &[[f32; 3]; 3]) -> bool {
+    classify(ramp, d) == BandEdge::Clear
+}
+
 /// How the bands of `ramp` meet a pixel from `n·l` at its 3 × 3 neighbourhood (`d[y][x]`, the
 /// pixel at `d[1][1]`), one surface across it, taken as the quadratic through the nine
 /// ([`BoxQuadratic`]):

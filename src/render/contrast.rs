@@ -8,11 +8,13 @@ use super::gbuffer::EMPTY;
 use super::renderer::premultiplied;
 
 /// Which pixels of an image the one-sample pass drew right: per pixel the slot of its texel
-/// ([`EMPTY`] for none), and per texel whether its pixel was drawn right.
+/// ([`EMPTY`] for none), per texel whether its pixel was drawn right, and per pixel whether it
+/// was, covered or not, where more was drawn right than the texels say.
 #[derive(Clone, Copy, Debug)]
 pub struct DrawnRight<'a> {
     pub slot: &'a [u32],
     pub texels: &'a [bool],
+    pub pixels: Option<&'a [bool]>,
 }
 
 impl DrawnRight<'_> {
@@ -21,7 +23,7 @@ impl DrawnRight<'_> {
     #[must_use]
     pub fn at(&self, pixel: usize) -> bool {
         let slot = self.slot[pixel];
-        slot != EMPTY && self.texels[slot as usize]
+        (slot != EMPTY && self.texels[slot as usize]) || self.pixels.is_some_and(|p| p[pixel])
     }
 }
 
@@ -172,8 +174,8 @@ mod tests {
                 .collect();
             let matte: Vec<f32> = (0..w * h).map(|_| (next() % 3) as f32 * 0.4).collect();
             let also: Vec<bool> = (0..w * h).map(|_| next() % 17 == 0).collect();
-            // Every other image with some pixels drawn right: uncovered ones (no texel) never
-            // are, and the texels are numbered backwards.
+            // Every other image with some pixels drawn right, by their texels (numbered
+            // backwards) and by the pixels themselves, covered or not.
             let with_drawn = next() % 2 == 0;
             let slot: Vec<u32> = (0..w * h)
                 .map(|i| {
@@ -185,11 +187,14 @@ mod tests {
                 })
                 .collect();
             let texels: Vec<bool> = (0..w * h).map(|_| next() % 3 != 0).collect();
+            let pixels: Vec<bool> = (0..w * h).map(|_| next() % 5 == 0).collect();
             let drawn = with_drawn.then_some(DrawnRight {
                 slot: &slot,
                 texels: &texels,
+                pixels: Some(&pixels),
             });
-            let is_drawn = |i: usize| with_drawn && slot[i] != EMPTY && texels[w * h - 1 - i];
+            let is_drawn =
+                |i: usize| with_drawn && ((slot[i] != EMPTY && texels[w * h - 1 - i]) || pixels[i]);
             let marked = pixels_to_supersample(
                 &colour,
                 Some(&matte),

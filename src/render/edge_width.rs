@@ -76,9 +76,15 @@ impl SignedValues<'_> {
     }
 }
 
-/// Per texel of `gbuffer`, the signed value of each layer of its patch's highlight, for runs of
-/// texels on one patch up to [`LANES`] at a time, side by side.
+/// Per texel of `gbuffer`, the signed value of each layer of its patch's highlight
+/// ([`signed_values_of`] its texels).
 pub(super) fn signed_values<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> SignedValues<'s> {
+    signed_values_of(&gbuffer.texels, scene)
+}
+
+/// Per texel of `texels`, the signed value of each layer of its patch's highlight, for runs of
+/// texels on one patch up to [`LANES`] at a time, side by side.
+pub(super) fn signed_values_of<'s>(texels: &[Texel], scene: &'s Scene) -> SignedValues<'s> {
     let layer_lists: Vec<Vec<&PreparedLayer>> = scene
         .looks
         .iter()
@@ -89,11 +95,11 @@ pub(super) fn signed_values<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> SignedVa
         })
         .collect();
     let most = layer_lists.iter().map(Vec::len).max().unwrap_or(0);
-    let mut signed = vec![0.0f32; gbuffer.texels.len() * most];
+    let mut signed = vec![0.0f32; texels.len() * most];
     if most > 0 {
         signed
             .par_chunks_mut(most * PIXELS_PER_JOB)
-            .zip(gbuffer.texels.par_chunks(PIXELS_PER_JOB))
+            .zip(texels.par_chunks(PIXELS_PER_JOB))
             .for_each_init(SignedScratch::default, |scratch, (values, texels)| {
                 let mut start = 0;
                 for run in texels.chunk_by(|a, b| a.patch == b.patch) {

@@ -213,6 +213,16 @@ pub(super) fn highlight_edges(
     edges
 }
 
+/// Whether no edge of `layers` reaches the box, from each layer's `s` at its 3 × 3
+/// neighbourhood ([`classify`]).
+#[must_use]
+pub(super) fn highlights_clear_of_box(
+    layers: &[&PreparedLayer],
+    values: impl Fn(usize) -> [[f32; 3]; 3],
+) -> bool {
+    classify(layers, values) == Classified::Clear
+}
+
 /// How the edges of `layers` meet a pixel, from each layer's `s` at its 3 × 3 neighbourhood
 /// (`values(j)[y][x]`, the pixel at `[1][1]`), one surface across it, each taken as the
 /// quadratic through the nine ([`BoxQuadratic`]). A layer is clear of the box where `s` stays

@@ -35,6 +35,7 @@ mod surface_key;
 mod surface_point;
 pub mod tessellate;
 mod trim_cut;
+mod trim_edge;
 mod visibility_shade;
 mod window;
 mod xtoon_tone;

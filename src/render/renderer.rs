@@ -28,6 +28,7 @@ use super::supersample;
 use super::surface_key::SurfaceKey;
 use super::tessellate::{Mesh, Tessellator};
 use super::trim_cut::MeshCut;
+use super::trim_edge::{self, trim_edges, TrimEdges};
 use super::visibility_shade::shade_visibility;
 use super::xtoon_tone::{self, Ahead};
 use super::RenderError;
@@ -343,20 +344,34 @@ impl Stages {
                     let settle = (plan.frames != settings.frames)
                         .then_some((frame.view_projection, settings.frames));
                     let adaptive = matches!(settings.antialias, Antialias::Adaptive(_));
-                    widths(highlight_gbuffer, scene, adaptive, settle, &mut stats)
+                    let view_projection = frame.view_projection;
+                    let input = (highlight_gbuffer, scene, view_projection);
+                    widths(input, adaptive, settle, &mut stats)
                 } else {
                     Edged::default()
                 };
                 let tones = ahead.as_ref().map(|a| a.tones.as_slice());
                 let (shaded, seconds) = timed(|| {
-                    shade(
+                    let mut shaded = shade(
                         highlight_gbuffer,
                         scene,
                         &views,
                         tones,
                         edges.shading(settings.antialias),
                         shading,
-                    )
+                    );
+                    if let Some(trims) = &edges.trims {
+                        let hard = Edges {
+                            widths: None,
+                            bands: None,
+                            highlights: None,
+                            settled: None,
+                        };
+                        let mut buffers = ShadeBuffers::default();
+                        let two = |g: &GBuffer| shade(g, scene, &views, None, hard, &mut buffers);
+                        trim_edge::composite(trims, two, &mut shaded);
+                    }
+                    shaded
                 });
                 stats.record(Stage::Shade, shaded.shaded, seconds);
                 stats.highlight_pixels = shaded.highlighted;
@@ -416,6 +431,7 @@ impl Stages {
                 gbuffer,
                 footprints: widths.map(|w| w.footprints.as_slice()),
                 drawn: edges.drawn.as_deref(),
+                drawn_pixels: edges.trims.as_ref().map(|t| t.drawn.as_slice()),
                 lines,
             };
             let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
@@ -581,6 +597,9 @@ struct Edged {
     /// edges from, with the settings' frames: the centres of the pixels a band edge crosses
     /// straight, and the neighbourhoods of those a highlight edge crosses smoothly.
     settled: Settled,
+    /// The pixels about the rims of trims drawn right at one sample, under adaptive
+    /// anti-aliasing on a frame with trimmed patches ([`trim_edges`]).
+    trims: Option<TrimEdges>,
 }
 
 impl Edged {
@@ -615,8 +634,7 @@ impl Edged {
 /// texels the straight band edges and smooth highlight edges are drawn from are evaluated
 /// again in those frames ([`Settled`]).
 fn widths(
-    gbuffer: &GBuffer,
-    scene: &Scene,
+    (gbuffer, scene, view_projection): (&GBuffer, &Scene, Mat4),
     adaptive: bool,
     settle: Option<(Mat4, FrameMode)>,
     stats: &mut RenderStats,
@@ -660,9 +678,19 @@ fn widths(
             }
             None => Settled::default(),
         };
-        let drawn = adaptive.then(|| {
+        let mut drawn = adaptive.then(|| {
             let kinds = highlights.as_ref().map(|h| h.kinds.as_slice());
             drawn(gbuffer, scene, bands.as_deref(), kinds)
+        });
+        let trims = drawn.as_mut().and_then(|drawn| {
+            let trims = trim_edges(gbuffer, scene, view_projection, drawn)?;
+            for (&slot, _) in gbuffer.slot.iter().zip(&trims.drawn).filter(|(_, &d)| d) {
+                if slot != EMPTY {
+                    drawn[slot as usize] = true;
+                }
+            }
+            frames += trims.frames;
+            Some(trims)
         });
         // Under adaptive anti-aliasing the widths serve the samples of the pixels that are
         // not drawn (started from the texels around them) and mark those a highlight may
@@ -677,6 +705,7 @@ fn widths(
             highlights,
             drawn,
             settled,
+            trims,
         }
     });
     stats.record(Stage::EdgeWidths, gbuffer.texels.len() as u64, seconds);

@@ -100,7 +100,7 @@ const BORDER_PIXELS: f32 = 3.0;
 /// Whether texel `slot` lies [`BORDER_PIXELS`] or more inside its patch's domain, measured by
 /// the slope of its (u, v) ([`uv_slopes`]); not when it has no slope along x or y (no neighbour
 /// on its patch there).
-fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bool {
+pub(super) fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bool {
     let t = &gbuffer.texels[slot as usize];
     let (Some(along_x), Some(along_y)) = uv_slopes(gbuffer, slot) else {
         return false;
@@ -117,7 +117,7 @@ fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bo
 /// neighbour is on the patch or (u, v) jumps (a seam of a closed surface). A sample started
 /// from the texel's (u, v) moved by them to the sample's offset takes Newton a step or two
 /// fewer.
-fn uv_slopes(gbuffer: &GBuffer, slot: u32) -> (Option<Vec2>, Option<Vec2>) {
+pub(super) fn uv_slopes(gbuffer: &GBuffer, slot: u32) -> (Option<Vec2>, Option<Vec2>) {
     let t = &gbuffer.texels[slot as usize];
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     let i = t.pixel as usize;

@@ -60,6 +60,9 @@ pub(super) struct Frame<'a> {
     /// (each edge clear of the box, or drawn across it at one sample: a band edge straight, a
     /// highlight edge smooth), when it classified them.
     pub drawn: Option<&'a [bool]>,
+    /// Per pixel, whether the one-sample pass drew it right about a trim's rim (covered or
+    /// not), when it looked for such pixels.
+    pub drawn_pixels: Option<&'a [bool]>,
 }
 
 /// What the stage did.
@@ -149,6 +152,7 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     let drawn = frame.drawn.map(|texels| DrawnRight {
         slot: &gbuffer.slot,
         texels,
+        pixels: frame.drawn_pixels,
     });
     let mut marked = pixels_to_supersample(
         &shaded.colour,

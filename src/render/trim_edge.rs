@@ -1,0 +1,651 @@
+//! Trim edges for adaptive anti-aliasing: the pixels about the rim of a trimmed patch whose
+//! colour one sample on each side of the rim gives, weighted by the rim's cover of the box.
+
+use glam::{DVec2, Mat4, Vec2, Vec4};
+use rayon::prelude::*;
+
+use super::band_edge::{band_clear_of_box, JUMP};
+use super::edge_width::signed_values_of;
+use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
+use super::highlight_edge::{highlights_clear_of_box, SMOOTH_BEND};
+use super::renderer::{premultiplied, straight};
+use super::scene::{Scene, Tone};
+use super::seeded::{away_from_borders, uv_slopes};
+use super::settings::FrameMode;
+use super::shade::Shaded;
+use super::supersample::landed_depth;
+use crate::geom::PatchLibrary;
+use crate::math::{BoxQuadratic, LevelCrossing};
+
+/// What the trim edges of a frame draw at one sample.
+#[derive(Clone, Debug, Default)]
+pub(super) struct TrimEdges {
+    /// Per pixel of the image, whether it lies about a trim's rim and its colour is right as
+    /// drawn at one sample ([`trim_edges`]).
+    pub drawn: Vec<bool>,
+    /// The pixels among them a rim crosses.
+    pub crossed: Vec<Crossed>,
+    /// NURBS frames evaluated.
+    pub frames: u64,
+}
+
+/// A pixel a trim's rim crosses, drawn from one sample on each side of it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Crossed {
+    pub pixel: u32,
+    /// The fraction of the box the trimmed patch keeps.
+    pub cover: f32,
+    /// The trimmed patch at the pixel's centre, on its ray (on a part the trim may cut away).
+    pub kept: Texel,
+    /// What the cut part shows at the pixel's centre, on its ray: the surface behind, or
+    /// nothing (the background).
+    pub beyond: Option<Texel>,
+    /// The trim's signed distance over the box, as its cover was taken.
+    pub rim: BoxQuadratic,
+}
+
+/// A pixel whose 3 × 3 neighbourhood shows two things: the trimmed patch `front`, and `other`
+/// (a patch behind it, or [`EMPTY`] for the background).
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    pixel: u32,
+    front: u32,
+    other: u32,
+}
+
+/// Per pixel of `gbuffer`'s image, whether the rim of a trimmed patch lies about it and its
+/// colour is right as drawn at one sample; the pixels the rim crosses, with the samples on
+/// each side that [`composite`] draws them from. `None` where no patch of the scene is trimmed
+/// (or the image is narrower than three pixels).
+///
+/// A pixel not yet drawn right (`drawn`, per texel) whose 3 × 3 neighbourhood, inside the
+/// image, shows exactly a trimmed patch P with a cel tone and one other thing — the
+/// background, or a patch Q with a cel tone behind P, none of P's texels there within three
+/// pixels of its domain's side — is tried. Each surface is taken at the nine centres: where a
+/// centre shows it, its texel; elsewhere the point where the centre's ray meets it, found by a
+/// probe from its nearest texel (`GBuffer::evaluate_frames`, refined). The trim's signed
+/// distance `f` in (u, v) is taken at P's nine points
+/// ([`Trim::try_signed_distance`](crate::geom::Trim::try_signed_distance), positive where it
+/// keeps P). The pixel is drawn right when:
+///
+/// - P meets every centre's ray, and the quadratic of `f` over the box
+///   ([`BoxQuadratic`]) stays on one side of 0 over it, or crosses it straight within
+///   [`SMOOTH_BEND`] and [`JUMP`] ([`BoxQuadratic::crossing`]); its cover of the box
+///   ([`BoxQuadratic::coverage_above`]) is P's share of the pixel;
+/// - each centre shows P where `f > 0` there and the other thing where `f ≤ 0`;
+/// - over the part P covers, P's highlight and band edges are clear of the box (the
+///   quadratics of their values at P's nine points, as
+///   [`highlight_edges`](super::highlight_edge::highlight_edges) and
+///   [`band_edges`](super::band_edge::band_edges) take them); over the rest, Q meets every
+///   centre's ray behind P, its own trim keeps the whole box, and its edges are clear of it.
+///
+/// Where the rim crosses the box, P's own texels among the nine are found again on their rays
+/// (the G-buffer's frames may be interpolated, a few hundredths of a pixel off) and the cover
+/// taken again from them; the pixel's colour is then P's at the centre over its cover and the
+/// other thing's over the rest ([`composite`]). Elsewhere it is the centre's own. An uncovered
+/// pixel whose nine are all uncovered, beside crossed pixels with the background beyond, is
+/// drawn right too where each of their rims, carried to its box
+/// ([`BoxQuadratic::moved_to`]), stays on the cut side over it.
+#[must_use]
+pub(super) fn trim_edges(
+    gbuffer: &GBuffer,
+    scene: &Scene,
+    view_projection: Mat4,
+    drawn: &[bool],
+) -> Option<TrimEdges> {
+    let library = scene.library;
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    if !library.patches.iter().any(|p| p.trim.is_some()) || w < 3 || h < 3 {
+        return None;
+    }
+    // What pixel `n` shows: its patch, or EMPTY.
+    let thing = |n: usize| {
+        let slot = gbuffer.slot[n];
+        if slot == EMPTY {
+            EMPTY
+        } else {
+            gbuffer.texels[slot as usize].patch
+        }
+    };
+    // The candidates lie within the 3 × 3 neighbourhoods of the texels not drawn right: a
+    // covered one is such a texel, and an uncovered one has a trimmed patch's texel beside it,
+    // which is not drawn right either (its neighbourhood is not all on its patch).
+    let mut near = vec![false; w * h];
+    for t in gbuffer
+        .texels
+        .iter()
+        .zip(drawn)
+        .filter(|(_, &d)| !d)
+        .map(|(t, _)| t)
+    {
+        let (x, y) = (t.pixel as usize % w, t.pixel as usize / w);
+        for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
+            near[ny * w + x.saturating_sub(1)..=ny * w + (x + 1).min(w - 1)].fill(true);
+        }
+    }
+    let candidates: Vec<Candidate> = (0..w * h)
+        .into_par_iter()
+        .filter(|&p| near[p])
+        .filter_map(|p| candidate(gbuffer, &thing, scene, drawn, p))
+        .collect();
+    let mut edges = TrimEdges {
+        drawn: vec![false; w * h],
+        ..TrimEdges::default()
+    };
+    if candidates.is_empty() {
+        return Some(edges);
+    }
+
+    // The samples: each surface a candidate needs at each of its nine centres, once. Per
+    // pixel, the index of its entry in `asked`, which holds up to two (surface, sample) pairs.
+    let mut asked_at = vec![EMPTY; w * h];
+    let mut asked: Vec<[(u32, u32); 2]> = Vec::new();
+    let mut wanted: Vec<(usize, u32, usize)> = Vec::new();
+    for candidate in &candidates {
+        for n in nine(candidate.pixel as usize, w) {
+            for surface in [candidate.front, candidate.other] {
+                if surface == EMPTY {
+                    continue;
+                }
+                if asked_at[n] == EMPTY {
+                    asked_at[n] = asked.len() as u32;
+                    asked.push([(EMPTY, EMPTY); 2]);
+                }
+                let entry = &mut asked[asked_at[n] as usize];
+                if entry.iter().any(|e| e.0 == surface) {
+                    continue;
+                }
+                // A third surface asked of one pixel is not sampled: its candidate fails.
+                if let Some(free) = entry.iter_mut().find(|e| e.0 == EMPTY) {
+                    *free = (surface, wanted.len() as u32);
+                    wanted.push((n, surface, candidate.pixel as usize));
+                }
+            }
+        }
+    }
+    // A centre that shows the surface is its own sample; another is the surface found on the
+    // centre's ray from the surface's nearest texel (a probe).
+    let started: Vec<Option<(Texel, f64, bool)>> = wanted
+        .par_iter()
+        .map(|&(n, surface, pixel)| start(gbuffer, library, pixel, n, surface))
+        .collect();
+    let mut probes: Vec<Texel> = Vec::with_capacity(started.len());
+    let mut uv_reach: Vec<f64> = Vec::with_capacity(started.len());
+    let mut landed: Vec<bool> = Vec::with_capacity(started.len());
+    let mut foreign: Vec<u32> = Vec::new();
+    for (k, start) in started.into_iter().enumerate() {
+        // Without a start (not reached: a candidate's surfaces are seen about it) the
+        // sample is missing, as one whose ray misses its surface.
+        let (texel, reach, own, found) = match start {
+            Some((texel, reach, own)) => (texel, reach, own, true),
+            None => (UNFILLED, 0.0, true, false),
+        };
+        if !own {
+            foreign.push(k as u32);
+        }
+        probes.push(texel);
+        uv_reach.push(reach);
+        landed.push(own && found);
+    }
+    let mut searched: Vec<Texel> = foreign.iter().map(|&k| probes[k as usize]).collect();
+    edges.frames = GBuffer::evaluate_frames(
+        &mut searched,
+        library,
+        &scene.camera,
+        view_projection,
+        (gbuffer.width, gbuffer.height),
+        FrameMode::Refined,
+        Evaluate::Probe,
+    );
+    let size = (gbuffer.width, gbuffer.height);
+    for (&k, mut t) in foreign.iter().zip(searched) {
+        let depth = landed_depth(view_projection, t.position, t.pixel, size);
+        if let Some(depth) = depth {
+            t.depth = depth;
+        }
+        probes[k as usize] = t;
+        landed[k as usize] = depth.is_some();
+    }
+    let signed = signed_values_of(&probes, scene);
+    // Per probe, its trim's signed distance and the reach it was sought within.
+    let trim_of = |t: &Texel, uv_reach: f64| {
+        let Some(trim) = &library.patches[t.patch as usize].trim else {
+            return Some((f64::INFINITY, f64::INFINITY));
+        };
+        // Without a reach (no slope of (u, v) to take it from) the rim cannot be placed.
+        let reach = TRIM_REACH * uv_reach;
+        if reach.is_nan() || reach <= 0.0 {
+            return None;
+        }
+        let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
+        Some((trim.try_signed_distance(u, v, reach)?, reach))
+    };
+    let mut trim: Vec<Option<(f64, f64)>> = probes
+        .par_iter()
+        .zip(&uv_reach)
+        .map(|(t, &uv_reach)| trim_of(t, uv_reach))
+        .collect();
+    let find = |n: usize, surface: u32| {
+        let entry = asked.get(asked_at[n] as usize)?;
+        let &(_, k) = entry.iter().find(|e| e.0 == surface)?;
+        let k = k as usize;
+        landed[k].then_some(k)
+    };
+
+    let judged: Vec<Option<(Option<Crossed>, [usize; 9])>> = candidates
+        .par_iter()
+        .map(|candidate| {
+            let pixel = candidate.pixel as usize;
+            let mut front = [0usize; 9];
+            for (slot, n) in front.iter_mut().zip(nine(pixel, w)) {
+                *slot = find(n, candidate.front)?;
+            }
+            let surface = |probes_of: &[usize; 9]| Surface {
+                probes: &probes,
+                signed: &signed,
+                trim: &trim,
+                indices: *probes_of,
+            };
+            let front_surface = surface(&front);
+            let cover = front_surface.kept_cover()?;
+            // Each centre sees the trimmed patch where its trim keeps it, the other thing where
+            // it does not.
+            for (k, n) in nine(pixel, w).enumerate() {
+                let kept = front_surface.trim_value(k)?.0 > 0.0;
+                let seen = gbuffer.texel(n).map_or(EMPTY, |t| t.patch);
+                let expected = if kept {
+                    candidate.front
+                } else {
+                    candidate.other
+                };
+                if seen != expected {
+                    return None;
+                }
+            }
+            if cover > 0.0 && !front_surface.clear_of_box(scene) {
+                return None;
+            }
+            let beyond = if candidate.other == EMPTY || cover == 1.0 {
+                None
+            } else {
+                let mut behind = [0usize; 9];
+                for (slot, n) in behind.iter_mut().zip(nine(pixel, w)) {
+                    *slot = find(n, candidate.other)?;
+                }
+                let behind_surface = surface(&behind);
+                let behind_everywhere =
+                    (0..9).all(|k| probes[behind[k]].depth > probes[front[k]].depth);
+                if !(behind_everywhere
+                    && behind_surface.kept_cover() == Some(1.0)
+                    && behind_surface.clear_of_box(scene))
+                {
+                    return None;
+                }
+                Some(probes[behind[4]])
+            };
+            let crossed = (cover > 0.0 && cover < 1.0).then_some(Crossed {
+                pixel: candidate.pixel,
+                cover,
+                kept: probes[front[4]],
+                beyond,
+                rim: BoxQuadratic::through(&[[0.0; 3]; 3]),
+            });
+            Some((crossed, front))
+        })
+        .collect();
+    let mut fronts = Vec::new();
+    for (candidate, judged) in candidates.iter().zip(judged) {
+        if let Some((crossed, front)) = judged {
+            edges.drawn[candidate.pixel as usize] = true;
+            if let Some(crossed) = crossed {
+                edges.crossed.push(crossed);
+                fronts.push(front);
+            }
+        }
+    }
+
+    // Where the rim crosses a pixel, the trimmed patch's own texels about it are found again
+    // on their rays (the G-buffer's may be interpolated from the mesh, a few hundredths of a
+    // pixel off), and the cover taken again from them.
+    let mut settle = vec![false; probes.len()];
+    for &k in fronts.iter().flatten() {
+        settle[k] = true;
+    }
+    for &k in &foreign {
+        settle[k as usize] = false;
+    }
+    let settled: Vec<usize> = (0..probes.len()).filter(|&k| settle[k]).collect();
+    let mut again: Vec<Texel> = settled.iter().map(|&k| probes[k]).collect();
+    edges.frames += GBuffer::evaluate_frames(
+        &mut again,
+        library,
+        &scene.camera,
+        view_projection,
+        size,
+        FrameMode::Refined,
+        Evaluate::Probe,
+    );
+    for (&k, mut t) in settled.iter().zip(again) {
+        match landed_depth(view_projection, t.position, t.pixel, size) {
+            Some(depth) => {
+                t.depth = depth;
+                probes[k] = t;
+                trim[k] = trim_of(&t, uv_reach[k]);
+            }
+            None => trim[k] = None,
+        }
+    }
+    let mut kept = Vec::with_capacity(edges.crossed.len());
+    for (crossed, front) in edges.crossed.iter_mut().zip(&fronts) {
+        let surface = Surface {
+            probes: &probes,
+            signed: &signed,
+            trim: &trim,
+            indices: *front,
+        };
+        match surface.kept_cover_and_rim() {
+            Some((cover, Some(rim))) => {
+                crossed.cover = cover;
+                crossed.kept = probes[front[4]];
+                crossed.rim = rim;
+                kept.push(true);
+            }
+            Some((_, None)) | None => {
+                edges.drawn[crossed.pixel as usize] = false;
+                kept.push(false);
+            }
+        }
+    }
+    let mut keep = kept.into_iter();
+    edges.crossed.retain(|_| keep.next().unwrap_or(false));
+
+    // An uncovered pixel whose nine are all uncovered, beside pixels the rim crosses, shows
+    // the background when each of their rims, carried over to its box, stays cut over it.
+    let mut beside = vec![0u8; w * h];
+    for crossed in edges.crossed.iter().filter(|c| c.beyond.is_none()) {
+        let c = crossed.pixel as usize;
+        for n in nine(c, w).filter(|&n| n != c) {
+            let (x, y) = (n % w, n / w);
+            let inside = x > 0 && y > 0 && x + 1 < w && y + 1 < h;
+            if !inside || edges.drawn[n] || beside[n] == 2 {
+                continue;
+            }
+            let empty = nine(n, w).all(|m| thing(m) == EMPTY);
+            let d = |a: usize, b: usize| a as f32 - b as f32;
+            let moved = crossed.rim.moved_to(d(x, c % w), d(y, c / w));
+            let cut = moved.centre + moved.reach() < 0.0;
+            beside[n] = if empty && cut { 1 } else { 2 };
+        }
+    }
+    for (drawn, &b) in edges.drawn.iter_mut().zip(&beside) {
+        *drawn |= b == 1;
+    }
+    Some(edges)
+}
+
+/// The pixel `pixel`'s candidacy ([`trim_edges`]): not drawn right yet, inside the image by a
+/// pixel, its nine showing a trimmed patch with a cel tone and one other thing, the
+/// background or a patch with a cel tone whose texels all lie behind the trimmed patch's.
+fn candidate(
+    gbuffer: &GBuffer,
+    thing: &impl Fn(usize) -> u32,
+    scene: &Scene,
+    drawn: &[bool],
+    pixel: usize,
+) -> Option<Candidate> {
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    let (x, y) = (pixel % w, pixel / w);
+    if x == 0 || y == 0 || x + 1 >= w || y + 1 >= h {
+        return None;
+    }
+    if gbuffer.slot[pixel] != EMPTY && drawn[gbuffer.slot[pixel] as usize] {
+        return None;
+    }
+    // The two things seen (what the pixel shows, and another), before their depths.
+    let own = thing(pixel);
+    let mut other = None;
+    for n in nine(pixel, w) {
+        let seen = thing(n);
+        if seen == own || other == Some(seen) {
+            continue;
+        }
+        if other.is_some() {
+            return None;
+        }
+        other = Some(seen);
+    }
+    let other = other?;
+    // Each thing's nearest and farthest depth.
+    let mut seen = [
+        (own, f32::INFINITY, f32::NEG_INFINITY),
+        (other, f32::INFINITY, f32::NEG_INFINITY),
+    ];
+    for n in nine(pixel, w) {
+        let Some(t) = gbuffer.texel(n) else {
+            continue;
+        };
+        let s = if t.patch == own {
+            &mut seen[0]
+        } else {
+            &mut seen[1]
+        };
+        s.1 = s.1.min(t.depth);
+        s.2 = s.2.max(t.depth);
+    }
+    let cel = |patch: u32| matches!(scene.looks[patch as usize].tone, Tone::Cel(_));
+    let trimmed = |patch: u32| scene.library.patches[patch as usize].trim.is_some();
+    let (front, other) = match (seen[0].0, seen[1].0) {
+        (EMPTY, p) | (p, EMPTY) => (p, EMPTY),
+        // Both patches: the nearer in front, wholly.
+        _ if seen[0].2 < seen[1].1 => (seen[0].0, seen[1].0),
+        _ if seen[1].2 < seen[0].1 => (seen[1].0, seen[0].0),
+        _ => return None,
+    };
+    let other_ok = other == EMPTY || cel(other);
+    if !(trimmed(front) && cel(front) && other_ok) {
+        return None;
+    }
+    // Beside the side of its domain, a patch ends there, not at its trim.
+    let inside = nine(pixel, w)
+        .all(|n| thing(n) != front || away_from_borders(gbuffer, scene.library, gbuffer.slot[n]));
+    inside.then_some(Candidate {
+        pixel: pixel as u32,
+        front,
+        other,
+    })
+}
+
+/// The nine pixels of `pixel`'s 3 × 3 neighbourhood, row by row, in an image `w` wide (the
+/// pixel lies inside it by one).
+fn nine(pixel: usize, w: usize) -> impl Iterator<Item = usize> {
+    (0..9).map(move |k| pixel + (k / 3) * w + k % 3 - w - 1)
+}
+
+/// The sample of `patch` on the ray of pixel `n`, about candidate `pixel`, with the reach of
+/// (u, v) over a pixel there and whether it is the texel of `n` itself: that texel when it
+/// shows the patch, else the start of a probe, the patch's texel in `pixel`'s neighbourhood
+/// nearest `n` with its (u, v) moved by its slopes to `n` and held in the patch's domain;
+/// `None` where the neighbourhood does not show the patch.
+fn start(
+    gbuffer: &GBuffer,
+    library: &PatchLibrary,
+    pixel: usize,
+    n: usize,
+    patch: u32,
+) -> Option<(Texel, f64, bool)> {
+    let w = gbuffer.width as usize;
+    let reach = |(x, y): (Option<Vec2>, Option<Vec2>)| {
+        let (x, y) = (x.unwrap_or_default(), y.unwrap_or_default());
+        0.5 * f64::from(x.length() + y.length())
+    };
+    if let Some(t) = gbuffer.texel(n).filter(|t| t.patch == patch) {
+        return Some((*t, reach(uv_slopes(gbuffer, gbuffer.slot[n])), true));
+    }
+    let at = |p: usize| DVec2::new((p % w) as f64, (p / w) as f64);
+    let seed = nine(pixel, w)
+        .filter(|&m| gbuffer.texel(m).is_some_and(|t| t.patch == patch))
+        .min_by(|&a, &b| {
+            at(a)
+                .distance_squared(at(n))
+                .total_cmp(&at(b).distance_squared(at(n)))
+        })
+        .map(|m| gbuffer.slot[m]);
+    let slot = seed?;
+    let t = gbuffer.texels[slot as usize];
+    let slopes = uv_slopes(gbuffer, slot);
+    let (along_x, along_y) = slopes;
+    let offset = (at(n) - at(t.pixel as usize)).as_vec2();
+    let uv = t.uv + along_x.unwrap_or_default() * offset.x + along_y.unwrap_or_default() * offset.y;
+    let domain = library.patches[patch as usize].surface.domain();
+    let texel = Texel {
+        pixel: n as u32,
+        uv: Vec2::new(
+            uv.x.clamp(domain.u.0 as f32, domain.u.1 as f32),
+            uv.y.clamp(domain.v.0 as f32, domain.v.1 as f32),
+        ),
+        ..t
+    };
+    Some((texel, reach(slopes), false))
+}
+
+/// One surface at the nine centres about a pixel: its probes, by index.
+struct Surface<'a> {
+    probes: &'a [Texel],
+    signed: &'a super::edge_width::SignedValues<'a>,
+    /// Per probe, its trim's signed distance and the reach it was sought within.
+    trim: &'a [Option<(f64, f64)>],
+    indices: [usize; 9],
+}
+
+impl Surface<'_> {
+    /// The probe at centre `k` (row by row, the pixel's own at 4).
+    fn at(&self, k: usize) -> &Texel {
+        &self.probes[self.indices[k]]
+    }
+
+    /// The trim's signed distance at centre `k` and the reach it was sought within
+    /// ([`Trim::try_signed_distance`](crate::geom::Trim::try_signed_distance); infinite on an
+    /// untrimmed patch); `None` where the search was refused.
+    fn trim_value(&self, k: usize) -> Option<(f64, f64)> {
+        self.trim[self.indices[k]]
+    }
+
+    /// The fraction of the box the surface's trim keeps: 1 or 0 where its rim stays clear of
+    /// the box, the quadratic's cover where the rim crosses it straight enough, `None`
+    /// otherwise (a bend, a jump, a corner, or a rim too near to tell from its reach).
+    fn kept_cover(&self) -> Option<f32> {
+        self.kept_cover_and_rim().map(|(cover, _)| cover)
+    }
+
+    /// [`kept_cover`](Self::kept_cover), and the quadratic of the trim's signed distance over
+    /// the box where its rim is near enough to be taken from it.
+    fn kept_cover_and_rim(&self) -> Option<(f32, Option<BoxQuadratic>)> {
+        let mut f = [[0.0f64; 3]; 3];
+        let mut beyond_reach = false;
+        for (k, value) in f.iter_mut().flatten().enumerate() {
+            let (distance, reach) = self.trim_value(k)?;
+            *value = distance;
+            beyond_reach |= distance.abs() >= reach;
+        }
+        let (centre, reach) = self.trim_value(4)?;
+        if centre == f64::INFINITY {
+            return Some((1.0, None));
+        }
+        // A value at its reach is farther than the search looked: the rim is far from that
+        // centre, and the quadratic would not follow it. Clear when far from the pixel's own.
+        if beyond_reach {
+            let clear = centre.abs() > 0.5 * reach;
+            return clear.then_some((if centre > 0.0 { 1.0 } else { 0.0 }, None));
+        }
+        let q = BoxQuadratic::through(&f.map(|row| row.map(|v| v as f32)));
+        let spread = q.reach();
+        if !(spread.is_finite() && q.centre.is_finite()) {
+            return None;
+        }
+        let cover = if q.centre - spread > 0.0 {
+            1.0
+        } else if q.centre + spread < 0.0 {
+            0.0
+        } else {
+            match q.crossing(0.0, SMOOTH_BEND, JUMP)? {
+                LevelCrossing::Straight => q.coverage_above(0.0),
+                LevelCrossing::Bent => return None,
+            }
+        };
+        Some((cover, Some(q)))
+    }
+
+    /// Whether the surface's highlight edges and its cel tone's band edges are clear of the
+    /// box, from their values at the nine probes.
+    fn clear_of_box(&self, scene: &Scene) -> bool {
+        let t = self.at(4);
+        let Tone::Cel(ramp) = &scene.looks[t.patch as usize].tone else {
+            return false;
+        };
+        let n_dot_l = std::array::from_fn(|y| {
+            std::array::from_fn(|x| {
+                let t = self.at(3 * y + x);
+                let n = t.frame.n;
+                n.dot(scene.light.direction(t.position, n))
+            })
+        });
+        let layers = &self.signed.layers[t.patch as usize];
+        band_clear_of_box(ramp, &n_dot_l)
+            && highlights_clear_of_box(layers, |j| {
+                std::array::from_fn(|y| {
+                    std::array::from_fn(|x| self.signed.at(self.indices[3 * y + x], j))
+                })
+            })
+    }
+}
+
+/// How far, in multiples of the box's reach in (u, v), the trim's rim is looked for about each
+/// of the nine centres: a rim that crosses the box lies within about one of every centre.
+const TRIM_REACH: f64 = 4.0;
+
+/// Draws the pixels of `edges` a rim crosses in `shaded`: the premultiplied mix
+/// `cover · kept + (1 − cover) · beyond` of the colours (and the matte and `N·H`) of the two
+/// samples at the pixel's centre, shaded as `shade` shades ([`trim_edges`]); nothing beyond is
+/// the background, transparent.
+pub(super) fn composite(
+    edges: &TrimEdges,
+    shade: impl FnOnce(&GBuffer) -> Shaded,
+    shaded: &mut Shaded,
+) {
+    if edges.crossed.is_empty() {
+        return;
+    }
+    // Two pixels a crossed one, side by side: its kept sample, then what lies beyond.
+    let mut samples = GBuffer {
+        width: 2,
+        height: edges.crossed.len() as u32,
+        slot: vec![EMPTY; 2 * edges.crossed.len()],
+        texels: Vec::with_capacity(2 * edges.crossed.len()),
+    };
+    for (j, crossed) in edges.crossed.iter().enumerate() {
+        for (side, texel) in [Some(crossed.kept), crossed.beyond].into_iter().enumerate() {
+            if let Some(texel) = texel {
+                samples.slot[2 * j + side] = samples.texels.len() as u32;
+                samples.texels.push(Texel {
+                    pixel: (2 * j + side) as u32,
+                    ..texel
+                });
+            }
+        }
+    }
+    let two = shade(&samples);
+    for (j, crossed) in edges.crossed.iter().enumerate() {
+        let (a, b) = (2 * j, 2 * j + 1);
+        let c = crossed.cover;
+        let p = crossed.pixel as usize;
+        let colour: Vec4 =
+            premultiplied(two.colour[a]) * c + premultiplied(two.colour[b]) * (1.0 - c);
+        shaded.colour[p] = straight(colour);
+        if let (Some(matte), Some(m)) = (shaded.matte.as_mut(), two.matte.as_ref()) {
+            matte[p] = m[a] * c + m[b] * (1.0 - c);
+        }
+        if let (Some(n_dot_h), Some(n)) = (shaded.n_dot_h.as_mut(), two.n_dot_h.as_ref()) {
+            n_dot_h[p] = n[a] * c + n[b] * (1.0 - c);
+        }
+    }
+}
