@@ -22,5 +22,5 @@ pub use knots::{KnotVector, MAX_DEGREE};
 pub use library::{NamedPatch, PatchGroup, PatchLibrary, PatchNotFound};
 pub use on_ray::{RaySearch, ALL_EVALUATIONS, REFINE_STEPS};
 pub use surface::{Domain, NurbsSurface, SurfaceDerivs, MAX_COORDINATE, MAX_WEIGHT, MIN_WEIGHT};
-pub use trim::{Region, Trim, TrimError, MAX_TRIM_SEGMENTS};
+pub use trim::{Region, Trim, TrimError, MAX_TRIM_SEGMENTS, MOST_CELLS_SEARCHED};
 pub use trim_curve::TrimCurve;

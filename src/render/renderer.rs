@@ -629,7 +629,9 @@ impl Edged {
 
 /// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint
 /// and how the tone's band edges meet the pixel; under `adaptive` anti-aliasing also how the
-/// highlight's edges meet it and whether it is [`drawn`] right at one sample. With `settle`,
+/// highlight's edges meet it and whether it is [`drawn`] right at one sample, and on a frame
+/// with trimmed patches which pixels about their rims are drawn right ([`trim_edges`], seen
+/// through `view_projection`). With `settle`,
 /// the view-projection and the settings' frames where the G-buffer's are interpolated, the
 /// texels the straight band edges and smooth highlight edges are drawn from are evaluated
 /// again in those frames ([`Settled`]).
