@@ -8,6 +8,7 @@ use super::band_edge::{band_clear_of_box, JUMP};
 use super::edge_width::signed_values_of;
 use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
 use super::highlight_edge::{highlights_clear_of_box, SMOOTH_BEND};
+use super::neighbourhood::around;
 use super::renderer::{premultiplied, straight};
 use super::scene::{Scene, Tone};
 use super::seeded::{away_from_borders, uv_slopes};
@@ -43,6 +44,10 @@ pub(super) struct Crossed {
     /// The trim's signed distance over the box, as its cover was taken.
     pub rim: BoxQuadratic,
 }
+
+/// A candidate drawn right: where the rim crosses it, what its cut part shows at the centre
+/// (`None` inside: the background), and the trimmed patch's samples at its nine centres.
+type Judged = (Option<Option<Texel>>, [usize; 9]);
 
 /// A pixel whose 3 × 3 neighbourhood shows two things: the trimmed patch `front`, and `other`
 /// (a patch behind it, or [`EMPTY`] for the background).
@@ -142,7 +147,7 @@ pub(super) fn trim_edges(
     let mut asked: Vec<[(u32, u32); 2]> = Vec::new();
     let mut wanted: Vec<(usize, u32, usize)> = Vec::new();
     for candidate in &candidates {
-        for n in nine(candidate.pixel as usize, w) {
+        for n in around(candidate.pixel as usize, (w, h)) {
             for surface in [candidate.front, candidate.other] {
                 if surface == EMPTY {
                     continue;
@@ -187,24 +192,14 @@ pub(super) fn trim_edges(
         uv_reach.push(reach);
         landed.push(own && found);
     }
-    let mut searched: Vec<Texel> = foreign.iter().map(|&k| probes[k as usize]).collect();
-    edges.frames = GBuffer::evaluate_frames(
-        &mut searched,
-        library,
-        &scene.camera,
-        view_projection,
-        (gbuffer.width, gbuffer.height),
-        FrameMode::Refined,
-        Evaluate::Probe,
-    );
-    let size = (gbuffer.width, gbuffer.height);
-    for (&k, mut t) in foreign.iter().zip(searched) {
-        let depth = landed_depth(view_projection, t.position, t.pixel, size);
-        if let Some(depth) = depth {
-            t.depth = depth;
-        }
-        probes[k as usize] = t;
-        landed[k as usize] = depth.is_some();
+    let foreign: Vec<usize> = foreign.into_iter().map(|k| k as usize).collect();
+    let onto_rays = |probes: &mut [Texel], which: &[usize]| -> (Vec<bool>, u64) {
+        onto_rays(gbuffer, scene, view_projection, probes, which)
+    };
+    let (found, frames) = onto_rays(&mut probes, &foreign);
+    edges.frames = frames;
+    for (&k, found) in foreign.iter().zip(found) {
+        landed[k] = found;
     }
     let signed = signed_values_of(&probes, scene);
     // Per probe, its trim's signed distance and the reach it was sought within.
@@ -232,12 +227,12 @@ pub(super) fn trim_edges(
         landed[k].then_some(k)
     };
 
-    let judged: Vec<Option<(Option<Crossed>, [usize; 9])>> = candidates
+    let judged: Vec<Option<Judged>> = candidates
         .par_iter()
         .map(|candidate| {
             let pixel = candidate.pixel as usize;
             let mut front = [0usize; 9];
-            for (slot, n) in front.iter_mut().zip(nine(pixel, w)) {
+            for (slot, n) in front.iter_mut().zip(around(pixel, (w, h))) {
                 *slot = find(n, candidate.front)?;
             }
             let surface = |probes_of: &[usize; 9]| Surface {
@@ -250,9 +245,9 @@ pub(super) fn trim_edges(
             let cover = front_surface.kept_cover()?;
             // Each centre sees the trimmed patch where its trim keeps it, the other thing where
             // it does not.
-            for (k, n) in nine(pixel, w).enumerate() {
+            for (k, n) in around(pixel, (w, h)).enumerate() {
                 let kept = front_surface.trim_value(k)?.0 > 0.0;
-                let seen = gbuffer.texel(n).map_or(EMPTY, |t| t.patch);
+                let seen = thing(n);
                 let expected = if kept {
                     candidate.front
                 } else {
@@ -269,7 +264,7 @@ pub(super) fn trim_edges(
                 None
             } else {
                 let mut behind = [0usize; 9];
-                for (slot, n) in behind.iter_mut().zip(nine(pixel, w)) {
+                for (slot, n) in behind.iter_mut().zip(around(pixel, (w, h))) {
                     *slot = find(n, candidate.other)?;
                 }
                 let behind_surface = surface(&behind);
@@ -283,23 +278,18 @@ pub(super) fn trim_edges(
                 }
                 Some(probes[behind[4]])
             };
-            let crossed = (cover > 0.0 && cover < 1.0).then_some(Crossed {
-                pixel: candidate.pixel,
-                cover,
-                kept: probes[front[4]],
-                beyond,
-                rim: BoxQuadratic::through(&[[0.0; 3]; 3]),
-            });
-            Some((crossed, front))
+            // A pixel the rim crosses, with what its cut part shows at the centre.
+            let crossing = (cover > 0.0 && cover < 1.0).then_some(beyond);
+            Some((crossing, front))
         })
         .collect();
-    let mut fronts = Vec::new();
+    // The pixels the rim crosses: (pixel, what lies beyond, the trimmed patch's samples).
+    let mut crossings = Vec::new();
     for (candidate, judged) in candidates.iter().zip(judged) {
-        if let Some((crossed, front)) = judged {
+        if let Some((crossing, front)) = judged {
             edges.drawn[candidate.pixel as usize] = true;
-            if let Some(crossed) = crossed {
-                edges.crossed.push(crossed);
-                fronts.push(front);
+            if let Some(beyond) = crossing {
+                crossings.push((candidate.pixel, beyond, front));
             }
         }
     }
@@ -308,69 +298,53 @@ pub(super) fn trim_edges(
     // on their rays (the G-buffer's may be interpolated from the mesh, a few hundredths of a
     // pixel off), and the cover taken again from them.
     let mut settle = vec![false; probes.len()];
-    for &k in fronts.iter().flatten() {
+    for &k in crossings.iter().flat_map(|(_, _, front)| front) {
         settle[k] = true;
     }
     for &k in &foreign {
-        settle[k as usize] = false;
+        settle[k] = false;
     }
     let settled: Vec<usize> = (0..probes.len()).filter(|&k| settle[k]).collect();
-    let mut again: Vec<Texel> = settled.iter().map(|&k| probes[k]).collect();
-    edges.frames += GBuffer::evaluate_frames(
-        &mut again,
-        library,
-        &scene.camera,
-        view_projection,
-        size,
-        FrameMode::Refined,
-        Evaluate::Probe,
-    );
-    for (&k, mut t) in settled.iter().zip(again) {
-        match landed_depth(view_projection, t.position, t.pixel, size) {
-            Some(depth) => {
-                t.depth = depth;
-                probes[k] = t;
-                trim[k] = trim_of(&t, uv_reach[k]);
-            }
-            None => trim[k] = None,
-        }
+    let (found, frames) = onto_rays(&mut probes, &settled);
+    edges.frames += frames;
+    for (&k, found) in settled.iter().zip(found) {
+        trim[k] = if found {
+            trim_of(&probes[k], uv_reach[k])
+        } else {
+            None
+        };
     }
-    let mut kept = Vec::with_capacity(edges.crossed.len());
-    for (crossed, front) in edges.crossed.iter_mut().zip(&fronts) {
+    for (pixel, beyond, front) in crossings {
         let surface = Surface {
             probes: &probes,
             signed: &signed,
             trim: &trim,
-            indices: *front,
+            indices: front,
         };
         match surface.kept_cover_and_rim() {
-            Some((cover, Some(rim))) => {
-                crossed.cover = cover;
-                crossed.kept = probes[front[4]];
-                crossed.rim = rim;
-                kept.push(true);
-            }
-            Some((_, None)) | None => {
-                edges.drawn[crossed.pixel as usize] = false;
-                kept.push(false);
-            }
+            Some((cover, Some(rim))) => edges.crossed.push(Crossed {
+                pixel,
+                cover,
+                kept: probes[front[4]],
+                beyond,
+                rim,
+            }),
+            Some((_, None)) | None => edges.drawn[pixel as usize] = false,
         }
     }
-    let mut keep = kept.into_iter();
-    edges.crossed.retain(|_| keep.next().unwrap_or(false));
 
     // An uncovered pixel whose nine are all uncovered, beside pixels the rim crosses, shows
     // the background when each of their rims, carried over to its box, stays cut over it.
     let mut beside = vec![0u8; w * h];
     for crossed in edges.crossed.iter().filter(|c| c.beyond.is_none()) {
         let c = crossed.pixel as usize;
-        for n in nine(c, w).filter(|&n| n != c) {
+        for n in around(c, (w, h)).filter(|&n| n != c) {
             let (x, y) = (n % w, n / w);
             let inside = x > 0 && y > 0 && x + 1 < w && y + 1 < h;
             if !inside || edges.drawn[n] || beside[n] == 2 {
                 continue;
             }
-            let empty = nine(n, w).all(|m| thing(m) == EMPTY);
+            let empty = around(n, (w, h)).all(|m| thing(m) == EMPTY);
             let d = |a: usize, b: usize| a as f32 - b as f32;
             let moved = crossed.rim.moved_to(d(x, c % w), d(y, c / w));
             let cut = moved.centre + moved.reach() < 0.0;
@@ -404,7 +378,7 @@ fn candidate(
     // The two things seen (what the pixel shows, and another), before their depths.
     let own = thing(pixel);
     let mut other = None;
-    for n in nine(pixel, w) {
+    for n in around(pixel, (w, h)) {
         let seen = thing(n);
         if seen == own || other == Some(seen) {
             continue;
@@ -420,7 +394,7 @@ fn candidate(
         (own, f32::INFINITY, f32::NEG_INFINITY),
         (other, f32::INFINITY, f32::NEG_INFINITY),
     ];
-    for n in nine(pixel, w) {
+    for n in around(pixel, (w, h)) {
         let Some(t) = gbuffer.texel(n) else {
             continue;
         };
@@ -446,7 +420,7 @@ fn candidate(
         return None;
     }
     // Beside the side of its domain, a patch ends there, not at its trim.
-    let inside = nine(pixel, w)
+    let inside = around(pixel, (w, h))
         .all(|n| thing(n) != front || away_from_borders(gbuffer, scene.library, gbuffer.slot[n]));
     inside.then_some(Candidate {
         pixel: pixel as u32,
@@ -455,10 +429,41 @@ fn candidate(
     })
 }
 
-/// The nine pixels of `pixel`'s 3 × 3 neighbourhood, row by row, in an image `w` wide (the
-/// pixel lies inside it by one).
-fn nine(pixel: usize, w: usize) -> impl Iterator<Item = usize> {
-    (0..9).map(move |k| pixel + (k / 3) * w + k % 3 - w - 1)
+/// Moves each of the `probes` numbered in `which` onto its pixel's ray in the image of
+/// `gbuffer` (`GBuffer::evaluate_frames`, refined, within a probe's evaluations) and sets its
+/// depth where it lands there ([`landed_depth`]); a probe that does not land keeps the
+/// frame it was given. Per probe of `which`, whether it landed, and the frames evaluated.
+fn onto_rays(
+    gbuffer: &GBuffer,
+    scene: &Scene,
+    view_projection: Mat4,
+    probes: &mut [Texel],
+    which: &[usize],
+) -> (Vec<bool>, u64) {
+    let mut searched: Vec<Texel> = which.iter().map(|&k| probes[k]).collect();
+    let size = (gbuffer.width, gbuffer.height);
+    let frames = GBuffer::evaluate_frames(
+        &mut searched,
+        scene.library,
+        &scene.camera,
+        view_projection,
+        size,
+        FrameMode::Refined,
+        Evaluate::Probe,
+    );
+    let found = which
+        .iter()
+        .zip(searched)
+        .map(|(&k, mut t)| {
+            let depth = landed_depth(view_projection, t.position, t.pixel, size);
+            if let Some(depth) = depth {
+                t.depth = depth;
+                probes[k] = t;
+            }
+            depth.is_some()
+        })
+        .collect();
+    (found, frames)
 }
 
 /// The sample of `patch` on the ray of pixel `n`, about candidate `pixel`, with the reach of
@@ -473,7 +478,7 @@ fn start(
     n: usize,
     patch: u32,
 ) -> Option<(Texel, f64, bool)> {
-    let w = gbuffer.width as usize;
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     let reach = |(x, y): (Option<Vec2>, Option<Vec2>)| {
         let (x, y) = (x.unwrap_or_default(), y.unwrap_or_default());
         0.5 * f64::from(x.length() + y.length())
@@ -482,7 +487,7 @@ fn start(
         return Some((*t, reach(uv_slopes(gbuffer, gbuffer.slot[n])), true));
     }
     let at = |p: usize| DVec2::new((p % w) as f64, (p / w) as f64);
-    let seed = nine(pixel, w)
+    let seed = around(pixel, (w, h))
         .filter(|&m| gbuffer.texel(m).is_some_and(|t| t.patch == patch))
         .min_by(|&a, &b| {
             at(a)
