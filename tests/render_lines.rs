@@ -323,3 +323,67 @@ fn the_torus_s_contours_are_the_visible_true_contour_unbroken() {
         }
     }
 }
+
+/// Where `p` lands on a `size`-pixel square image through `view_projection`, in pixels.
+fn on_image(view_projection: Mat4, p: DVec3, size: f32) -> Vec2 {
+    let c = view_projection * p.as_vec3().extend(1.0);
+    Vec2::new(
+        (c.x / c.w + 1.0) * 0.5 * size,
+        (1.0 - c.y / c.w) * 0.5 * size,
+    )
+}
+
+#[test]
+fn a_plate_s_open_borders_seen_nearly_edge_on_are_inked_unbroken_at_one_sample() {
+    // A 2 × 2 plate seen from 5° to 18° above its plane (its far border at 4° and more):
+    // nothing hides its borders, though the plate itself lies nearer than its far border over
+    // the pixels about it. The final preset tests the lines against one sample a pixel.
+    let library = library(shapes::plane(2.0, 2.0).unwrap());
+    let settings = Settings::final_quality(SIZE, SIZE);
+    let corners = [
+        DVec3::new(-1.0, -1.0, 0.0),
+        DVec3::new(1.0, -1.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.0),
+        DVec3::new(-1.0, 1.0, 0.0),
+    ];
+    let mut views = 0;
+    for elevation in [5.0f32, 8.0, 12.0, 18.0] {
+        for k in 0..8 {
+            let azimuth = (k as f32 * 45.0 + 10.0).to_radians();
+            let e = elevation.to_radians();
+            let camera = Camera {
+                eye: 5.0 * Vec3::new(e.cos() * azimuth.cos(), e.cos() * azimuth.sin(), e.sin()),
+                target: Vec3::ZERO,
+                up: Vec3::Z,
+                projection: Projection::Perspective {
+                    fov_y_degrees: FOV_DEGREES,
+                },
+                near: 0.1,
+                far: 100.0,
+            };
+            let view_projection = camera.view_projection(1.0);
+            let (alpha, _) = lines(&library, camera, 2.0, &settings);
+            let size = (SIZE as usize, SIZE as usize);
+            // Every point of the four borders, 100 to a side, away from the corners where two
+            // lines end, is inked.
+            for side in 0..4 {
+                let (a, b) = (corners[side], corners[(side + 1) % 4]);
+                for i in 5..=95 {
+                    let p = on_image(
+                        view_projection,
+                        a.lerp(b, f64::from(i) / 100.0),
+                        SIZE as f32,
+                    );
+                    assert!(
+                        bilinear(&alpha, size, p) >= 0.5,
+                        "{elevation}° up, azimuth {k}: side {side} not inked at ({:.1}, {:.1})",
+                        p.x,
+                        p.y
+                    );
+                }
+            }
+            views += 1;
+        }
+    }
+    assert_eq!(views, 32);
+}

@@ -60,35 +60,42 @@ pub(crate) fn borders_and_creases(
         .with_min_len(256)
         .flat_map_iter(|edge| {
             let surface = &library.patches[edge.patch as usize].surface;
-            let draw = |span: (f64, f64), kind: Option<(LineKind, f32)>, patches: [u32; 2]| {
-                kind.filter(|&(kind, _)| drawn(patches[0], kind) || drawn(patches[1], kind))
-                    .map(|kind| {
-                        pieces(
-                            mesh,
-                            surface,
-                            edge,
-                            span,
-                            kind,
-                            patches,
-                            view_projection,
-                            size,
-                        )
-                    })
-                    .into_iter()
-                    .flatten()
-            };
+            // `open`: nothing continues the surface past the piece.
+            let draw =
+                |span: (f64, f64), kind: Option<(LineKind, f32)>, patches: [u32; 2], open| {
+                    kind.filter(|&(kind, _)| drawn(patches[0], kind) || drawn(patches[1], kind))
+                        .map(|(kind, opacity)| {
+                            pieces(
+                                mesh,
+                                surface,
+                                edge,
+                                span,
+                                (kind, opacity, open),
+                                patches,
+                                view_projection,
+                                size,
+                            )
+                        })
+                        .into_iter()
+                        .flatten()
+                };
             let whole = [edge.patch, edge.patch_across()];
             sides_kept(mesh, library, edge)
                 .into_iter()
                 .flat_map(move |(span, here, across)| match (here, across) {
-                    (true, true) => draw(span, classify(mesh, facing, outlines, edge), whole),
+                    (true, true) => {
+                        let kind = classify(mesh, facing, outlines, edge);
+                        draw(span, kind, whole, edge.across.is_none())
+                    }
                     // What a trim leaves of the boundary on one side only is an open border.
-                    (true, false) => draw(span, Some((LineKind::Border, 1.0)), [edge.patch; 2]),
+                    (true, false) => {
+                        draw(span, Some((LineKind::Border, 1.0)), [edge.patch; 2], true)
+                    }
                     (false, true) => {
                         let other = edge.patch_across();
-                        draw(span, Some((LineKind::Border, 1.0)), [other; 2])
+                        draw(span, Some((LineKind::Border, 1.0)), [other; 2], true)
                     }
-                    (false, false) => draw(span, None, whole),
+                    (false, false) => draw(span, None, whole, false),
                 })
                 .collect::<Vec<_>>()
         })
@@ -178,7 +185,7 @@ fn pieces(
     surface: &crate::geom::NurbsSurface,
     edge: &BorderEdge,
     (t0, t1): (f64, f64),
-    (kind, opacity): (LineKind, f32),
+    (kind, opacity, open): (LineKind, f32, bool),
     patches: [u32; 2],
     view_projection: Mat4,
     size: (u32, u32),
@@ -217,6 +224,7 @@ fn pieces(
             on_mesh: [w[0].1, w[1].1],
             opacity,
             kind,
+            open,
             patches,
         })
         .collect()

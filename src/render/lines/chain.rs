@@ -185,7 +185,11 @@ pub(crate) fn sample_piece(on: &OnScreen, depth: &DepthTest) -> Vec<bool> {
     (0..=n)
         .map(|i| {
             let t = i as f32 / n as f32;
-            depth.shows(on.point(t), on.depth(t), on.reach_at(t))
+            let (point, z, reach) = (on.point(t), on.depth(t), on.reach_at(t));
+            match on.open_on {
+                Some(patch) => depth.shows_open(point, z, reach, patch),
+                None => depth.shows(point, z, reach),
+            }
         })
         .collect()
 }
@@ -371,6 +375,7 @@ mod tests {
             on_mesh: [a.as_vec3(), b.as_vec3()],
             opacity: 1.0,
             kind: LineKind::Silhouette,
+            open: false,
             patches: [0, 0],
         }
     }

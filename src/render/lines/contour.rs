@@ -298,6 +298,7 @@ impl OnPatch<'_> {
             on_mesh: [start.on_mesh, end.on_mesh],
             opacity: 1.0,
             kind: LineKind::Silhouette,
+            open: false,
             patches: [self.patch; 2],
         }
     }

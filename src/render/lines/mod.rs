@@ -221,6 +221,7 @@ pub(super) fn draw_lines(
         on_mesh: m.ends,
         opacity: 1.0,
         kind: LineKind::Intersection,
+        open: false,
         patches: m.patches,
     }));
     let (pieces, style): (Vec<Piece>, Vec<u32>) = pieces
@@ -228,7 +229,12 @@ pub(super) fn draw_lines(
         .filter_map(|piece| style_of(&piece, styles).map(|s| (piece, s)))
         .unzip();
     let (w, h) = input.size;
-    let depth = DepthTest::new(input.visibility, input.k, input.camera);
+    let depth = DepthTest::new(
+        input.visibility,
+        &input.mesh.triangle_patch,
+        input.k,
+        input.camera,
+    );
     let screen: Vec<_> = pieces
         .par_iter()
         .zip(&style)

@@ -19,6 +19,11 @@ pub(crate) struct Piece {
     /// How strongly the piece is inked, in [0, 1] (a crease fading with its angle).
     pub opacity: f32,
     pub kind: LineKind,
+    /// Whether its surface ends at it with nothing beyond: a border no other patch continues
+    /// (a patch's open side, what a trim leaves of a boundary on one side, a trim's rim). Seen
+    /// edge-on, such a border outlines its surface as a silhouette does
+    /// ([`DepthTest::shows_open`](super::visible::DepthTest::shows_open)).
+    pub open: bool,
     /// The patches it lies on: the same twice for a curve of one patch, the two patches for a
     /// seam or an intersection.
     pub patches: [u32; 2],
@@ -42,6 +47,9 @@ pub(crate) struct OnScreen {
     ///
     /// [`DepthTest::shows`]: super::visible::DepthTest::shows
     pub reach: f32,
+    /// The patch of an open border ([`Piece::open`]), whose depth test is
+    /// [`DepthTest::shows_open`](super::visible::DepthTest::shows_open).
+    pub open_on: Option<u32>,
 }
 
 impl Piece {
@@ -77,6 +85,7 @@ impl Piece {
                 LineKind::Silhouette | LineKind::Intersection => 1.0,
                 LineKind::Crease | LineKind::Border => 0.5,
             },
+            open_on: (self.kind == LineKind::Border && self.open).then_some(self.patches[0]),
         })
     }
 }

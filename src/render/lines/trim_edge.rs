@@ -158,6 +158,7 @@ impl OnPatch<'_> {
                 on_mesh: [from_mesh, to.mesh],
                 opacity: 1.0,
                 kind: LineKind::Border,
+                open: true,
                 patches: [self.patch; 2],
             });
             (from, from_mesh) = (on_to, to.mesh);
