@@ -219,7 +219,9 @@ fn a_cel_frame_finds_its_edges_on_interpolated_frames_and_draws_them_refined() {
     );
     // Where an edge only grazes a pixel, which pixels the contrast marks can differ by one: a
     // pixel may differ by one sample of its 16 (a sixteenth of the largest contrast in the
-    // scene, white highlight on blue), and only a few pixels may differ at all.
+    // scene, white highlight on blue), and only a few pixels may differ at all. (Where the lid
+    // and the body end side by side, the pixels drawn again are those whose (u, v) lie near
+    // the ends, which refining moves by a hair: a few more of them may differ.)
     let differences: Vec<f32> = flat
         .colour
         .iter()
@@ -229,7 +231,7 @@ fn a_cel_frame_finds_its_edges_on_interpolated_frames_and_draws_them_refined() {
     let largest = differences.iter().copied().fold(0.0, f32::max);
     assert!(largest <= 1.0 / 16.0 + 1e-4, "{largest}");
     let differing = differences.iter().filter(|&&d| d > 2.0 / 255.0).count() as i64;
-    assert!(differing <= covered / 1000, "{differing} pixels differ");
+    assert!(differing <= covered / 500, "{differing} pixels differ");
 }
 
 /// `scene` rendered at `size × size` with `final`'s settings but `antialias`.
@@ -413,4 +415,84 @@ fn a_highlight_edge_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
         "{added} more supersampled for {} crossed",
         crossed.len()
     );
+}
+
+#[test]
+fn a_gap_thinner_than_a_pixel_between_two_patches_that_end_there_is_drawn_with_its_area() {
+    // Two plates of one colour, seen straight on through an orthographic camera 200 px across
+    // 2.4 units, side by side with a gap of 0.4 px between them that lies between the centres
+    // of pixel columns 99 and 100: each of the two columns is 0.2 px of gap.
+    use glint::geom::{NamedPatch, NurbsSurface};
+    let pixel = 2.4 / 200.0;
+    let gap = 0.4 * pixel;
+    let plate = |x0: f64, x1: f64| {
+        let points = vec![
+            vec![
+                glam::DVec3::new(x0, -1.0, 0.0),
+                glam::DVec3::new(x0, 1.0, 0.0),
+            ],
+            vec![
+                glam::DVec3::new(x1, -1.0, 0.0),
+                glam::DVec3::new(x1, 1.0, 0.0),
+            ],
+        ];
+        let knots = vec![0.0, 0.0, 1.0, 1.0];
+        NurbsSurface::new(1, 1, knots.clone(), knots, &points, None).unwrap()
+    };
+    let library = Arc::new(PatchLibrary {
+        patches: [
+            ("left", plate(-1.0, -0.5 * gap)),
+            ("right", plate(0.5 * gap, 1.0)),
+        ]
+        .into_iter()
+        .map(|(name, surface)| NamedPatch {
+            name: name.into(),
+            trim: None,
+            surface,
+        })
+        .collect(),
+        groups: Vec::new(),
+    });
+    let scene = Scene {
+        library: &library,
+        looks: (0..2)
+            .map(|_| PatchLook {
+                lines: None,
+                tone: Tone::Cel(CelRamp::two_tone(
+                    Vec3::new(0.2, 0.25, 0.5),
+                    Vec3::new(0.4, 0.55, 0.9),
+                    0.1,
+                )),
+                highlight: None,
+            })
+            .collect(),
+        camera: glint::render::Camera {
+            eye: Vec3::new(0.0, 0.0, 5.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            projection: Projection::Orthographic { height: 2.4 },
+            near: 0.1,
+            far: 100.0,
+        },
+        light: Light::Directional {
+            towards: Vec3::new(0.2, 0.3, 0.9).normalize(),
+        },
+        outlines: None,
+        aovs: Aovs::default(),
+    };
+    let frame = Renderer::new(Arc::clone(&library))
+        .render(&scene, &Settings::final_quality(200, 200))
+        .unwrap();
+    // Away from the plates' ends, the two columns take 0.8 of a pixel each, the 4 × 4 samples
+    // of the pixel within one column of samples (a quarter), the columns beside them all.
+    for y in 20..180 {
+        for x in 97..103 {
+            let alpha = frame.colour[y * 200 + x].w;
+            let truth = if x == 99 || x == 100 { 0.8 } else { 1.0 };
+            assert!(
+                (alpha - truth).abs() <= 0.06,
+                "pixel ({x}, {y}): alpha {alpha}, truth {truth}"
+            );
+        }
+    }
 }

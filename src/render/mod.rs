@@ -20,6 +20,7 @@ mod highlight_edge;
 mod line_style;
 mod lines;
 mod neighbourhood;
+mod open_side;
 mod plan;
 pub mod raster;
 mod renderer;

@@ -9,6 +9,7 @@ use super::dilate::dilate;
 use super::gbuffer::{Evaluate, GBuffer, EMPTY};
 use super::lines::LineImage;
 use super::neighbourhood::around;
+use super::open_side::{beside_open_sides, open_sides};
 use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::renderer::{premultiplied, straight};
 use super::scene::Scene;
@@ -134,7 +135,8 @@ pub(super) fn landed_depth(
 
 /// Draws again, at `frame.k × frame.k` samples, each pixel of `shaded` (a one-sample image of
 /// `frame.image`'s size) whose colour or matte differs from a neighbour's, or that a highlight
-/// edge may cross unseen ([`pixels_to_supersample`]), and puts there the average of its samples: premultiplied colour
+/// edge may cross unseen ([`pixels_to_supersample`]), or where two patches end side by side
+/// ([`beside_open_sides`]), and puts there the average of its samples: premultiplied colour
 /// `α = mean(α_s)`, `rgb = mean(α_s rgb_s)/α`, and the mean matte and `N·H`.
 ///
 /// A pixel the frame's lines wholly ink is left as it is, unless an AOV of the shading (the
@@ -154,10 +156,27 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
         texels,
         pixels: frame.drawn_pixels,
     });
+    // Where patches end side by side, a gap between them may be thinner than a pixel.
+    let open = open_sides(frame.mesh, frame.library);
+    let beside_open = open
+        .iter()
+        .flatten()
+        .any(|&o| o)
+        .then(|| beside_open_sides(gbuffer, frame.library, &open));
+    let also = match (frame.straddles, beside_open) {
+        (Some(straddles), Some(mut beside)) => {
+            for (b, &s) in beside.iter_mut().zip(straddles) {
+                *b |= s;
+            }
+            Some(beside)
+        }
+        (None, beside) => beside,
+        (Some(_), None) => None,
+    };
     let mut marked = pixels_to_supersample(
         &shaded.colour,
         shaded.matte.as_deref(),
-        frame.straddles,
+        also.as_deref().or(frame.straddles),
         drawn,
         w,
         h,

@@ -1,0 +1,109 @@
+//! Where two patches meet, each near a side of its domain that nothing continues: they may
+//! leave a gap between them there thinner than a pixel, which no pixel centre sees.
+
+use rayon::prelude::*;
+
+use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use super::neighbourhood::around;
+use super::seeded::uv_slopes;
+use super::tessellate::Mesh;
+use crate::geom::{Edge, PatchLibrary};
+
+/// How near an open side of its patch's domain, in pixels by the slope of its (u, v), a texel
+/// beside another patch must lie for the pair's pixels to be drawn at k × k samples.
+const OPEN_SIDE_PIXELS: f32 = 1.5;
+
+/// Per patch of `library`, whether each side of its domain ([`Edge::ALL`] order) has a piece of
+/// boundary in `mesh` that no other patch continues (the mesh's boundary pieces with nothing
+/// across).
+#[must_use]
+pub(super) fn open_sides(mesh: &Mesh, library: &PatchLibrary) -> Vec<[bool; 4]> {
+    let mut open = vec![[false; 4]; library.patches.len()];
+    for edge in mesh.borders.iter().filter(|e| e.across.is_none()) {
+        let domain = library.patches[edge.patch as usize].surface.domain();
+        let (a, b) = (mesh.uvs[edge.a as usize], mesh.uvs[edge.b as usize]);
+        let on = |x: f32, y: f32, at: f64, span: f64| {
+            let near = |t: f32| (f64::from(t) - at).abs() <= 1e-6 * span;
+            near(x) && near(y)
+        };
+        let (du, dv) = (domain.u.1 - domain.u.0, domain.v.1 - domain.v.0);
+        for (k, side) in Edge::ALL.into_iter().enumerate() {
+            open[edge.patch as usize][k] |= match side {
+                Edge::UMin => on(a.x, b.x, domain.u.0, du),
+                Edge::UMax => on(a.x, b.x, domain.u.1, du),
+                Edge::VMin => on(a.y, b.y, domain.v.0, dv),
+                Edge::VMax => on(a.y, b.y, domain.v.1, dv),
+            };
+        }
+    }
+    open
+}
+
+/// Per pixel of `gbuffer`'s image, whether it shows a patch and one of its eight neighbours
+/// shows another, each texel within [`OPEN_SIDE_PIXELS`] of an open side of its own patch
+/// (`open`, per patch as [`open_sides`] gives it). Two patches that end there side by side
+/// (doors in a body) may leave a gap thinner than a pixel, through which what lies behind
+/// shows, and both may have one colour: the colours of the pixel centres show neither the gap
+/// nor the edge. Where one of them goes on, what shows past the other's end is the one that
+/// goes on.
+#[must_use]
+pub(super) fn beside_open_sides(
+    gbuffer: &GBuffer,
+    library: &PatchLibrary,
+    open: &[[bool; 4]],
+) -> Vec<bool> {
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    let mut marked = vec![false; w * h];
+    if !open.iter().flatten().any(|&o| o) {
+        return marked;
+    }
+    let near_open = |slot: u32| near_open_side(gbuffer, library, open, slot);
+    marked
+        .par_iter_mut()
+        .enumerate()
+        .with_min_len(PIXELS_PER_JOB)
+        .for_each(|(p, mark)| {
+            let Some(t) = gbuffer.texel(p) else {
+                return;
+            };
+            *mark = around(p, (w, h)).any(|n| {
+                gbuffer.texel(n).is_some_and(|other| {
+                    other.patch != t.patch
+                        && near_open(gbuffer.slot[p])
+                        && near_open(gbuffer.slot[n])
+                })
+            });
+        });
+    marked
+}
+
+/// Whether texel `slot` lies within [`OPEN_SIDE_PIXELS`] of an open side of its patch's
+/// domain, by the slope of its (u, v) ([`uv_slopes`]); when it has no slope along x or y, near
+/// any open side.
+fn near_open_side(
+    gbuffer: &GBuffer,
+    library: &PatchLibrary,
+    open: &[[bool; 4]],
+    slot: u32,
+) -> bool {
+    let t = &gbuffer.texels[slot as usize];
+    let sides = open[t.patch as usize];
+    if !sides.iter().any(|&o| o) {
+        return false;
+    }
+    let (Some(along_x), Some(along_y)) = uv_slopes(gbuffer, slot) else {
+        return true;
+    };
+    let reach = (along_x.abs() + along_y.abs()) * OPEN_SIDE_PIXELS;
+    let domain = library.patches[t.patch as usize].surface.domain();
+    let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
+    let (ru, rv) = (f64::from(reach.x), f64::from(reach.y));
+    Edge::ALL.into_iter().zip(sides).any(|(side, open)| {
+        open && match side {
+            Edge::UMin => u - ru <= domain.u.0,
+            Edge::UMax => u + ru >= domain.u.1,
+            Edge::VMin => v - rv <= domain.v.0,
+            Edge::VMax => v + rv >= domain.v.1,
+        }
+    })
+}
