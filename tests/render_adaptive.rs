@@ -16,6 +16,19 @@ use glint::toon::CelRamp;
 
 use crate::common::{teapot, teapot_camera};
 
+/// A two-tone blue cel look with no highlight and the outlines' lines.
+fn blue() -> PatchLook {
+    PatchLook {
+        lines: None,
+        tone: Tone::Cel(CelRamp::two_tone(
+            Vec3::new(0.2, 0.25, 0.5),
+            Vec3::new(0.4, 0.55, 0.9),
+            0.1,
+        )),
+        highlight: None,
+    }
+}
+
 fn teapot_scene(library: &PatchLibrary, outlines: bool) -> Scene<'_> {
     let highlight = Expr::Layer(Layer::new(
         vec![
@@ -34,13 +47,8 @@ fn teapot_scene(library: &PatchLibrary, outlines: bool) -> Scene<'_> {
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
-                lines: None,
-                tone: Tone::Cel(CelRamp::two_tone(
-                    Vec3::new(0.2, 0.25, 0.5),
-                    Vec3::new(0.4, 0.55, 0.9),
-                    0.1,
-                )),
                 highlight: Some(highlight.clone()),
+                ..blue()
             })
             .collect(),
         camera: teapot_camera(),
@@ -455,17 +463,7 @@ fn a_gap_thinner_than_a_pixel_between_two_patches_that_end_there_is_drawn_with_i
     });
     let scene = Scene {
         library: &library,
-        looks: (0..2)
-            .map(|_| PatchLook {
-                lines: None,
-                tone: Tone::Cel(CelRamp::two_tone(
-                    Vec3::new(0.2, 0.25, 0.5),
-                    Vec3::new(0.4, 0.55, 0.9),
-                    0.1,
-                )),
-                highlight: None,
-            })
-            .collect(),
+        looks: vec![blue(), blue()],
         camera: glint::render::Camera {
             eye: Vec3::new(0.0, 0.0, 5.0),
             target: Vec3::ZERO,

@@ -27,26 +27,29 @@ fn library(surface: NurbsSurface) -> Arc<PatchLibrary> {
     })
 }
 
+/// The camera looking at the origin from `distance`, `elevation` degrees above the xy plane and
+/// `azimuth` degrees round from +x.
+fn camera(distance: f32, elevation: f32, azimuth: f32) -> Camera {
+    let (e, a) = (elevation.to_radians(), azimuth.to_radians());
+    Camera {
+        eye: distance * Vec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin()),
+        target: Vec3::ZERO,
+        up: Vec3::Z,
+        projection: Projection::Perspective {
+            fov_y_degrees: FOV_DEGREES,
+        },
+        near: 0.1,
+        far: 100.0,
+    }
+}
+
 /// The 36 views: twelve azimuths at each of three heights above the equator, looking at the
 /// origin from `distance`.
 fn views(distance: f32) -> Vec<Camera> {
     let mut cameras = Vec::new();
     for elevation in [8.0f32, 38.0, 72.0] {
         for k in 0..12 {
-            let azimuth = (k as f32 * 30.0 + 7.0).to_radians();
-            let e = elevation.to_radians();
-            let eye =
-                distance * Vec3::new(e.cos() * azimuth.cos(), e.cos() * azimuth.sin(), e.sin());
-            cameras.push(Camera {
-                eye,
-                target: Vec3::ZERO,
-                up: Vec3::Z,
-                projection: Projection::Perspective {
-                    fov_y_degrees: FOV_DEGREES,
-                },
-                near: 0.1,
-                far: 100.0,
-            });
+            cameras.push(camera(distance, elevation, k as f32 * 30.0 + 7.0));
         }
     }
     cameras
@@ -349,18 +352,7 @@ fn a_plate_s_open_borders_seen_nearly_edge_on_are_inked_unbroken_at_one_sample()
     let mut views = 0;
     for elevation in [5.0f32, 8.0, 12.0, 18.0] {
         for k in 0..8 {
-            let azimuth = (k as f32 * 45.0 + 10.0).to_radians();
-            let e = elevation.to_radians();
-            let camera = Camera {
-                eye: 5.0 * Vec3::new(e.cos() * azimuth.cos(), e.cos() * azimuth.sin(), e.sin()),
-                target: Vec3::ZERO,
-                up: Vec3::Z,
-                projection: Projection::Perspective {
-                    fov_y_degrees: FOV_DEGREES,
-                },
-                near: 0.1,
-                far: 100.0,
-            };
+            let camera = camera(5.0, elevation, k as f32 * 45.0 + 10.0);
             let view_projection = camera.view_projection(1.0);
             let (alpha, _) = lines(&library, camera, 2.0, &settings);
             let size = (SIZE as usize, SIZE as usize);

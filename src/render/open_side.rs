@@ -5,7 +5,7 @@ use rayon::prelude::*;
 
 use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
 use super::neighbourhood::around;
-use super::seeded::uv_slopes;
+use super::seeded::sides_within;
 use super::tessellate::Mesh;
 use crate::geom::{Edge, PatchLibrary};
 
@@ -78,32 +78,18 @@ pub(super) fn beside_open_sides(
 }
 
 /// Whether texel `slot` lies within [`OPEN_SIDE_PIXELS`] of an open side of its patch's
-/// domain, by the slope of its (u, v) ([`uv_slopes`]); when it has no slope along x or y, near
-/// any open side.
+/// domain, by the slope of its (u, v) ([`sides_within`]); when it has no slope along x or y,
+/// near any open side.
 fn near_open_side(
     gbuffer: &GBuffer,
     library: &PatchLibrary,
     open: &[[bool; 4]],
     slot: u32,
 ) -> bool {
-    let t = &gbuffer.texels[slot as usize];
-    let sides = open[t.patch as usize];
-    if !sides.iter().any(|&o| o) {
+    let sides = open[gbuffer.texels[slot as usize].patch as usize];
+    if !sides.contains(&true) {
         return false;
     }
-    let (Some(along_x), Some(along_y)) = uv_slopes(gbuffer, slot) else {
-        return true;
-    };
-    let reach = (along_x.abs() + along_y.abs()) * OPEN_SIDE_PIXELS;
-    let domain = library.patches[t.patch as usize].surface.domain();
-    let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
-    let (ru, rv) = (f64::from(reach.x), f64::from(reach.y));
-    Edge::ALL.into_iter().zip(sides).any(|(side, open)| {
-        open && match side {
-            Edge::UMin => u - ru <= domain.u.0,
-            Edge::UMax => u + ru >= domain.u.1,
-            Edge::VMin => v - rv <= domain.v.0,
-            Edge::VMax => v + rv >= domain.v.1,
-        }
-    })
+    sides_within(gbuffer, library, slot, OPEN_SIDE_PIXELS)
+        .is_none_or(|near| near.iter().zip(sides).any(|(&near, open)| near && open))
 }

@@ -12,7 +12,7 @@ use super::settings::FrameMode;
 use super::shade::{shade, Edges, ShadeBuffers};
 use super::supersample::{landed_depth, Resolved};
 use super::xtoon_tone::Views;
-use crate::geom::PatchLibrary;
+use crate::geom::{Edge, PatchLibrary};
 use crate::highlight::Footprint;
 
 /// Pixels drawn together: the samples of one batch, and their candidates, are all the memory
@@ -101,15 +101,38 @@ const BORDER_PIXELS: f32 = 3.0;
 /// the slope of its (u, v) ([`uv_slopes`]); not when it has no slope along x or y (no neighbour
 /// on its patch there).
 pub(super) fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bool {
+    sides_within(gbuffer, library, slot, BORDER_PIXELS).is_some_and(|near| !near.contains(&true))
+}
+
+/// Per side of its patch's domain ([`Edge::ALL`] order), whether texel `slot` lies within
+/// `pixels` of it, measured by the slope of its (u, v) ([`uv_slopes`]): not `u − r_u > u₀` for
+/// the side `u = u₀`, with `r = (|∂(u, v)/∂x| + |∂(u, v)/∂y|) · pixels`. `None` where it has no
+/// slope along x or y (no neighbour on its patch there).
+#[must_use]
+pub(super) fn sides_within(
+    gbuffer: &GBuffer,
+    library: &PatchLibrary,
+    slot: u32,
+    pixels: f32,
+) -> Option<[bool; 4]> {
     let t = &gbuffer.texels[slot as usize];
     let (Some(along_x), Some(along_y)) = uv_slopes(gbuffer, slot) else {
-        return false;
+        return None;
     };
-    let reach = (along_x.abs() + along_y.abs()) * BORDER_PIXELS;
+    let reach = (along_x.abs() + along_y.abs()) * pixels;
     let domain = library.patches[t.patch as usize].surface.domain();
     let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
     let (ru, rv) = (f64::from(reach.x), f64::from(reach.y));
-    u - ru > domain.u.0 && u + ru < domain.u.1 && v - rv > domain.v.0 && v + rv < domain.v.1
+    // Not inside by the reach is within it: a (u, v) that is not a number is near every side.
+    Some(Edge::ALL.map(|side| {
+        let inside = match side {
+            Edge::UMin => u - ru > domain.u.0,
+            Edge::UMax => u + ru < domain.u.1,
+            Edge::VMin => v - rv > domain.v.0,
+            Edge::VMax => v + rv < domain.v.1,
+        };
+        !inside
+    }))
 }
 
 /// The change of (u, v) per pixel at texel `slot`, along x and along y: the central (or
