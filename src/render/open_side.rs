@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
 use super::neighbourhood::around;
 use super::seeded::sides_within;
 use super::tessellate::Mesh;
@@ -45,35 +45,59 @@ pub(super) fn open_sides(mesh: &Mesh, library: &PatchLibrary) -> Vec<[bool; 4]> 
 /// (doors in a body) may leave a gap thinner than a pixel, through which what lies behind
 /// shows, and both may have one colour: the colours of the pixel centres show neither the gap
 /// nor the edge. Where one of them goes on, what shows past the other's end is the one that
-/// goes on.
+/// goes on. `drawn`, per texel when known, says which were drawn right at one sample: their
+/// neighbourhoods lie on their own patches, and they are passed over.
 #[must_use]
 pub(super) fn beside_open_sides(
     gbuffer: &GBuffer,
     library: &PatchLibrary,
     open: &[[bool; 4]],
+    drawn: Option<&[bool]>,
 ) -> Vec<bool> {
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     let mut marked = vec![false; w * h];
     if !open.iter().flatten().any(|&o| o) {
         return marked;
     }
-    let near_open = |slot: u32| near_open_side(gbuffer, library, open, slot);
-    marked
-        .par_iter_mut()
+    // Per texel, whether it shows a patch with an open side beside another patch, near that
+    // side: each texel's slopes are taken once.
+    let beside_another = |t: &Texel| {
+        around(t.pixel as usize, (w, h))
+            .any(|n| gbuffer.texel(n).is_some_and(|other| other.patch != t.patch))
+    };
+    let near: Vec<bool> = gbuffer
+        .texels
+        .par_iter()
         .enumerate()
         .with_min_len(PIXELS_PER_JOB)
-        .for_each(|(p, mark)| {
-            let Some(t) = gbuffer.texel(p) else {
-                return;
-            };
-            *mark = around(p, (w, h)).any(|n| {
-                gbuffer.texel(n).is_some_and(|other| {
-                    other.patch != t.patch
-                        && near_open(gbuffer.slot[p])
-                        && near_open(gbuffer.slot[n])
+        .map(|(slot, t)| {
+            open[t.patch as usize].contains(&true)
+                && !drawn.is_some_and(|d| d[slot])
+                && beside_another(t)
+                && near_open_side(gbuffer, library, open, slot as u32)
+        })
+        .collect();
+    let pixels: Vec<usize> = gbuffer
+        .texels
+        .par_iter()
+        .zip(&near)
+        .with_min_len(PIXELS_PER_JOB)
+        .filter(|(_, &near)| near)
+        .filter_map(|(t, _)| {
+            let p = t.pixel as usize;
+            around(p, (w, h))
+                .any(|n| {
+                    let slot = gbuffer.slot[n];
+                    slot != EMPTY
+                        && gbuffer.texels[slot as usize].patch != t.patch
+                        && near[slot as usize]
                 })
-            });
-        });
+                .then_some(p)
+        })
+        .collect();
+    for p in pixels {
+        marked[p] = true;
+    }
     marked
 }
 

@@ -162,7 +162,7 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
         .iter()
         .flatten()
         .any(|&o| o)
-        .then(|| beside_open_sides(gbuffer, frame.library, &open));
+        .then(|| beside_open_sides(gbuffer, frame.library, &open, frame.drawn));
     let also = match (frame.straddles, beside_open) {
         (Some(straddles), Some(mut beside)) => {
             for (b, &s) in beside.iter_mut().zip(straddles) {
