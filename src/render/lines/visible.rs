@@ -111,9 +111,7 @@ impl<'a> DepthTest<'a> {
             own &= self.triangle_patch.get(triangle) == Some(&patch)
                 && self.distance_of(depth) >= edge_on;
         }
-        own && self
-            .samples(pixel, reach + OPEN_BORDER_EXTRA)
-            .is_none_or(|mut samples| samples.any(|s| self.visibility.depth[s] >= threshold))
+        own && self.shows(pixel, z, reach + OPEN_BORDER_EXTRA)
     }
 
     /// The width of an output pixel, in world units, at `distance` in front of the eye:
