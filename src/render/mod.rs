@@ -19,6 +19,7 @@ mod gbuffer;
 mod highlight_edge;
 mod line_style;
 mod lines;
+mod near_border;
 mod neighbourhood;
 mod open_side;
 mod plan;

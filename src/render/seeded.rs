@@ -5,6 +5,7 @@ use glam::{Mat4, Vec2};
 use rayon::prelude::*;
 
 use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
+use super::near_border::NearBorder;
 use super::neighbourhood::around;
 use super::raster::Viewport;
 use super::scene::Scene;
@@ -42,13 +43,20 @@ pub(super) struct Seeded<'a> {
 /// Whether pixel `pixel` can be drawn from the surfaces its neighbourhood shows: some pixel of
 /// its 3 × 3 neighbourhood is covered, no patch among them folds over itself there (the view
 /// depths of its texels spread by more than [`FOLD`]), and where one of the nine is not covered
-/// (a silhouette), every covered one lies [`BORDER_PIXELS`] pixels or more inside its patch's
-/// domain, by the slope of its (u, v).
+/// (a silhouette), no side of a patch's domain passes within [`BORDER_PIXELS`] of the pixel's
+/// centre on screen (`near_border`, built with that reach).
 ///
 /// A silhouette near a patch's border is left to rasterization: there a patch seen edge-on may
 /// cover a sliver of the pixel that no centre of the nine sees (the flat top of a knob, one
-/// patch, above its side, another), and only the mesh knows it is there. Away from borders, and
-/// inside a surface, what no centre sees is what the marking of the pixels cannot see either.
+/// patch, above its side, another), and only the mesh knows it is there. Such a sliver is
+/// bounded by the border it meets the other patch along, which passes within a pixel of the
+/// box. Away from borders, and inside a surface, what no centre sees is what the marking of the
+/// pixels cannot see either.
+///
+/// The distance is the projected border's own, not one taken from the slope of (u, v): toward a
+/// silhouette the surface turns away and (u, v) changes ever faster from one pixel to the next,
+/// so that any side of the domain within a few pixels' worth of that slope would count, though
+/// it lies far off on screen or behind the silhouette.
 ///
 /// The edges of a trim are not borders here: patches are joined along the sides of their
 /// domains, and a trim's loop is where a patch ends, cut, as a hole's rim. A sample beyond it
@@ -59,8 +67,8 @@ pub(super) struct Seeded<'a> {
 #[must_use]
 pub(super) fn seedable(
     gbuffer: &GBuffer,
-    library: &PatchLibrary,
     scene: &Scene,
+    near_border: &NearBorder,
     pixel: usize,
 ) -> bool {
     let size = (gbuffer.width as usize, gbuffer.height as usize);
@@ -84,18 +92,13 @@ pub(super) fn seedable(
     let flat = seen[..patches]
         .iter()
         .all(|&(_, near, far)| near > 0.0 && far - near <= FOLD * near);
-    let inside_borders = || {
-        around(pixel, size).all(|n| {
-            let slot = gbuffer.slot[n];
-            slot == EMPTY || away_from_borders(gbuffer, library, slot)
-        })
-    };
-    patches > 0 && flat && (!empty || inside_borders())
+    let (x, y) = ((pixel % size.0) as u32, (pixel / size.0) as u32);
+    patches > 0 && flat && (!empty || !near_border.at(x, y))
 }
 
-/// How far inside its patch's domain, in pixels, a texel beside a silhouette must lie for the
-/// silhouette to be drawn from it.
-const BORDER_PIXELS: f32 = 3.0;
+/// How far from a silhouette pixel's centre, in pixels on screen, the side of a patch's domain
+/// must pass for the silhouette to be drawn from the surfaces around it ([`seedable`]).
+pub(super) const BORDER_PIXELS: f32 = 3.0;
 
 /// Whether texel `slot` lies [`BORDER_PIXELS`] or more inside its patch's domain, measured by
 /// the slope of its (u, v) ([`uv_slopes`]); not when it has no slope along x or y (no neighbour

@@ -8,6 +8,7 @@ use super::contrast::{pixels_to_supersample, DrawnRight};
 use super::dilate::dilate;
 use super::gbuffer::{Evaluate, GBuffer, EMPTY};
 use super::lines::LineImage;
+use super::near_border::NearBorder;
 use super::neighbourhood::around;
 use super::open_side::{beside_open_sides, open_sides};
 use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
@@ -257,9 +258,10 @@ fn split_seeded(frame: &Frame, mut marked: Vec<bool>) -> (Vec<bool>, Vec<u32>) {
     if frame.frames != FrameMode::Refined || frame.detail || samples > u64::from(u32::MAX) {
         return (marked, Vec::new());
     }
+    let near_border = NearBorder::new(frame.mesh, frame.clip, frame.image, seeded::BORDER_PIXELS);
     let seeded: Vec<u32> = (0..w * h)
         .into_par_iter()
-        .filter(|&p| marked[p] && seeded::seedable(frame.gbuffer, frame.library, frame.scene, p))
+        .filter(|&p| marked[p] && seeded::seedable(frame.gbuffer, frame.scene, &near_border, p))
         .map(|p| p as u32)
         .collect();
     for &p in &seeded {

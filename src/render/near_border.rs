@@ -1,0 +1,250 @@
+//! Where the sides of the patches' domains pass on screen: which pixels lie within a distance of
+//! one, as the mesh's border pieces project.
+
+use glam::{Vec2, Vec4};
+
+use super::raster::Viewport;
+use super::tessellate::Mesh;
+
+/// Side of a cell of the grid the projected border pieces are binned in, in pixels.
+const CELL: f32 = 32.0;
+
+/// The clip-space `w` a border piece is cut at before it is projected: nothing nearer the eye
+/// is seen.
+const NEAREST_W: f32 = 1e-6;
+
+/// The sides of the patches' domains on screen: the mesh's border pieces projected, each
+/// binned in the cells of a [`CELL`]-pixel grid that lie within `reach` pixels of it.
+pub(super) struct NearBorder {
+    reach: f32,
+    columns: usize,
+    rows: usize,
+    /// Per cell, the indices into `pieces` of those within `reach` of it.
+    cells: Vec<Vec<u32>>,
+    /// Each piece's end points in pixels (`y` down).
+    pieces: Vec<[Vec2; 2]>,
+}
+
+impl NearBorder {
+    /// Every piece of `mesh.borders` (a side of a patch's domain, whether or not another patch
+    /// continues it, seen or hidden) through the vertices' clip-space positions `clip`, cut
+    /// where it passes behind the eye and to `image` with `reach` around it. A piece with an end
+    /// that is not finite is not drawn by the rasterizer either, and is left out.
+    #[must_use]
+    pub fn new(mesh: &Mesh, clip: &[Vec4], image: Viewport, reach: f32) -> Self {
+        let (w, h) = (image.width as f32, image.height as f32);
+        let columns = (w / CELL).ceil().max(1.0) as usize;
+        let rows = (h / CELL).ceil().max(1.0) as usize;
+        let mut near = Self {
+            reach,
+            columns,
+            rows,
+            cells: vec![Vec::new(); columns * rows],
+            pieces: Vec::new(),
+        };
+        let to_pixels =
+            |c: Vec4| Vec2::new((c.x / c.w + 1.0) * 0.5 * w, (1.0 - c.y / c.w) * 0.5 * h);
+        let bounds = (Vec2::splat(-reach), Vec2::new(w + reach, h + reach));
+        for edge in &mesh.borders {
+            let ends = [edge.a, edge.b].map(|v| clip.get(v as usize).copied());
+            let [Some(mut a), Some(mut b)] = ends else {
+                continue;
+            };
+            if !(a.is_finite() && b.is_finite()) || (a.w <= NEAREST_W && b.w <= NEAREST_W) {
+                continue;
+            }
+            // Cut at w = NEAREST_W where it passes behind the eye.
+            if a.w < NEAREST_W || b.w < NEAREST_W {
+                let t = (NEAREST_W - a.w) / (b.w - a.w);
+                let cut = a + (b - a) * t;
+                if a.w < NEAREST_W {
+                    a = cut;
+                } else {
+                    b = cut;
+                }
+            }
+            let Some(piece) = clip_to_box(to_pixels(a), to_pixels(b), bounds) else {
+                continue;
+            };
+            let index = near.pieces.len() as u32;
+            near.pieces.push(piece);
+            let low = (piece[0].min(piece[1]) - reach) / CELL;
+            let high = (piece[0].max(piece[1]) + reach) / CELL;
+            let cell = |v: f32, most: usize| (v.floor().max(0.0) as usize).min(most - 1);
+            for row in cell(low.y, rows)..=cell(high.y, rows) {
+                for column in cell(low.x, columns)..=cell(high.x, columns) {
+                    near.cells[row * columns + column].push(index);
+                }
+            }
+        }
+        near
+    }
+
+    /// Whether some side of a patch's domain passes within the reach of the centre of pixel
+    /// `(x, y)`.
+    #[must_use]
+    pub fn at(&self, x: u32, y: u32) -> bool {
+        let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+        let cell = |v: f32, most: usize| ((v / CELL) as usize).min(most - 1);
+        let (column, row) = (cell(centre.x, self.columns), cell(centre.y, self.rows));
+        self.cells[row * self.columns + column].iter().any(|&i| {
+            let [a, b] = self.pieces[i as usize];
+            distance_to_segment(centre, a, b) <= self.reach
+        })
+    }
+}
+
+/// The distance from `p` to the segment from `a` to `b`: to its nearest point
+/// `a + t (b − a)`, `t = clamp((p − a)·(b − a) / |b − a|², 0, 1)`.
+#[must_use]
+fn distance_to_segment(p: Vec2, a: Vec2, b: Vec2) -> f32 {
+    let along = b - a;
+    let length_squared = along.length_squared();
+    let t = if length_squared > 0.0 {
+        ((p - a).dot(along) / length_squared).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + along * t)
+}
+
+/// The part of the segment from `a` to `b` inside the box `(low, high)`, by Liang–Barsky: the
+/// `t ∈ [0, 1]` of `a + t (b − a)` within each slab; `None` where none is.
+#[must_use]
+fn clip_to_box(a: Vec2, b: Vec2, (low, high): (Vec2, Vec2)) -> Option<[Vec2; 2]> {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f32, 1.0f32);
+    for (p, q) in [
+        (-d.x, a.x - low.x),
+        (d.x, high.x - a.x),
+        (-d.y, a.y - low.y),
+        (d.y, high.y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+            continue;
+        }
+        let r = q / p;
+        if p < 0.0 {
+            t0 = t0.max(r);
+        } else {
+            t1 = t1.min(r);
+        }
+    }
+    (t0 <= t1).then(|| [a + d * t0, a + d * t1])
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DVec3, Vec3};
+
+    use super::*;
+    use crate::geom::{shapes, Domain, NamedPatch, PatchLibrary};
+    use crate::render::tessellate::{Density, Tessellator};
+    use crate::render::Camera;
+
+    #[test]
+    fn the_pixels_near_a_sphere_s_seam_and_poles_are_those_its_true_sides_pass_near() {
+        // The sphere's domain sides are its seam (a meridian) and its two poles. From above the
+        // equator and turned so that the seam runs across the front, over the top and past
+        // the silhouette, each pixel is near a side exactly when the sides themselves, dense
+        // points of the surface projected, pass within the reach of its centre.
+        let library = PatchLibrary::new(vec![NamedPatch {
+            name: "ball".into(),
+            trim: None,
+            surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
+        }]);
+        let (width, height, reach) = (96u32, 96u32, 3.0f32);
+        let camera = Camera {
+            eye: Vec3::new(2.5, -4.0, 2.0),
+            ..crate::render::plan::tests::camera()
+        };
+        let view_projection = camera.view_projection(1.0);
+        let mut tessellator = Tessellator::new(library.clone());
+        let (mesh, _) = tessellator.mesh(
+            Density::ScreenTolerance { pixels: 0.05 },
+            view_projection,
+            width,
+            height,
+        );
+        let clip: Vec<Vec4> = mesh
+            .positions
+            .iter()
+            .map(|p| view_projection * p.extend(1.0))
+            .collect();
+        let near = NearBorder::new(mesh, &clip, Viewport { width, height }, reach);
+
+        let surface = &library.patches[0].surface;
+        let Domain { u, v } = surface.domain();
+        let n = 4000;
+        let along = |a: (f64, f64), k: usize| a.0 + (a.1 - a.0) * k as f64 / n as f64;
+        let sides: Vec<Vec2> = (0..=n)
+            .flat_map(|k| {
+                [
+                    (u.0, along(v, k)),
+                    (u.1, along(v, k)),
+                    (along(u, k), v.0),
+                    (along(u, k), v.1),
+                ]
+            })
+            .map(|(a, b)| {
+                let c = view_projection * surface.point(a, b).as_vec3().extend(1.0);
+                Vec2::new(
+                    (c.x / c.w + 1.0) * 0.5 * width as f32,
+                    (1.0 - c.y / c.w) * 0.5 * height as f32,
+                )
+            })
+            .collect();
+        let (mut near_count, mut far_count) = (0, 0);
+        for y in 0..height {
+            for x in 0..width {
+                let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                let truth = sides
+                    .iter()
+                    .map(|p| p.distance(centre))
+                    .fold(f32::INFINITY, f32::min);
+                // Points 4000 to a side are a hair apart; the mesh's chords are within 0.05 px.
+                if truth < reach - 0.2 {
+                    assert!(near.at(x, y), "({x}, {y}) is {truth} px from a side");
+                    near_count += 1;
+                } else if truth > reach + 0.2 {
+                    assert!(!near.at(x, y), "({x}, {y}) is {truth} px from every side");
+                    far_count += 1;
+                }
+            }
+        }
+        // The view shows both: a seam across the image, and most of the image away from it.
+        assert!(
+            near_count > 300 && far_count > 5000,
+            "{near_count} {far_count}"
+        );
+    }
+
+    #[test]
+    fn the_distance_to_a_segment_is_to_its_nearest_point() {
+        let (a, b) = (Vec2::new(0.0, 0.0), Vec2::new(4.0, 0.0));
+        assert_eq!(distance_to_segment(Vec2::new(2.0, 3.0), a, b), 3.0);
+        assert_eq!(distance_to_segment(Vec2::new(7.0, 4.0), a, b), 5.0);
+        assert_eq!(distance_to_segment(Vec2::new(-3.0, 4.0), a, a), 5.0);
+    }
+
+    #[test]
+    fn a_segment_is_cut_to_the_box_or_dropped_when_it_misses_it() {
+        let bounds = (Vec2::ZERO, Vec2::new(10.0, 10.0));
+        let cut = clip_to_box(Vec2::new(-5.0, 5.0), Vec2::new(15.0, 5.0), bounds).unwrap();
+        assert_eq!(cut, [Vec2::new(0.0, 5.0), Vec2::new(10.0, 5.0)]);
+        let inside = [Vec2::new(1.0, 2.0), Vec2::new(3.0, 4.0)];
+        assert_eq!(clip_to_box(inside[0], inside[1], bounds), Some(inside));
+        assert_eq!(
+            clip_to_box(Vec2::new(-5.0, 12.0), Vec2::new(15.0, 30.0), bounds),
+            None
+        );
+        // Parallel to a side and outside it.
+        assert_eq!(
+            clip_to_box(Vec2::new(-1.0, 0.0), Vec2::new(-1.0, 10.0), bounds),
+            None
+        );
+    }
+}
