@@ -494,3 +494,58 @@ fn a_gap_thinner_than_a_pixel_between_two_patches_that_end_there_is_drawn_with_i
         }
     }
 }
+
+#[test]
+fn a_silhouette_beside_a_pole_takes_each_sample_the_sphere_covers() {
+    // The sphere seen from a little above its equator: its north pole lies at or near the top
+    // of its outline, where (u, v) turns fast about it. Each of a silhouette pixel's 4 × 4
+    // samples is covered where the analytic sphere's ray at that sample hits it (the
+    // reference counted at the same samples), but for a sample or two within a hair of the
+    // outline, where the mesh or a search may go either way. Started from the texels around
+    // it alone, a pixel beside the pole came out empty where half of it is covered.
+    let library = AnalyticSphere::library();
+    let highlight = Expr::Layer(Layer::new(
+        vec![Op::Rotate { degrees: 0.0 }],
+        0.05,
+        [1.0; 3],
+    ))
+    .prepare()
+    .unwrap();
+    let size = 256;
+    for height in [0.3f32, 0.5, 0.8, 1.0, 1.2, 1.4, 1.6, 2.0, 2.5] {
+        let sphere = AnalyticSphere::seen_by(
+            glint::render::Camera {
+                eye: Vec3::new(0.4, -4.0, height),
+                target: Vec3::ZERO,
+                up: Vec3::Z,
+                projection: Projection::Perspective {
+                    fov_y_degrees: 35.0,
+                },
+                near: 0.1,
+                far: 100.0,
+            },
+            Vec3::new(0.3, -0.5, 0.8),
+        );
+        let scene = sphere.scene(&library, &highlight, Aovs::default());
+        let c = sphere.camera().view_projection(1.0) * glam::Vec4::new(0.0, 0.0, 1.0, 1.0);
+        eprintln!(
+            "pole at {} {}",
+            (c.x / c.w + 1.0) * 128.0,
+            (1.0 - c.y / c.w) * 128.0
+        );
+        let frame = Renderer::new(Arc::clone(&library))
+            .render(&scene, &Settings::final_quality(size, size))
+            .unwrap();
+        let truth = sphere.mattes(&highlight, size, 4, 4).silhouette;
+        let off: Vec<(usize, f32, f32)> = frame
+            .colour
+            .iter()
+            .zip(&truth)
+            .enumerate()
+            .filter(|(_, (c, &t))| (c.w - t).abs() > 1.5 / 16.0)
+            .map(|(i, (c, &t))| (i, c.w, t))
+            .collect();
+        let far_off = off.iter().any(|&(_, a, t)| (a - t).abs() > 2.5 / 16.0);
+        assert!(off.len() <= 1 && !far_off, "eye height {height}: {off:?}");
+    }
+}

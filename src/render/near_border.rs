@@ -13,30 +13,40 @@ const CELL: f32 = 32.0;
 /// is seen.
 const NEAREST_W: f32 = 1e-6;
 
+/// The length in pixels below which a projected border piece is taken for a point: a collapsed
+/// side (a pole), or a piece seen end-on.
+const POINT_PIXELS: f32 = 1e-3;
+
 /// The sides of the patches' domains on screen: the mesh's border pieces projected, each
-/// binned in the cells of a [`CELL`]-pixel grid that lie within `reach` pixels of it.
+/// binned in the cells of a [`CELL`]-pixel grid that lie within its reach of it.
 pub(super) struct NearBorder {
-    reach: f32,
     columns: usize,
     rows: usize,
     /// Per cell, the indices into `pieces` of those within `reach` of it.
     cells: Vec<Vec<u32>>,
-    /// Each piece's end points in pixels (`y` down).
-    pieces: Vec<[Vec2; 2]>,
+    /// Each piece's end points in pixels (`y` down), and its reach.
+    pieces: Vec<([Vec2; 2], f32)>,
 }
 
 impl NearBorder {
     /// Every piece of `mesh.borders` (a side of a patch's domain, whether or not another patch
-    /// continues it, seen or hidden) through the vertices' clip-space positions `clip`, cut
-    /// where it passes behind the eye and to `image` with `reach` around it. A piece with an end
-    /// that is not finite is not drawn by the rasterizer either, and is left out.
+    /// continues it, seen or hidden) and the point of every collapsed side (a pole: all its
+    /// vertices at one position, so it has no pieces), through the vertices' clip-space
+    /// positions `clip`, cut where it passes behind the eye and to `image` with its reach
+    /// around it: `reach`, or `point_reach` for what projects to a point ([`POINT_PIXELS`]).
+    /// A piece with an end that is not finite is not drawn by the rasterizer either, and is
+    /// left out.
     #[must_use]
-    pub fn new(mesh: &Mesh, clip: &[Vec4], image: Viewport, reach: f32) -> Self {
+    pub fn new(
+        mesh: &Mesh,
+        clip: &[Vec4],
+        image: Viewport,
+        (reach, point_reach): (f32, f32),
+    ) -> Self {
         let (w, h) = (image.width as f32, image.height as f32);
         let columns = (w / CELL).ceil().max(1.0) as usize;
         let rows = (h / CELL).ceil().max(1.0) as usize;
         let mut near = Self {
-            reach,
             columns,
             rows,
             cells: vec![Vec::new(); columns * rows],
@@ -44,30 +54,19 @@ impl NearBorder {
         };
         let to_pixels =
             |c: Vec4| Vec2::new((c.x / c.w + 1.0) * 0.5 * w, (1.0 - c.y / c.w) * 0.5 * h);
-        let bounds = (Vec2::splat(-reach), Vec2::new(w + reach, h + reach));
-        for edge in &mesh.borders {
-            let ends = [edge.a, edge.b].map(|v| clip.get(v as usize).copied());
-            let [Some(mut a), Some(mut b)] = ends else {
-                continue;
+        let most = reach.max(point_reach);
+        let bounds = (Vec2::splat(-most), Vec2::new(w + most, h + most));
+        let mut add = |a: Vec4, b: Vec4| {
+            let Some(piece) = project_cut(a, b, bounds, &to_pixels) else {
+                return;
             };
-            if !(a.is_finite() && b.is_finite()) || (a.w <= NEAREST_W && b.w <= NEAREST_W) {
-                continue;
-            }
-            // Cut at w = NEAREST_W where it passes behind the eye.
-            if a.w < NEAREST_W || b.w < NEAREST_W {
-                let t = (NEAREST_W - a.w) / (b.w - a.w);
-                let cut = a + (b - a) * t;
-                if a.w < NEAREST_W {
-                    a = cut;
-                } else {
-                    b = cut;
-                }
-            }
-            let Some(piece) = clip_to_box(to_pixels(a), to_pixels(b), bounds) else {
-                continue;
+            let reach = if piece[0].distance(piece[1]) < POINT_PIXELS {
+                point_reach
+            } else {
+                reach
             };
             let index = near.pieces.len() as u32;
-            near.pieces.push(piece);
+            near.pieces.push((piece, reach));
             let low = (piece[0].min(piece[1]) - reach) / CELL;
             let high = (piece[0].max(piece[1]) + reach) / CELL;
             let cell = |v: f32, most: usize| (v.floor().max(0.0) as usize).min(most - 1);
@@ -76,11 +75,35 @@ impl NearBorder {
                     near.cells[row * columns + column].push(index);
                 }
             }
+        };
+        let at = |v: u32| clip.get(v as usize).copied();
+        for edge in &mesh.borders {
+            if let (Some(a), Some(b)) = (at(edge.a), at(edge.b)) {
+                add(a, b);
+            }
+        }
+        // A collapsed side (a pole) has no pieces: its vertices are one point, taken once.
+        for g in &mesh.grids {
+            let sides = [
+                (0..g.nu).map(|i| g.vertex(i, 0)).collect::<Vec<_>>(),
+                (0..g.nv).map(|j| g.vertex(g.nu - 1, j)).collect(),
+                (0..g.nu).map(|i| g.vertex(i, g.nv - 1)).collect(),
+                (0..g.nv).map(|j| g.vertex(0, j)).collect(),
+            ];
+            for side in sides.iter().filter(|s| s.len() > 1) {
+                let position = |v: u32| mesh.positions.get(v as usize).copied();
+                let first = position(side[0]);
+                if side.iter().all(|&v| position(v) == first) {
+                    if let Some(point) = at(side[0]) {
+                        add(point, point);
+                    }
+                }
+            }
         }
         near
     }
 
-    /// Whether some side of a patch's domain passes within the reach of the centre of pixel
+    /// Whether some side of a patch's domain passes within its reach of the centre of pixel
     /// `(x, y)`.
     #[must_use]
     pub fn at(&self, x: u32, y: u32) -> bool {
@@ -88,10 +111,34 @@ impl NearBorder {
         let cell = |v: f32, most: usize| ((v / CELL) as usize).min(most - 1);
         let (column, row) = (cell(centre.x, self.columns), cell(centre.y, self.rows));
         self.cells[row * self.columns + column].iter().any(|&i| {
-            let [a, b] = self.pieces[i as usize];
-            distance_to_segment(centre, a, b) <= self.reach
+            let ([a, b], reach) = self.pieces[i as usize];
+            distance_to_segment(centre, a, b) <= reach
         })
     }
+}
+
+/// The piece from clip-space `a` to `b` in pixels (`to_pixels`), cut at `w = NEAREST_W` where
+/// it passes behind the eye and to `bounds`; `None` where nothing of it is left, or an end is
+/// not finite (the rasterizer draws nothing there either).
+fn project_cut(
+    mut a: Vec4,
+    mut b: Vec4,
+    bounds: (Vec2, Vec2),
+    to_pixels: &impl Fn(Vec4) -> Vec2,
+) -> Option<[Vec2; 2]> {
+    if !(a.is_finite() && b.is_finite()) || (a.w <= NEAREST_W && b.w <= NEAREST_W) {
+        return None;
+    }
+    if a.w < NEAREST_W || b.w < NEAREST_W {
+        let t = (NEAREST_W - a.w) / (b.w - a.w);
+        let cut = a + (b - a) * t;
+        if a.w < NEAREST_W {
+            a = cut;
+        } else {
+            b = cut;
+        }
+    }
+    clip_to_box(to_pixels(a), to_pixels(b), bounds)
 }
 
 /// The distance from `p` to the segment from `a` to `b`: to its nearest point
@@ -174,7 +221,7 @@ mod tests {
             .iter()
             .map(|p| view_projection * p.extend(1.0))
             .collect();
-        let near = NearBorder::new(mesh, &clip, Viewport { width, height }, reach);
+        let near = NearBorder::new(mesh, &clip, Viewport { width, height }, (reach, reach));
 
         let surface = &library.patches[0].surface;
         let Domain { u, v } = surface.domain();

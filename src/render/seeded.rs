@@ -44,7 +44,8 @@ pub(super) struct Seeded<'a> {
 /// its 3 × 3 neighbourhood is covered, no patch among them folds over itself there (the view
 /// depths of its texels spread by more than [`FOLD`]), and where one of the nine is not covered
 /// (a silhouette), no side of a patch's domain passes within [`BORDER_PIXELS`] of the pixel's
-/// centre on screen (`near_border`, built with that reach).
+/// centre on screen, nor a collapsed one within [`POLE_PIXELS`] (`near_border`, built with
+/// those reaches).
 ///
 /// A silhouette near a patch's border is left to rasterization: there a patch seen edge-on may
 /// cover a sliver of the pixel that no centre of the nine sees (the flat top of a knob, one
@@ -99,6 +100,13 @@ pub(super) fn seedable(
 /// How far from a silhouette pixel's centre, in pixels on screen, the side of a patch's domain
 /// must pass for the silhouette to be drawn from the surfaces around it ([`seedable`]).
 pub(super) const BORDER_PIXELS: f32 = 3.0;
+
+/// How far from a silhouette pixel's centre, in pixels on screen, a collapsed side (a pole)
+/// must lie for the silhouette to be drawn from the surfaces around it. (u, v) turns about a
+/// pole, and a start moved from a texel by its slope can miss every sample the surface covers:
+/// on the sphere at 256 × 256 with its pole at the top of its outline, the half-covered pixels
+/// 4 to 5 pixels beside the pole came out empty.
+pub(super) const POLE_PIXELS: f32 = 12.0;
 
 /// Whether texel `slot` lies [`BORDER_PIXELS`] or more inside its patch's domain, measured by
 /// the slope of its (u, v) ([`uv_slopes`]); not when it has no slope along x or y (no neighbour
@@ -398,7 +406,7 @@ fn draw_batch(
         .zip(pixels.par_iter())
         .enumerate()
         .for_each(|(j, (((c, t), s), &pixel))| s.fill(frame, (j, pixel), c, t));
-    let frames = GBuffer::evaluate_frames(
+    let mut frames = GBuffer::evaluate_frames(
         texels,
         frame.library,
         &frame.scene.camera,
@@ -434,6 +442,8 @@ fn draw_batch(
                 }
             }
         });
+
+    frames += retry_beside_landed(frame, pixels, candidates, texels, chosen);
 
     // The samples as a G-buffer k wide, one k × k block per pixel down it.
     samples.width = k;
@@ -480,6 +490,83 @@ fn draw_batch(
             continue;
         }
         resolved.push(Resolved::average(pixel, &shaded, range));
+    }
+    frames
+}
+
+/// Tries again each sample of a silhouette pixel (one with an uncovered neighbour) that no start
+/// reached, beside a sample of the pixel that one did: from where that sample landed, a `k`-th
+/// of a pixel away, as a probe. A start from the texels around can be too far where (u, v)
+/// turns fast (toward a pole, near the silhouette), and there a sample the surface covers
+/// would be taken for one it misses. The starts that land are appended to `candidates` and
+/// `texels` and chosen. Returns the frames evaluated.
+fn retry_beside_landed(
+    frame: &Seeded,
+    pixels: &[u32],
+    candidates: &mut Vec<Candidate>,
+    texels: &mut Vec<Texel>,
+    chosen: &mut [Option<(f32, u32)>],
+) -> u64 {
+    let (k, w) = (frame.k, frame.image.width);
+    let per_pixel = (k * k) as usize;
+    let full = (w * k, frame.image.height * k);
+    let first = texels.len();
+    for (j, &pixel) in pixels.iter().enumerate() {
+        if covered_around(frame.gbuffer, pixel) {
+            continue;
+        }
+        let block = &chosen[j * per_pixel..(j + 1) * per_pixel];
+        for s in 0..k * k {
+            if block[s as usize].is_some() {
+                continue;
+            }
+            let (sx, sy) = (s % k, s / k);
+            let beside = [
+                (sx > 0).then(|| s - 1),
+                (sx + 1 < k).then(|| s + 1),
+                (sy > 0).then(|| s - k),
+                (sy + 1 < k).then(|| s + k),
+            ];
+            let Some(from) = beside
+                .into_iter()
+                .flatten()
+                .find_map(|n| block[n as usize].map(|(_, index)| index))
+            else {
+                continue;
+            };
+            let (px, py) = (pixel % w, pixel / w);
+            let global = (py * k + sy) * full.0 + px * k + sx;
+            candidates.push(Candidate {
+                sample: j as u32 * k * k + s,
+                seed: candidates[from as usize].seed,
+            });
+            texels.push(Texel {
+                pixel: global,
+                ..texels[from as usize]
+            });
+        }
+    }
+    if texels.len() == first {
+        return 0;
+    }
+    let frames = GBuffer::evaluate_frames(
+        &mut texels[first..],
+        frame.library,
+        &frame.scene.camera,
+        frame.view_projection,
+        full,
+        FrameMode::Refined,
+        Evaluate::Probe,
+    );
+    for index in first..texels.len() {
+        let t = &texels[index];
+        let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full) else {
+            continue;
+        };
+        let patch = &frame.library.patches[t.patch as usize];
+        if patch.keeps(f64::from(t.uv.x), f64::from(t.uv.y)) {
+            chosen[candidates[index].sample as usize] = Some((depth, index as u32));
+        }
     }
     frames
 }

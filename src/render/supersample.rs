@@ -258,7 +258,12 @@ fn split_seeded(frame: &Frame, mut marked: Vec<bool>) -> (Vec<bool>, Vec<u32>) {
     if frame.frames != FrameMode::Refined || frame.detail || samples > u64::from(u32::MAX) {
         return (marked, Vec::new());
     }
-    let near_border = NearBorder::new(frame.mesh, frame.clip, frame.image, seeded::BORDER_PIXELS);
+    let near_border = NearBorder::new(
+        frame.mesh,
+        frame.clip,
+        frame.image,
+        (seeded::BORDER_PIXELS, seeded::POLE_PIXELS),
+    );
     let seeded: Vec<u32> = (0..w * h)
         .into_par_iter()
         .filter(|&p| marked[p] && seeded::seedable(frame.gbuffer, frame.scene, &near_border, p))
