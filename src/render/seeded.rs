@@ -406,15 +406,7 @@ fn draw_batch(
         .zip(pixels.par_iter())
         .enumerate()
         .for_each(|(j, (((c, t), s), &pixel))| s.fill(frame, (j, pixel), c, t));
-    let mut frames = GBuffer::evaluate_frames(
-        texels,
-        frame.library,
-        &frame.scene.camera,
-        frame.view_projection,
-        full,
-        FrameMode::Refined,
-        Evaluate::Probe,
-    );
+    let mut frames = probe(frame, texels, full);
 
     // Per sample, the nearest candidate that landed on its ray on a part of its patch the trim
     // keeps, pixel by pixel.
@@ -549,15 +541,7 @@ fn retry_beside_landed(
     if texels.len() == first {
         return 0;
     }
-    let frames = GBuffer::evaluate_frames(
-        &mut texels[first..],
-        frame.library,
-        &frame.scene.camera,
-        frame.view_projection,
-        full,
-        FrameMode::Refined,
-        Evaluate::Probe,
-    );
+    let frames = probe(frame, &mut texels[first..], full);
     for index in first..texels.len() {
         let t = &texels[index];
         let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full) else {
@@ -569,4 +553,18 @@ fn retry_beside_landed(
         }
     }
     frames
+}
+
+/// Refines each of `texels` onto the ray of its sample in the `full` grid of samples, as a
+/// probe ([`GBuffer::evaluate_frames`] with refined frames); returns the frames evaluated.
+fn probe(frame: &Seeded, texels: &mut [Texel], full: (u32, u32)) -> u64 {
+    GBuffer::evaluate_frames(
+        texels,
+        frame.library,
+        &frame.scene.camera,
+        frame.view_projection,
+        full,
+        FrameMode::Refined,
+        Evaluate::Probe,
+    )
 }
