@@ -108,11 +108,15 @@ pub(super) const BORDER_PIXELS: f32 = 3.0;
 /// 4 to 5 pixels beside the pole came out empty.
 pub(super) const POLE_PIXELS: f32 = 12.0;
 
-/// Whether texel `slot` lies [`BORDER_PIXELS`] or more inside its patch's domain, measured by
+/// How far inside its patch's domain, in pixels by the slope of its (u, v), a texel must lie
+/// to be [`away_from_borders`].
+const INSIDE_PIXELS: f32 = 3.0;
+
+/// Whether texel `slot` lies [`INSIDE_PIXELS`] or more inside its patch's domain, measured by
 /// the slope of its (u, v) ([`uv_slopes`]); not when it has no slope along x or y (no neighbour
 /// on its patch there).
 pub(super) fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bool {
-    sides_within(gbuffer, library, slot, BORDER_PIXELS).is_some_and(|near| !near.contains(&true))
+    sides_within(gbuffer, library, slot, INSIDE_PIXELS).is_some_and(|near| !near.contains(&true))
 }
 
 /// Per side of its patch's domain ([`Edge::ALL`] order), whether texel `slot` lies within
