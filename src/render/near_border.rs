@@ -84,13 +84,7 @@ impl NearBorder {
         }
         // A collapsed side (a pole) has no pieces: its vertices are one point, taken once.
         for g in &mesh.grids {
-            let sides = [
-                (0..g.nu).map(|i| g.vertex(i, 0)).collect::<Vec<_>>(),
-                (0..g.nv).map(|j| g.vertex(g.nu - 1, j)).collect(),
-                (0..g.nu).map(|i| g.vertex(i, g.nv - 1)).collect(),
-                (0..g.nv).map(|j| g.vertex(0, j)).collect(),
-            ];
-            for side in sides.iter().filter(|s| s.len() > 1) {
+            for side in g.sides().iter().filter(|s| s.len() > 1) {
                 let position = |v: u32| mesh.positions.get(v as usize).copied();
                 let first = position(side[0]);
                 if side.iter().all(|&v| position(v) == first) {

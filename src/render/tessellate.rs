@@ -126,6 +126,19 @@ impl PatchGrid {
     pub fn triangle(&self, i: u32, j: u32) -> u32 {
         self.first_triangle + 2 * (i * (self.nv - 1) + j)
     }
+
+    /// The vertices along the four sides of the domain in turn: `v = v0`, `u = u1`, `v = v1`,
+    /// `u = u0`.
+    #[must_use]
+    pub fn sides(&self) -> [Vec<u32>; 4] {
+        let (nu, nv) = (self.nu, self.nv);
+        [
+            (0..nu).map(|i| self.vertex(i, 0)).collect(),
+            (0..nv).map(|j| self.vertex(nu - 1, j)).collect(),
+            (0..nu).map(|i| self.vertex(i, nv - 1)).collect(),
+            (0..nv).map(|j| self.vertex(0, j)).collect(),
+        ]
+    }
 }
 
 /// A piece of a patch's domain boundary between two neighbouring mesh vertices `a` and `b`
@@ -561,15 +574,7 @@ pub fn boundary_edges(positions: &[Vec3], grids: &[PatchGrid]) -> Vec<BorderEdge
     let mut pieces: Vec<BorderEdge> = Vec::new();
     let mut seen: HashMap<([u32; 3], [u32; 3]), usize> = HashMap::new();
     for (patch, g) in grids.iter().enumerate() {
-        let (nu, nv) = (g.nu, g.nv);
-        // The four sides in turn: v = v0, u = u1, v = v1, u = u0.
-        let sides: [Vec<u32>; 4] = [
-            (0..nu).map(|i| g.vertex(i, 0)).collect(),
-            (0..nv).map(|j| g.vertex(nu - 1, j)).collect(),
-            (0..nu).map(|i| g.vertex(i, nv - 1)).collect(),
-            (0..nv).map(|j| g.vertex(0, j)).collect(),
-        ];
-        for side in &sides {
+        for side in &g.sides() {
             for pair in side.windows(2) {
                 let (a, b) = (pair[0], pair[1]);
                 let (ka, kb) = (key(a), key(b));
