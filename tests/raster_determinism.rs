@@ -137,3 +137,70 @@ fn a_reused_rasterizer_and_buffer_give_what_a_fresh_call_gives() {
         assert_eq!(stats, fresh_stats);
     }
 }
+
+#[test]
+fn rasterizing_some_pixels_of_each_row_draws_them_as_the_whole_viewport_does() {
+    let (positions, triangles) = scene();
+    let (whole, _) = rasterize(VIEWPORT, &positions, &triangles, &RasterOptions::default());
+    let mut rng = StdRng::seed_from_u64(7);
+    let width = VIEWPORT.width;
+    // Per row a random span, some empty, some the whole row, some past its end.
+    let rows: Vec<(u32, u32)> = (0..VIEWPORT.height)
+        .map(|_| match rng.random_range(0..6) {
+            0 => (0, 0),
+            1 => (0, width),
+            2 => (width - 3, width + 10),
+            _ => {
+                let a = rng.random_range(0..width);
+                (a, rng.random_range(a..=width))
+            }
+        })
+        .collect();
+    let mut buffer = VisibilityBuffer::default();
+    // Through a buffer that held the whole frame: the pixels left out must be emptied.
+    let mut rasterizer = Rasterizer::new();
+    rasterizer.rasterize_into(
+        VIEWPORT,
+        &positions,
+        &triangles,
+        &RasterOptions::default(),
+        &mut buffer,
+    );
+    for tile_size in [16, 37, 64] {
+        let options = RasterOptions {
+            threads: 2,
+            tile_size,
+        };
+        rasterizer.rasterize_rows_into(
+            VIEWPORT,
+            &positions,
+            &triangles,
+            None,
+            Some(&rows),
+            &options,
+            &mut buffer,
+        );
+        let (mut kept, mut left_out) = (0, 0);
+        for (y, &(a, b)) in rows.iter().enumerate() {
+            for x in 0..width {
+                let i = y * width as usize + x as usize;
+                if (a..b).contains(&x) {
+                    assert_eq!(buffer.triangle[i], whole.triangle[i], "({x}, {y})");
+                    assert_eq!(buffer.depth[i].to_bits(), whole.depth[i].to_bits());
+                    assert_eq!(
+                        buffer.barycentric[i].map(f32::to_bits),
+                        whole.barycentric[i].map(f32::to_bits)
+                    );
+                    kept += u32::from(whole.triangle[i] != u32::MAX);
+                } else {
+                    assert_eq!(buffer.triangle[i], u32::MAX, "({x}, {y}) left out");
+                    left_out += u32::from(whole.triangle[i] != u32::MAX);
+                }
+            }
+        }
+        assert!(
+            kept > 5_000 && left_out > 5_000,
+            "{kept} kept, {left_out} left out"
+        );
+    }
+}

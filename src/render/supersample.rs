@@ -145,10 +145,10 @@ pub(super) fn landed_depth(
 ///
 /// The marked pixels are gathered in [`TILE`]-pixel tiles. Each tile is a [`Window`] of the
 /// supersampled image with an [`APRON`] around it for the central differences of the edge
-/// widths; only the triangles whose bounds reach the window are rasterized into it, and only
-/// the samples of marked pixels and those within the apron of them are kept: their G-buffer,
-/// detail, edge widths and shading are those of the whole supersampled image at those samples.
-/// Memory is one tile per worker.
+/// widths; only the triangles whose bounds reach the window are rasterized into it, each row
+/// over the span of its samples that belong to marked pixels or lie within the apron of them,
+/// and only those samples are kept: their G-buffer, detail, edge widths and shading are those of
+/// the whole supersampled image at those samples. Memory is one tile per worker.
 pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     let (w, h) = (frame.image.width, frame.image.height);
     let gbuffer = frame.gbuffer;
@@ -356,6 +356,8 @@ struct TileBuffers {
     evaluate: Vec<Evaluate>,
     /// Scratch for [`dilate`].
     dilating: (Vec<bool>, Vec<u32>),
+    /// Per row of the window, the span of its samples drawn on.
+    spans: Vec<(u32, u32)>,
     /// Per sample of the window, whether [`grow`] covered it.
     grown: Vec<bool>,
 }
@@ -491,16 +493,9 @@ impl TileBuffers {
             cut,
             triangles: bin,
         });
-        self.rasterizer.rasterize_cut_into(
-            window.viewport(),
-            &self.clip,
-            &self.triangles,
-            cut.as_ref().map(|c| c as &dyn Cut),
-            &options,
-            &mut self.visibility,
-        );
         // Only the samples of marked pixels, and those within the apron of them (the edge
-        // widths' central differences), are drawn on.
+        // widths' central differences), are drawn on; each row is rasterized over the span
+        // from its first such sample to its last.
         let (ww, wh) = (window.width, window.height);
         let (wu, hu) = (ww as usize, wh as usize);
         self.drawn.clear();
@@ -510,6 +505,24 @@ impl TileBuffers {
         }));
         let (rows, counts) = &mut self.dilating;
         dilate(&mut self.drawn, (wu, hu), apron as usize, (rows, counts));
+        self.spans.clear();
+        self.spans.extend(self.drawn.chunks(wu).map(|row| {
+            let first = row.iter().position(|&d| d);
+            let last = row.iter().rposition(|&d| d);
+            match (first, last) {
+                (Some(a), Some(b)) => (a as u32, b as u32 + 1),
+                _ => (0, 0),
+            }
+        }));
+        self.rasterizer.rasterize_rows_into(
+            window.viewport(),
+            &self.clip,
+            &self.triangles,
+            cut.as_ref().map(|c| c as &dyn Cut),
+            Some(&self.spans),
+            &options,
+            &mut self.visibility,
+        );
         self.evaluate.clear();
         self.evaluate.extend(self.drawn.iter().map(|&d| {
             if d {

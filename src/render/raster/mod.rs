@@ -214,6 +214,10 @@ pub trait Cut: Sync {
     fn keeps(&self, triangle: u32, b: [f32; 2]) -> bool;
 }
 
+/// What a call draws of its triangles: what the cut keeps of them, in each row `y` over the
+/// pixels `rows[y].0 .. rows[y].1` ([`Rasterizer::rasterize_rows_into`]).
+pub(super) type Kept<'a> = (Option<&'a dyn Cut>, Option<&'a [(u32, u32)]>);
+
 /// Triangles set up per parallel job; the output does not depend on it.
 const CHUNK_TRIANGLES: usize = 1024;
 
@@ -288,6 +292,35 @@ impl Rasterizer {
         options: &RasterOptions,
         buffer: &mut VisibilityBuffer,
     ) -> RasterStats {
+        self.rasterize_rows_into(viewport, positions, triangles, cut, None, options, buffer)
+    }
+
+    /// [`Rasterizer::rasterize_cut_into`] testing, in each row `y` of the viewport, only the
+    /// pixels `rows[y].0 .. rows[y].1` (an empty range tests none): the others are left empty.
+    /// A pixel tested is drawn as the whole viewport would draw it, since the depth test is
+    /// the pixel's own; what is left out costs nothing but the triangles' set-up.
+    ///
+    /// # Panics
+    /// As [`rasterize`], and if `rows` is given with a length other than the viewport's
+    /// height.
+    #[allow(clippy::too_many_arguments)]
+    pub fn rasterize_rows_into(
+        &mut self,
+        viewport: Viewport,
+        positions: &[ClipVertex],
+        triangles: &[[u32; 3]],
+        cut: Option<&dyn Cut>,
+        rows: Option<&[(u32, u32)]>,
+        options: &RasterOptions,
+        buffer: &mut VisibilityBuffer,
+    ) -> RasterStats {
+        if let Some(rows) = rows {
+            assert_eq!(
+                rows.len(),
+                viewport.height as usize,
+                "one range of pixels per row"
+            );
+        }
         assert!(
             viewport.width <= MAX_VIEWPORT_SIDE && viewport.height <= MAX_VIEWPORT_SIDE,
             "viewport {}×{} exceeds {MAX_VIEWPORT_SIDE} pixels a side",
@@ -311,7 +344,14 @@ impl Rasterizer {
                     ..RasterStats::default()
                 };
             }
-            self.rasterize_in_pool(viewport, positions, triangles, cut, tile_size, buffer)
+            self.rasterize_in_pool(
+                viewport,
+                positions,
+                triangles,
+                (cut, rows),
+                tile_size,
+                buffer,
+            )
         })
     }
 
@@ -320,7 +360,7 @@ impl Rasterizer {
         viewport: Viewport,
         positions: &[ClipVertex],
         triangles: &[[u32; 3]],
-        cut: Option<&dyn Cut>,
+        (cut, rows): Kept<'_>,
         tile_size: u32,
         buffer: &mut VisibilityBuffer,
     ) -> RasterStats {
@@ -361,7 +401,7 @@ impl Rasterizer {
                         .iter()
                         .map(|&i| &chunk.setups[i as usize])
                 });
-                tile::render_tile(target, binned, cut, scratch)
+                tile::render_tile(target, binned, (cut, rows), scratch)
             })
             .reduce(tile::TileCounts::default, |a, b| tile::TileCounts {
                 fragments: a.fragments + b.fragments,

@@ -3,7 +3,7 @@
 
 use super::bin::TileGrid;
 use super::setup::{PixelRect, TriangleSetup};
-use super::{Cut, VisibilityBuffer};
+use super::{Kept, VisibilityBuffer};
 
 /// The pixels of one tile in the frame buffers, as one slice per pixel row.
 pub(super) struct TileTarget<'a> {
@@ -83,20 +83,21 @@ pub(super) struct TileCounts {
     pub pixels: u64,
 }
 
-/// Renders `triangles` (in ascending input order) into the tile `target`.
+/// Renders `triangles` (in ascending input order) into the tile `target`, in each row `y` of
+/// the image only the pixels `rows[y].0 .. rows[y].1` when `rows` is given.
 ///
 /// Depth test: a fragment replaces the stored one only if strictly nearer, so on equal depth the
 /// triangle drawn first — the lower index — wins, whatever the traversal order of tiles.
 pub(super) fn render_tile<'s>(
     target: TileTarget<'_>,
     triangles: impl Iterator<Item = &'s TriangleSetup>,
-    cut: Option<&dyn Cut>,
+    (cut, rows): Kept<'_>,
     scratch: &mut Scratch<'s>,
 ) -> TileCounts {
     let width = (target.rect.x1 - target.rect.x0 + 1) as usize;
     scratch.reset(width * target.depth.len());
     let fragments = triangles
-        .map(|setup| draw(setup, &target.rect, width, cut, scratch))
+        .map(|setup| draw(setup, &target.rect, width, (cut, rows), scratch))
         .sum();
     let pixels = resolve(target, width, scratch);
     TileCounts { fragments, pixels }
@@ -106,13 +107,14 @@ pub(super) fn render_tile<'s>(
 /// the edge functions incrementally: `E(x + 1, y) = E(x, y) + step_x`,
 /// `E(x, y + 1) = E(x, y) + step_y`. A pixel centre is covered when every biased edge value is
 /// non-negative, i.e. when their bitwise or is. A pixel of a [`TriangleSetup::tested`]
-/// triangle that would win is drawn only when `cut` keeps it. Returns the number of covered
-/// pixel centres.
+/// triangle that would win is drawn only when `cut` keeps it. With `rows`, a row `y` is
+/// tested only over `rows[y].0 .. rows[y].1`, the edge values started where that range starts:
+/// `E(x₀, y) = E(r.x₀, y) + (x₀ − r.x₀) step_x`. Returns the number of covered pixel centres.
 fn draw<'s>(
     setup: &'s TriangleSetup,
     tile: &PixelRect,
     width: usize,
-    cut: Option<&dyn Cut>,
+    (cut, rows): Kept<'_>,
     scratch: &mut Scratch<'s>,
 ) -> u64 {
     let cut = cut.filter(|_| setup.tested);
@@ -126,15 +128,33 @@ fn draw<'s>(
         i64::from(r.y0 - setup.rect.y0),
     );
     let mut row = [e0.at(dx, dy), e1.at(dx, dy), e2.at(dx, dy)];
-    let span = (r.x1 - r.x0 + 1) as usize;
     let mut fragments = 0;
     for y in r.y0..=r.y1 {
-        let start = (y - tile.y0) as usize * width + (r.x0 - tile.x0) as usize;
+        let (x0, x1) = match rows {
+            None => (r.x0, r.x1),
+            Some(rows) => {
+                let (a, b) = rows[y as usize];
+                (r.x0.max(a as i32), r.x1.min(b as i32 - 1))
+            }
+        };
+        if x0 > x1 {
+            row[0] += e0.step_y;
+            row[1] += e1.step_y;
+            row[2] += e2.step_y;
+            continue;
+        }
+        let skipped = i64::from(x0 - r.x0);
+        let start = (y - tile.y0) as usize * width + (x0 - tile.x0) as usize;
+        let span = (x1 - x0 + 1) as usize;
         let depth = &mut scratch.depth[start..start + span];
         let winner = &mut scratch.winner[start..start + span];
-        let mut e = row;
+        let mut e = [
+            row[0] + skipped * e0.step_x,
+            row[1] + skipped * e1.step_x,
+            row[2] + skipped * e2.step_x,
+        ];
         let mut entered = false;
-        for (x, (stored, won)) in (r.x0..).zip(depth.iter_mut().zip(winner)) {
+        for (x, (stored, won)) in (x0..).zip(depth.iter_mut().zip(winner)) {
             if (e[0] | e[1] | e[2]) >= 0 {
                 entered = true;
                 fragments += 1;
