@@ -14,6 +14,12 @@ pub const REFINE_STEPS: usize = 8;
 /// 10⁻⁷ rad, far below any pixel.
 const ON_RAY: f64 = 1e-7;
 
+/// The most of its residual a probe's Newton step may keep far from the ray
+/// ([`RaySearch::stall_beyond`]): near a point where the ray meets the surface at an angle each
+/// step squares the residual, so a step that does not halve it most often starts where the ray
+/// passes beside the surface.
+const STALLED: f64 = 0.5;
+
 /// Halvings of a Newton step that does not bring the point nearer the ray before giving up.
 const HALVINGS: usize = 6;
 
@@ -36,6 +42,12 @@ pub struct RaySearch {
     /// probe also stops when two steps in a row are held on the same side of the domain, or
     /// one is held where it stands: the ray passes beyond the patch's edge.
     pub evaluations: u32,
+    /// A probe (fewer than [`ALL_EVALUATIONS`]) also ends at the first step that does not
+    /// halve its distance from the ray ([`STALLED`]) and leaves it farther than this (in the
+    /// ray's units; infinite: never). Where the ray grazes the surface (at an outline, about a
+    /// pole) the steps that land on it may be slow, but they come near the ray, while those of
+    /// a ray passing beside the surface stay about as far from it as it passes.
+    pub stall_beyond: f64,
 }
 
 impl NurbsSurface {
@@ -62,6 +74,7 @@ impl NurbsSurface {
             origin,
             direction,
             evaluations: ALL_EVALUATIONS,
+            stall_beyond: f64::INFINITY,
         };
         newton_on_ray(self, &search, |u, v| self.derivs(u, v, 1)).1
     }
@@ -143,8 +156,15 @@ fn newton_on_ray(
     let (mut f1, mut f2, mut error, mut distance) = residual(s.point);
     // A probe asks only whether the ray meets the surface near the start: two steps in a row
     // held on the same side of the domain they would have left, or a step the domain holds
-    // where it is, say that the ray passes beyond it.
+    // where it is, say that the ray passes beyond it; a step that does not halve the residual
+    // and leaves it beyond the search's `stall_beyond` ([`STALLED`]), that it passes beside
+    // it or meets it far from the start.
     let probe = search.evaluations < ALL_EVALUATIONS;
+    let stall_beyond = if probe {
+        search.stall_beyond
+    } else {
+        f64::INFINITY
+    };
     let mut pressed = 0u8;
     'steps: for _ in 0..REFINE_STEPS {
         if error <= ON_RAY * distance {
@@ -175,6 +195,14 @@ fn newton_on_ray(
             }
             let ns = derivs(nu, nv);
             let (g1, g2, g_error, g_distance) = residual(ns.point);
+            // A probe's step that does not halve the residual starts outside the reach of
+            // any point where the ray meets the surface: it ends at the nearer of the two.
+            if g_error > STALLED * error && g_error > stall_beyond {
+                if g_error < error {
+                    (u, v, s) = (nu, nv, ns);
+                }
+                break 'steps;
+            }
             if g_error < error {
                 let against = u8::from(ru < nu)
                     | u8::from(ru > nu) << 1
@@ -243,6 +271,7 @@ mod tests {
                 origin,
                 direction: sphere.point(u, v) - origin,
                 evaluations: ALL_EVALUATIONS,
+                stall_beyond: f64::INFINITY,
             })
             .collect();
         let mut params = vec![(0.0, 0.0); 4];
@@ -272,6 +301,7 @@ mod tests {
             origin,
             direction: DVec3::Z,
             evaluations,
+            stall_beyond: f64::INFINITY,
         };
         let count = |evaluations| {
             let mut spent = 0;
@@ -302,6 +332,51 @@ mod tests {
     }
 
     #[test]
+    fn a_probe_beside_the_surface_stops_at_its_first_stalled_step_far_from_the_ray() {
+        // A ray passing 0.1 beside the unit sphere, probed from where a ray through the
+        // outline would start: no step halves the distance, which stays about 0.1.
+        let sphere = crate::geom::shapes::sphere(DVec3::ZERO, 1.0).unwrap();
+        let origin = DVec3::new(-1.1, -50.0, 0.05);
+        let start = (0.5, 0.52);
+        let probe = |direction: DVec3, stall_beyond| RaySearch {
+            start,
+            origin,
+            direction,
+            evaluations: 5,
+            stall_beyond,
+        };
+        let count = |search: RaySearch| {
+            let mut spent = 0;
+            let (d, _) = newton_on_ray(&sphere, &search, |u, v| {
+                spent += 1;
+                sphere.derivs(u, v, 1)
+            });
+            (spent, d.point)
+        };
+        let (patient, _) = count(probe(DVec3::Y, f64::INFINITY));
+        assert_eq!(
+            patient, 5,
+            "without a stall distance the probe spends its budget"
+        );
+        let (quick, point) = count(probe(DVec3::Y, 0.01));
+        assert_eq!(quick, 2, "the start and one stalled step");
+        let off = (point - origin).reject_from(DVec3::Y).length();
+        assert!(off > 0.05, "{off}");
+        // Stalled within the distance allowed, the probe goes on.
+        let (near, _) = count(probe(DVec3::Y, 0.5));
+        assert_eq!(near, 5);
+        // A ray that meets the sphere head-on near the start is found as before.
+        let target = sphere.point(0.52, 0.5);
+        let hit = RaySearch {
+            origin: target * 5.0,
+            direction: -target,
+            ..probe(DVec3::Y, 0.01)
+        };
+        let (_, point) = count(hit);
+        assert!((point - target).length() < 1e-6, "{point}");
+    }
+
+    #[test]
     fn a_probe_past_the_domain_stops_once_two_steps_end_on_its_edge() {
         // A ray that meets the plane's extension beyond u's upper end: each step heads past it
         // and is held on the edge. A probe gives up after two such steps; the full search goes
@@ -324,6 +399,7 @@ mod tests {
             origin,
             direction: target - origin,
             evaluations,
+            stall_beyond: f64::INFINITY,
         };
         let count = |search: RaySearch| {
             let mut spent = 0;

@@ -66,10 +66,19 @@ pub enum Evaluate {
     /// Whether the ray meets the surface near the mesh's (u, v): refined within
     /// [`PROBE_EVALUATIONS`], so that a ray passing beside the surface costs little.
     Probe,
+    /// A [`Evaluate::Probe`] that also gives up at the first Newton step that does not halve
+    /// its distance from the ray and leaves it more than [`STALL_PIXELS`] away
+    /// ([`RaySearch::stall_beyond`]): for a sample that other starts may still reach.
+    QuickProbe,
     /// Only where the surface is: the mesh's interpolated frame, as [`FrameMode::Interpolated`]
     /// gives it (for samples whose depth and normal matter, not their shading).
     Mesh,
 }
+
+/// How far from its ray, in pixels of the image probed, a [`Evaluate::QuickProbe`] may stall
+/// and still go on: a ray that grazes the sphere at its outline, beside a pole, comes within
+/// two in one step, where one drops samples the sphere covers.
+pub const STALL_PIXELS: f64 = 2.0;
 
 /// Surface evaluations a [`Evaluate::Probe`] spends at most: from a start within a sample of
 /// the ray, Newton's steps land on it in two or three.
@@ -210,7 +219,7 @@ impl GBuffer {
         );
         match evaluate {
             Evaluate::Mesh => 0,
-            Evaluate::Full | Evaluate::Probe => texels.len() as u64,
+            Evaluate::Full | Evaluate::Probe | Evaluate::QuickProbe => texels.len() as u64,
         }
     }
 
@@ -304,7 +313,7 @@ impl Fill<'_> {
         let evaluate = self.evaluate.map_or(Evaluate::Full, |e| e[i]);
         let mode = match (self.frames.mode, evaluate) {
             (_, Evaluate::Mesh) => FrameMode::Interpolated,
-            (mode, Evaluate::Full | Evaluate::Probe) => mode,
+            (mode, Evaluate::Full | Evaluate::Probe | Evaluate::QuickProbe) => mode,
         };
         let frame = match mode {
             // The mesh's normal, kept until the exact frame replaces it: refined frames compare
@@ -363,15 +372,21 @@ impl Frames<'_> {
                 scratch.searches.clear();
                 scratch.searches.extend(run.iter().map(|t| {
                     let (origin, direction) = self.ray(t.pixel);
-                    let evaluations = match evaluate(t) {
-                        Evaluate::Probe => PROBE_EVALUATIONS,
-                        Evaluate::Full | Evaluate::Mesh => ALL_EVALUATIONS,
+                    let (evaluations, stall_beyond) = match evaluate(t) {
+                        Evaluate::Probe => (PROBE_EVALUATIONS, f64::INFINITY),
+                        Evaluate::QuickProbe => {
+                            let across = self.across_pixel(t.pixel, (origin, direction));
+                            let pixel = across(t.position.as_dvec3());
+                            (PROBE_EVALUATIONS, STALL_PIXELS * pixel)
+                        }
+                        Evaluate::Full | Evaluate::Mesh => (ALL_EVALUATIONS, f64::INFINITY),
                     };
                     RaySearch {
                         start: start(t),
                         origin,
                         direction,
                         evaluations,
+                        stall_beyond,
                     }
                 }));
                 surface.frames_on_rays(&scratch.searches, &mut scratch.params, &mut scratch.frames);
@@ -395,7 +410,7 @@ impl Frames<'_> {
                 let (mut f, mut uv) = (*f, (u, v));
                 // A probe that found no point on its ray has its answer: the ray misses.
                 let missed = || {
-                    evaluate(t) == Evaluate::Probe
+                    matches!(evaluate(t), Evaluate::Probe | Evaluate::QuickProbe)
                         && search.is_some_and(|s| !on_ray(f.point, s.origin, s.direction))
                 };
                 if refined && !missed() {
@@ -411,6 +426,24 @@ impl Frames<'_> {
     }
 
     /// The pixel's ray through its centre, `(origin, direction)` from the near plane to the far.
+    /// The width of pixel `pixel` (whose ray is `ray`) about a point: the distance from the
+    /// ray to the next pixel's ray (the previous one's in the last column) at the point's
+    /// distance along it, `|Δo + ((p − o)·d̂) Δd̂|` with `Δ` the change from one ray to the
+    /// other and `d̂` the unit direction.
+    fn across_pixel(&self, pixel: u32, ray: (DVec3, DVec3)) -> impl Fn(DVec3) -> f64 {
+        let width = self.size.0;
+        let next = if pixel % width + 1 < width {
+            pixel + 1
+        } else {
+            pixel.saturating_sub(1)
+        };
+        let (origin, direction) = ray;
+        let (o2, d2) = self.ray(next);
+        let d = direction.normalize_or_zero();
+        let (delta_o, delta_d) = (o2 - origin, d2.normalize_or_zero() - d);
+        move |p: DVec3| (delta_o + (p - origin).dot(d) * delta_d).length()
+    }
+
     fn ray(&self, pixel: u32) -> (DVec3, DVec3) {
         let (width, height) = self.size;
         let (x, y) = ((pixel % width) as f32 + 0.5, (pixel / width) as f32 + 0.5);
@@ -532,9 +565,16 @@ mod tests {
         let (full, all) = fill(FrameMode::Refined, None);
         assert_eq!(none, 0);
         assert_eq!(all, full.texels.len() as u64);
-        // Every third pixel each way.
+        // Each of the four ways, a pixel in four.
         let evaluate: Vec<Evaluate> = (0..width * height)
-            .map(|i| [Evaluate::Full, Evaluate::Probe, Evaluate::Mesh][i as usize % 3])
+            .map(|i| {
+                [
+                    Evaluate::Full,
+                    Evaluate::Probe,
+                    Evaluate::Mesh,
+                    Evaluate::QuickProbe,
+                ][i as usize % 4]
+            })
             .collect();
         let (mixed, frames) = fill(FrameMode::Refined, Some(&evaluate));
         let (mut counted, mut probes, mut agreed) = (0, 0, 0);
@@ -549,7 +589,7 @@ mod tests {
                 Evaluate::Full => assert_eq!(m, f),
                 // From a mesh within half a pixel of the surface, a probe lands where the full
                 // search does, or (where the ray grazes the sphere) gives up off the ray.
-                Evaluate::Probe => {
+                Evaluate::Probe | Evaluate::QuickProbe => {
                     let (origin, direction) = camera.ray_through(
                         (
                             f64::from(m.pixel % width) + 0.5,

@@ -410,7 +410,7 @@ fn draw_batch(
         .zip(pixels.par_iter())
         .enumerate()
         .for_each(|(j, (((c, t), s), &pixel))| s.fill(frame, (j, pixel), c, t));
-    let mut frames = probe(frame, texels, full);
+    let mut frames = probe(frame, texels, full, Evaluate::QuickProbe);
 
     // Per sample, the nearest candidate that landed on its ray on a part of its patch the trim
     // keeps, pixel by pixel.
@@ -545,7 +545,7 @@ fn retry_beside_landed(
     if texels.len() == first {
         return 0;
     }
-    let frames = probe(frame, &mut texels[first..], full);
+    let frames = probe(frame, &mut texels[first..], full, Evaluate::Probe);
     for index in first..texels.len() {
         let t = &texels[index];
         let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full) else {
@@ -560,8 +560,9 @@ fn retry_beside_landed(
 }
 
 /// Refines each of `texels` onto the ray of its sample in the `full` grid of samples, as a
-/// probe ([`GBuffer::evaluate_frames`] with refined frames); returns the frames evaluated.
-fn probe(frame: &Seeded, texels: &mut [Texel], full: (u32, u32)) -> u64 {
+/// probe of kind `evaluate` ([`GBuffer::evaluate_frames`] with refined frames); returns the
+/// frames evaluated.
+fn probe(frame: &Seeded, texels: &mut [Texel], full: (u32, u32), evaluate: Evaluate) -> u64 {
     GBuffer::evaluate_frames(
         texels,
         frame.library,
@@ -569,6 +570,6 @@ fn probe(frame: &Seeded, texels: &mut [Texel], full: (u32, u32)) -> u64 {
         frame.view_projection,
         full,
         FrameMode::Refined,
-        Evaluate::Probe,
+        evaluate,
     )
 }

@@ -449,7 +449,7 @@ fn onto_rays(
         view_projection,
         size,
         FrameMode::Refined,
-        Evaluate::Probe,
+        Evaluate::QuickProbe,
     );
     let found = which
         .iter()
