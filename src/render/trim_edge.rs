@@ -307,12 +307,13 @@ pub(super) fn trim_edges(
     let settled: Vec<usize> = (0..probes.len()).filter(|&k| settle[k]).collect();
     let (found, frames) = onto_rays(&mut probes, &settled);
     edges.frames += frames;
-    for (&k, found) in settled.iter().zip(found) {
-        trim[k] = if found {
-            trim_of(&probes[k], uv_reach[k])
-        } else {
-            None
-        };
+    let settled_trims: Vec<Option<(f64, f64)>> = settled
+        .par_iter()
+        .zip(found)
+        .map(|(&k, found)| trim_of(&probes[k], uv_reach[k]).filter(|_| found))
+        .collect();
+    for (&k, value) in settled.iter().zip(settled_trims) {
+        trim[k] = value;
     }
     for (pixel, beyond, front) in crossings {
         let surface = Surface {
