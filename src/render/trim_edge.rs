@@ -193,15 +193,6 @@ pub(super) fn trim_edges(
         landed.push(own && found);
     }
     let foreign: Vec<usize> = foreign.into_iter().map(|k| k as usize).collect();
-    let onto_rays = |probes: &mut [Texel], which: &[usize]| -> (Vec<bool>, u64) {
-        onto_rays(gbuffer, scene, view_projection, probes, which)
-    };
-    let (found, frames) = onto_rays(&mut probes, &foreign);
-    edges.frames = frames;
-    for (&k, found) in foreign.iter().zip(found) {
-        landed[k] = found;
-    }
-    let signed = signed_values_of(&probes, scene);
     // Per probe, its trim's signed distance and the reach it was sought within.
     let trim_of = |t: &Texel, uv_reach: f64| {
         let Some(trim) = &library.patches[t.patch as usize].trim else {
@@ -215,6 +206,49 @@ pub(super) fn trim_edges(
         let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
         Some((trim.try_signed_distance(u, v, reach)?, reach))
     };
+    // A candidate against the background where the trimmed patch keeps, at each of its own
+    // texels about the pixel, more than the rim's reach (four pixels): the rim cannot reach
+    // the background's centres, a pixel or so away, and what ends the patch there is its
+    // outline. The judgement would fail; its samples off the patch are not sought.
+    let entry = |n: usize, surface: u32| {
+        let entry = asked.get(asked_at[n] as usize)?;
+        entry.iter().find(|e| e.0 == surface).map(|e| e.1 as usize)
+    };
+    let outline: Vec<bool> = candidates
+        .par_iter()
+        .map(|c| {
+            c.other == EMPTY
+                && around(c.pixel as usize, (w, h)).all(|n| {
+                    if thing(n) != c.front {
+                        return true;
+                    }
+                    let Some(k) = entry(n, c.front) else {
+                        return false;
+                    };
+                    matches!(trim_of(&probes[k], uv_reach[k]), Some((d, reach)) if d >= reach)
+                })
+        })
+        .collect();
+    let mut sought = vec![false; probes.len()];
+    for (c, _) in candidates.iter().zip(&outline).filter(|(_, &o)| !o) {
+        for n in around(c.pixel as usize, (w, h)) {
+            for surface in [c.front, c.other] {
+                if let Some(k) = entry(n, surface).filter(|_| surface != EMPTY) {
+                    sought[k] = true;
+                }
+            }
+        }
+    }
+    let foreign: Vec<usize> = foreign.into_iter().filter(|&k| sought[k]).collect();
+    let onto_rays = |probes: &mut [Texel], which: &[usize]| -> (Vec<bool>, u64) {
+        onto_rays(gbuffer, scene, view_projection, probes, which)
+    };
+    let (found, frames) = onto_rays(&mut probes, &foreign);
+    edges.frames = frames;
+    for (&k, found) in foreign.iter().zip(found) {
+        landed[k] = found;
+    }
+    let signed = signed_values_of(&probes, scene);
     let mut trim: Vec<Option<(f64, f64)>> = probes
         .par_iter()
         .zip(&uv_reach)
@@ -229,7 +263,11 @@ pub(super) fn trim_edges(
 
     let judged: Vec<Option<Judged>> = candidates
         .par_iter()
-        .map(|candidate| {
+        .zip(&outline)
+        .map(|(candidate, &outline)| {
+            if outline {
+                return None;
+            }
             let pixel = candidate.pixel as usize;
             let mut front = [0usize; 9];
             for (slot, n) in front.iter_mut().zip(around(pixel, (w, h))) {
