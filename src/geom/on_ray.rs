@@ -43,10 +43,10 @@ pub struct RaySearch {
     /// one is held where it stands: the ray passes beyond the patch's edge.
     pub evaluations: u32,
     /// A probe (fewer than [`ALL_EVALUATIONS`]) also ends at the first step that does not
-    /// halve its distance from the ray ([`STALLED`]) and leaves it farther than this (in the
-    /// ray's units; infinite: never). Where the ray grazes the surface (at an outline, about a
-    /// pole) the steps that land on it may be slow, but they come near the ray, while those of
-    /// a ray passing beside the surface stay about as far from it as it passes.
+    /// halve its distance from the ray and leaves it farther than this (in the ray's units;
+    /// infinite: never). Where the ray grazes the surface (at an outline, about a pole) the
+    /// steps that land on it may be slow, but they come near the ray, while those of a ray
+    /// passing beside the surface stay about as far from it as it passes.
     pub stall_beyond: f64,
 }
 

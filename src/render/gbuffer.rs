@@ -425,7 +425,6 @@ impl Frames<'_> {
         }
     }
 
-    /// The pixel's ray through its centre, `(origin, direction)` from the near plane to the far.
     /// The width of pixel `pixel` (whose ray is `ray`) about a point: the distance from the
     /// ray to the next pixel's ray (the previous one's in the last column) at the point's
     /// distance along it, `|Δo + ((p − o)·d̂) Δd̂|` with `Δ` the change from one ray to the
@@ -444,6 +443,7 @@ impl Frames<'_> {
         move |p: DVec3| (delta_o + (p - origin).dot(d) * delta_d).length()
     }
 
+    /// The pixel's ray through its centre, `(origin, direction)` from the near plane to the far.
     fn ray(&self, pixel: u32) -> (DVec3, DVec3) {
         let (width, height) = self.size;
         let (x, y) = ((pixel % width) as f32 + 0.5, (pixel / width) as f32 + 0.5);

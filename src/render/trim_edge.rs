@@ -71,7 +71,9 @@ struct Candidate {
 /// probe from its nearest texel (`GBuffer::evaluate_frames`, refined). The trim's signed
 /// distance `f` in (u, v) is taken at P's nine points
 /// ([`Trim::try_signed_distance`](crate::geom::Trim::try_signed_distance), positive where it
-/// keeps P). The pixel is drawn right when:
+/// keeps P); against the background, where P keeps more than the rim's reach at each of its
+/// own texels about the pixel, its outline ends it there and the pixel fails before P is
+/// sought off them. The pixel is drawn right when:
 ///
 /// - P meets every centre's ray, and the quadratic of `f` over the box
 ///   ([`BoxQuadratic`]) stays on one side of 0 over it, or crosses it straight within
