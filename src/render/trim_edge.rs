@@ -212,6 +212,7 @@ pub(super) fn trim_edges(
     // texels about the pixel, more than the rim's reach (four pixels): the rim cannot reach
     // the background's centres, a pixel or so away, and what ends the patch there is its
     // outline. The judgement would fail; its samples off the patch are not sought.
+    // The sample asked of `surface` at pixel `n`, and (`find`) the same where it landed.
     let entry = |n: usize, surface: u32| {
         let entry = asked.get(asked_at[n] as usize)?;
         entry.iter().find(|e| e.0 == surface).map(|e| e.1 as usize)
@@ -256,12 +257,7 @@ pub(super) fn trim_edges(
         .zip(&uv_reach)
         .map(|(t, &uv_reach)| trim_of(t, uv_reach))
         .collect();
-    let find = |n: usize, surface: u32| {
-        let entry = asked.get(asked_at[n] as usize)?;
-        let &(_, k) = entry.iter().find(|e| e.0 == surface)?;
-        let k = k as usize;
-        landed[k].then_some(k)
-    };
+    let find = |n: usize, surface: u32| entry(n, surface).filter(|&k| landed[k]);
 
     let judged: Vec<Option<Judged>> = candidates
         .par_iter()
