@@ -217,6 +217,17 @@ pub(super) fn trim_edges(
         let entry = asked.get(asked_at[n] as usize)?;
         entry.iter().find(|e| e.0 == surface).map(|e| e.1 as usize)
     };
+    // The own samples' trims now; those off the patch once they are on their rays.
+    let mut off_patch = vec![false; probes.len()];
+    for &k in &foreign {
+        off_patch[k] = true;
+    }
+    let mut trim: Vec<Option<(f64, f64)>> = probes
+        .par_iter()
+        .zip(&uv_reach)
+        .zip(&off_patch)
+        .map(|((t, &uv_reach), &off)| if off { None } else { trim_of(t, uv_reach) })
+        .collect();
     let outline: Vec<bool> = candidates
         .par_iter()
         .map(|c| {
@@ -228,7 +239,7 @@ pub(super) fn trim_edges(
                     let Some(k) = entry(n, c.front) else {
                         return false;
                     };
-                    matches!(trim_of(&probes[k], uv_reach[k]), Some((d, reach)) if d >= reach)
+                    matches!(trim[k], Some((d, reach)) if d >= reach)
                 })
         })
         .collect();
@@ -251,12 +262,14 @@ pub(super) fn trim_edges(
     for (&k, found) in foreign.iter().zip(found) {
         landed[k] = found;
     }
-    let signed = signed_values_of(&probes, scene);
-    let mut trim: Vec<Option<(f64, f64)>> = probes
+    let found_trims: Vec<Option<(f64, f64)>> = foreign
         .par_iter()
-        .zip(&uv_reach)
-        .map(|(t, &uv_reach)| trim_of(t, uv_reach))
+        .map(|&k| trim_of(&probes[k], uv_reach[k]))
         .collect();
+    for (&k, value) in foreign.iter().zip(found_trims) {
+        trim[k] = value;
+    }
+    let signed = signed_values_of(&probes, scene);
     let find = |n: usize, surface: u32| entry(n, surface).filter(|&k| landed[k]);
 
     let judged: Vec<Option<Judged>> = candidates
