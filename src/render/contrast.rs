@@ -55,52 +55,61 @@ pub fn pixels_to_supersample(
 ) -> Vec<bool> {
     let (w, h) = (width as usize, height as usize);
     let is_drawn = |i: usize| drawn.is_some_and(|d| d.at(i));
-    let differs = |a: usize, b: usize| {
-        // Most neighbours of a cel-shaded frame are the same colour to the bit.
-        if colour[a] == colour[b] && matte.is_none_or(|m| m[a] == m[b]) {
-            return false;
-        }
-        if is_drawn(a) && is_drawn(b) {
-            return false;
-        }
-        (premultiplied(colour[a]) - premultiplied(colour[b]))
-            .abs()
-            .max_element()
-            > CONTRAST
-            || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST)
-    };
     // Each pair of neighbours compared once, from the upper or left one: bit 0 its right
     // neighbour, 1 the one below, 2 below right, 3 below left.
     let mut pairs = vec![0u8; w * h];
-    pairs.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
-        for (x, bits) in row.iter_mut().enumerate() {
-            let i = y * w + x;
-            let right = x + 1 < w;
-            let below = y + 1 < h;
-            *bits = u8::from(right && differs(i, i + 1))
-                | u8::from(below && differs(i, i + w)) << 1
-                | u8::from(right && below && differs(i, i + w + 1)) << 2
-                | u8::from(x > 0 && below && differs(i, i + w - 1)) << 3;
+    pairs.par_chunks_mut(w).enumerate().for_each(|(y, bits)| {
+        // Sets `bit` of `bits[from + k]` for each of the `n` pixels `a + k` that differ from
+        // pixel `b + k`. Most neighbours of a cel-shaded frame are the same colour to the bit:
+        // that test runs in a tight loop, the rest only where it fails.
+        let mut scan = |bit: u8, from: usize, a: usize, b: usize, n: usize| {
+            let (ca, cb) = (&colour[a..a + n], &colour[b..b + n]);
+            let bits = &mut bits[from..from + n];
+            for k in 0..n {
+                let same = ca[k] == cb[k] && matte.is_none_or(|m| m[a + k] == m[b + k]);
+                let both_drawn = || is_drawn(a + k) && is_drawn(b + k);
+                if !same && !both_drawn() && beyond_contrast(colour, matte, a + k, b + k) {
+                    bits[k] |= bit;
+                }
+            }
+        };
+        let i = y * w;
+        scan(1, 0, i, i + 1, w - 1);
+        if y + 1 < h {
+            scan(2, 0, i, i + w, w);
+            scan(4, 0, i, i + w + 1, w - 1);
+            scan(8, 1, i + 1, i + w, w - 1);
         }
     });
     let mut marked = vec![false; w * h];
     marked.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+        let i = y * w;
+        let here = &pairs[i..i + w];
+        let above = (y > 0).then(|| &pairs[i - w..i]);
+        let also = also.map(|also| &also[i..i + w]);
         for (x, mark) in row.iter_mut().enumerate() {
-            let i = y * w + x;
-            let left = x > 0 && pairs[i - 1] & 1 != 0;
-            let above = y > 0 && pairs[i - w] & 2 != 0;
-            let above_left = x > 0 && y > 0 && pairs[i - w - 1] & 4 != 0;
-            let above_right = x + 1 < w && y > 0 && pairs[i - w + 1] & 8 != 0;
-            *mark = !is_drawn(i)
-                && (pairs[i] != 0
-                    || left
-                    || above
-                    || above_left
-                    || above_right
-                    || also.is_some_and(|also| also[i]));
+            let left = x > 0 && here[x - 1] & 1 != 0;
+            let from_above = above.is_some_and(|above| {
+                above[x] & 2 != 0
+                    || (x > 0 && above[x - 1] & 4 != 0)
+                    || (x + 1 < w && above[x + 1] & 8 != 0)
+            });
+            *mark = (here[x] != 0 || left || from_above || also.is_some_and(|also| also[x]))
+                && !is_drawn(i + x);
         }
     });
     marked
+}
+
+/// Whether pixels `a` and `b` differ by more than [`CONTRAST`] in premultiplied `colour` or in
+/// `matte`.
+#[inline(never)]
+fn beyond_contrast(colour: &[Vec4], matte: Option<&[f32]>, a: usize, b: usize) -> bool {
+    (premultiplied(colour[a]) - premultiplied(colour[b]))
+        .abs()
+        .max_element()
+        > CONTRAST
+        || matte.is_some_and(|m| (m[a] - m[b]).abs() > CONTRAST)
 }
 
 #[cfg(test)]
