@@ -9,7 +9,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 use serde::Deserialize;
 
-use crate::geom::{Frame, GridEvaluator, KnotVector, NurbsSurface, PatchLibrary, Region};
+use crate::geom::{GridEvaluator, KnotVector, NurbsSurface, PatchLibrary, Region};
 
 /// How finely patches are cut into triangles.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
@@ -172,8 +172,64 @@ pub struct Tessellator {
     /// Classes of (patch, direction) that must be cut alike: `class[2 p + d]`, d = 0 for u.
     class: Vec<usize>,
     cached: Option<(Vec<Segments>, Mesh)>,
+    /// Per patch, its grid in the cached mesh: a mesh rebuilt because some patches' counts
+    /// changed evaluates those patches alone.
+    patch_frames: Vec<PatchFrames>,
     /// How many meshes have been made: what identifies the cached one.
     generation: u64,
+}
+
+/// One patch's grid of vertices, as evaluated: the segments it was cut with, the parameters of
+/// its rows and columns and, row by row, each vertex's point, normal and unit tangent along u.
+#[derive(Debug, Default, PartialEq)]
+struct PatchFrames {
+    segments: Segments,
+    us: Vec<f64>,
+    vs: Vec<f64>,
+    points: Vec<DVec3>,
+    normals: Vec<Vec3>,
+    tangents_u: Vec<Vec3>,
+}
+
+impl PatchFrames {
+    /// Makes each of `patch_frames` (one per patch of `library`) that of its `segments`,
+    /// evaluating only those cut otherwise before; returns how many were evaluated.
+    fn refresh(patch_frames: &mut [Self], library: &PatchLibrary, segments: &[Segments]) -> usize {
+        patch_frames
+            .par_iter_mut()
+            .zip(&library.patches)
+            .zip(segments)
+            .map(|((evaluated, patch), &cut)| {
+                let stale = evaluated.segments != cut || evaluated.points.is_empty();
+                if stale {
+                    *evaluated = Self::of(&patch.surface, cut);
+                }
+                usize::from(stale)
+            })
+            .sum()
+    }
+
+    /// The grid of `surface` cut with `(seg_u, seg_v)` segments per span.
+    fn of(surface: &NurbsSurface, (seg_u, seg_v): Segments) -> Self {
+        let us = span_samples(surface.knots_u(), seg_u);
+        let vs = span_samples(surface.knots_v(), seg_v);
+        let grid = GridEvaluator::new(surface, &us, &vs);
+        let count = us.len() * vs.len();
+        let mut evaluated = Self {
+            segments: (seg_u, seg_v),
+            points: Vec::with_capacity(count),
+            normals: Vec::with_capacity(count),
+            tangents_u: Vec::with_capacity(count),
+            us,
+            vs,
+        };
+        for f in (0..evaluated.us.len()).flat_map(|i| grid.row_frames(i)) {
+            evaluated.points.push(f.point);
+            evaluated.normals.push(f.normal.as_vec3());
+            evaluated.tangents_u.push(f.du.as_vec3());
+        }
+        evaluated
+    }
 }
 
 impl Tessellator {
@@ -182,6 +238,9 @@ impl Tessellator {
         let library = library.into();
         Self {
             class: direction_classes(&library),
+            patch_frames: (0..library.patches.len())
+                .map(|_| PatchFrames::default())
+                .collect(),
             library,
             cached: None,
             generation: 0,
@@ -200,7 +259,9 @@ impl Tessellator {
         let segments = self.segments(density, view_projection, width, height);
         let rebuilt = !matches!(&self.cached, Some((s, _)) if *s == segments);
         if rebuilt {
-            let mesh = build_mesh(&self.library, &segments);
+            // The grids of the patches whose counts changed, in parallel; the others' are kept.
+            PatchFrames::refresh(&mut self.patch_frames, &self.library, &segments);
+            let mesh = build_mesh(&self.library, &self.patch_frames);
             self.cached = Some((segments, mesh));
             self.generation += 1;
         }
@@ -492,43 +553,38 @@ fn direction_classes_counted(library: &PatchLibrary) -> (Vec<usize>, usize) {
     (classes, compared)
 }
 
-/// The grid meshes of all patches, with boundary vertices at equal positions welded to one f32
-/// value, and, when a patch is trimmed, where each triangle lies on its trim.
-fn build_mesh(library: &PatchLibrary, segments: &[Segments]) -> Mesh {
+/// The grid meshes of all patches (their `patch_frames`), with boundary vertices at equal
+/// positions welded to one f32 value, and, when a patch is trimmed, where each triangle lies on
+/// its trim.
+fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
     let mut mesh = Mesh::default();
     let trimmed = library.patches.iter().any(|p| p.trim.is_some());
     let mut welded: HashMap<[i64; 3], Vec3> = HashMap::new();
     let quantum = 1e-9 * model_scale(library);
-    // The grids' frames, patch by patch in parallel; the vertices are then welded and laid
-    // out in patch order, as one patch at a time would.
-    let grids: Vec<(Vec<f64>, Vec<f64>, Vec<Frame>)> = library
-        .patches
-        .par_iter()
-        .zip(segments)
-        .map(|(patch, &(seg_u, seg_v))| {
-            let s = &patch.surface;
-            let us = span_samples(s.knots_u(), seg_u);
-            let vs = span_samples(s.knots_v(), seg_v);
-            let grid = GridEvaluator::new(s, &us, &vs);
-            let frames = (0..us.len()).flat_map(|i| grid.row_frames(i)).collect();
-            (us, vs, frames)
-        })
-        .collect();
-    for (patch_index, (patch, (us, vs, frames))) in library.patches.iter().zip(&grids).enumerate() {
+    // The vertices welded and laid out in patch order.
+    for (patch_index, (patch, evaluated)) in library.patches.iter().zip(patch_frames).enumerate() {
+        let PatchFrames {
+            us,
+            vs,
+            points,
+            normals,
+            tangents_u,
+            ..
+        } = evaluated;
         let first = mesh.positions.len() as u32;
         let (nu, nv) = (us.len(), vs.len());
-        for (k, f) in frames.iter().enumerate() {
+        for (k, point) in points.iter().enumerate() {
             let (i, j) = (k / nv, k % nv);
-            let mut position = f.point.as_vec3();
+            let mut position = point.as_vec3();
             if i == 0 || j == 0 || i + 1 == nu || j + 1 == nv {
-                let key = (f.point / quantum).round().as_i64vec3().to_array();
+                let key = (*point / quantum).round().as_i64vec3().to_array();
                 position = *welded.entry(key).or_insert(position);
             }
             mesh.positions.push(position);
-            mesh.normals.push(f.normal.as_vec3());
-            mesh.tangents_u.push(f.du.as_vec3());
             mesh.uvs.push(Vec2::new(us[i] as f32, vs[j] as f32));
         }
+        mesh.normals.extend_from_slice(normals);
+        mesh.tangents_u.extend_from_slice(tangents_u);
         mesh.grids.push(PatchGrid {
             first,
             nu: nu as u32,
@@ -701,11 +757,60 @@ mod tests {
             groups: Vec::new(),
         };
         for segments in [vec![(1, 1), (1, 1)], vec![(3, 5), (7, 2)]] {
-            let mesh = build_mesh(&library, &segments);
+            let patch_frames: Vec<PatchFrames> = library
+                .patches
+                .iter()
+                .zip(&segments)
+                .map(|(p, &cut)| PatchFrames::of(&p.surface, cut))
+                .collect();
+            let mesh = build_mesh(&library, &patch_frames);
             assert_eq!(
                 vertex_count(&library, &segments),
                 mesh.positions.len() as u64
             );
+        }
+    }
+
+    #[test]
+    fn a_mesh_rebuilt_evaluates_only_the_patches_cut_otherwise_and_equals_a_fresh_one() {
+        let library = PatchLibrary {
+            patches: vec![
+                NamedPatch {
+                    name: "sphere".into(),
+                    trim: None,
+                    surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
+                },
+                NamedPatch {
+                    name: "torus".into(),
+                    trim: None,
+                    surface: shapes::torus(2.0, 0.5).unwrap(),
+                },
+            ],
+            groups: Vec::new(),
+        };
+        let fresh = |segments: &[Segments]| {
+            let mut patch_frames: Vec<PatchFrames> =
+                (0..2).map(|_| PatchFrames::default()).collect();
+            assert_eq!(
+                PatchFrames::refresh(&mut patch_frames, &library, segments),
+                2
+            );
+            patch_frames
+        };
+        let mut kept = fresh(&[(3, 2), (4, 4)]);
+        // The torus cut otherwise, then both, then neither.
+        for (segments, evaluated) in [
+            (vec![(3, 2), (5, 4)], 1),
+            (vec![(2, 2), (5, 3)], 2),
+            (vec![(2, 2), (5, 3)], 0),
+        ] {
+            assert_eq!(
+                PatchFrames::refresh(&mut kept, &library, &segments),
+                evaluated
+            );
+            let again = fresh(&segments);
+            assert_eq!(kept, again);
+            assert_eq!(build_mesh(&library, &kept), build_mesh(&library, &again));
         }
     }
 }
