@@ -9,7 +9,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 use serde::Deserialize;
 
-use crate::geom::{GridEvaluator, KnotVector, NurbsSurface, PatchLibrary, Region};
+use crate::geom::{GridEvaluator, KnotVector, NamedPatch, NurbsSurface, PatchLibrary, Region};
 
 /// How finely patches are cut into triangles.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
@@ -180,7 +180,8 @@ pub struct Tessellator {
 }
 
 /// One patch's grid of vertices, as evaluated: the segments it was cut with, the parameters of
-/// its rows and columns and, row by row, each vertex's point, normal and unit tangent along u.
+/// its rows and columns and, row by row, each vertex's point, normal and unit tangent along u;
+/// on a trimmed patch, also where each cell of the grid lies on its trim, row by row.
 #[derive(Debug, Default, PartialEq)]
 struct PatchFrames {
     segments: Segments,
@@ -189,6 +190,7 @@ struct PatchFrames {
     points: Vec<DVec3>,
     normals: Vec<Vec3>,
     tangents_u: Vec<Vec3>,
+    regions: Vec<Region>,
 }
 
 impl PatchFrames {
@@ -202,15 +204,16 @@ impl PatchFrames {
             .map(|((evaluated, patch), &cut)| {
                 let stale = evaluated.segments != cut || evaluated.points.is_empty();
                 if stale {
-                    *evaluated = Self::of(&patch.surface, cut);
+                    *evaluated = Self::of(patch, cut);
                 }
                 usize::from(stale)
             })
             .sum()
     }
 
-    /// The grid of `surface` cut with `(seg_u, seg_v)` segments per span.
-    fn of(surface: &NurbsSurface, (seg_u, seg_v): Segments) -> Self {
+    /// The grid of `patch` cut with `(seg_u, seg_v)` segments per span.
+    fn of(patch: &NamedPatch, (seg_u, seg_v): Segments) -> Self {
+        let surface = &patch.surface;
         let us = span_samples(surface.knots_u(), seg_u);
         let vs = span_samples(surface.knots_v(), seg_v);
         let grid = GridEvaluator::new(surface, &us, &vs);
@@ -220,6 +223,7 @@ impl PatchFrames {
             points: Vec::with_capacity(count),
             normals: Vec::with_capacity(count),
             tangents_u: Vec::with_capacity(count),
+            regions: Vec::new(),
             us,
             vs,
         };
@@ -227,6 +231,17 @@ impl PatchFrames {
             evaluated.points.push(f.point);
             evaluated.normals.push(f.normal.as_vec3());
             evaluated.tangents_u.push(f.du.as_vec3());
+        }
+        if let Some(trim) = &patch.trim {
+            let (us, vs) = (&evaluated.us, &evaluated.vs);
+            evaluated.regions = us
+                .windows(2)
+                .flat_map(|u| {
+                    vs.windows(2).map(move |v| {
+                        trim.region(glam::DVec2::new(u[0], v[0]), glam::DVec2::new(u[1], v[1]))
+                    })
+                })
+                .collect();
         }
         evaluated
     }
@@ -569,6 +584,7 @@ fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
             points,
             normals,
             tangents_u,
+            regions,
             ..
         } = evaluated;
         let first = mesh.positions.len() as u32;
@@ -594,14 +610,12 @@ fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
         let index = |i: usize, j: usize| first + (i * nv + j) as u32;
         for i in 0..nu - 1 {
             if trimmed {
-                mesh.triangle_region.extend((0..nv - 1).flat_map(|j| {
-                    let region = patch.trim.as_ref().map_or(Region::Kept, |t| {
-                        let lo = glam::DVec2::new(us[i], vs[j]);
-                        let hi = glam::DVec2::new(us[i + 1], vs[j + 1]);
-                        t.region(lo, hi)
-                    });
-                    [region; 2]
-                }));
+                let row = (0..nv - 1).map(|j| match patch.trim {
+                    Some(_) => regions[i * (nv - 1) + j],
+                    None => Region::Kept,
+                });
+                mesh.triangle_region
+                    .extend(row.flat_map(|region| [region; 2]));
             }
             for j in 0..nv - 1 {
                 let (a, b, c, d) = (
@@ -761,7 +775,7 @@ mod tests {
                 .patches
                 .iter()
                 .zip(&segments)
-                .map(|(p, &cut)| PatchFrames::of(&p.surface, cut))
+                .map(|(p, &cut)| PatchFrames::of(p, cut))
                 .collect();
             let mesh = build_mesh(&library, &patch_frames);
             assert_eq!(
