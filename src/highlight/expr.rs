@@ -321,6 +321,46 @@ impl PreparedExpr {
         }
     }
 
+    /// [`eval`](Self::eval) from the signed value `s` of each layer at the point, `signed[j]`
+    /// for layer `j` (numbered left to right, as [`layers`](Self::layers) lists them), as
+    /// [`PreparedLayer::signed_chunk`] gives them: the Booleans of the layers' shapes
+    /// ([`PreparedLayer::shape_from_signed`]), as [`eval_chunk`](Self::eval_chunk) takes them.
+    ///
+    /// # Panics
+    /// If `signed` has fewer values than the expression has layers.
+    #[must_use]
+    pub(crate) fn eval_signed(&self, signed: &[f32], uv: Vec2, footprint: Footprint) -> Shade {
+        let mut next = 0;
+        let (shape, paint) = self.shape_signed(signed, uv, footprint, &mut next);
+        Shade {
+            coverage: shape * paint.opacity,
+            colour: paint.colour,
+        }
+    }
+
+    /// The shape and paint of [`eval_signed`](Self::eval_signed); `next` numbers the layers as
+    /// they are met.
+    fn shape_signed(
+        &self,
+        signed: &[f32],
+        uv: Vec2,
+        footprint: Footprint,
+        next: &mut usize,
+    ) -> (f32, Paint) {
+        match self {
+            PreparedExpr::Layer(l) => {
+                let shape = l.shape_from_signed(signed[*next], uv, footprint);
+                *next += 1;
+                (shape, l.paint())
+            }
+            PreparedExpr::Combine(op, a, b) => {
+                let a = a.shape_signed(signed, uv, footprint, next);
+                let b = b.shape_signed(signed, uv, footprint, next);
+                op.combine(a, b)
+            }
+        }
+    }
+
     /// [`eval`](Self::eval) with hard edges but that of layer `layer` (numbered left to right,
     /// as [`layers`](Self::layers) lists them), which covers `edge(s)` of the pixel from its
     /// signed value `s` ([`PreparedLayer::shape_by`]). Where one layer's edge crosses a pixel
@@ -477,6 +517,51 @@ mod tests {
         // With every edge hard otherwise, as eval.
         let hard = e.eval_with_edge(&frame, Vec2::ZERO, h, 0, &|s| f32::from(s > 0.0));
         assert_eq!(hard, e.eval(&frame, Vec2::ZERO, h, Footprint::HARD));
+    }
+
+    #[test]
+    fn shades_from_the_layers_signed_values_are_the_shades_evaluated() {
+        // Three layers under two Booleans, each with its own stack, over vectors that fall
+        // inside, outside and between them: the shade taken from the layers' `s` in the order
+        // `layers` lists them is the shade evaluated, to the bit; in another order it is not.
+        let one = |epsilon: f32, alpha: f32, opacity: f32| {
+            Expr::Layer(Layer {
+                opacity,
+                ..Layer::new(
+                    vec![crate::highlight::Op::Translate { alpha, beta: 0.0 }],
+                    epsilon,
+                    [epsilon, 0.5, 0.0],
+                )
+            })
+        };
+        let e = Expr::Subtract(
+            Box::new(Expr::Union(
+                Box::new(one(0.3, 0.0, 1.0)),
+                Box::new(one(0.05, 0.3, 0.5)),
+            )),
+            Box::new(one(0.02, 0.1, 1.0)),
+        )
+        .prepare()
+        .unwrap();
+        let layers = e.layers();
+        let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
+        let mut differs_reversed = false;
+        for i in 0..200 {
+            let a = i as f32 * 0.37;
+            let r = (i % 17) as f32 / 17.0;
+            let h = Vec3::new(r * a.cos(), r * a.sin(), 1.0).normalize();
+            let uv = Vec2::new(i as f32 / 200.0, 0.5);
+            let signed: Vec<f32> = layers.iter().map(|l| l.signed(&frame, h)).collect();
+            let evaluated = e.eval(&frame, uv, h, Footprint::HARD);
+            assert_eq!(
+                e.eval_signed(&signed, uv, Footprint::HARD),
+                evaluated,
+                "{h}"
+            );
+            let reversed: Vec<f32> = signed.iter().rev().copied().collect();
+            differs_reversed |= e.eval_signed(&reversed, uv, Footprint::HARD) != evaluated;
+        }
+        assert!(differs_reversed);
     }
 
     #[test]

@@ -329,7 +329,7 @@ impl PreparedLayer {
     /// Shape coverage in [0, 1] before opacity from the signed value `s` at `uv`: the edge's
     /// coverage of the pixel ([`Footprint::coverage`]) times the mask.
     #[inline]
-    fn shape_from_signed(&self, s: f32, uv: Vec2, footprint: Footprint) -> f32 {
+    pub(crate) fn shape_from_signed(&self, s: f32, uv: Vec2, footprint: Footprint) -> f32 {
         self.masked(footprint.coverage(s, self.feather), uv)
     }
 

@@ -59,6 +59,7 @@ impl SignedScratch {
 const PEAK_RATIO: f32 = 4.0;
 
 /// Per texel of a G-buffer, the signed value `s` of each layer of its patch's highlight.
+#[derive(Debug)]
 pub(super) struct SignedValues<'s> {
     /// Per patch, its highlight's layers, left to right (none without a highlight).
     pub layers: Vec<Vec<&'s PreparedLayer>>,
@@ -73,6 +74,12 @@ impl SignedValues<'_> {
     #[inline]
     pub fn at(&self, texel: usize, layer: usize) -> f32 {
         self.values[texel * self.most + layer]
+    }
+
+    /// Each layer's `s` at texel `texel`, left to right (0 past its patch's layers).
+    #[inline]
+    pub fn of(&self, texel: usize) -> &[f32] {
+        &self.values[texel * self.most..(texel + 1) * self.most]
     }
 }
 

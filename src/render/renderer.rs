@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::band_edge::{band_edges, settle_straight_edges, BandEdge};
-use super::edge_width::{edge_widths_of, signed_values, EdgeWidths};
+use super::edge_width::{edge_widths_of, signed_values, EdgeWidths, SignedValues};
 use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
 use super::highlight_edge::{highlight_edges, HighlightEdge, HighlightEdges};
 use super::line_style::{LineKind, LineStyle};
@@ -366,6 +366,7 @@ impl Stages {
                             bands: None,
                             highlights: None,
                             settled: None,
+                            signed: None,
                         };
                         let mut buffers = ShadeBuffers::default();
                         let two = |g: &GBuffer| shade(g, scene, &views, None, hard, &mut buffers);
@@ -582,7 +583,10 @@ fn detail(
 
 /// What [`Stage::EdgeWidths`] finds per texel.
 #[derive(Default)]
-struct Edged {
+struct Edged<'s> {
+    /// Each highlight layer's signed value, on a frame with highlights: the shade stage's, for
+    /// the texels it shades with hard edges.
+    signed: Option<SignedValues<'s>>,
     /// The highlight's edge widths, on a frame with highlights.
     widths: Option<EdgeWidths>,
     /// How the tone's band edges meet the pixel, on a frame with banded cel ramps.
@@ -602,7 +606,7 @@ struct Edged {
     trims: Option<TrimEdges>,
 }
 
-impl Edged {
+impl Edged<'_> {
     /// What the one-sample shading takes of them under `antialias`: under analytic
     /// anti-aliasing the highlight footprints of every pixel; under adaptive anti-aliasing the
     /// highlight edges that cross a pixel smoothly alone, since a pixel any other highlight
@@ -623,6 +627,7 @@ impl Edged {
             bands: self.bands.as_deref(),
             highlights: self.highlights.as_ref(),
             settled: Some(&self.settled),
+            signed: self.signed.as_ref(),
         }
     }
 }
@@ -635,12 +640,12 @@ impl Edged {
 /// the view-projection and the settings' frames where the G-buffer's are interpolated, the
 /// texels the straight band edges and smooth highlight edges are drawn from are evaluated
 /// again in those frames ([`Settled`]).
-fn widths(
-    (gbuffer, scene, view_projection): (&GBuffer, &Scene, Mat4),
+fn widths<'s>(
+    (gbuffer, scene, view_projection): (&GBuffer, &'s Scene, Mat4),
     adaptive: bool,
     settle: Option<(Mat4, FrameMode)>,
     stats: &mut RenderStats,
-) -> Edged {
+) -> Edged<'s> {
     let mut frames = 0;
     let (edged, seconds) = timed(|| {
         // The texels' patches side by side: the neighbours are looked up by patch, and the
@@ -702,6 +707,7 @@ fn widths(
             .as_ref()
             .map(|s| edge_widths_of(gbuffer, s, &patches, wanted.as_deref()));
         Edged {
+            signed,
             widths,
             bands,
             highlights,

@@ -475,6 +475,7 @@ fn draw_batch(
             bands: None,
             highlights: None,
             settled: None,
+            signed: None,
         },
         shading,
     );

@@ -5,6 +5,7 @@ use rayon::prelude::*;
 
 use super::band_edge::BandEdge;
 use super::directions::{initial_half_vector, initial_half_vectors, view_lanes};
+use super::edge_width::SignedValues;
 use super::gbuffer::{GBuffer, Texel, PIXELS_PER_JOB};
 use super::highlight_edge::{HighlightEdge, HighlightEdges};
 use super::scene::{Scene, Tone};
@@ -80,6 +81,7 @@ pub(super) fn shade(
                     bands: edges.bands.map(|b| &b[range.clone()]),
                     highlights: edges.highlights,
                     settled: edges.settled,
+                    signed: edges.signed,
                 };
                 let xtoon = XToonTones {
                     views,
@@ -125,6 +127,9 @@ pub(super) struct Edges<'a> {
     /// (adaptive anti-aliasing). For the whole G-buffer, by slot.
     pub highlights: Option<&'a HighlightEdges>,
     pub settled: Option<&'a Settled>,
+    /// Without `widths`, each highlight layer's signed value at each texel, found before
+    /// (for the whole G-buffer, by slot): the hard shades are taken from them.
+    pub signed: Option<&'a SignedValues<'a>>,
 }
 
 /// The cel tone `ramp(N·L)` at a point of `patch` with unit normal `n` (black on an X-Toon
@@ -235,13 +240,15 @@ fn shade_texels(
         let patch = run[0].patch as usize;
         let view = xtoon.views.get(patch).and_then(Option::as_ref);
         // The view vectors are computed once for the tone and the highlight, if either reads
-        // them.
-        let reads_view = scene.looks[patch].highlight.is_some()
+        // them (the highlight does unless its signed values were found before).
+        let reads_view = (scene.looks[patch].highlight.is_some()
+            && (edges.widths.is_some() || edges.signed.is_none()))
             || (xtoon.ahead.is_none() && view.is_some_and(ViewXToon::uses_view));
         for piece in run.chunks(LANES) {
             let range = start..start + piece.len();
             let widths = edges.widths.map(|w| &w[range.clone()]);
             let smooth = edges.highlights.map(|h| (first + start, h));
+            let signed = edges.signed.map(|s| (first + start, s));
             if reads_view {
                 view_lanes(scene, piece, &mut scratch.view);
             }
@@ -266,7 +273,12 @@ fn shade_texels(
                     );
                 }
             }
-            let shades = highlight(scene, piece, widths, smooth, edges.settled, scratch);
+            let found = Found {
+                smooth,
+                settled: edges.settled,
+                signed,
+            };
+            let shades = highlight(scene, piece, widths, found, scratch);
             let len = piece.len() as u64;
             counts.highlighted += if shades.is_some() { len } else { 0 };
             counts.xtoon += if view.is_some() { len } else { 0 };
@@ -281,32 +293,50 @@ fn shade_texels(
     counts
 }
 
+/// What the edge-width stage found of a run of texels' highlight, each by the first texel's
+/// slot and then per slot of the G-buffer.
+#[derive(Clone, Copy)]
+struct Found<'a> {
+    /// How each texel's highlight edges meet its box.
+    smooth: Option<(usize, &'a HighlightEdges)>,
+    /// The texels evaluated again in the settings' frames.
+    settled: Option<&'a Settled>,
+    /// Each layer's signed value at each texel.
+    signed: Option<(usize, &'a SignedValues<'a>)>,
+}
+
 /// The highlight shades of up to [`LANES`] texels on one patch, or `None` when the patch has no
 /// highlight (no half vector is built then): with `widths`, each with its footprint; else hard,
-/// but where `smooth` (the first texel's slot, and how each texel's edges meet its box) has an
-/// edge crossing the box smoothly, with that edge's cover of the box
+/// from the signed values `found` where it has them, but where `found.smooth` has an edge
+/// crossing the box smoothly, with that edge's cover of the box
 /// ([`SmoothEdge::coverage`](super::highlight_edge::SmoothEdge::coverage)) about the `s` of the
 /// texel's settled copy where there is one.
 fn highlight<'s>(
     scene: &Scene,
     texels: &[Texel],
     widths: Option<&[Footprint]>,
-    smooth: Option<(usize, &HighlightEdges)>,
-    settled: Option<&Settled>,
+    found: Found<'_>,
     scratch: &'s mut RunScratch,
 ) -> Option<&'s [Shade]> {
     let expr = scene.looks[texels[0].patch as usize].highlight.as_ref()?;
     let n = texels.len();
-    let hs = &mut scratch.half_vectors[..n];
-    initial_half_vectors(scene, texels, &scratch.view, hs);
     let shades = &mut scratch.shades[..n];
-    match widths {
-        Some(widths) => {
+    match (widths, found.signed) {
+        (Some(widths), _) => {
+            let hs = &mut scratch.half_vectors[..n];
+            initial_half_vectors(scene, texels, &scratch.view, hs);
             for (k, (shade, t)) in shades.iter_mut().zip(texels).enumerate() {
                 *shade = expr.eval(&t.frame, t.uv, hs[k], widths[k]);
             }
         }
-        None => {
+        (None, Some((first, signed))) => {
+            for (k, (shade, t)) in shades.iter_mut().zip(texels).enumerate() {
+                *shade = expr.eval_signed(signed.of(first + k), t.uv, Footprint::HARD);
+            }
+        }
+        (None, None) => {
+            let hs = &mut scratch.half_vectors[..n];
+            initial_half_vectors(scene, texels, &scratch.view, hs);
             scratch.initial.set(n, |k| texels[k].frame.to_local(hs[k]));
             for (uv, t) in scratch.uvs.iter_mut().zip(texels) {
                 *uv = t.uv;
@@ -319,23 +349,25 @@ fn highlight<'s>(
                 &mut scratch.expr,
                 shades,
             );
-            let Some((first, edges)) = smooth else {
-                return Some(shades);
-            };
-            for (k, shade) in shades.iter_mut().enumerate() {
-                let slot = first + k;
-                match edges.kinds[slot] {
-                    HighlightEdge::Smooth => {
-                        let Some(edge) = edges.smooth(slot) else {
-                            continue;
-                        };
-                        let t = settled.and_then(|s| s.get(slot)).unwrap_or(&texels[k]);
-                        let h = initial_half_vector(scene, t);
-                        let cover = |s: f32| edge.coverage(s);
-                        *shade = expr.eval_with_edge(&t.frame, t.uv, h, edge.layer, &cover);
-                    }
-                    HighlightEdge::Clear | HighlightEdge::Hard => {}
+        }
+    }
+    if let (None, Some((first, edges))) = (widths, found.smooth) {
+        for (k, shade) in shades.iter_mut().enumerate() {
+            let slot = first + k;
+            match edges.kinds[slot] {
+                HighlightEdge::Smooth => {
+                    let Some(edge) = edges.smooth(slot) else {
+                        continue;
+                    };
+                    let t = found
+                        .settled
+                        .and_then(|s| s.get(slot))
+                        .unwrap_or(&texels[k]);
+                    let h = initial_half_vector(scene, t);
+                    let cover = |s: f32| edge.coverage(s);
+                    *shade = expr.eval_with_edge(&t.frame, t.uv, h, edge.layer, &cover);
                 }
+                HighlightEdge::Clear | HighlightEdge::Hard => {}
             }
         }
     }

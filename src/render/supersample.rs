@@ -583,6 +583,7 @@ impl TileBuffers {
                 bands: None,
                 highlights: None,
                 settled: None,
+                signed: None,
             },
             &mut self.shading,
         );
