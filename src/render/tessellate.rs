@@ -753,9 +753,9 @@ mod tests {
         );
     }
 
-    #[test]
-    fn the_vertex_count_is_the_mesh_s() {
-        let library = PatchLibrary {
+    /// A unit sphere and a torus, untrimmed.
+    fn sphere_and_torus() -> PatchLibrary {
+        PatchLibrary {
             patches: vec![
                 NamedPatch {
                     name: "sphere".into(),
@@ -769,7 +769,12 @@ mod tests {
                 },
             ],
             groups: Vec::new(),
-        };
+        }
+    }
+
+    #[test]
+    fn the_vertex_count_is_the_mesh_s() {
+        let library = sphere_and_torus();
         for segments in [vec![(1, 1), (1, 1)], vec![(3, 5), (7, 2)]] {
             let patch_frames: Vec<PatchFrames> = library
                 .patches
@@ -787,21 +792,7 @@ mod tests {
 
     #[test]
     fn a_mesh_rebuilt_evaluates_only_the_patches_cut_otherwise_and_equals_a_fresh_one() {
-        let library = PatchLibrary {
-            patches: vec![
-                NamedPatch {
-                    name: "sphere".into(),
-                    trim: None,
-                    surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
-                },
-                NamedPatch {
-                    name: "torus".into(),
-                    trim: None,
-                    surface: shapes::torus(2.0, 0.5).unwrap(),
-                },
-            ],
-            groups: Vec::new(),
-        };
+        let library = sphere_and_torus();
         let fresh = |segments: &[Segments]| {
             let mut patch_frames: Vec<PatchFrames> =
                 (0..2).map(|_| PatchFrames::default()).collect();
