@@ -132,6 +132,14 @@ pub(super) struct Edges<'a> {
     pub signed: Option<&'a SignedValues<'a>>,
 }
 
+impl Edges<'_> {
+    /// Whether the hard highlight shades are taken from `signed` (no half vector is built for
+    /// them): without `widths`, where the signed values were found before.
+    fn hard_from_signed(&self) -> bool {
+        self.widths.is_none() && self.signed.is_some()
+    }
+}
+
 /// The cel tone `ramp(N·L)` at a point of `patch` with unit normal `n` (black on an X-Toon
 /// patch, whose tone comes from [`XToonTones`]).
 #[inline]
@@ -240,9 +248,8 @@ fn shade_texels(
         let patch = run[0].patch as usize;
         let view = xtoon.views.get(patch).and_then(Option::as_ref);
         // The view vectors are computed once for the tone and the highlight, if either reads
-        // them (the highlight does unless its signed values were found before).
-        let reads_view = (scene.looks[patch].highlight.is_some()
-            && (edges.widths.is_some() || edges.signed.is_none()))
+        // them (the highlight does unless its shades come from signed values found before).
+        let reads_view = (scene.looks[patch].highlight.is_some() && !edges.hard_from_signed())
             || (xtoon.ahead.is_none() && view.is_some_and(ViewXToon::uses_view));
         for piece in run.chunks(LANES) {
             let range = start..start + piece.len();

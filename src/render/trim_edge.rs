@@ -208,10 +208,6 @@ pub(super) fn trim_edges(
         let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
         Some((trim.try_signed_distance(u, v, reach)?, reach))
     };
-    // A candidate against the background where the trimmed patch keeps, at each of its own
-    // texels about the pixel, more than the rim's reach (four pixels): the rim cannot reach
-    // the background's centres, a pixel or so away, and what ends the patch there is its
-    // outline. The judgement would fail; its samples off the patch are not sought.
     // The sample asked of `surface` at pixel `n`, and (`find`) the same where it landed.
     let entry = |n: usize, surface: u32| {
         let entry = asked.get(asked_at[n] as usize)?;
@@ -228,6 +224,10 @@ pub(super) fn trim_edges(
         .zip(&off_patch)
         .map(|((t, &uv_reach), &off)| if off { None } else { trim_of(t, uv_reach) })
         .collect();
+    // A candidate against the background where the trimmed patch keeps, at each of its own
+    // texels about the pixel, more than the rim's reach (four pixels): the rim cannot reach
+    // the background's centres, a pixel or so away, and what ends the patch there is its
+    // outline. The judgement would fail; its samples off the patch are not sought.
     let outline: Vec<bool> = candidates
         .par_iter()
         .map(|c| {
@@ -359,7 +359,7 @@ pub(super) fn trim_edges(
     let settled_trims: Vec<Option<(f64, f64)>> = settled
         .par_iter()
         .zip(found)
-        .map(|(&k, found)| trim_of(&probes[k], uv_reach[k]).filter(|_| found))
+        .map(|(&k, found)| found.then(|| trim_of(&probes[k], uv_reach[k])).flatten())
         .collect();
     for (&k, value) in settled.iter().zip(settled_trims) {
         trim[k] = value;
