@@ -3,6 +3,7 @@
 
 use glam::{DVec2, Mat4, Vec2, Vec4};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU8, Ordering};
 
 use super::band_edge::{band_clear_of_box, JUMP};
 use super::edge_width::signed_values_of;
@@ -116,8 +117,10 @@ pub(super) fn trim_edges(
     };
     // The candidates lie within the 3 × 3 neighbourhoods of the texels not drawn right: a
     // covered one is such a texel, and an uncovered one has a trimmed patch's texel beside it,
-    // which is not drawn right either (its neighbourhood is not all on its patch).
+    // which is not drawn right either (its neighbourhood is not all on its patch). They are
+    // tried in pixel order.
     let mut near = vec![false; w * h];
+    let mut nearby: Vec<u32> = Vec::new();
     for t in gbuffer
         .texels
         .iter()
@@ -125,15 +128,31 @@ pub(super) fn trim_edges(
         .filter(|(_, &d)| !d)
         .map(|(t, _)| t)
     {
-        let (x, y) = (t.pixel as usize % w, t.pixel as usize / w);
-        for ny in y.saturating_sub(1)..=(y + 1).min(h - 1) {
-            near[ny * w + x.saturating_sub(1)..=ny * w + (x + 1).min(w - 1)].fill(true);
+        for n in around(t.pixel as usize, (w, h)) {
+            if !near[n] {
+                near[n] = true;
+                nearby.push(n as u32);
+            }
         }
     }
-    let candidates: Vec<Candidate> = (0..w * h)
-        .into_par_iter()
-        .filter(|&p| near[p])
-        .filter_map(|p| candidate(gbuffer, &thing, scene, drawn, p))
+    nearby.sort_unstable();
+    // Per texel, whether it lies away from its domain's sides (`away_from_borders`) once asked:
+    // 0 not yet, 1 away, 2 near.
+    let away: Vec<AtomicU8> = (0..gbuffer.texels.len())
+        .map(|_| AtomicU8::new(0))
+        .collect();
+    let away_from_sides = |slot: u32| match away[slot as usize].load(Ordering::Relaxed) {
+        1 => true,
+        2 => false,
+        _ => {
+            let is_away = away_from_borders(gbuffer, library, slot);
+            away[slot as usize].store(if is_away { 1 } else { 2 }, Ordering::Relaxed);
+            is_away
+        }
+    };
+    let candidates: Vec<Candidate> = nearby
+        .par_iter()
+        .filter_map(|&p| candidate(gbuffer, &thing, scene, drawn, &away_from_sides, p as usize))
         .collect();
     let mut edges = TrimEdges {
         drawn: vec![false; w * h],
@@ -409,12 +428,14 @@ pub(super) fn trim_edges(
 
 /// The pixel `pixel`'s candidacy ([`trim_edges`]): not drawn right yet, inside the image by a
 /// pixel, its nine showing a trimmed patch with a cel tone and one other thing, the
-/// background or a patch with a cel tone whose texels all lie behind the trimmed patch's.
+/// background or a patch with a cel tone whose texels all lie behind the trimmed patch's, and
+/// the trimmed patch's texels there away from its domain's sides (`away_from_sides`, per slot).
 fn candidate(
     gbuffer: &GBuffer,
     thing: &impl Fn(usize) -> u32,
     scene: &Scene,
     drawn: &[bool],
+    away_from_sides: &impl Fn(u32) -> bool,
     pixel: usize,
 ) -> Option<Candidate> {
     let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
@@ -470,8 +491,8 @@ fn candidate(
         return None;
     }
     // Beside the side of its domain, a patch ends there, not at its trim.
-    let inside = around(pixel, (w, h))
-        .all(|n| thing(n) != front || away_from_borders(gbuffer, scene.library, gbuffer.slot[n]));
+    let inside =
+        around(pixel, (w, h)).all(|n| thing(n) != front || away_from_sides(gbuffer.slot[n]));
     inside.then_some(Candidate {
         pixel: pixel as u32,
         front,
