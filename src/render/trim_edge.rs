@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU8, Ordering};
 
 use super::band_edge::{band_clear_of_box, JUMP};
-use super::edge_width::signed_values_of;
+use super::edge_width::signed_values_by_patch;
 use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
 use super::highlight_edge::{highlights_clear_of_box, SMOOTH_BEND};
 use super::neighbourhood::around;
@@ -288,7 +288,7 @@ pub(super) fn trim_edges(
     for (&k, value) in foreign.iter().zip(found_trims) {
         trim[k] = value;
     }
-    let signed = signed_values_of(&probes, scene);
+    let signed = signed_values_by_patch(&probes, scene);
     let find = |n: usize, surface: u32| entry(n, surface).filter(|&k| landed[k]);
 
     let judged: Vec<Option<Judged>> = candidates
@@ -504,6 +504,8 @@ fn candidate(
 /// `gbuffer` (`GBuffer::evaluate_frames`, refined, within a probe's evaluations) and sets its
 /// depth where it lands there ([`landed_depth`]); a probe that does not land keeps the
 /// frame it was given. Per probe of `which`, whether it landed, and the frames evaluated.
+/// The probes are evaluated patch by patch (the two surfaces a pixel asks for alternate in
+/// `which`), so that each patch's runs are long.
 fn onto_rays(
     gbuffer: &GBuffer,
     scene: &Scene,
@@ -511,7 +513,9 @@ fn onto_rays(
     probes: &mut [Texel],
     which: &[usize],
 ) -> (Vec<bool>, u64) {
-    let mut searched: Vec<Texel> = which.iter().map(|&k| probes[k]).collect();
+    let mut order: Vec<usize> = (0..which.len()).collect();
+    order.sort_by_key(|&i| probes[which[i]].patch);
+    let mut searched: Vec<Texel> = order.iter().map(|&i| probes[which[i]]).collect();
     let size = (gbuffer.width, gbuffer.height);
     let frames = GBuffer::evaluate_frames(
         &mut searched,
@@ -522,18 +526,15 @@ fn onto_rays(
         FrameMode::Refined,
         Evaluate::QuickProbe,
     );
-    let found = which
-        .iter()
-        .zip(searched)
-        .map(|(&k, mut t)| {
-            let depth = landed_depth(view_projection, t.position, t.pixel, size);
-            if let Some(depth) = depth {
-                t.depth = depth;
-                probes[k] = t;
-            }
-            depth.is_some()
-        })
-        .collect();
+    let mut found = vec![false; which.len()];
+    for (&i, mut t) in order.iter().zip(searched) {
+        let depth = landed_depth(view_projection, t.position, t.pixel, size);
+        if let Some(depth) = depth {
+            t.depth = depth;
+            probes[which[i]] = t;
+        }
+        found[i] = depth.is_some();
+    }
     (found, frames)
 }
 
