@@ -61,7 +61,8 @@ impl NurbsSurface {
     /// the ray grazes the surface, J is nearly singular and the full step overshoots. Stops once
     /// `|f| ≤ 10⁻⁷ |S − o|`, and after [`REFINE_STEPS`] steps, or when no halving helps (the ray
     /// passes beside the surface), returns the nearest point it found. `None` when the
-    /// direction is zero or J is singular or not finite.
+    /// direction is zero or J is singular or not finite. Degrees 1 to 3 take their derivatives
+    /// from the fixed-degree evaluation, the same numbers.
     #[must_use]
     pub fn try_refine_on_ray(
         &self,
@@ -76,7 +77,10 @@ impl NurbsSurface {
             evaluations: ALL_EVALUATIONS,
             stall_beyond: f64::INFINITY,
         };
-        newton_on_ray(self, &search, |u, v| self.derivs(u, v, 1)).1
+        match self.fixed_derivs() {
+            Some(mut fixed) => newton_on_ray(self, &search, |u, v| fixed.at(self, u, v)).1,
+            None => newton_on_ray(self, &search, |u, v| self.derivs(u, v, 1)).1,
+        }
     }
 
     /// Frames at the points where rays meet the surface: for each `k`, [`try_refine_on_ray`]
