@@ -89,23 +89,6 @@ pub(super) fn signed_values<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> SignedVa
     signed_values_of(&gbuffer.texels, scene)
 }
 
-/// [`signed_values_of`] for texels in any order, the values in theirs: taken patch by patch,
-/// so that texels of one patch fill the lanes together however scattered they lie (each value
-/// is the same whatever shares its lanes).
-pub(super) fn signed_values_by_patch<'s>(texels: &[Texel], scene: &'s Scene) -> SignedValues<'s> {
-    let mut order: Vec<u32> = (0..texels.len() as u32).collect();
-    order.sort_by_key(|&k| texels[k as usize].patch);
-    let sorted: Vec<Texel> = order.iter().map(|&k| texels[k as usize]).collect();
-    let by_patch = signed_values_of(&sorted, scene);
-    let most = by_patch.most;
-    let mut values = vec![0.0f32; by_patch.values.len()];
-    for (at, &k) in order.iter().enumerate() {
-        let k = k as usize;
-        values[k * most..(k + 1) * most].copy_from_slice(by_patch.of(at));
-    }
-    SignedValues { values, ..by_patch }
-}
-
 /// Per texel of `texels`, the signed value of each layer of its patch's highlight, for runs of
 /// texels on one patch up to [`LANES`] at a time, side by side.
 pub(super) fn signed_values_of<'s>(texels: &[Texel], scene: &'s Scene) -> SignedValues<'s> {
@@ -321,41 +304,6 @@ fn straddles_zero(s: f32, before: Option<f32>, after: Option<f32>) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn signed_values_taken_patch_by_patch_are_those_taken_texel_by_texel() {
-        // The speaker's patches, a glint on each and the band of light on its front: texels of
-        // four patches interleaved, as the samples about a trim's rim ask for them.
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shots/speaker.ron");
-        let shot = crate::shot::load_shot(&path).unwrap();
-        let scene = shot.at(20.0).scene(&shot).unwrap();
-        let texels: Vec<Texel> = (0..150)
-            .map(|k| {
-                let a = k as f32 * 0.37;
-                let n = glam::Vec3::new(a.sin(), -0.8, a.cos() * 0.5).normalize();
-                let du = n.any_orthonormal_vector();
-                Texel {
-                    pixel: k,
-                    depth: 0.5,
-                    patch: [0, 1, 0, 3, 6][k as usize % 5],
-                    uv: glam::Vec2::new(0.3 + 0.002 * a, 0.5),
-                    position: glam::Vec3::new(a.cos(), a.sin() - 1.0, 0.01 * a),
-                    frame: crate::highlight::TangentFrame::new(du, n.cross(du), n),
-                }
-            })
-            .collect();
-        let by_patch = signed_values_by_patch(&texels, &scene);
-        let mut inside = 0;
-        for (k, t) in texels.iter().enumerate() {
-            let alone = signed_values_of(std::slice::from_ref(t), &scene);
-            let (one, many) = (alone.of(0), by_patch.of(k));
-            let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(one), bits(many), "texel {k}");
-            inside += usize::from(many[0] > 0.0);
-        }
-        // Some texels see the glint and some do not.
-        assert!(inside > 0 && inside < texels.len(), "{inside}");
-    }
 
     #[test]
     fn a_highlight_between_centres_straddles_the_pixel_nearest_it() {

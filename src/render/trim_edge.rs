@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU8, Ordering};
 
 use super::band_edge::{band_clear_of_box, JUMP};
-use super::edge_width::signed_values_by_patch;
+use super::edge_width::signed_values_of;
 use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
 use super::highlight_edge::{highlights_clear_of_box, SMOOTH_BEND};
 use super::neighbourhood::around;
@@ -189,6 +189,19 @@ pub(super) fn trim_edges(
             }
         }
     }
+    // The samples patch by patch, each patch's in the order asked: as asked, the two surfaces
+    // of a pixel alternate, and the probes and signed values below, taken a run of one patch
+    // at a time, would find runs of one.
+    let mut order: Vec<u32> = (0..wanted.len() as u32).collect();
+    order.sort_by_key(|&k| wanted[k as usize].1);
+    let mut renumbered = vec![0u32; wanted.len()];
+    for (at, &k) in order.iter().enumerate() {
+        renumbered[k as usize] = at as u32;
+    }
+    for entry in asked.iter_mut().flatten().filter(|e| e.0 != EMPTY) {
+        entry.1 = renumbered[entry.1 as usize];
+    }
+    let wanted: Vec<(usize, u32, usize)> = order.iter().map(|&k| wanted[k as usize]).collect();
     // A centre that shows the surface is its own sample; another is the surface found on the
     // centre's ray from the surface's nearest texel (a probe).
     let started: Vec<Option<(Texel, f64, bool)>> = wanted
@@ -288,7 +301,7 @@ pub(super) fn trim_edges(
     for (&k, value) in foreign.iter().zip(found_trims) {
         trim[k] = value;
     }
-    let signed = signed_values_by_patch(&probes, scene);
+    let signed = signed_values_of(&probes, scene);
     let find = |n: usize, surface: u32| entry(n, surface).filter(|&k| landed[k]);
 
     let judged: Vec<Option<Judged>> = candidates
@@ -504,8 +517,6 @@ fn candidate(
 /// `gbuffer` (`GBuffer::evaluate_frames`, refined, within a probe's evaluations) and sets its
 /// depth where it lands there ([`landed_depth`]); a probe that does not land keeps the
 /// frame it was given. Per probe of `which`, whether it landed, and the frames evaluated.
-/// The probes are evaluated patch by patch (the two surfaces a pixel asks for alternate in
-/// `which`), so that each patch's runs are long.
 fn onto_rays(
     gbuffer: &GBuffer,
     scene: &Scene,
@@ -513,9 +524,7 @@ fn onto_rays(
     probes: &mut [Texel],
     which: &[usize],
 ) -> (Vec<bool>, u64) {
-    let mut order: Vec<usize> = (0..which.len()).collect();
-    order.sort_by_key(|&i| probes[which[i]].patch);
-    let mut searched: Vec<Texel> = order.iter().map(|&i| probes[which[i]]).collect();
+    let mut searched: Vec<Texel> = which.iter().map(|&k| probes[k]).collect();
     let size = (gbuffer.width, gbuffer.height);
     let frames = GBuffer::evaluate_frames(
         &mut searched,
@@ -526,15 +535,18 @@ fn onto_rays(
         FrameMode::Refined,
         Evaluate::QuickProbe,
     );
-    let mut found = vec![false; which.len()];
-    for (&i, mut t) in order.iter().zip(searched) {
-        let depth = landed_depth(view_projection, t.position, t.pixel, size);
-        if let Some(depth) = depth {
-            t.depth = depth;
-            probes[which[i]] = t;
-        }
-        found[i] = depth.is_some();
-    }
+    let found = which
+        .iter()
+        .zip(searched)
+        .map(|(&k, mut t)| {
+            let depth = landed_depth(view_projection, t.position, t.pixel, size);
+            if let Some(depth) = depth {
+                t.depth = depth;
+                probes[k] = t;
+            }
+            depth.is_some()
+        })
+        .collect();
     (found, frames)
 }
 
