@@ -77,10 +77,7 @@ impl NurbsSurface {
             evaluations: ALL_EVALUATIONS,
             stall_beyond: f64::INFINITY,
         };
-        match self.fixed_derivs() {
-            Some(mut fixed) => newton_on_ray(self, &search, |u, v| fixed.at(self, u, v)).1,
-            None => newton_on_ray(self, &search, |u, v| self.derivs(u, v, 1)).1,
-        }
+        self.with_first_derivs(|derivs| newton_on_ray(self, &search, derivs).1)
     }
 
     /// Frames at the points where rays meet the surface: for each `k`, [`try_refine_on_ray`]
@@ -106,7 +103,7 @@ impl NurbsSurface {
             "one parameter and frame per search"
         );
         let domain = self.domain();
-        let mut each = |derivs: &mut dyn FnMut(f64, f64) -> SurfaceDerivs| {
+        let each = |derivs: &mut dyn FnMut(f64, f64) -> SurfaceDerivs| {
             for ((search, param), frame) in searches
                 .iter()
                 .zip(params.iter_mut())
@@ -121,9 +118,18 @@ impl NurbsSurface {
                     .unwrap_or_else(|| self.frame_general(u, v));
             }
         };
+        self.with_first_derivs(each);
+    }
+
+    /// `run` given the point and first derivatives at any (u, v): from the fixed-degree
+    /// evaluation for degrees 1 to 3, else from [`derivs`](Self::derivs).
+    fn with_first_derivs<R>(
+        &self,
+        run: impl FnOnce(&mut dyn FnMut(f64, f64) -> SurfaceDerivs) -> R,
+    ) -> R {
         match self.fixed_derivs() {
-            Some(mut fixed) => each(&mut |u, v| fixed.at(self, u, v)),
-            None => each(&mut |u, v| self.derivs(u, v, 1)),
+            Some(mut fixed) => run(&mut |u, v| fixed.at(self, u, v)),
+            None => run(&mut |u, v| self.derivs(u, v, 1)),
         }
     }
 }
