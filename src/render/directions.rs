@@ -113,6 +113,7 @@ mod tests {
                     uv: Vec2::ZERO,
                     position,
                     frame: TangentFrame::new(du, n.cross(du), n),
+                    back: false,
                 }
             })
             .collect()

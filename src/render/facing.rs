@@ -37,8 +37,16 @@ pub(super) fn facing_patch_frame(f: &Frame, toward_eye: Vec3) -> TangentFrame {
     if !(unit(n) && unit(du) && unit(dv)) {
         return facing_frame(n, du, toward_eye);
     }
-    let s = if n.dot(toward_eye) < 0.0 { -1.0 } else { 1.0 };
+    let s = if faces_away(n, toward_eye) { -1.0 } else { 1.0 };
     TangentFrame::new(du, dv * s, n * s)
+}
+
+/// Whether the normal `n` faces away from the viewer, `N·V < 0`: the side [`facing_frame`]
+/// and [`facing_patch_frame`] turn.
+#[inline]
+#[must_use]
+pub(super) fn faces_away(n: Vec3, toward_eye: Vec3) -> bool {
+    n.dot(toward_eye) < 0.0
 }
 
 /// The normal of [`facing_frame`] alone, for shading that needs no tangents.
@@ -56,7 +64,7 @@ fn facing(n: Vec3, toward_eye: Vec3) -> Option<(Vec3, f32)> {
         return None;
     }
     let inverse_squared = length_squared.recip();
-    let facing = if n.dot(toward_eye) < 0.0 { -1.0 } else { 1.0 };
+    let facing = if faces_away(n, toward_eye) { -1.0 } else { 1.0 };
     Some((n * (facing * inverse_squared.sqrt()), inverse_squared))
 }
 

@@ -5,7 +5,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
 use super::camera::Camera;
-use super::facing::{facing_frame, facing_patch_frame};
+use super::facing::{faces_away, facing_frame, facing_patch_frame};
 use super::raster::{interpolate, VisibilityBuffer};
 use super::settings::FrameMode;
 use super::tessellate::Mesh;
@@ -30,6 +30,12 @@ pub struct Texel {
     pub position: Vec3,
     /// The shading frame, turned to face the viewer (two-sided surfaces).
     pub frame: TangentFrame,
+    /// Whether `frame` was turned: the eye sees the back of the surface here, its own normal
+    /// facing away. A probe started from the texel looks for that side of the surface
+    /// ([`Frames::front_sheet`]); where a pixel's neighbourhood shows both sides of a patch
+    /// (it folds over there), the probes started about it are cleared of it. False while
+    /// `frame` holds the mesh's normal unturned.
+    pub back: bool,
 }
 
 /// The covered pixels of an image; work per pixel is done for these only.
@@ -54,6 +60,7 @@ pub(super) const UNFILLED: Texel = Texel {
     uv: Vec2::ZERO,
     position: Vec3::ZERO,
     frame: TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z),
+    back: false,
 };
 
 /// How much of its frame a sample needs, when frames are evaluated on the patches
@@ -188,7 +195,8 @@ impl GBuffer {
     /// The frames of `texels` in `mode`, as [`fill`](Self::fill) evaluates them: with
     /// [`FrameMode::Refined`] each texel is moved onto its pixel's ray and takes the frame
     /// there — each holds its patch, the (u, v) to start from, a normal facing the eye (in
-    /// `frame.n`: where the refined point faces away, the near crossing is looked for) and its
+    /// `frame.n`: where the refined point faces away, the near crossing is looked for, unless
+    /// [`Texel::back`] says the start is on the back of the surface) and its
     /// `pixel` index in a `size` image seen through `view_projection`, and each search spends
     /// what `evaluate` allows; with [`FrameMode::Exact`] the frame on the patch at each texel's
     /// (u, v); with [`FrameMode::Interpolated`] they stay as they are. Texels on one patch are
@@ -316,25 +324,25 @@ impl Fill<'_> {
             (_, Evaluate::Mesh) => FrameMode::Interpolated,
             (mode, Evaluate::Full | Evaluate::Probe | Evaluate::QuickProbe) => mode,
         };
-        let frame = match mode {
+        let normal = || interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]);
+        let (frame, back) = match mode {
             // The mesh's normal, kept until the exact frame replaces it: refined frames compare
             // the side of the surface they land on with the side the mesh shows.
-            FrameMode::Refined => TangentFrame::new(
-                Vec3::X,
-                Vec3::Y,
-                interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]),
-            ),
-            FrameMode::Interpolated => facing_frame(
-                interpolate(b, mesh.normals[i0], mesh.normals[i1], mesh.normals[i2]),
-                interpolate(
+            FrameMode::Refined => (TangentFrame::new(Vec3::X, Vec3::Y, normal()), false),
+            FrameMode::Interpolated => {
+                let (n, toward_eye) = (normal(), self.frames.camera.eye_direction(position));
+                let along_u = interpolate(
                     b,
                     mesh.tangents_u[i0],
                     mesh.tangents_u[i1],
                     mesh.tangents_u[i2],
-                ),
-                self.frames.camera.eye_direction(position),
-            ),
-            FrameMode::Exact => UNFILLED.frame,
+                );
+                (
+                    facing_frame(n, along_u, toward_eye),
+                    faces_away(n, toward_eye),
+                )
+            }
+            FrameMode::Exact => (UNFILLED.frame, false),
         };
         Texel {
             pixel: i as u32,
@@ -343,6 +351,7 @@ impl Fill<'_> {
             uv: interpolate(b, mesh.uvs[i0], mesh.uvs[i1], mesh.uvs[i2]),
             position,
             frame,
+            back,
         }
     }
 }
@@ -421,7 +430,9 @@ impl Frames<'_> {
                     t.uv = Vec2::new(uv.0 as f32, uv.1 as f32);
                     t.position = f.point.as_vec3();
                 }
-                t.frame = facing_patch_frame(&f, self.camera.eye_direction(t.position));
+                let toward_eye = self.camera.eye_direction(t.position);
+                t.frame = facing_patch_frame(&f, toward_eye);
+                t.back = faces_away(f.normal.as_vec3(), toward_eye);
             }
         }
     }
@@ -460,10 +471,15 @@ impl Frames<'_> {
 
     /// Where a ray grazes a surface it crosses it twice, close together, and the mesh point
     /// lies between the crossings; Newton steps from it may land on the far one. When the
-    /// refined frame `f` at `refined` faces away from the eye while the mesh `t` (still holding
-    /// its interpolated (u, v), position and normal) faces it, this refines again from the
-    /// start mirrored through the mesh's (u, v), `2 start − refined`, and returns that frame and
-    /// (u, v) if it faces the eye and lies nearer along the ray. `None` keeps `f`.
+    /// refined frame `f` at `refined` faces away from the eye while the start `t` (still
+    /// holding its (u, v) and position: a texel of the mesh with its normal, or a probe with
+    /// the frame of the texel it started from) faces it, this refines again from the start
+    /// mirrored through its (u, v), `2 start − refined`, and returns that frame and (u, v) if
+    /// it faces the eye and lies nearer along the ray. `None` keeps `f`.
+    ///
+    /// A probe from a texel whose frame was turned ([`Texel::back`]) starts on the back of the
+    /// surface: landing on a side that faces away is what it looks for, not a sign that it
+    /// crossed to a far sheet, and it is not refined again.
     fn front_sheet(
         &self,
         surface: &NurbsSurface,
@@ -472,7 +488,7 @@ impl Frames<'_> {
         refined: (f64, f64),
     ) -> Option<(Frame, (f64, f64))> {
         let eye = self.camera.eye.as_dvec3();
-        let mesh_faces = t.frame.n.dot(self.camera.eye_direction(t.position)) > 0.0;
+        let mesh_faces = !t.back && t.frame.n.dot(self.camera.eye_direction(t.position)) > 0.0;
         if !mesh_faces || f.normal.dot(eye - f.point) >= 0.0 {
             return None;
         }
@@ -617,5 +633,93 @@ mod tests {
             agreed * 20 >= probes * 19,
             "{agreed} of {probes} probes agree"
         );
+    }
+
+    #[test]
+    fn a_probe_from_the_back_keeps_to_the_back_and_one_from_the_front_finds_the_near_sheet() {
+        let library = PatchLibrary::new(vec![NamedPatch {
+            name: "ball".into(),
+            trim: None,
+            surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
+        }]);
+        let surface = &library.patches[0].surface;
+        let camera = crate::render::plan::tests::camera();
+        let size = (64, 64);
+        let eye = camera.eye.as_dvec3();
+        // A ray that grazes the ball: it crosses it twice, close together.
+        let (pixel, (origin, direction)) = (0..size.0 * size.1)
+            .map(|p| {
+                let centre = (f64::from(p % size.0) + 0.5, f64::from(p / size.0) + 0.5);
+                (p, camera.ray_through(centre, size))
+            })
+            .find(|(_, (o, d))| {
+                let d = d.normalize();
+                let miss = (*o - o.dot(d) * d).length();
+                miss > 0.995 && miss < 0.9995
+            })
+            .unwrap();
+        let d = direction.normalize();
+        let middle = origin - origin.dot(d) * d;
+        let half = (1.0 - middle.length_squared()).sqrt();
+        let (near, far) = (middle - half * d, middle + half * d);
+        // Each crossing's (u, v): the nearest of a grid, refined onto the ray.
+        let domain = surface.domain();
+        let grid: Vec<(f64, f64)> = (0..=200)
+            .flat_map(|i| (0..=200).map(move |j| (f64::from(i) / 200.0, f64::from(j) / 200.0)))
+            .map(|(s, t)| domain.lerp(s, t))
+            .collect();
+        let crossing = |p: DVec3| {
+            let start = grid
+                .iter()
+                .copied()
+                .min_by(|a, b| {
+                    let distance = |&(u, v): &(f64, f64)| surface.point(u, v).distance(p);
+                    distance(a).total_cmp(&distance(b))
+                })
+                .unwrap();
+            let uv = surface.try_refine_on_ray(start, origin, direction).unwrap();
+            assert!(surface.point(uv.0, uv.1).distance(p) < 1e-6);
+            uv
+        };
+        let (near_uv, far_uv) = (crossing(near), crossing(far));
+        let faces = |uv: (f64, f64)| {
+            let f = surface.frame(uv.0, uv.1);
+            f.normal.dot(eye - f.point) > 0.0
+        };
+        assert!(faces(near_uv) && !faces(far_uv));
+        // A start between them, a little nearer the far one: Newton steps land there first,
+        // and the start mirrored through it lies nearer the near one.
+        let start = (
+            near_uv.0 + 0.55 * (far_uv.0 - near_uv.0),
+            near_uv.1 + 0.55 * (far_uv.1 - near_uv.1),
+        );
+        let probe = |back: bool| {
+            let position = surface.point(start.0, start.1).as_vec3();
+            // A frame turned toward the eye, as a texel's is.
+            let n = (camera.eye - position).normalize();
+            let du = n.any_orthonormal_vector();
+            let mut texels = [Texel {
+                pixel,
+                uv: Vec2::new(start.0 as f32, start.1 as f32),
+                position,
+                frame: TangentFrame::new(du, n.cross(du), n),
+                back,
+                ..UNFILLED
+            }];
+            GBuffer::evaluate_frames(
+                &mut texels,
+                &library,
+                &camera,
+                camera.view_projection(1.0),
+                size,
+                FrameMode::Refined,
+                Evaluate::Probe,
+            );
+            texels[0]
+        };
+        let (from_back, from_front) = (probe(true), probe(false));
+        // The crossings lie about 0.19 apart, and a probe lands within 10⁻⁴ of one.
+        assert!(from_back.back && from_back.position.as_dvec3().distance(far) < 1e-3);
+        assert!(!from_front.back && from_front.position.as_dvec3().distance(near) < 1e-3);
     }
 }

@@ -211,6 +211,8 @@ struct Seed {
     centre: Vec2,
     /// The change of its (u, v) per pixel along x and y ([`uv_slopes`]; zero where none).
     slopes: (Vec2, Vec2),
+    /// Whether the eye sees the back of its patch there ([`Texel::back`]).
+    back: bool,
 }
 
 /// The covered pixels of a marked pixel's 3 × 3 neighbourhood, and how many patches they show.
@@ -231,7 +233,7 @@ impl Seeds {
             if slot == EMPTY {
                 continue;
             }
-            let patch = gbuffer.texels[slot as usize].patch;
+            let Texel { patch, back, .. } = gbuffer.texels[slot as usize];
             if seeds.seeds[..seeds.count].iter().all(|s| s.patch != patch) {
                 seeds.patches += 1;
             }
@@ -241,10 +243,20 @@ impl Seeds {
                 patch,
                 centre: Vec2::new((n % w) as f32, (n / w) as f32) + 0.5,
                 slopes: (along_x.unwrap_or(Vec2::ZERO), along_y.unwrap_or(Vec2::ZERO)),
+                back,
             };
             seeds.count += 1;
         }
         seeds
+    }
+
+    /// Whether the eye sees only the back of `patch` among the seeds: a start from them looks
+    /// for that side alone. Where it sees both, the patch folds over about the pixel, and a
+    /// start that lands on the back may have crossed to the far sheet.
+    fn back_only(&self, patch: u32) -> bool {
+        self.seeds[..self.count]
+            .iter()
+            .all(|s| s.patch != patch || s.back)
     }
 
     /// Fills `candidates` and `texels` (one per patch per sample, `k² · patches` of each) for
@@ -301,6 +313,7 @@ impl Seeds {
                         uv.x.clamp(domain.u.0 as f32, domain.u.1 as f32),
                         uv.y.clamp(domain.v.0 as f32, domain.v.1 as f32),
                     ),
+                    back: self.back_only(t.patch),
                     ..t
                 };
             }

@@ -581,6 +581,11 @@ fn start(
         .map(|m| gbuffer.slot[m]);
     let slot = seed?;
     let t = gbuffer.texels[slot as usize];
+    // Where the neighbourhood shows both sides of the patch (it folds over there), a probe that
+    // lands on the back may have crossed to the far sheet ([`Texel::back`]).
+    let back = around(pixel, (w, h))
+        .filter_map(|m| gbuffer.texel(m))
+        .all(|m| m.patch != patch || m.back);
     let slopes = uv_slopes(gbuffer, slot);
     let (along_x, along_y) = slopes;
     let offset = (at(n) - at(t.pixel as usize)).as_vec2();
@@ -592,6 +597,7 @@ fn start(
             uv.x.clamp(domain.u.0 as f32, domain.u.1 as f32),
             uv.y.clamp(domain.v.0 as f32, domain.v.1 as f32),
         ),
+        back,
         ..t
     };
     Some((texel, reach(slopes), false))
