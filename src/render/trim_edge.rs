@@ -115,20 +115,28 @@ pub(super) fn trim_edges(
             gbuffer.texels[slot as usize].patch
         }
     };
-    // The candidates lie within the 3 × 3 neighbourhoods of the texels not drawn right: a
-    // covered one is such a texel, and an uncovered one has a trimmed patch's texel beside it,
-    // which is not drawn right either (its neighbourhood is not all on its patch). They are
-    // tried in pixel order.
+    // A candidate's nine show its trimmed patch P beside another thing, so some texel of P
+    // among them has the other thing in its own nine: its neighbourhood is not all on its
+    // patch, and it is not drawn right. The candidates lie within the 3 × 3 neighbourhoods of
+    // such texels, and are tried in pixel order.
+    let trimmed_cel = |patch: u32| {
+        library.patches[patch as usize].trim.is_some()
+            && matches!(scene.looks[patch as usize].tone, Tone::Cel(_))
+    };
+    let beside_other: Vec<u32> = drawn
+        .par_iter()
+        .enumerate()
+        .filter(|&(_, &d)| !d)
+        .map(|(slot, _)| &gbuffer.texels[slot])
+        .filter(|t| {
+            trimmed_cel(t.patch) && around(t.pixel as usize, (w, h)).any(|n| thing(n) != t.patch)
+        })
+        .map(|t| t.pixel)
+        .collect();
     let mut near = vec![false; w * h];
     let mut nearby: Vec<u32> = Vec::new();
-    for t in gbuffer
-        .texels
-        .iter()
-        .zip(drawn)
-        .filter(|(_, &d)| !d)
-        .map(|(t, _)| t)
-    {
-        for n in around(t.pixel as usize, (w, h)) {
+    for &pixel in &beside_other {
+        for n in around(pixel as usize, (w, h)) {
             if !near[n] {
                 near[n] = true;
                 nearby.push(n as u32);
@@ -163,8 +171,9 @@ pub(super) fn trim_edges(
     }
 
     // The samples: each surface a candidate needs at each of its nine centres, once. Per
-    // pixel, the index of its entry in `asked`, which holds up to two (surface, sample) pairs.
-    let mut asked_at = vec![EMPTY; w * h];
+    // pixel, 1 + the index of its entry in `asked` (0 for none: the pages of an image of
+    // zeros not written to are never touched), which holds up to two (surface, sample) pairs.
+    let mut asked_at = vec![0u32; w * h];
     let mut asked: Vec<[(u32, u32); 2]> = Vec::new();
     let mut wanted: Vec<(usize, u32, usize)> = Vec::new();
     for candidate in &candidates {
@@ -173,11 +182,11 @@ pub(super) fn trim_edges(
                 if surface == EMPTY {
                     continue;
                 }
-                if asked_at[n] == EMPTY {
-                    asked_at[n] = asked.len() as u32;
+                if asked_at[n] == 0 {
                     asked.push([(EMPTY, EMPTY); 2]);
+                    asked_at[n] = asked.len() as u32;
                 }
-                let entry = &mut asked[asked_at[n] as usize];
+                let entry = &mut asked[asked_at[n] as usize - 1];
                 if entry.iter().any(|e| e.0 == surface) {
                     continue;
                 }
@@ -191,17 +200,29 @@ pub(super) fn trim_edges(
     }
     // The samples patch by patch, each patch's in the order asked: as asked, the two surfaces
     // of a pixel alternate, and the probes and signed values below, taken a run of one patch
-    // at a time, would find runs of one.
-    let mut order: Vec<u32> = (0..wanted.len() as u32).collect();
-    order.sort_by_key(|&k| wanted[k as usize].1);
+    // at a time, would find runs of one. Each patch's run starts after the runs of those
+    // before it (a counting sort).
+    let mut next = vec![0u32; library.patches.len()];
+    for &(_, surface, _) in &wanted {
+        next[surface as usize] += 1;
+    }
+    let mut first = 0;
+    for count in &mut next {
+        (*count, first) = (first, first + *count);
+    }
     let mut renumbered = vec![0u32; wanted.len()];
-    for (at, &k) in order.iter().enumerate() {
-        renumbered[k as usize] = at as u32;
+    for (at, &(_, surface, _)) in renumbered.iter_mut().zip(&wanted) {
+        *at = next[surface as usize];
+        next[surface as usize] += 1;
     }
     for entry in asked.iter_mut().flatten().filter(|e| e.0 != EMPTY) {
         entry.1 = renumbered[entry.1 as usize];
     }
-    let wanted: Vec<(usize, u32, usize)> = order.iter().map(|&k| wanted[k as usize]).collect();
+    let mut by_patch = vec![(0, 0, 0); wanted.len()];
+    for (&at, &sample) in renumbered.iter().zip(&wanted) {
+        by_patch[at as usize] = sample;
+    }
+    let wanted = by_patch;
     // A centre that shows the surface is its own sample; another is the surface found on the
     // centre's ray from the surface's nearest texel (a probe).
     let started: Vec<Option<(Texel, f64, bool)>> = wanted
@@ -242,7 +263,7 @@ pub(super) fn trim_edges(
     };
     // The sample asked of `surface` at pixel `n`, and (`find`) the same where it landed.
     let entry = |n: usize, surface: u32| {
-        let entry = asked.get(asked_at[n] as usize)?;
+        let entry = asked.get((asked_at[n] as usize).checked_sub(1)?)?;
         entry.iter().find(|e| e.0 == surface).map(|e| e.1 as usize)
     };
     // The own samples' trims now; those off the patch once they are on their rays.
