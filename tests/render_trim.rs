@@ -251,7 +251,7 @@ fn a_hole_rim_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
     // the background seen through the hole. Against 32 × 32 rays a pixel, the alpha of those
     // pixels is on average within a quarter of what 4 × 4 samples of every pixel come to
     // (0.0013 against 0.025 of a pixel), and the hole adds few pixels to those supersampled
-    // (8 for 742 crossed).
+    // (none for 742 crossed).
     let radius = 0.6;
     let library = plate(radius);
     let camera = camera(Vec3::new(0.9, -2.2, 2.6));

@@ -80,7 +80,8 @@ struct Candidate {
 ///   ([`BoxQuadratic`]) stays on one side of 0 over it, or crosses it straight within
 ///   [`SMOOTH_BEND`] and [`JUMP`] ([`BoxQuadratic::crossing`]); its cover of the box
 ///   ([`BoxQuadratic::coverage_above`]) is P's share of the pixel;
-/// - each centre shows P where `f > 0` there and the other thing where `f ≤ 0`;
+/// - each centre shows P where `f > 0` there and the other thing where `f ≤ 0`, or either
+///   within [`RIM_SLACK`] of the rim;
 /// - over the part P covers, P's highlight and band edges are clear of the box (the
 ///   quadratics of their values at P's nine points, as
 ///   [`highlight_edges`](super::highlight_edge::highlight_edges) and
@@ -346,16 +347,17 @@ pub(super) fn trim_edges(
             let front_surface = surface(&front);
             let cover = front_surface.kept_cover()?;
             // Each centre sees the trimmed patch where its trim keeps it, the other thing where
-            // it does not.
+            // it does not, or either within `RIM_SLACK` of the rim.
             for (k, n) in around(pixel, (w, h)).enumerate() {
-                let kept = front_surface.trim_value(k)?.0 > 0.0;
+                let (distance, reach) = front_surface.trim_value(k)?;
                 let seen = thing(n);
-                let expected = if kept {
+                let on_rim = distance.abs() * TRIM_REACH < RIM_SLACK * reach;
+                let expected = if distance > 0.0 {
                     candidate.front
                 } else {
                     candidate.other
                 };
-                if seen != expected {
+                if !(seen == expected || on_rim) {
                     return None;
                 }
             }
@@ -718,6 +720,16 @@ impl Surface<'_> {
 /// How far, in multiples of the box's reach in (u, v), the trim's rim is looked for about each
 /// of the nine centres: a rim that crosses the box lies within about one of every centre.
 const TRIM_REACH: f64 = 4.0;
+
+/// How near the rim, in pixels (as the box's reach in (u, v) measures them), a centre may show
+/// either side of it ([`trim_edges`]). The rasterizer tests the trim at the (u, v) the mesh's
+/// triangles interpolate, and a centre the exact trim keeps just inside the rim may show the
+/// other thing: over five frames of the speaker at 1280 × 720 under `final`, 602 of the 606
+/// centres that did lay within 0.1 pixels of the rim (the other 4 beyond 0.3), and on the car
+/// panels all 188 within 0.01. Only the trimmed patch and the other thing are seen about a
+/// candidate, and both are sampled at every centre, so the pixel takes the rim's place from
+/// the exact trim, not from the mesh.
+const RIM_SLACK: f64 = 0.125;
 
 /// Draws the pixels of `edges` a rim crosses in `shaded`: the premultiplied mix
 /// `cover · kept + (1 − cover) · beyond` of the colours (and the matte and `N·H`) of the two
