@@ -211,8 +211,10 @@ struct Seed {
     centre: Vec2,
     /// The change of its (u, v) per pixel along x and y ([`uv_slopes`]; zero where none).
     slopes: (Vec2, Vec2),
-    /// Whether the eye sees the back of its patch there ([`Texel::back`]).
-    back: bool,
+    /// Whether the eye sees only the back of its patch among the seeds ([`Texel::back`]): a
+    /// start from it looks for that side alone. Where it sees both, the patch folds over about
+    /// the pixel, and a start that lands on the back may have crossed to the far sheet.
+    back_only: bool,
 }
 
 /// The covered pixels of a marked pixel's 3 × 3 neighbourhood, and how many patches they show.
@@ -243,20 +245,19 @@ impl Seeds {
                 patch,
                 centre: Vec2::new((n % w) as f32, (n / w) as f32) + 0.5,
                 slopes: (along_x.unwrap_or(Vec2::ZERO), along_y.unwrap_or(Vec2::ZERO)),
-                back,
+                back_only: back,
             };
             seeds.count += 1;
         }
+        // `back_only` held each seed's own side; it becomes whether every seed of its patch is
+        // on the back, once a pixel rather than once a sample.
+        let seen = seeds.seeds;
+        for seed in &mut seeds.seeds[..seeds.count] {
+            seed.back_only = seen[..seeds.count]
+                .iter()
+                .all(|s| s.patch != seed.patch || s.back_only);
+        }
         seeds
-    }
-
-    /// Whether the eye sees only the back of `patch` among the seeds: a start from them looks
-    /// for that side alone. Where it sees both, the patch folds over about the pixel, and a
-    /// start that lands on the back may have crossed to the far sheet.
-    fn back_only(&self, patch: u32) -> bool {
-        self.seeds[..self.count]
-            .iter()
-            .all(|s| s.patch != patch || s.back)
     }
 
     /// Fills `candidates` and `texels` (one per patch per sample, `k² · patches` of each) for
@@ -313,7 +314,7 @@ impl Seeds {
                         uv.x.clamp(domain.u.0 as f32, domain.u.1 as f32),
                         uv.y.clamp(domain.v.0 as f32, domain.v.1 as f32),
                     ),
-                    back: self.back_only(t.patch),
+                    back: seed.back_only,
                     ..t
                 };
             }

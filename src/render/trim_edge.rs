@@ -120,17 +120,15 @@ pub(super) fn trim_edges(
     // among them has the other thing in its own nine: its neighbourhood is not all on its
     // patch, and it is not drawn right. The candidates lie within the 3 × 3 neighbourhoods of
     // such texels, and are tried in pixel order.
-    let trimmed_cel = |patch: u32| {
-        library.patches[patch as usize].trim.is_some()
-            && matches!(scene.looks[patch as usize].tone, Tone::Cel(_))
-    };
     let beside_other: Vec<u32> = drawn
         .par_iter()
         .enumerate()
         .filter(|&(_, &d)| !d)
         .map(|(slot, _)| &gbuffer.texels[slot])
         .filter(|t| {
-            trimmed_cel(t.patch) && around(t.pixel as usize, (w, h)).any(|n| thing(n) != t.patch)
+            trimmed(scene, t.patch)
+                && cel(scene, t.patch)
+                && around(t.pixel as usize, (w, h)).any(|n| thing(n) != t.patch)
         })
         .map(|t| t.pixel)
         .collect();
@@ -513,8 +511,6 @@ fn candidate(
         s.1 = s.1.min(t.depth);
         s.2 = s.2.max(t.depth);
     }
-    let cel = |patch: u32| matches!(scene.looks[patch as usize].tone, Tone::Cel(_));
-    let trimmed = |patch: u32| scene.library.patches[patch as usize].trim.is_some();
     let (front, other) = match (seen[0].0, seen[1].0) {
         (EMPTY, p) | (p, EMPTY) => (p, EMPTY),
         // Both patches: the nearer in front, wholly.
@@ -522,8 +518,8 @@ fn candidate(
         _ if seen[1].2 < seen[0].1 => (seen[1].0, seen[0].0),
         _ => return None,
     };
-    let other_ok = other == EMPTY || cel(other);
-    if !(trimmed(front) && cel(front) && other_ok) {
+    let other_ok = other == EMPTY || cel(scene, other);
+    if !(trimmed(scene, front) && cel(scene, front) && other_ok) {
         return None;
     }
     // Beside the side of its domain, a patch ends there, not at its trim.
@@ -534,6 +530,16 @@ fn candidate(
         front,
         other,
     })
+}
+
+/// Whether `patch` of `scene` has a trim.
+fn trimmed(scene: &Scene, patch: u32) -> bool {
+    scene.library.patches[patch as usize].trim.is_some()
+}
+
+/// Whether `patch` of `scene` has a cel tone.
+fn cel(scene: &Scene, patch: u32) -> bool {
+    matches!(scene.looks[patch as usize].tone, Tone::Cel(_))
 }
 
 /// Moves each of the `probes` numbered in `which` onto its pixel's ray in the image of
