@@ -5,7 +5,8 @@
 //! (`support/frames.rs`). Each variant steps through the shot's frames, one per render, so the
 //! moving camera makes every frame tessellate, rasterize and find its lines again. Run with
 //! `cargo bench --bench trim`; it prints each variant's frame time by stage, then the ratios
-//! trimmed / untrimmed.
+//! trimmed / untrimmed, and the same ratios were the trim edges (the rims drawn at one sample)
+//! to take no time: what the rest of the trims, and what their openings show, cost.
 
 // Variant::render is for benchmarks that render one scene again and again.
 #[allow(dead_code)]
@@ -17,7 +18,7 @@ use std::sync::Arc;
 
 use frames::Variant;
 use glint::geom::PatchLibrary;
-use glint::render::{Renderer, Settings};
+use glint::render::{Renderer, Settings, Stage};
 use glint::shot::load_shot;
 
 const ROUNDS: usize = 12;
@@ -67,12 +68,11 @@ fn main() {
             shot.library.patches.len(),
             shot_settings.antialias
         ));
-        measured.print_ratios(
-            name,
-            &[
-                ("trimmed", "untrimmed"),
-                ("trimmed_preview", "untrimmed_preview"),
-            ],
-        );
+        let pairs = [
+            ("trimmed", "untrimmed"),
+            ("trimmed_preview", "untrimmed_preview"),
+        ];
+        measured.print_ratios(name, &pairs);
+        measured.print_ratios_without(Stage::TrimEdges, &pairs[..1]);
     }
 }

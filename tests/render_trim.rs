@@ -294,6 +294,12 @@ fn a_hole_rim_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
     };
     let adaptive = render(&library, Antialias::Adaptive(4));
     let every = render(&library, Antialias::Supersample(4));
+    // The rims are a stage of their own, which judges every crossed pixel, and only adaptive
+    // anti-aliasing of a trimmed model runs it.
+    assert!(adaptive.stats.ran(Stage::TrimEdges));
+    let judged = adaptive.stats[Stage::TrimEdges].pixels;
+    assert!(judged >= crossed.len() as u64, "{judged} judged");
+    assert!(!every.stats.ran(Stage::TrimEdges));
     let (one, sixteen) = (mean_error(&adaptive), mean_error(&every));
     assert!(
         one * 4.0 < sixteen,
@@ -302,6 +308,7 @@ fn a_hole_rim_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
     let mut whole = (*library).clone();
     whole.patches[0].trim = None;
     let plain = render(&Arc::new(whole), Antialias::Adaptive(4));
+    assert!(!plain.stats.ran(Stage::TrimEdges));
     let added = adaptive.stats[Stage::Supersample].pixels as i64
         - plain.stats[Stage::Supersample].pixels as i64;
     assert!(

@@ -149,4 +149,25 @@ impl Measured {
             );
         }
     }
+
+    /// Prints, for each `(numerator, denominator)`, the median over rounds of
+    /// `(numerator frame − its stage) / denominator frame` from the same round, with its
+    /// quartiles: the ratio were `stage` to take no time.
+    // Only the trim benchmark leaves a stage out.
+    #[allow(dead_code)]
+    pub fn print_ratios_without(&self, stage: Stage, pairs: &[(&str, &str)]) {
+        for &(numerator, denominator) in pairs {
+            let k = self.index(numerator);
+            let (a, b) = (&self.seconds[k], &self.seconds[self.index(denominator)]);
+            let ratios = a.iter().zip(&self.stats[k]).zip(b).map(|((a, s), b)| {
+                let spent = s.as_ref().map_or(0.0, |s| s[stage].seconds);
+                (a - spent) / b
+            });
+            let [q1, median, q3] = quartiles(ratios.collect());
+            println!(
+                "{:<40} {median:>6.3}   [{q1:.3}, {q3:.3}]",
+                format!("{numerator} − {stage} / {denominator}")
+            );
+        }
+    }
 }

@@ -1,8 +1,8 @@
 //! Rendering: a [`Scene`] to a [`RenderedFrame`], stage by stage as the [`Plan`] decides.
 //!
 //! ```text
-//! Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ Shade ▸ Outline ▸ Supersample ▸ Aov
-//! ▸ Resolve
+//! Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ TrimEdges ▸ Shade ▸ Outline
+//! ▸ Supersample ▸ Aov ▸ Resolve
 //! ```
 //!
 //! A stage the scene does not use does not run, and [`RenderStats`] shows it. Writing the

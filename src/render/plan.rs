@@ -53,7 +53,8 @@ impl Plan {
     ///   is evaluated in its X-Toon tone's abstracted frame (the highlights then need every
     ///   abstracted frame before they start);
     /// - edge widths only under analytic or adaptive anti-aliasing on a frame with highlights or
-    ///   band edges;
+    ///   band edges; the trim edges with them under adaptive anti-aliasing when some patch with
+    ///   a cel tone is trimmed;
     /// - outlines and AOVs when the scene asks for them, the resolve under supersampling, and
     ///   the supersampling of the pixels that need it under adaptive anti-aliasing;
     /// - the G-buffer holds the frames [`Plan::first_frames`] decides.
@@ -88,13 +89,25 @@ impl Plan {
             Surfaces::Texels
         };
         let texels = surfaces == Surfaces::Texels;
+        let edge_widths = texels && (highlights || bands) && analytic;
+        let adaptive = match settings.antialias {
+            Antialias::Adaptive(_) => true,
+            Antialias::None | Antialias::Analytic | Antialias::Supersample(_) => false,
+        };
+        let trimmed_cel = scene
+            .library
+            .patches
+            .iter()
+            .zip(&scene.looks)
+            .any(|(patch, look)| patch.trim.is_some() && matches!(look.tone, Tone::Cel(_)));
         let runs = Stage::ALL.map(|stage| match stage {
             Stage::Tessellate | Stage::Rasterize | Stage::Shade => true,
             Stage::GBuffer => texels,
             Stage::Detail => texels && abstracted_highlights,
-            Stage::EdgeWidths => texels && (highlights || bands) && analytic,
+            Stage::EdgeWidths => edge_widths,
+            Stage::TrimEdges => edge_widths && adaptive && trimmed_cel,
             Stage::Outline => outlines,
-            Stage::Supersample => matches!(settings.antialias, Antialias::Adaptive(_)),
+            Stage::Supersample => adaptive,
             Stage::Aov => aovs,
             Stage::Resolve => settings.samples_per_side() > 1,
         });
@@ -156,8 +169,8 @@ impl Plan {
     ///
     /// - the mesh, the visibility buffer and the G-buffer (whose frames face the eye, not the
     ///   light) depend on nothing else;
-    /// - the X-Toon detail reads the tone's parameters and the light, the edge widths the
-    ///   highlight's layers, and the shade stage both; the lines read the outlines and the
+    /// - the X-Toon detail reads the tone's parameters and the light, the edge widths and the
+    ///   trim edges the highlight's layers, and the shade stage both; the lines read the outlines and the
     ///   patches' line styles (a frame that keeps those too reuses them:
     ///   [`Plan::reusing_lines`]); the supersampled pixels are chosen by their shaded colour;
     ///   the matte and `N·H` AOVs come from the shade stage, and the resolve averages its
@@ -168,6 +181,7 @@ impl Plan {
             Stage::Tessellate | Stage::Rasterize | Stage::GBuffer => true,
             Stage::Detail
             | Stage::EdgeWidths
+            | Stage::TrimEdges
             | Stage::Shade
             | Stage::Outline
             | Stage::Supersample

@@ -1,6 +1,6 @@
 //! One frame, stage by stage, as the plan decides: tessellate (cached) ▸ rasterize ▸ G-buffer ▸
-//! detail ▸ edge widths ▸ shade ▸ outline ▸ AOVs ▸ resolve ([`Stage`]), the first three reused
-//! from the previous frame when its surfaces are the same.
+//! detail ▸ edge widths ▸ trim edges ▸ shade ▸ outline ▸ supersample ▸ AOVs ▸ resolve
+//! ([`Stage`]), the first three reused from the previous frame when its surfaces are the same.
 
 use std::ops::{Add, Mul};
 use std::sync::Arc;
@@ -346,7 +346,8 @@ impl Stages {
                     let adaptive = matches!(settings.antialias, Antialias::Adaptive(_));
                     let view_projection = frame.view_projection;
                     let input = (highlight_gbuffer, scene, view_projection);
-                    widths(input, adaptive, settle, &mut stats)
+                    let trims = plan.runs(Stage::TrimEdges);
+                    widths(input, adaptive, trims, settle, &mut stats)
                 } else {
                     Edged::default()
                 };
@@ -635,18 +636,21 @@ impl Edged<'_> {
 /// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint
 /// and how the tone's band edges meet the pixel; under `adaptive` anti-aliasing also how the
 /// highlight's edges meet it and whether it is [`drawn`] right at one sample, and on a frame
-/// with trimmed patches which pixels about their rims are drawn right ([`trim_edges`], seen
-/// through `view_projection`). With `settle`,
+/// with `trims`, [`Stage::TrimEdges`]: which pixels about the rims of trimmed patches are drawn
+/// right ([`trim_edges`], seen through `view_projection`), timed apart. With `settle`,
 /// the view-projection and the settings' frames where the G-buffer's are interpolated, the
 /// texels the straight band edges and smooth highlight edges are drawn from are evaluated
 /// again in those frames ([`Settled`]).
 fn widths<'s>(
     (gbuffer, scene, view_projection): (&GBuffer, &'s Scene, Mat4),
     adaptive: bool,
+    trims: bool,
     settle: Option<(Mat4, FrameMode)>,
     stats: &mut RenderStats,
 ) -> Edged<'s> {
     let mut frames = 0;
+    let mut trim_seconds = 0.0;
+    let mut judged = 0;
     let (edged, seconds) = timed(|| {
         // The texels' patches side by side: the neighbours are looked up by patch, and the
         // texels themselves are large.
@@ -689,8 +693,11 @@ fn widths<'s>(
             let kinds = highlights.as_ref().map(|h| h.kinds.as_slice());
             drawn(gbuffer, scene, bands.as_deref(), kinds)
         });
-        let trims = drawn.as_mut().and_then(|drawn| {
-            let trims = trim_edges(gbuffer, scene, view_projection, drawn)?;
+        let trims = drawn.as_mut().filter(|_| trims).and_then(|drawn| {
+            let (trims, seconds) = timed(|| trim_edges(gbuffer, scene, view_projection, drawn));
+            trim_seconds = seconds;
+            let trims = trims?;
+            judged = trims.judged;
             for (&slot, _) in gbuffer.slot.iter().zip(&trims.drawn).filter(|(_, &d)| d) {
                 if slot != EMPTY {
                     drawn[slot as usize] = true;
@@ -716,7 +723,14 @@ fn widths<'s>(
             trims,
         }
     });
-    stats.record(Stage::EdgeWidths, gbuffer.texels.len() as u64, seconds);
+    stats.record(
+        Stage::EdgeWidths,
+        gbuffer.texels.len() as u64,
+        seconds - trim_seconds,
+    );
+    if trims {
+        stats.record(Stage::TrimEdges, judged, trim_seconds);
+    }
     stats.exact_frames += frames;
     edged
 }

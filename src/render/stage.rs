@@ -10,7 +10,8 @@ macro_rules! stages {
         /// A stage of the pipeline ([`Plan`](super::Plan) decides which run).
         ///
         /// ```text
-        /// Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ Shade ▸ Outline ▸ Supersample ▸ Aov ▸ Resolve
+        /// Tessellate ▸ Rasterize ▸ GBuffer ▸ Detail ▸ EdgeWidths ▸ TrimEdges ▸ Shade ▸ Outline
+        ///   ▸ Supersample ▸ Aov ▸ Resolve
         /// ```
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
         pub enum Stage {
@@ -25,7 +26,7 @@ macro_rules! stages {
             pub const ALL: [Stage; Stage::COUNT] = [$(Stage::$stage),*];
 
             /// The stage's name in statistics: `tessellate`, `rasterize`, `gbuffer`, `detail`,
-            /// `edge_widths`, `shade`, `outline`, `supersample`, `aov`, `resolve`.
+            /// `edge_widths`, `trim_edges`, `shade`, `outline`, `supersample`, `aov`, `resolve`.
             #[must_use]
             pub const fn name(self) -> &'static str {
                 match self {
@@ -49,6 +50,10 @@ stages! {
     /// Per texel the width of the highlight's edge over the pixel's footprint, for analytic
     /// anti-aliasing.
     EdgeWidths => "edge_widths",
+    /// Under adaptive anti-aliasing on a frame with trimmed cel patches, the pixels about the
+    /// trims' rims whose colour one sample on each side of the rim gives, weighted by the rim's
+    /// cover of the box; the supersampling leaves them out.
+    TrimEdges => "trim_edges",
     /// Tone and designed highlights, composited: from the G-buffer, or straight from the
     /// visibility buffer when the only effect is the cel tone over interpolated frames.
     Shade => "shade",

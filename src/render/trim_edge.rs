@@ -29,6 +29,8 @@ pub(super) struct TrimEdges {
     pub crossed: Vec<Crossed>,
     /// NURBS frames evaluated.
     pub frames: u64,
+    /// The candidate pixels judged: those about a rim.
+    pub judged: u64,
 }
 
 /// A pixel a trim's rim crosses, drawn from one sample on each side of it.
@@ -163,6 +165,7 @@ pub(super) fn trim_edges(
         .collect();
     let mut edges = TrimEdges {
         drawn: vec![false; w * h],
+        judged: candidates.len() as u64,
         ..TrimEdges::default()
     };
     if candidates.is_empty() {
