@@ -420,42 +420,64 @@ pub(super) fn trim_edges(
     for (&k, value) in settled.iter().zip(settled_trims) {
         trim[k] = value;
     }
-    for (pixel, beyond, front) in crossings {
-        let surface = Surface {
-            probes: &probes,
-            signed: &signed,
-            trim: &trim,
-            indices: front,
-        };
-        match surface.kept_cover_and_rim() {
-            Some((cover, Some(rim))) => edges.crossed.push(Crossed {
-                pixel,
-                cover,
-                kept: probes[front[4]],
-                beyond,
-                rim,
-            }),
-            Some((_, None)) | None => edges.drawn[pixel as usize] = false,
+    let crossed: Vec<Option<Crossed>> = crossings
+        .par_iter()
+        .map(|&(pixel, beyond, front)| {
+            let surface = Surface {
+                probes: &probes,
+                signed: &signed,
+                trim: &trim,
+                indices: front,
+            };
+            match surface.kept_cover_and_rim() {
+                Some((cover, Some(rim))) => Some(Crossed {
+                    pixel,
+                    cover,
+                    kept: probes[front[4]],
+                    beyond,
+                    rim,
+                }),
+                Some((_, None)) | None => None,
+            }
+        })
+        .collect();
+    for (&(pixel, _, _), crossed) in crossings.iter().zip(crossed) {
+        match crossed {
+            Some(crossed) => edges.crossed.push(crossed),
+            None => edges.drawn[pixel as usize] = false,
         }
     }
 
     // An uncovered pixel whose nine are all uncovered, beside pixels the rim crosses, shows
     // the background when each of their rims, carried over to its box, stays cut over it.
+    // Per crossed pixel, its neighbours tried and whether each is drawn right by its rim; a
+    // neighbour is drawn right when it is by every crossed pixel beside it.
+    let tried: Vec<(u32, bool)> = edges
+        .crossed
+        .par_iter()
+        .filter(|c| c.beyond.is_none())
+        .flat_map_iter(|crossed| {
+            let c = crossed.pixel as usize;
+            around(c, (w, h))
+                .filter(move |&n| n != c)
+                .filter(|&n| {
+                    let (x, y) = (n % w, n / w);
+                    x > 0 && y > 0 && x + 1 < w && y + 1 < h && !edges.drawn[n]
+                })
+                .map(move |n| {
+                    let empty = around(n, (w, h)).all(|m| thing(m) == EMPTY);
+                    let d = |a: usize, b: usize| a as f32 - b as f32;
+                    let moved = crossed.rim.moved_to(d(n % w, c % w), d(n / w, c / w));
+                    let cut = moved.centre + moved.reach() < 0.0;
+                    (n as u32, empty && cut)
+                })
+        })
+        .collect();
+    // 0 untried, 1 drawn right by every crossed pixel so far, 2 not.
     let mut beside = vec![0u8; w * h];
-    for crossed in edges.crossed.iter().filter(|c| c.beyond.is_none()) {
-        let c = crossed.pixel as usize;
-        for n in around(c, (w, h)).filter(|&n| n != c) {
-            let (x, y) = (n % w, n / w);
-            let inside = x > 0 && y > 0 && x + 1 < w && y + 1 < h;
-            if !inside || edges.drawn[n] || beside[n] == 2 {
-                continue;
-            }
-            let empty = around(n, (w, h)).all(|m| thing(m) == EMPTY);
-            let d = |a: usize, b: usize| a as f32 - b as f32;
-            let moved = crossed.rim.moved_to(d(x, c % w), d(y, c / w));
-            let cut = moved.centre + moved.reach() < 0.0;
-            beside[n] = if empty && cut { 1 } else { 2 };
-        }
+    for &(n, right) in &tried {
+        let b = &mut beside[n as usize];
+        *b = if right && *b != 2 { 1 } else { 2 };
     }
     for (drawn, &b) in edges.drawn.iter_mut().zip(&beside) {
         *drawn |= b == 1;
