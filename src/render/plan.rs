@@ -170,8 +170,8 @@ impl Plan {
     /// - the mesh, the visibility buffer and the G-buffer (whose frames face the eye, not the
     ///   light) depend on nothing else;
     /// - the X-Toon detail reads the tone's parameters and the light, the edge widths and the
-    ///   trim edges the highlight's layers, and the shade stage both; the lines read the outlines and the
-    ///   patches' line styles (a frame that keeps those too reuses them:
+    ///   trim edges the highlight's layers, and the shade stage both; the lines read the
+    ///   outlines and the patches' line styles (a frame that keeps those too reuses them:
     ///   [`Plan::reusing_lines`]); the supersampled pixels are chosen by their shaded colour;
     ///   the matte and `N·H` AOVs come from the shade stage, and the resolve averages its
     ///   colour.

@@ -449,9 +449,8 @@ pub(super) fn trim_edges(
     }
 
     // An uncovered pixel whose nine are all uncovered, beside pixels the rim crosses, shows
-    // the background when each of their rims, carried over to its box, stays cut over it.
-    // Per crossed pixel, its neighbours tried and whether each is drawn right by its rim; a
-    // neighbour is drawn right when it is by every crossed pixel beside it.
+    // the background when each of their rims, carried over to its box, stays cut over it: per
+    // crossed pixel, the neighbours it tries and whether its rim stays cut over each.
     let tried: Vec<(u32, bool)> = edges
         .crossed
         .par_iter()
