@@ -528,17 +528,12 @@ pub(super) const NO_FRAME: Frame = Frame {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{shapes, NamedPatch};
     use crate::render::raster::{RasterOptions, Rasterizer, Viewport};
     use crate::render::tessellate::{Density, Tessellator};
 
     #[test]
     fn each_sample_gets_the_frame_its_evaluation_asks_for() {
-        let library = PatchLibrary::new(vec![NamedPatch {
-            name: "ball".into(),
-            trim: None,
-            surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
-        }]);
+        let library = crate::render::plan::tests::ball_library();
         let camera = Camera {
             eye: Vec3::new(0.3, -5.0, 0.8),
             ..crate::render::plan::tests::camera()
@@ -637,11 +632,7 @@ mod tests {
 
     #[test]
     fn a_probe_from_the_back_keeps_to_the_back_and_one_from_the_front_finds_the_near_sheet() {
-        let library = PatchLibrary::new(vec![NamedPatch {
-            name: "ball".into(),
-            trim: None,
-            surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
-        }]);
+        let library = crate::render::plan::tests::ball_library();
         let surface = &library.patches[0].surface;
         let camera = crate::render::plan::tests::camera();
         let size = (64, 64);

@@ -179,10 +179,10 @@ fn clip_to_box(a: Vec2, b: Vec2, (low, high): (Vec2, Vec2)) -> Option<[Vec2; 2]>
 
 #[cfg(test)]
 mod tests {
-    use glam::{DVec3, Vec3};
+    use glam::Vec3;
 
     use super::*;
-    use crate::geom::{shapes, Domain, NamedPatch, PatchLibrary};
+    use crate::geom::Domain;
     use crate::render::tessellate::{Density, Tessellator};
     use crate::render::Camera;
 
@@ -192,11 +192,7 @@ mod tests {
         // equator and turned so that the seam runs across the front, over the top and past
         // the silhouette, each pixel is near a side exactly when the sides themselves, dense
         // points of the surface projected, pass within the reach of its centre.
-        let library = PatchLibrary::new(vec![NamedPatch {
-            name: "ball".into(),
-            trim: None,
-            surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
-        }]);
+        let library = crate::render::plan::tests::ball_library();
         let (width, height, reach) = (96u32, 96u32, 3.0f32);
         let camera = Camera {
             eye: Vec3::new(2.5, -4.0, 2.0),

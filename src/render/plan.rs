@@ -249,10 +249,10 @@ impl Plan {
 
 #[cfg(test)]
 pub(super) mod tests {
-    use glam::Vec3;
+    use glam::{DVec3, Vec3};
 
     use super::*;
-    use crate::geom::PatchLibrary;
+    use crate::geom::{shapes, NamedPatch, PatchLibrary};
     use crate::highlight::Light;
     use crate::render::{Camera, PatchLook, Projection};
     use crate::toon::CelRamp;
@@ -269,6 +269,15 @@ pub(super) mod tests {
             near: 0.1,
             far: 100.0,
         }
+    }
+
+    /// The unit ball at the origin, one patch named `ball`, which [`camera`] sees whole.
+    pub(in crate::render) fn ball_library() -> PatchLibrary {
+        PatchLibrary::new(vec![NamedPatch {
+            name: "ball".into(),
+            trim: None,
+            surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
+        }])
     }
 
     /// A scene of `library` with no looks, seen by [`camera`], asking for `aovs`.
