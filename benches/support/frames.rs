@@ -142,11 +142,8 @@ impl Measured {
                 &self.seconds[self.index(numerator)],
                 &self.seconds[self.index(denominator)],
             );
-            let [q1, median, q3] = quartiles(a.iter().zip(b).map(|(a, b)| a / b).collect());
-            println!(
-                "{:<40} {median:>6.3}   [{q1:.3}, {q3:.3}]",
-                format!("{numerator} / {denominator}")
-            );
+            let ratios = a.iter().zip(b).map(|(a, b)| a / b).collect();
+            print_ratio(&format!("{numerator} / {denominator}"), ratios);
         }
     }
 
@@ -163,11 +160,14 @@ impl Measured {
                 let spent = s.as_ref().map_or(0.0, |s| s[stage].seconds);
                 (a - spent) / b
             });
-            let [q1, median, q3] = quartiles(ratios.collect());
-            println!(
-                "{:<40} {median:>6.3}   [{q1:.3}, {q3:.3}]",
-                format!("{numerator} − {stage} / {denominator}")
-            );
+            let label = format!("{numerator} − {stage} / {denominator}");
+            print_ratio(&label, ratios.collect());
         }
     }
+}
+
+/// Prints `label` with the median and quartiles of the per-round `ratios`.
+fn print_ratio(label: &str, ratios: Vec<f64>) {
+    let [q1, median, q3] = quartiles(ratios);
+    println!("{label:<40} {median:>6.3}   [{q1:.3}, {q3:.3}]");
 }

@@ -346,8 +346,8 @@ impl Stages {
                     let adaptive = matches!(settings.antialias, Antialias::Adaptive(_));
                     let view_projection = frame.view_projection;
                     let input = (highlight_gbuffer, scene, view_projection);
-                    let trims = plan.runs(Stage::TrimEdges);
-                    widths(input, adaptive, trims, settle, &mut stats)
+                    let draw_trims = plan.runs(Stage::TrimEdges);
+                    widths(input, adaptive, draw_trims, settle, &mut stats)
                 } else {
                     Edged::default()
                 };
@@ -635,16 +635,16 @@ impl Edged<'_> {
 
 /// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint
 /// and how the tone's band edges meet the pixel; under `adaptive` anti-aliasing also how the
-/// highlight's edges meet it and whether it is [`drawn`] right at one sample, and on a frame
-/// with `trims`, [`Stage::TrimEdges`]: which pixels about the rims of trimmed patches are drawn
-/// right ([`trim_edges`], seen through `view_projection`), timed apart. With `settle`,
+/// highlight's edges meet it and whether it is [`drawn`] right at one sample, and with
+/// `draw_trims`, [`Stage::TrimEdges`]: which pixels about the rims of trimmed patches are
+/// drawn right ([`trim_edges`], seen through `view_projection`), timed apart. With `settle`,
 /// the view-projection and the settings' frames where the G-buffer's are interpolated, the
 /// texels the straight band edges and smooth highlight edges are drawn from are evaluated
 /// again in those frames ([`Settled`]).
 fn widths<'s>(
     (gbuffer, scene, view_projection): (&GBuffer, &'s Scene, Mat4),
     adaptive: bool,
-    trims: bool,
+    draw_trims: bool,
     settle: Option<(Mat4, FrameMode)>,
     stats: &mut RenderStats,
 ) -> Edged<'s> {
@@ -693,7 +693,7 @@ fn widths<'s>(
             let kinds = highlights.as_ref().map(|h| h.kinds.as_slice());
             drawn(gbuffer, scene, bands.as_deref(), kinds)
         });
-        let trims = drawn.as_mut().filter(|_| trims).and_then(|drawn| {
+        let trims = drawn.as_mut().filter(|_| draw_trims).and_then(|drawn| {
             let (trims, seconds) = timed(|| trim_edges(gbuffer, scene, view_projection, drawn));
             trim_seconds = seconds;
             let trims = trims?;
@@ -728,7 +728,7 @@ fn widths<'s>(
         gbuffer.texels.len() as u64,
         seconds - trim_seconds,
     );
-    if trims {
+    if draw_trims {
         stats.record(Stage::TrimEdges, judged, trim_seconds);
     }
     stats.exact_frames += frames;
