@@ -59,7 +59,6 @@
 
 pub mod accuracy;
 pub mod anim;
-pub mod cli;
 pub mod formats;
 pub mod geom;
 pub mod highlight;
@@ -70,4 +69,3 @@ pub mod picture;
 pub mod render;
 pub mod shot;
 pub mod toon;
-pub mod tune;

@@ -10,7 +10,7 @@ use crate::common::glint;
 /// A small shot of the sphere with a keyed highlight, in a fresh folder.
 fn shot(size: (u32, u32), preset: &str) -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();
-    let sphere = Path::new(env!("CARGO_MANIFEST_DIR")).join("patches/sphere.ron");
+    let sphere = crate::common::root().join("patches/sphere.ron");
     std::fs::copy(sphere, dir.path().join("sphere.ron")).unwrap();
     let text = format!(
         r#"Shot(

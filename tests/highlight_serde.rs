@@ -153,7 +153,7 @@ fn descriptions_are_generic_over_the_parameter_type() {
 
 #[test]
 fn the_layer_documented_in_docs_highlights_parses_and_prepares() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/highlights.md");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/highlights.md");
     let doc = std::fs::read_to_string(path).unwrap();
     let start = doc.find("```ron\n").unwrap() + "```ron\n".len();
     let end = start + doc[start..].find("```").unwrap();

@@ -57,7 +57,7 @@ mod usd_import;
 #[test]
 fn every_test_file_is_a_module_of_this_crate() {
     let main = include_str!("main.rs");
-    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let folder = crate::common::root().join("tests");
     let mut missing = Vec::new();
     for entry in std::fs::read_dir(&folder).unwrap() {
         let path = entry.unwrap().path();

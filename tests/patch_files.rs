@@ -3,14 +3,14 @@
 
 use std::sync::Arc;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use glint::formats::load_patches;
 use glint::geom::{GridEvaluator, PatchLibrary};
 
 /// Every model in `patches/` (not the parts files beside them, which name their groups).
 fn patch_files() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("patches");
+    let dir = crate::common::root().join("patches");
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -21,9 +21,7 @@ fn patch_files() -> Vec<PathBuf> {
 }
 
 fn load(name: &str) -> PatchLibrary {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("patches")
-        .join(name);
+    let path = crate::common::root().join("patches").join(name);
     load_patches(&path).unwrap()
 }
 
@@ -91,7 +89,7 @@ fn car_panels_are_rational_with_non_uniform_knots_and_c1_joints() {
 
 /// The ```ron block of docs/patch-format.md.
 fn documented_example() -> String {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/patch-format.md");
+    let path = crate::common::root().join("docs/patch-format.md");
     let doc = std::fs::read_to_string(path).unwrap();
     let start = doc.find("```ron\n").unwrap() + "```ron\n".len();
     let end = start + doc[start..].find("```").unwrap();
@@ -114,7 +112,7 @@ fn documented_example_parses_into_every_kind_of_surface() {
 
 #[test]
 fn documented_parts_examples_read_as_written() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/patch-format.md");
+    let path = crate::common::root().join("docs/patch-format.md");
     let doc = std::fs::read_to_string(path).unwrap();
     let blocks: Vec<&str> = doc
         .split("```ron\n")

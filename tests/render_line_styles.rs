@@ -299,7 +299,7 @@ fn a_shot_s_line_entries_restyle_the_parts_they_pick_field_by_field() {
     ],
     render: (preset: Preview, outlines: (width: [(1, 2.0), (11, 3.0)], colour: (0.0, 0.0, 0.2))),
 )"#;
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("shots/line_styles.ron");
+    let path = crate::common::root().join("shots/line_styles.ron");
     let shot = glint::shot::load_shot_text(&path, text.to_string()).unwrap();
     let names: Vec<&str> = shot
         .library

@@ -1,7 +1,7 @@
 //! Bad shot files: each mistake is one error line naming the file, the line and column where the
 //! mistake is written and a sentence a person can act on; exit code 2; nothing written.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::common::glint;
 
@@ -383,7 +383,7 @@ fn location(text: &str, needle: &str) -> (usize, usize) {
 /// look library that defines "blue" again.
 fn workspace() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
-    let sphere = Path::new(env!("CARGO_MANIFEST_DIR")).join("patches/sphere.ron");
+    let sphere = crate::common::root().join("patches/sphere.ron");
     std::fs::copy(sphere, dir.path().join("sphere.ron")).unwrap();
     std::fs::write(
         dir.path().join("broken.ron"),

@@ -114,8 +114,8 @@ fn the_documented_example_and_look_library_load_and_render() {
     std::fs::create_dir_all(shots.join("looks")).unwrap();
     std::fs::write(shots.join("looks/studio.ron"), looks).unwrap();
     std::fs::write(shots.join("looks/more_looks.ron"), "Looks()").unwrap();
-    let patches = concat!(env!("CARGO_MANIFEST_DIR"), "/patches/");
-    let textures = concat!(env!("CARGO_MANIFEST_DIR"), "/textures/");
+    let patches = concat!(env!("CARGO_MANIFEST_DIR"), "/../patches/");
+    let textures = concat!(env!("CARGO_MANIFEST_DIR"), "/../textures/");
     std::fs::write(
         shots.join("example.ron"),
         example

@@ -73,7 +73,7 @@ fn sphere_ops_moves_without_pops_and_a_stepped_key_is_a_pop() {
         .replace("(1, 0.0), (12, 0.35), (24, 0.0)", "(6, 0.0), (6.01, 0.35)")
         .replace(
             "../patches/",
-            concat!(env!("CARGO_MANIFEST_DIR"), "/patches/"),
+            concat!(env!("CARGO_MANIFEST_DIR"), "/../patches/"),
         );
     let dir = tempfile::tempdir().unwrap();
     let stepped_path = dir.path().join("stepped.ron");

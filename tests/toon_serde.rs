@@ -146,7 +146,7 @@ fn a_shape_detail_without_its_built_shape_is_an_error() {
 
 #[test]
 fn the_snippets_of_docs_xtoon_parse_and_prepare() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/xtoon.md");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/xtoon.md");
     let doc = std::fs::read_to_string(path).unwrap();
     let blocks: Vec<&str> = doc
         .split("```ron\n")

@@ -2,8 +2,6 @@
 //! lookups over a wider and taller one, reading from PNG, and the shipped textures against the
 //! generator that makes them.
 
-use std::path::Path;
-
 use glam::Vec3;
 use glint::formats::png::{write_png, PngLayout};
 use glint::formats::{read_toon_texture, srgb_to_linear};
@@ -123,7 +121,7 @@ fn a_png_texture_reads_top_row_as_full_detail_in_linear_rgb() {
 
 #[test]
 fn the_shipped_textures_are_what_the_generator_makes() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("textures");
+    let dir = crate::common::root().join("textures");
     for family in Family::ALL {
         let path = dir.join(format!("{}.png", family.name()));
         let shipped = image::open(&path)

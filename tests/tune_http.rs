@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use glint::job::{Overrides, RenderJob};
 use glint::shot::Aov;
-use glint::tune::{ServerOptions, Session, TuneServer};
+use glint_cli::tune::{ServerOptions, Session, TuneServer};
 use serde_json::{json, Value};
 
 use crate::common::http::{request, Reply};

@@ -3,14 +3,12 @@
 //! with the analytic sphere ray-cast per pixel, with its time per frame; the geometry's own
 //! error and cost; and how frame time scales with resolution, patches and threads.
 //!
-//! The measuring logic lives here; `glint bench accuracy` runs it, prints the tables and writes
-//! the CSV files and the plot.
+//! The measuring logic lives here; the command line's `glint bench accuracy` runs it, prints the
+//! tables and writes the CSV files and the plot.
 
 pub mod case;
-pub mod csv;
 pub mod geometry;
 pub mod metrics;
-pub mod plot;
 pub mod reference;
 pub mod scaling;
 pub mod stack;

@@ -70,7 +70,8 @@ stages! {
 
 impl Stage {
     /// The stage's place in [`Stage::ALL`].
-    pub(crate) const fn index(self) -> usize {
+    #[must_use]
+    pub const fn index(self) -> usize {
         self as usize
     }
 }

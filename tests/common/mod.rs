@@ -12,6 +12,8 @@ use glint::geom::PatchLibrary;
 /// The repository's root folder, where `patches/`, `shots/` and `textures/` are.
 pub fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("the command line crate sits in a folder of the repository")
 }
 
 /// A file of the repository, by its path from the root.

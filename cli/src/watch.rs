@@ -12,9 +12,9 @@ use notify::{RecommendedWatcher, RecursiveMode, Watcher};
 
 use super::watched::WatchedFiles;
 use super::CliError;
-use crate::formats::atomic::Durability;
-use crate::job::{JobError, Overrides, RenderJob};
-use crate::render::Stage;
+use glint::formats::atomic::Durability;
+use glint::job::{JobError, Overrides, RenderJob};
+use glint::render::Stage;
 
 /// How long the inputs must stay unchanged after a change before the shot is loaded again: an
 /// editor's save (a new file written, renamed over the old one) is one change, not several.

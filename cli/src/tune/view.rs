@@ -4,8 +4,8 @@
 
 use serde::Serialize;
 
-use crate::anim::Track;
-use crate::shot::{
+use glint::anim::Track;
+use glint::shot::{
     param_readings, HighlightRef, LayerParam, OpParam, ParamPath, ParamReading, Shot,
 };
 
@@ -233,7 +233,7 @@ pub fn highlight_views(
 
 /// The value a pinned layer's pin has at `frame`: `(u, v)`.
 #[must_use]
-pub fn pin_at(layer: &crate::highlight::Layer<Track<f32>>, frame: f64) -> Option<(f64, f64)> {
+pub fn pin_at(layer: &glint::highlight::Layer<Track<f32>>, frame: f64) -> Option<(f64, f64)> {
     let pin = layer.pin.as_ref()?;
     Some((f64::from(pin.u.at(frame)), f64::from(pin.v.at(frame))))
 }

@@ -7,7 +7,7 @@ use clap::Args;
 
 use super::render::Target;
 use super::{write_stdout, CliError};
-use crate::job::{frame_spec, JobError, RenderJob, Scrutiny};
+use glint::job::{frame_spec, JobError, RenderJob, Scrutiny};
 
 /// Check that every frame of a shot was rendered, whole, from the shot's inputs as they are now.
 ///

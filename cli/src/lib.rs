@@ -1,6 +1,8 @@
 //! The command line: argument parsing, terminal output and exit codes (0 success, 2 bad input or
 //! usage, 1 a failure while working).
 
+mod accuracy_csv;
+mod accuracy_plot;
 mod bench;
 mod bench_loop;
 mod farm;
@@ -13,7 +15,7 @@ mod probe;
 mod render;
 mod report;
 mod sheet;
-mod tune;
+pub mod tune;
 mod vary;
 mod verify;
 mod watch;
@@ -41,7 +43,7 @@ enum Command {
     Patches(patches::PatchesArgs),
     Place(place::PlaceArgs),
     Sheet(sheet::SheetArgs),
-    Tune(tune::TuneArgs),
+    Tune(tune::command::TuneArgs),
     Verify(verify::VerifyArgs),
     Bench(bench::BenchArgs),
     Farm(farm::FarmArgs),
@@ -90,7 +92,7 @@ pub fn main() -> ExitCode {
         Command::Patches(args) => patches::run(&args),
         Command::Place(args) => place::run(&args),
         Command::Sheet(args) => sheet::run(&args),
-        Command::Tune(args) => tune::run(&args),
+        Command::Tune(args) => tune::command::run(&args),
         Command::Verify(args) => verify::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Farm(args) => farm::run(&args),

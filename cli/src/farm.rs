@@ -9,8 +9,8 @@ use clap::{Args, Subcommand};
 
 use super::render::{frame_list_arg, parse_size, FrameListArg, PresetArg};
 use super::{write_stdout, CliError};
-use crate::job::{frame_spec, Overrides, RenderJob};
-use crate::shot::Preset;
+use glint::job::{frame_spec, Overrides, RenderJob};
+use glint::shot::Preset;
 
 /// Render a shot on a render farm.
 #[derive(Debug, Args)]

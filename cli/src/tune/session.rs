@@ -12,13 +12,13 @@ use super::change::{apply_changes, Change, OpKind};
 use super::error::TuneError;
 use super::history::History;
 use super::view::{highlight_views, pin_at, StateView};
-use crate::formats::image_encoding::colour_rgba8;
-use crate::formats::replace_text::replace_text;
-use crate::highlight::Op;
-use crate::job::{JobError, LayerChoice, Overrides, PlaceError, RenderJob};
-use crate::picture::overlay::{draw_matte, draw_pin, draw_seams};
-use crate::render::{Stage, SurfacePoint};
-use crate::shot::{load_shot_text, Aov, HighlightRef, LayerParam, OpParam, ParamPath, Preset};
+use glint::formats::image_encoding::colour_rgba8;
+use glint::formats::replace_text::replace_text;
+use glint::highlight::Op;
+use glint::job::{JobError, LayerChoice, Overrides, PlaceError, RenderJob};
+use glint::picture::overlay::{draw_matte, draw_pin, draw_seams};
+use glint::render::{Stage, SurfacePoint};
+use glint::shot::{load_shot_text, Aov, HighlightRef, LayerParam, OpParam, ParamPath, Preset};
 
 /// The quality a frame is rendered at.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -158,7 +158,7 @@ impl Session {
     /// `None`). The file must load as `glint render` loads it.
     pub fn open(path: &Path, size: Option<(u32, u32)>) -> Result<Self, JobError> {
         let text = std::fs::read_to_string(path).map_err(|e| {
-            JobError::Shot(crate::shot::ShotError::File {
+            JobError::Shot(glint::shot::ShotError::File {
                 path: path.display().to_string(),
                 message: format!("cannot read the file: {e}"),
             })

@@ -10,8 +10,8 @@ use std::time::Duration;
 use anyhow::Context;
 use serde::Serialize;
 
-use crate::job::RenderJob;
-use crate::render::RenderStats;
+use glint::job::RenderJob;
+use glint::render::RenderStats;
 
 /// One line of the report.
 #[derive(Serialize)]
@@ -48,7 +48,7 @@ pub(super) fn append(
             .map(|(stage, s)| (stage.name(), s.seconds))
             .collect(),
         peak_memory_bytes: peak_memory_bytes(),
-        host: crate::formats::atomic::host_name(),
+        host: glint::formats::atomic::host_name(),
     };
     let mut text = serde_json::to_string(&line)?;
     text.push('\n');

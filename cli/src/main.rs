@@ -1,3 +1,3 @@
 fn main() -> std::process::ExitCode {
-    glint::cli::main()
+    glint_cli::main()
 }

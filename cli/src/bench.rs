@@ -1,5 +1,5 @@
 //! `glint bench`: measurements run from the command line, with progress bars and printed
-//! tables. `glint bench accuracy` sweeps the accuracy ladder (see `crate::accuracy`); `glint
+//! tables. `glint bench accuracy` sweeps the accuracy ladder (see `glint::accuracy`); `glint
 //! bench loop` times an edit to a written frame (`super::bench_loop`).
 
 use std::fs;
@@ -10,12 +10,12 @@ use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::CliError;
-use crate::accuracy::geometry::{frame_costs, mesh_errors, FrameCost, MeshError};
-use crate::accuracy::scaling::{growth, Scaling, ScalingPoint, Series};
-use crate::accuracy::sweep::{compare_presets, summarize, Summary, Sweep};
-use crate::accuracy::{csv, plot};
-use crate::formats::atomic::write_atomically;
-use crate::formats::load_patches;
+use crate::{accuracy_csv as csv, accuracy_plot as plot};
+use glint::accuracy::geometry::{frame_costs, mesh_errors, FrameCost, MeshError};
+use glint::accuracy::scaling::{growth, Scaling, ScalingPoint, Series};
+use glint::accuracy::sweep::{compare_presets, summarize, Summary, Sweep};
+use glint::formats::atomic::write_atomically;
+use glint::formats::load_patches;
 
 /// Measure what accuracy costs in time, and how long an edit takes to reach a frame.
 #[derive(Debug, Args)]
@@ -135,7 +135,7 @@ fn accuracy(args: &AccuracyArgs) -> Result<(), CliError> {
         .target_resolution
         .unwrap_or(if args.quick { 256 } else { 1024 });
     let presets = Sweep::presets(target_size, repeats, threads);
-    let failed = |e: crate::render::RenderError| CliError::Failed(e.into());
+    let failed = |e: glint::render::RenderError| CliError::Failed(e.into());
     if args.presets_only {
         return presets_only(&presets, &args.out);
     }

@@ -7,11 +7,11 @@ use std::sync::Arc;
 use anyhow::anyhow;
 
 use super::CliError;
-use crate::formats::png::{write_png, PngLayout};
-use crate::geom::PatchLibrary;
-use crate::picture::{part_legend, patch_labels, render_patch_map, try_three_quarter_camera};
-use crate::render::{RenderError, Settings};
-use crate::shot::{Preset, Shot};
+use glint::formats::png::{write_png, PngLayout};
+use glint::geom::PatchLibrary;
+use glint::picture::{part_legend, patch_labels, render_patch_map, try_three_quarter_camera};
+use glint::render::{RenderError, Settings};
+use glint::shot::{Preset, Shot};
 
 /// The map's size for a patch file when none is given.
 pub const DEFAULT_MAP_SIZE: (u32, u32) = (800, 600);

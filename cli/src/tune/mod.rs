@@ -6,6 +6,7 @@
 //! it, behind the [`guard`]'s checks.
 
 pub mod change;
+pub(crate) mod command;
 pub mod error;
 pub mod guard;
 pub mod history;

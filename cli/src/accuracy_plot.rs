@@ -3,7 +3,7 @@
 
 use plotters::prelude::*;
 
-use super::sweep::Summary;
+use glint::accuracy::sweep::Summary;
 
 /// One colour per image size, distinct on white.
 const COLOURS: [RGBColor; 4] = [

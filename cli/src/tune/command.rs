@@ -9,11 +9,11 @@ use std::sync::mpsc;
 use anyhow::anyhow;
 use clap::Args;
 
-use super::render::parse_size;
-use super::watch::{follow, next_change, Message};
-use super::watched::WatchedFiles;
-use super::CliError;
+use crate::render::parse_size;
 use crate::tune::{ServerOptions, Session, TuneServer};
+use crate::watch::{follow, next_change, Message};
+use crate::watched::WatchedFiles;
+use crate::CliError;
 
 /// Tune a shot's highlights in a browser: drag them on the surface, move their parameters, key
 /// them.
@@ -77,7 +77,7 @@ pub fn run(args: &TuneArgs) -> Result<(), CliError> {
         hosts: args.allow_hosts.clone(),
     };
     let inputs = {
-        let shot = crate::shot::load_shot(&args.shot).map_err(|e| CliError::BadInput(e.into()))?;
+        let shot = glint::shot::load_shot(&args.shot).map_err(|e| CliError::BadInput(e.into()))?;
         shot.inputs
     };
     let server = TuneServer::start(session, &options).map_err(|e| {
@@ -112,7 +112,7 @@ pub fn run(args: &TuneArgs) -> Result<(), CliError> {
     follow(&mut watcher, &mut watched, inputs).map_err(CliError::Failed)?;
     while next_change(&messages, &watched).is_some() {
         server.inputs_changed();
-        if let Ok(shot) = crate::shot::load_shot(&args.shot) {
+        if let Ok(shot) = glint::shot::load_shot(&args.shot) {
             if let Err(e) = follow(&mut watcher, &mut watched, shot.inputs) {
                 eprintln!("error: {e:#}");
             }

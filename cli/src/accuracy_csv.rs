@@ -2,9 +2,9 @@
 
 use std::fmt::Write;
 
-use super::geometry::{FrameCost, MeshError};
-use super::scaling::ScalingPoint;
-use super::sweep::{Measurement, Summary};
+use glint::accuracy::geometry::{FrameCost, MeshError};
+use glint::accuracy::scaling::ScalingPoint;
+use glint::accuracy::sweep::{Measurement, Summary};
 
 /// Rows of `cells`, comma-separated, after the `header`.
 fn table<const N: usize>(header: [&str; N], rows: impl Iterator<Item = [String; N]>) -> String {

@@ -10,11 +10,11 @@ use clap::Args;
 use serde::Serialize;
 
 use super::{write_stdout, CliError};
-use crate::formats::load_patches;
-use crate::formats::ron_paths::top_level_name;
-use crate::geom::{Edge, PatchLibrary};
-use crate::picture::patch_map::number_runs;
-use crate::shot::{load_shot, Shot};
+use glint::formats::load_patches;
+use glint::formats::ron_paths::top_level_name;
+use glint::geom::{Edge, PatchLibrary};
+use glint::picture::patch_map::number_runs;
+use glint::shot::{load_shot, Shot};
 
 /// List the patches and named parts (groups) of a patch file, or of a shot's instances.
 ///

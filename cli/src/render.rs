@@ -9,9 +9,9 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::CliError;
-use crate::job::{parse_frames, parse_memory_size, JobError, Overrides, RenderJob, Scrutiny};
-use crate::render::{RenderStats, Stage};
-use crate::shot::{Aov, Preset};
+use glint::job::{parse_frames, parse_memory_size, JobError, Overrides, RenderJob, Scrutiny};
+use glint::render::{RenderStats, Stage};
+use glint::shot::{Aov, Preset};
 
 /// Render the frames of a shot to PNG files.
 ///

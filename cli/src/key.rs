@@ -6,10 +6,10 @@ use anyhow::anyhow;
 use clap::{ArgGroup, Args};
 
 use super::CliError;
-use crate::formats::replace_text::replace_text;
-use crate::formats::ron_location::position_of;
-use crate::formats::ron_paths::top_level_name;
-use crate::shot::{
+use glint::formats::replace_text::replace_text;
+use glint::formats::ron_location::position_of;
+use glint::formats::ron_paths::top_level_name;
+use glint::shot::{
     edit_text, load_shot_text, parse_param_path, track_span, track_text, track_texts, TrackEdit,
 };
 
@@ -59,7 +59,7 @@ pub fn run(args: &KeyArgs) -> Result<(), CliError> {
     let text = std::fs::read_to_string(file).map_err(|e| {
         CliError::BadInput(anyhow!("{}: cannot read the file: {e}", file.display()))
     })?;
-    let bad = |e: crate::shot::EditError| CliError::BadInput(e.in_file(file).into());
+    let bad = |e: glint::shot::EditError| CliError::BadInput(e.in_file(file).into());
     if args.list {
         let mut out = String::new();
         for (path, track) in track_texts(&text).map_err(bad)? {

@@ -10,11 +10,11 @@ use image::RgbaImage;
 use super::render::{frame_list_arg, parse_size, FrameListArg, PresetArg};
 use super::vary::{combination_count, combinations, parse_vary, short_names, variant_label, Vary};
 use super::CliError;
-use crate::formats::image_encoding::colour_rgba8;
-use crate::formats::png::{write_png, PngLayout};
-use crate::job::{JobError, Overrides, RenderJob};
-use crate::picture::{Sheet, SheetError, SheetLayout, MAX_TILES};
-use crate::shot::{
+use glint::formats::image_encoding::colour_rgba8;
+use glint::formats::png::{write_png, PngLayout};
+use glint::job::{JobError, Overrides, RenderJob};
+use glint::picture::{Sheet, SheetError, SheetLayout, MAX_TILES};
+use glint::shot::{
     edit_text, load_shot, load_shot_text, parse_param_path, EditError, Preset, Shot, TrackEdit,
 };
 

@@ -9,9 +9,9 @@ use anyhow::anyhow;
 use clap::Args;
 
 use super::CliError;
-use crate::formats::atomic::Durability;
-use crate::job::{JobError, Overrides, RenderJob};
-use crate::render::{RenderStats, Stage};
+use glint::formats::atomic::Durability;
+use glint::job::{JobError, Overrides, RenderJob};
+use glint::render::{RenderStats, Stage};
 
 /// Time the animator's loop: from an edit saved to a shot file to its frame written.
 ///

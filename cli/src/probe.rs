@@ -8,8 +8,8 @@ use clap::Args;
 use serde::Serialize;
 
 use super::CliError;
-use crate::formats::load_patches;
-use crate::geom::Frame;
+use glint::formats::load_patches;
+use glint::geom::Frame;
 
 /// Print the surface frame at parameters of a patch, as a JSON array.
 ///

@@ -11,8 +11,8 @@ use serde::Serialize;
 use super::key::write_in_place;
 use super::render::{parse_size, PresetArg};
 use super::{write_stdout, CliError};
-use crate::job::{LayerChoice, Overrides, Placement, RenderJob};
-use crate::shot::{
+use glint::job::{LayerChoice, Overrides, Placement, RenderJob};
+use glint::shot::{
     apply_edits, frame_text, parse_param_path, rounded_number_text, Preset, TrackEdit,
 };
 
@@ -165,7 +165,7 @@ fn write_keys(r: &Report, p: &Placement) -> Result<(), CliError> {
     let file = Path::new(&r.file);
     let text = std::fs::read_to_string(file)
         .map_err(|e| CliError::Failed(anyhow!("{}: cannot read the file: {e}", file.display())))?;
-    let bad = |e: crate::shot::EditError| CliError::BadInput(e.in_file(file).into());
+    let bad = |e: glint::shot::EditError| CliError::BadInput(e.in_file(file).into());
     let mut edits = Vec::with_capacity(2);
     for (name, value) in [("alpha", r.alpha), ("beta", r.beta)] {
         let path = parse_param_path(&text, &format!("{}.{name}", r.path)).map_err(bad)?;

@@ -8,10 +8,10 @@ use clap::Args;
 use glam::Vec3;
 
 use super::CliError;
-use crate::highlight::{Expr, Layer, Light};
-use crate::render::Projection;
-use crate::shot::{load_shot, op_text, rounded_number_text, MaterialState, Shot};
-use crate::toon::{Abstraction, DetailMap, HighlightFrame, ShapeDetail, XToon};
+use glint::highlight::{Expr, Layer, Light};
+use glint::render::Projection;
+use glint::shot::{load_shot, op_text, rounded_number_text, MaterialState, Shot};
+use glint::toon::{Abstraction, DetailMap, HighlightFrame, ShapeDetail, XToon};
 
 /// Print the value of every track of a shot at one frame.
 ///
@@ -51,7 +51,7 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
     let state = shot.at(frame);
     let patches: Vec<usize> = (0..shot.library.patches.len())
         .filter(|&i| {
-            patch.is_none_or(|p| crate::shot::matches_patch(p, &shot.library.patches[i].name))
+            patch.is_none_or(|p| glint::shot::matches_patch(p, &shot.library.patches[i].name))
         })
         .collect();
     if let (Some(pattern), true) = (patch, patches.is_empty()) {

@@ -4,8 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::highlight::{Axis, Op, SquareStyle};
-use crate::shot::{
+use glint::highlight::{Axis, Op, SquareStyle};
+use glint::shot::{
     edit_layer, edit_text, number_text, parse_param_path, value_text, EditError, LayerEdit,
     TrackEdit,
 };
@@ -222,8 +222,8 @@ mod tests {
 
     #[test]
     fn every_identity_operation_is_valid_and_leaves_h_alone() {
-        use crate::highlight::TangentFrame;
         use glam::Vec3;
+        use glint::highlight::TangentFrame;
         let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
         let h = Vec3::new(0.3, -0.2, 0.9).normalize();
         for kind in OpKind::ALL {
