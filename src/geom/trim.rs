@@ -5,6 +5,7 @@ use glam::DVec2;
 use thiserror::Error;
 
 use super::Domain;
+use crate::math::distance_to_segment;
 
 /// The most loop segments a patch's trim may have, over all its loops.
 pub const MAX_TRIM_SEGMENTS: usize = 1 << 20;
@@ -530,19 +531,6 @@ impl Rows {
 /// The signed area of the closed polyline `points`, positive counter-clockwise:
 /// `½ Σ (pᵢ − p₀) × (pᵢ₊₁ − p₀)`.
 #[must_use]
-/// The distance from `p` to the segment from `a` to `b`: to the nearest point of it,
-/// `a + t (b − a)` with `t = clamp((p − a)·(b − a)/|b − a|², 0, 1)`.
-fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let d = b - a;
-    let length = d.length_squared();
-    let t = if length > 0.0 {
-        ((p - a).dot(d) / length).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + d * t)
-}
-
 fn signed_area(points: &[DVec2]) -> f64 {
     let origin = points.first().copied().unwrap_or_default();
     0.5 * points

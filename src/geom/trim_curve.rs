@@ -4,6 +4,7 @@
 use glam::{DVec2, DVec3};
 
 use super::{GeomError, KnotVector, MAX_WEIGHT, MIN_WEIGHT};
+use crate::math::distance_to_segment;
 
 /// The most pieces one knot span of a trim curve is cut into when it is followed by a
 /// polyline: 2¹⁰, enough for a quarter circle to stay within 10⁻⁸ of its radius.
@@ -119,19 +120,6 @@ impl TrimCurve {
         self.follow_piece(t0, tm, tolerance, budget / 2, out);
         self.follow_piece(tm, t1, tolerance, budget / 2, out);
     }
-}
-
-/// The distance from `p` to the segment from `a` to `b`.
-#[must_use]
-pub(crate) fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let d = b - a;
-    let len2 = d.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(d) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + d * t - p).length()
 }
 
 #[cfg(test)]

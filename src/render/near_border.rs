@@ -5,6 +5,7 @@ use glam::{Vec2, Vec4};
 
 use super::raster::Viewport;
 use super::tessellate::Mesh;
+use crate::math::distance_to_segment_f32;
 
 /// Side of a cell of the grid the projected border pieces are binned in, in pixels.
 const CELL: f32 = 32.0;
@@ -106,7 +107,7 @@ impl NearBorder {
         let (column, row) = (cell(centre.x, self.columns), cell(centre.y, self.rows));
         self.cells[row * self.columns + column].iter().any(|&i| {
             let ([a, b], reach) = self.pieces[i as usize];
-            distance_to_segment(centre, a, b) <= reach
+            distance_to_segment_f32(centre, a, b) <= reach
         })
     }
 }
@@ -133,20 +134,6 @@ fn project_cut(
         }
     }
     clip_to_box(to_pixels(a), to_pixels(b), bounds)
-}
-
-/// The distance from `p` to the segment from `a` to `b`: to its nearest point
-/// `a + t (b − a)`, `t = clamp((p − a)·(b − a) / |b − a|², 0, 1)`.
-#[must_use]
-fn distance_to_segment(p: Vec2, a: Vec2, b: Vec2) -> f32 {
-    let along = b - a;
-    let length_squared = along.length_squared();
-    let t = if length_squared > 0.0 {
-        ((p - a).dot(along) / length_squared).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + along * t)
 }
 
 /// The part of the segment from `a` to `b` inside the box `(low, high)`, by Liang–Barsky: the
@@ -257,14 +244,6 @@ mod tests {
             near_count > 300 && far_count > 5000,
             "{near_count} {far_count}"
         );
-    }
-
-    #[test]
-    fn the_distance_to_a_segment_is_to_its_nearest_point() {
-        let (a, b) = (Vec2::new(0.0, 0.0), Vec2::new(4.0, 0.0));
-        assert_eq!(distance_to_segment(Vec2::new(2.0, 3.0), a, b), 3.0);
-        assert_eq!(distance_to_segment(Vec2::new(7.0, 4.0), a, b), 5.0);
-        assert_eq!(distance_to_segment(Vec2::new(-3.0, 4.0), a, a), 5.0);
     }
 
     #[test]
