@@ -2,7 +2,6 @@
 //! `shots/teapot_turntable.ron`, every frame, each part's lines stay whole, the spout and the
 //! handle stay drawn where they meet the body, and the ink per part changes smoothly.
 
-use std::path::Path;
 use std::sync::Arc;
 
 use glint::render::Renderer;
@@ -19,7 +18,7 @@ struct Frame {
 }
 
 fn frames(path: &str) -> (Vec<Frame>, Vec<(String, Vec<usize>)>) {
-    let mut shot = load_shot(Path::new(path)).unwrap();
+    let mut shot = load_shot(&crate::common::repo_file(path)).unwrap();
     shot.aovs = vec![Aov::Outline, Aov::PatchId];
     let settings = shot.settings_with(None, Some(SIZE));
     let mut renderer = Renderer::new(Arc::clone(&shot.library));

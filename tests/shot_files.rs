@@ -40,7 +40,7 @@ fn purpose(name: &str) -> Shows {
 #[test]
 fn every_shot_loads_and_renders_small_and_shows_what_it_is_for() {
     let mut count = 0;
-    for entry in std::fs::read_dir("shots").unwrap() {
+    for entry in std::fs::read_dir(crate::common::repo_file("shots")).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_none_or(|e| e != "ron") {
             continue;
@@ -105,7 +105,7 @@ fn ron_blocks(doc: &str) -> Vec<&str> {
 
 #[test]
 fn the_documented_example_and_look_library_load_and_render() {
-    let doc = std::fs::read_to_string("docs/shot-format.md").unwrap();
+    let doc = std::fs::read_to_string(crate::common::repo_file("docs/shot-format.md")).unwrap();
     let blocks = ron_blocks(&doc);
     let example = blocks[0];
     let looks = blocks.iter().find(|b| b.starts_with("Looks(")).unwrap();

@@ -4,8 +4,6 @@
 
 use std::sync::Arc;
 
-use std::path::Path;
-
 use glam::Vec2;
 use glint::render::{Antialias, FrameMode, Renderer};
 use glint::shot::{load_shot, Aov, Shot};
@@ -56,7 +54,7 @@ const MAX_AREA_CHANGE: f32 = 0.2;
 
 #[test]
 fn sphere_ops_moves_without_pops_and_a_stepped_key_is_a_pop() {
-    let path = Path::new("shots/sphere_ops.ron");
+    let path = &crate::common::repo_file("shots/sphere_ops.ron");
     let mut shot = load_shot(path).unwrap();
     let track = matte_track(&mut shot);
     assert!(
