@@ -7,7 +7,9 @@
 # Every frame of every shot with its own settings; each shot's first, middle and last frame
 # again with every AOV at the preview and final presets; the examples' images. REV is built in a
 # git worktree under WORKDIR (default: a new temporary folder); set OLD_TARGET to reuse a
-# release build of REV. Exits 0 when every file is the same, 1 otherwise.
+# release build of REV, and KEEP_OLD=1 to keep the files REV rendered into WORKDIR on an earlier
+# run (only REV's files: the working tree's are rendered again). Exits 0 when every file is the
+# same, 1 otherwise.
 set -euo pipefail
 rev=${1:?usage: scripts/same-bytes.sh REV [WORKDIR]}
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,6 +20,8 @@ if [ ! -d "$old_tree" ]; then
     git -C "$root" worktree add --detach "$old_tree" "$rev" >/dev/null
 fi
 old_target=${OLD_TARGET:-$work/target}
+
+sums() { (cd "$1" && find . -type f ! -name '*.tmp' | sort | xargs sha256sum); }
 
 build() { # TREE TARGET
     (cd "$1" && CARGO_TARGET_DIR=$2 cargo build --release --quiet --bins --examples)
@@ -48,15 +52,18 @@ render_all() { # TREE TARGET OUT
     (cd "$tree" && "$2/release/examples/toon_textures" "$out/examples/toon_textures" >/dev/null)
 }
 
-echo "building $rev and the working tree" >&2
-build "$old_tree" "$old_target"
+if [ "${KEEP_OLD:-0}" = 1 ] && [ -s "$work/old.sha256" ]; then
+    echo "keeping what $rev rendered into $work/old" >&2
+else
+    echo "building and rendering $rev" >&2
+    build "$old_tree" "$old_target"
+    render_all "$old_tree" "$old_target" "$work/old"
+    sums "$work/old" >"$work/old.sha256"
+fi
+echo "building and rendering the working tree" >&2
 build "$root" "$root/target"
-echo "rendering" >&2
-render_all "$old_tree" "$old_target" "$work/old"
 render_all "$root" "$root/target" "$work/new"
 
-sums() { (cd "$1" && find . -type f ! -name '*.tmp' | sort | xargs sha256sum); }
-sums "$work/old" >"$work/old.sha256"
 sums "$work/new" >"$work/new.sha256"
 files=$(wc -l <"$work/old.sha256")
 if diff -q "$work/old.sha256" "$work/new.sha256" >/dev/null; then
