@@ -6,6 +6,7 @@ use crate::geom::PatchLibrary;
 
 /// What is said of a selector's `pattern` that picks nothing in `library`: the closest name,
 /// or how names are made.
+#[must_use]
 pub(super) fn no_match_message(pattern: &str, library: &PatchLibrary) -> String {
     let names = library.names();
     let mut message = format!("the selector \"{pattern}\" matches no patch or part");

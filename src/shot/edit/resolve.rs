@@ -81,6 +81,7 @@ fn unknown_path(file: &mut ParsedFile, path: &ParamPath) -> EditError {
     bad_path(file, &path.to_string(), reason)
 }
 
+#[must_use]
 pub(super) fn unknown_path_without_list(path: &ParamPath) -> EditError {
     EditError::BadPath {
         written: path.to_string(),

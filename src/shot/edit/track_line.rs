@@ -7,6 +7,7 @@ use crate::anim::Track;
 /// A track's text on one line: comments and line breaks dropped, blanks between items kept as
 /// one space, no comma before a closing bracket. A track holds no strings, so every `//` in it
 /// starts a comment.
+#[must_use]
 pub(super) fn one_line(written: &str) -> String {
     let mut out = String::new();
     for line in written.lines() {
@@ -26,6 +27,7 @@ pub(super) fn one_line(written: &str) -> String {
 }
 
 /// A track that is not written, as it would be written: its default value.
+#[must_use]
 pub(super) fn default_text(track: &TrackMut) -> String {
     match track {
         TrackMut::Scalar(track) => written_track(track, |&x| vec![x]),
@@ -44,6 +46,7 @@ pub(super) fn default_text(track: &TrackMut) -> String {
 }
 
 /// `track` written as a file writes it, its values' components given by `components`.
+#[must_use]
 pub(super) fn written_track<T>(track: &Track<T>, components: impl Fn(&T) -> Vec<f32>) -> String {
     match track {
         Track::Constant(value) => value_text(&components(value), number_text),

@@ -1,4 +1,4 @@
-//! How many checks loading a shot makes, and which frames they reach.
+//! Tests of the checks at every frame, on shots loaded from text.
 
 use std::path::Path;
 
