@@ -10,7 +10,7 @@ use glam::Vec3;
 use super::CliError;
 use glint::highlight::{Expr, Layer, Light};
 use glint::render::Projection;
-use glint::shot::{load_shot, op_text, rounded_number_text, MaterialState, Shot};
+use glint::shot::{load_shot, mask_text, op_text, rounded_number_text, MaterialState, Shot};
 use glint::toon::{Abstraction, DetailMap, HighlightFrame, ShapeDetail, XToon};
 
 /// Print the value of every track of a shot at one frame.
@@ -210,14 +210,7 @@ fn layer_fields(layer: &Layer) -> String {
         fields.push_str(&format!(", feather: {}", number(*feather)));
     }
     if let Some(m) = mask {
-        fields.push_str(&format!(
-            ", mask: (u: ({}, {}), v: ({}, {}), feather: {})",
-            number(m.u.0),
-            number(m.u.1),
-            number(m.v.0),
-            number(m.v.1),
-            number(m.feather)
-        ));
+        fields.push_str(&format!(", {}", mask_text(m, number)));
     }
     fields
 }

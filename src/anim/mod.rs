@@ -4,4 +4,6 @@
 
 mod track;
 
+#[cfg(test)]
+pub(crate) use track::fixtures;
 pub use track::{Direction, Interpolate, Key, Keyed, Track, TrackError};

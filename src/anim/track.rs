@@ -348,11 +348,13 @@ impl<'de, T: Interpolate> Deserialize<'de> for Track<T> {
     }
 }
 
+/// Tracks the unit tests build.
 #[cfg(test)]
-mod tests {
-    use super::*;
+pub(crate) mod fixtures {
+    use super::{Key, Track};
 
-    fn keys(pairs: &[(f64, f32)]) -> Track<f32> {
+    /// The keyed track of `pairs`, each a frame and its value, in the order given.
+    pub(crate) fn keys(pairs: &[(f64, f32)]) -> Track<f32> {
         Track::Keys(
             pairs
                 .iter()
@@ -360,6 +362,12 @@ mod tests {
                 .collect(),
         )
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixtures::keys;
+    use super::*;
 
     #[test]
     fn exact_at_keys_mean_halfway_held_outside() {

@@ -6,7 +6,7 @@ use glam::Vec3;
 
 use super::file::{LineSpec, OutlinesSpec};
 use super::glob;
-use super::load::no_match_message;
+use super::no_match::no_match_message;
 use super::source::Source;
 use super::ShotError;
 use crate::anim::Keyed;

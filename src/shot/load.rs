@@ -12,10 +12,12 @@ use super::every_frame::check_every_frame;
 use super::file::{HighlightSpec, InstanceSpec, LooksFile, MaterialSpec, RenderSpec, ShotFile};
 use super::glob;
 use super::line_styles::select_lines;
+use super::no_match::no_match_message;
 use super::output::{check_numbered, resolve_path};
 use super::pin::resolve_pins;
 use super::source::Source;
 use super::validated::{placement, Accuracy, Instance, Material, Shot};
+use super::written::Written;
 use super::{ShotError, MAX_FRAMES};
 use crate::formats::parts::{parts_file, resolve_groups};
 use crate::formats::ron_location::closest_name;
@@ -32,14 +34,6 @@ const MAX_SCALE: f64 = 1e6;
 
 /// The most files an include chain may nest.
 const MAX_INCLUDE_DEPTH: usize = 16;
-
-/// Where an entry of a list is written: the file (index into the sources) and its place in
-/// that file's list.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Written {
-    pub source: usize,
-    pub index: usize,
-}
 
 /// Reads, checks and prepares the shot at `path`.
 pub fn load_shot(path: &Path) -> Result<Shot, ShotError> {
@@ -440,21 +434,6 @@ fn select_highlights(
         }
     }
     Ok(patch_highlight)
-}
-
-/// What is said of a selector's `pattern` that picks nothing in `library`: the closest name,
-/// or how names are made.
-pub(super) fn no_match_message(pattern: &str, library: &PatchLibrary) -> String {
-    let names = library.names();
-    let mut message = format!("the selector \"{pattern}\" matches no patch or part");
-    match closest_name(pattern, &names) {
-        Some(close) => message.push_str(&format!("; did you mean \"{close}\"?")),
-        None => message.push_str(&format!(
-            "; patches are named INSTANCE/PATCH and parts INSTANCE/PART, e.g. \"{}\"",
-            names.first().copied().unwrap_or("ball/0")
-        )),
-    }
-    message
 }
 
 /// The accuracy the shot asks for, its settings at `resolution`, and its outlines.

@@ -5,42 +5,32 @@
 mod edit;
 mod every_frame;
 mod file;
+#[cfg(test)]
+pub(crate) mod fixtures;
 mod frame_state;
 mod glob;
-mod layer_edit;
 mod line_styles;
 mod load;
-mod number_text;
+mod no_match;
 mod output;
-mod param_path;
-mod param_range;
-mod param_readings;
-mod param_sites;
 mod params;
 mod pin;
 mod source;
-mod track_edit;
-mod track_splice;
 mod validated;
+mod written;
 
 pub use edit::{
-    apply_edits, edit_text, param_paths, parse_param_path, track_span, track_text, track_texts,
-    EditError,
+    apply_edits, edit_layer, edit_text, frame_text, mask_text, number_text, op_text, param_paths,
+    param_readings, parse_param_path, rounded_number_text, track_span, track_text, track_texts,
+    value_text, CameraParam, DetailParam, EditError, HighlightRef, LayerEdit, LayerParam,
+    LightParam, MaterialParam, OpParam, ParamPath, ParamPathError, ParamReading, TrackEdit,
 };
 pub use file::{Aov, Preset, Selector};
 pub use frame_state::FrameState;
 pub use glob::matches as matches_patch;
-pub use layer_edit::{edit_layer, op_text, LayerEdit};
 pub use line_styles::LineFields;
 pub use load::{load_shot, load_shot_text};
-pub use number_text::{frame_text, number_text, rounded_number_text, value_text};
 pub use output::{check_numbered, frame_path, resolve_path};
-pub use param_path::{
-    CameraParam, DetailParam, HighlightRef, LayerParam, LightParam, MaterialParam, OpParam,
-    ParamPath, ParamPathError,
-};
-pub use param_readings::{param_readings, ParamReading};
-pub use track_edit::TrackEdit;
 pub use validated::{Instance, MaterialState, Shot};
 
 /// The longest frame range a shot may have, and the most frames one frame list may name.

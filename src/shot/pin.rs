@@ -2,9 +2,9 @@
 //! every frame, and on each frame the layer's translation solved for its point.
 
 use super::file::HighlightSpec;
-use super::load::Written;
 use super::source::Source;
 use super::validated::Shot;
+use super::written::Written;
 use super::ShotError;
 use crate::anim::Track;
 use crate::formats::ron_location::closest_name;

@@ -119,13 +119,13 @@ pub struct Instance {
 }
 
 impl Shot {
-    /// The names of the materials, in the order of [`FrameState::materials`](super::FrameState::materials).
+    /// The names of the materials, in the order of `FrameState::materials`.
     pub fn material_names(&self) -> impl Iterator<Item = &str> {
         self.materials.iter().map(|(name, _)| name.as_str())
     }
 
     /// The selector of each highlight entry as written, in the order of
-    /// [`FrameState::highlights`](super::FrameState::highlights).
+    /// `FrameState::highlights`.
     pub fn highlight_selectors(&self) -> impl Iterator<Item = &[String]> {
         self.highlights.iter().map(|h| h.patches.patterns())
     }

@@ -1,9 +1,10 @@
 //! Every parameter of a shot or look file read at one frame: its value there and the frames of
 //! its keys, by its [`ParamPath`] — what an editor shows beside each parameter.
 
-use super::edit::{read_file, EditError};
+use super::error::EditError;
 use super::param_path::ParamPath;
 use super::param_sites::TrackMut;
+use super::read::read_file;
 use crate::anim::Track;
 
 /// One parameter of a file read at a frame.
@@ -74,22 +75,18 @@ fn scalar(path: ParamPath, track: &Track<f32>, frame: f64) -> ParamReading {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shot::fixtures::shot_with_highlights;
 
-    const SHOT: &str = r#"Shot(
-    frames: (1, 24),
-    fps: 24,
-    output: "out.####.png",
-    resolution: (64, 64),
-    camera: (eye: (0.0, 0.0, 5.0), target: (0.0, 0.0, 0.0), projection: Perspective(fov_y_degrees: 30.0)),
-    light: Directional(towards: (0.0, 0.0, -1.0)),
-    instances: [(name: "ball", file: "sphere.ron", material: "m")],
-    materials: {"m": Cel(base: (0.1, 0.1, 0.1), bands: [(0.0, (0.5, 0.5, 0.5))])},
-    highlights: [(patches: "*", expr: Layer((
+    /// A shot whose one layer has a keyed translation and a colour keyed in one component.
+    fn shot() -> String {
+        shot_with_highlights(
+            r#"[(patches: "*", expr: Layer((
         stack: [Translate(alpha: [(1, 0.0), (21, 0.4)], beta: 0.1)],
         epsilon: 0.05,
         colour: (1.0, [(1, 0.0), (11, 1.0)], 0.5),
-    )))],
-)"#;
+    )))]"#,
+        )
+    }
 
     fn reading<'a>(readings: &'a [ParamReading], path: &str) -> &'a ParamReading {
         let path: ParamPath = path.parse().unwrap();
@@ -98,7 +95,7 @@ mod tests {
 
     #[test]
     fn a_keyed_number_is_read_between_its_keys() {
-        let readings = param_readings(SHOT, 6.0).unwrap();
+        let readings = param_readings(&shot(), 6.0).unwrap();
         let alpha = reading(&readings, "highlights[0].layers[0].stack[0].alpha");
         assert!((alpha.value[0] - 0.1).abs() < 1e-6, "{alpha:?}");
         assert_eq!(alpha.keys, vec![1.0, 21.0]);
@@ -108,7 +105,7 @@ mod tests {
 
     #[test]
     fn a_colour_is_read_whole_and_by_component() {
-        let readings = param_readings(SHOT, 6.0).unwrap();
+        let readings = param_readings(&shot(), 6.0).unwrap();
         let colour = reading(&readings, "highlights[0].layers[0].colour");
         assert_eq!(colour.value, vec![1.0, 0.5, 0.5]);
         assert_eq!(colour.keys, vec![1.0, 11.0]);
@@ -120,7 +117,7 @@ mod tests {
 
     #[test]
     fn a_feather_left_out_has_no_value() {
-        let readings = param_readings(SHOT, 1.0).unwrap();
+        let readings = param_readings(&shot(), 1.0).unwrap();
         let feather = reading(&readings, "highlights[0].layers[0].feather");
         assert!(feather.value.is_empty() && feather.keys.is_empty());
         let opacity = reading(&readings, "highlights[0].layers[0].opacity");

@@ -6,19 +6,19 @@ use std::collections::BTreeMap;
 
 use glam::Vec3;
 
-use super::file::{
-    CameraSpec, HighlightSpec, LightSpec, LooksFile, MaterialSpec, ProjectionSpec, ShotFile,
-};
 use super::param_path::{
     CameraParam, DetailParam, HighlightRef, LayerParam, LightParam, MaterialParam, OpParam,
     ParamPath,
 };
-use super::source::Source;
-use super::ShotError;
 use crate::anim::{Direction, Track};
 use crate::formats::ron_paths::top_level_name;
 use crate::formats::ron_paths::Step::{self, Entry, Field, Index};
 use crate::highlight::{Axis, Expr, Layer, Op};
+use crate::shot::file::{
+    CameraSpec, HighlightSpec, LightSpec, LooksFile, MaterialSpec, ProjectionSpec, ShotFile,
+};
+use crate::shot::source::Source;
+use crate::shot::ShotError;
 use crate::toon::DetailMap;
 
 /// A shot or look file as parsed, before anything it names is read.

@@ -2,13 +2,15 @@
 //! removed or moved in its stack, its mask added or removed — each as splices of the text, every
 //! other byte kept, and the result read back and checked to differ in that alone.
 
-use super::edit::{read_file, EditError};
+use super::error::EditError;
+use super::layer_text::{mask_text, op_text};
 use super::number_text::number_text;
+use super::read::read_file;
 use super::track_splice::{apply, insert_item, remove_item, Splice};
 use crate::anim::Track;
 use crate::formats::ron_paths::Step::Field;
 use crate::formats::ron_paths::{try_item_spans, try_span};
-use crate::highlight::{Axis, Layer, Mask, Op, SquareStyle};
+use crate::highlight::{Layer, Mask, Op};
 
 /// A change to the structure of one highlight layer.
 #[derive(Clone, Debug, PartialEq)]
@@ -67,57 +69,6 @@ fn unit_mask() -> Mask<f32> {
         v: (0.0, 1.0),
         feather: 0.0,
     }
-}
-
-/// An operation as a file writes it, each number written by `number` ([`number_text`] to read
-/// back exactly, `rounded_number_text` for people): `Translate(alpha: 0.2, beta: 0.0)`,
-/// `Scale(delta: 0.5, axis: Angle(30.0))`, `Square(sigma: 0.2, n: 2.0, style: PerAxis)`.
-#[must_use]
-pub fn op_text(op: &Op<f32>, number: fn(f32) -> String) -> String {
-    let n = number;
-    match op {
-        Op::Translate { alpha, beta } => {
-            format!("Translate(alpha: {}, beta: {})", n(*alpha), n(*beta))
-        }
-        Op::Rotate { degrees } => format!("Rotate(degrees: {})", n(*degrees)),
-        Op::Scale { delta, axis } => {
-            let axis = match axis {
-                Axis::U => "U".to_string(),
-                Axis::V => "V".to_string(),
-                Axis::Angle(phi) => format!("Angle({})", n(*phi)),
-            };
-            format!("Scale(delta: {}, axis: {axis})", n(*delta))
-        }
-        Op::Split { gamma_u, gamma_v } => {
-            format!("Split(gamma_u: {}, gamma_v: {})", n(*gamma_u), n(*gamma_v))
-        }
-        Op::Square {
-            sigma,
-            n: exponent,
-            style,
-        } => {
-            let style = match style {
-                SquareStyle::Tangent => "Tangent",
-                SquareStyle::PerAxis => "PerAxis",
-            };
-            format!(
-                "Square(sigma: {}, n: {}, style: {style})",
-                n(*sigma),
-                n(*exponent)
-            )
-        }
-    }
-}
-
-fn mask_text(mask: &Mask<f32>) -> String {
-    format!(
-        "mask: (u: ({}, {}), v: ({}, {}), feather: {})",
-        number_text(mask.u.0),
-        number_text(mask.u.1),
-        number_text(mask.v.0),
-        number_text(mask.v.1),
-        number_text(mask.feather)
-    )
 }
 
 /// `text` with layer `layer` (left to right through the Booleans, from 0) of highlight entry
@@ -236,8 +187,10 @@ pub fn edit_layer(
         LayerEdit::AddMask => {
             let fields = try_item_spans(text, &steps)
                 .ok_or_else(|| unchecked("the layer is not written as it reads"))?;
-            vec![insert_item(text, &fields, None, &mask_text(&unit_mask()))
-                .ok_or_else(|| unchecked("the layer is not written as it reads"))?]
+            vec![
+                insert_item(text, &fields, None, &mask_text(&unit_mask(), number_text))
+                    .ok_or_else(|| unchecked("the layer is not written as it reads"))?,
+            ]
         }
         LayerEdit::RemoveMask => {
             let fields = try_item_spans(text, &steps)
@@ -292,28 +245,20 @@ pub fn edit_layer(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::highlight::Axis;
+    use crate::shot::fixtures::shot_with_highlights;
 
     fn shot(stack: &str, rest: &str) -> String {
-        format!(
-            r#"Shot(
-    frames: (1, 24),
-    fps: 24,
-    output: "out.####.png",
-    resolution: (64, 64),
-    camera: (eye: (0.0, 0.0, 5.0), target: (0.0, 0.0, 0.0), projection: Perspective(fov_y_degrees: 30.0)),
-    light: Directional(towards: (0.0, 0.0, -1.0)),
-    instances: [(name: "ball", file: "sphere.ron", material: "m")],
-    materials: {{"m": Cel(base: (0.1, 0.1, 0.1), bands: [(0.0, (0.5, 0.5, 0.5))])}},
-    highlights: [(patches: "*", expr: Union(
+        shot_with_highlights(&format!(
+            r#"[(patches: "*", expr: Union(
         Layer((stack: [Rotate(degrees: 5.0)], epsilon: 0.1, colour: (1.0, 1.0, 1.0))),
         Layer((
             stack: {stack},
             epsilon: 0.05, // small
             colour: (1.0, 1.0, 1.0),{rest}
         )),
-    ))],
-)"#
-        )
+    ))]"#
+        ))
     }
 
     fn translate() -> Op<f32> {

@@ -121,15 +121,7 @@ pub(super) fn edited<T: Interpolate>(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn keys(pairs: &[(f64, f32)]) -> Track<f32> {
-        Track::Keys(
-            pairs
-                .iter()
-                .map(|&(frame, value)| Key { frame, value })
-                .collect(),
-        )
-    }
+    use crate::anim::fixtures::keys;
 
     #[test]
     fn keying_replaces_inserts_in_order_and_turns_a_constant_into_one_key() {

@@ -1,0 +1,149 @@
+//! Parameter paths checked to name a track of a file, with the nearest valid path when one
+//! names none.
+
+use super::error::EditError;
+use super::param_path::{HighlightRef, ParamPath};
+use super::param_sites::ParsedFile;
+use super::read::read_file;
+
+/// The path `written` as a path of the file `text`: read, and naming a track of it. Otherwise a
+/// [`EditError::BadPath`] with the valid path closest to what was written.
+pub fn parse_param_path(text: &str, written: &str) -> Result<ParamPath, EditError> {
+    let mut file = read_file(text)?;
+    let path = written
+        .parse::<ParamPath>()
+        .map_err(|e| bad_path(&mut file, written, e.reason))?;
+    resolve(&mut file, &path)?;
+    Ok(path)
+}
+
+/// `path` with a highlight named by its pattern named by its index instead, checked to name a
+/// track of `file`.
+pub(super) fn resolve(file: &mut ParsedFile, path: &ParamPath) -> Result<ParamPath, EditError> {
+    let resolved = match path {
+        ParamPath::Highlight {
+            entry: HighlightRef::Selector(pattern),
+            layer,
+            param,
+        } => {
+            let index = match file.entries_selected_by(pattern)[..] {
+                [index] => index,
+                [] => {
+                    let reason = format!("no highlight entry of this file picks \"{pattern}\"");
+                    return Err(bad_path(file, &path.to_string(), reason));
+                }
+                ref several => {
+                    let named: Vec<String> =
+                        several.iter().map(|i| format!("highlights[{i}]")).collect();
+                    let reason = format!(
+                        "more than one highlight entry picks \"{pattern}\"; name one by its index: {}",
+                        named.join(", ")
+                    );
+                    return Err(bad_path(file, &path.to_string(), reason));
+                }
+            };
+            ParamPath::Highlight {
+                entry: HighlightRef::Index(index),
+                layer: *layer,
+                param: *param,
+            }
+        }
+        ParamPath::Highlight { .. }
+        | ParamPath::Camera(_)
+        | ParamPath::Light(_)
+        | ParamPath::Material { .. } => path.clone(),
+    };
+    if file.site(&resolved).is_none() {
+        return Err(unknown_path(file, path));
+    }
+    Ok(resolved)
+}
+
+/// A [`EditError::BadPath`] for `path`, which names no track of `file`.
+fn unknown_path(file: &mut ParsedFile, path: &ParamPath) -> EditError {
+    let reason = match path {
+        ParamPath::Material { name, .. } if !file.material_names().contains(&name.as_str()) => {
+            let includes = file.includes();
+            if includes.is_empty() {
+                format!("this file defines no material \"{name}\"")
+            } else {
+                format!(
+                    "this file defines no material \"{name}\"; the materials of its includes ({}) are edited in those files",
+                    includes.join(", ")
+                )
+            }
+        }
+        ParamPath::Camera(_)
+        | ParamPath::Light(_)
+        | ParamPath::Material { .. }
+        | ParamPath::Highlight { .. } => "this file has no such track".to_string(),
+    };
+    bad_path(file, &path.to_string(), reason)
+}
+
+#[must_use]
+pub(super) fn unknown_path_without_list(path: &ParamPath) -> EditError {
+    EditError::BadPath {
+        written: path.to_string(),
+        reason: "this file has no such track".to_string(),
+        nearest: None,
+    }
+}
+
+/// A [`EditError::BadPath`] naming the path of `file` closest to `written` (by edit distance),
+/// highlights both by index and, where a pattern picks one entry alone, by that pattern.
+fn bad_path(file: &mut ParsedFile, written: &str, reason: String) -> EditError {
+    let mut candidates = file.paths();
+    let patterns: Vec<Option<String>> = file
+        .entry_patterns()
+        .iter()
+        .map(|patterns| {
+            patterns
+                .iter()
+                .find(|p| file.entries_selected_by(p).len() == 1)
+                .cloned()
+        })
+        .collect();
+    let by_pattern: Vec<ParamPath> = candidates
+        .iter()
+        .filter_map(|path| match path {
+            ParamPath::Highlight {
+                entry: HighlightRef::Index(index),
+                layer,
+                param,
+            } => patterns
+                .get(*index)
+                .cloned()
+                .flatten()
+                .map(|pattern| ParamPath::Highlight {
+                    entry: HighlightRef::Selector(pattern),
+                    layer: *layer,
+                    param: *param,
+                }),
+            ParamPath::Highlight { .. }
+            | ParamPath::Camera(_)
+            | ParamPath::Light(_)
+            | ParamPath::Material { .. } => None,
+        })
+        .collect();
+    candidates.extend(by_pattern);
+    // Paths under the same first name (`camera`, `light`, `materials`, `highlights`) first.
+    let root = |path: &str| {
+        path.split(['.', '[', '{'])
+            .next()
+            .unwrap_or_default()
+            .to_string()
+    };
+    let nearest = candidates.into_iter().min_by_key(|c| {
+        let shown = c.to_string();
+        (
+            root(&shown) != root(written),
+            strsim::levenshtein(written, &shown),
+        )
+    });
+    EditError::BadPath {
+        written: written.to_string(),
+        reason,
+        nearest,
+    }
+}
