@@ -318,8 +318,8 @@ struct Found<'a> {
 /// highlight (no half vector is built then): with `widths`, each with its footprint; else hard,
 /// from the signed values `found` where it has them, but where `found.smooth` has an edge
 /// crossing the box smoothly, with that edge's cover of the box
-/// ([`SmoothEdge::coverage`](super::edges::highlight_edge::SmoothEdge::coverage)) about the `s` of the
-/// texel's settled copy where there is one.
+/// ([`SmoothEdge::coverage`](super::edges::highlight_edge::SmoothEdge::coverage)) about the `s`
+/// of the texel's settled copy where there is one.
 fn highlight<'s>(
     scene: &Scene,
     texels: &[Texel],

@@ -1,5 +1,6 @@
-//! [`Stage::Supersample`](crate::render::Stage::Supersample): the pixels of a one-sample frame that more
-//! samples could change, drawn again at K × K samples a tile at a time and averaged into it.
+//! [`Stage::Supersample`](crate::render::Stage::Supersample): the pixels of a one-sample frame
+//! that more samples could change, drawn again at K × K samples a tile at a time and averaged
+//! into it.
 
 use glam::{Mat4, Vec4};
 use rayon::prelude::*;
@@ -344,8 +345,9 @@ fn grow(visibility: &mut VisibilityBuffer, drawn: &[bool], grown: &mut Vec<bool>
 impl TileBuffers {
     /// Per texel, whether to keep it: every texel the mesh covers, and a grown one whose
     /// refined surface point projects (through `to_screen`, the window's view-projection) within
-    /// [`HIT_SAMPLES`] of its sample's centre — its ray hits the surface — on a part of its patch
-    /// the patch's trim keeps, and whose depth is then set from that point.
+    /// [`HIT_SAMPLES`](crate::render::probe::HIT_SAMPLES) of its sample's centre — its ray hits
+    /// the surface — on a part of its patch the patch's trim keeps, and whose depth is then set
+    /// from that point.
     fn grown_hits(&mut self, to_screen: Mat4, width: u32, library: &PatchLibrary) -> Vec<bool> {
         let size = (width, self.gbuffer.height);
         self.gbuffer

@@ -1,4 +1,4 @@
-//! Trim edges: where a trimmed patch's trim loops cut its surface, drawn as borders.
+//! Trim borders: where a trimmed patch's trim loops cut its surface, drawn as borders.
 
 use glam::{DVec2, DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
