@@ -1,7 +1,7 @@
 //! Shading frames turned toward the viewer: surfaces are two-sided, so the frame a pixel shades
 //! with has its normal on the eye's side.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use crate::geom::Frame;
 use crate::highlight::TangentFrame;
@@ -74,12 +74,20 @@ fn unfacing_fallback(toward_eye: Vec3) -> Vec3 {
     toward_eye.normalize_or(Vec3::Z)
 }
 
+/// A frame to fill scratch buffers with before evaluation overwrites it.
+pub(super) const NO_FRAME: Frame = Frame {
+    point: DVec3::ZERO,
+    normal: DVec3::Z,
+    du: DVec3::X,
+    dv: DVec3::Y,
+    degenerate: false,
+};
+
 #[cfg(test)]
 mod tests {
     use glam::DVec3;
 
     use super::*;
-    use crate::render::gbuffer::NO_FRAME;
 
     #[test]
     fn patch_frames_turn_like_facing_frames_without_normalizing_again() {

@@ -5,7 +5,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
 use super::camera::Camera;
-use super::facing::{faces_away, facing_frame, facing_patch_frame};
+use super::facing::{faces_away, facing_frame, facing_patch_frame, NO_FRAME};
 use super::raster::{interpolate, VisibilityBuffer};
 use super::settings::FrameMode;
 use super::tessellate::Mesh;
@@ -125,7 +125,7 @@ impl GBuffer {
     /// from the mesh's vertex frames, or from the patch itself at the pixel's (u, v)
     /// ([`FrameMode::Exact`]), or at (u, v) moved so the surface point lies on the pixel's ray
     /// ([`FrameMode::Refined`]), the pixel's ray cast through `view_projection` (the camera's,
-    /// or a window of it: [`Window`](super::window::Window)).
+    /// or a window of it: [`Window`](super::antialias::window::Window)).
     /// `evaluate`, one per pixel, says how much of each frame to evaluate (`None`: all).
     /// Returns the number of frames evaluated on the patches.
     ///
@@ -516,42 +516,22 @@ fn on_ray(point: DVec3, origin: DVec3, direction: DVec3) -> bool {
     r.reject_from(direction).length() <= 1e-6 * r.length()
 }
 
-/// A frame to fill scratch buffers with before evaluation overwrites it.
-pub(super) const NO_FRAME: Frame = Frame {
-    point: DVec3::ZERO,
-    normal: DVec3::Z,
-    du: DVec3::X,
-    dv: DVec3::Y,
-    degenerate: false,
-};
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::fixtures::{self, ball_library, mesh_in_view};
     use crate::render::raster::{RasterOptions, Rasterizer, Viewport};
-    use crate::render::tessellate::{Density, Tessellator};
 
     #[test]
     fn each_sample_gets_the_frame_its_evaluation_asks_for() {
-        let library = crate::render::plan::tests::ball_library();
+        let library = ball_library();
         let camera = Camera {
             eye: Vec3::new(0.3, -5.0, 0.8),
-            ..crate::render::plan::tests::camera()
+            ..fixtures::camera()
         };
         let (width, height) = (64, 64);
-        let view_projection = camera.view_projection(1.0);
-        let mut tessellator = Tessellator::new(library.clone());
-        let (mesh, _) = tessellator.mesh(
-            Density::ScreenTolerance { pixels: 0.5 },
-            view_projection,
-            width,
-            height,
-        );
-        let clip: Vec<_> = mesh
-            .positions
-            .iter()
-            .map(|p| view_projection * p.extend(1.0))
-            .collect();
+        let (mesh, view_projection, clip) = mesh_in_view(&library, &camera, (width, height), 0.5);
+        let mesh = &mesh;
         let mut visibility = VisibilityBuffer::default();
         Rasterizer::default().rasterize_into(
             Viewport { width, height },
@@ -632,9 +612,9 @@ mod tests {
 
     #[test]
     fn a_probe_from_the_back_keeps_to_the_back_and_one_from_the_front_finds_the_near_sheet() {
-        let library = crate::render::plan::tests::ball_library();
+        let library = ball_library();
         let surface = &library.patches[0].surface;
-        let camera = crate::render::plan::tests::camera();
+        let camera = fixtures::camera();
         let size = (64, 64);
         let eye = camera.eye.as_dvec3();
         // A ray that grazes the ball: it crosses it twice, close together.

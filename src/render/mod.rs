@@ -8,45 +8,41 @@
 //! A stage the scene does not use does not run, and [`RenderStats`] shows it. Writing the
 //! images to files is not rendering: see [`crate::formats`].
 
-mod band_edge;
+mod antialias;
+mod aov;
 pub mod camera;
-mod contrast;
-mod dilate;
+mod colour;
 mod directions;
-mod edge_width;
+mod edges;
 mod facing;
+#[cfg(test)]
+mod fixtures;
 mod gbuffer;
-mod highlight_edge;
 mod line_style;
 mod lines;
-mod near_border;
 mod neighbourhood;
-mod open_side;
 mod plan;
+mod probe;
 pub mod raster;
 mod renderer;
 mod scene;
-mod seeded;
 mod settings;
-mod settled;
 mod shade;
 mod stage;
 mod stats;
-mod supersample;
 mod surface_key;
 mod surface_point;
 pub mod tessellate;
 mod trim_cut;
-mod trim_edge;
 mod visibility_shade;
-mod window;
 mod xtoon_tone;
 
+pub use aov::AovImages;
 pub use camera::{Camera, Projection};
 pub use facing::facing_frame;
 pub use line_style::{LineKind, LineKinds, LineStyle, MAX_LINE_WIDTH, MAX_TAPER};
 pub use plan::{Plan, Surfaces, FINE_MESH_PIXELS};
-pub use renderer::{AovImages, RenderedFrame, Renderer};
+pub use renderer::{RenderedFrame, Renderer};
 pub use scene::{Aovs, Outlines, PatchLook, Scene, Tone};
 pub use settings::{Antialias, FrameMode, Settings, MAX_SIDE, MAX_THREADS};
 pub use stage::Stage;

@@ -248,49 +248,14 @@ impl Plan {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
-    use glam::{DVec3, Vec3};
+mod tests {
+    use glam::Vec3;
 
     use super::*;
-    use crate::geom::{shapes, NamedPatch, PatchLibrary};
-    use crate::highlight::Light;
-    use crate::render::{Camera, PatchLook, Projection};
+    use crate::geom::PatchLibrary;
+    use crate::render::fixtures::empty_scene;
+    use crate::render::PatchLook;
     use crate::toon::CelRamp;
-
-    /// A camera 6 units out along −y, looking at the origin.
-    pub(in crate::render) fn camera() -> Camera {
-        Camera {
-            eye: Vec3::new(0.0, -6.0, 1.0),
-            target: Vec3::ZERO,
-            up: Vec3::Z,
-            projection: Projection::Perspective {
-                fov_y_degrees: 30.0,
-            },
-            near: 0.1,
-            far: 100.0,
-        }
-    }
-
-    /// The unit ball at the origin, one patch named `ball`, which [`camera`] sees whole.
-    pub(in crate::render) fn ball_library() -> PatchLibrary {
-        PatchLibrary::new(vec![NamedPatch {
-            name: "ball".into(),
-            trim: None,
-            surface: shapes::sphere(DVec3::ZERO, 1.0).unwrap(),
-        }])
-    }
-
-    /// A scene of `library` with no looks, seen by [`camera`], asking for `aovs`.
-    pub(in crate::render) fn empty_scene(library: &PatchLibrary, aovs: Aovs) -> Scene<'_> {
-        Scene {
-            library,
-            looks: Vec::new(),
-            camera: camera(),
-            light: Light::Directional { towards: Vec3::Z },
-            outlines: None,
-            aovs,
-        }
-    }
 
     #[test]
     fn the_one_sample_pass_interpolates_only_a_fine_adaptive_frame_whose_frames_no_aov_reads() {

@@ -2,35 +2,32 @@
 //! detail ▸ edge widths ▸ trim edges ▸ shade ▸ outline ▸ supersample ▸ AOVs ▸ resolve
 //! ([`Stage`]), the first three reused from the previous frame when its surfaces are the same.
 
-use std::ops::{Add, Mul};
 use std::sync::Arc;
 
-use glam::{Mat4, Vec2, Vec3, Vec4};
+use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
-use super::band_edge::{band_edges, settle_straight_edges, BandEdge};
-use super::edge_width::{edge_widths_of, signed_values, EdgeWidths, SignedValues};
-use super::gbuffer::{GBuffer, EMPTY, PIXELS_PER_JOB};
-use super::highlight_edge::{highlight_edges, HighlightEdge, HighlightEdges};
+use super::antialias::{self, SupersampleInput};
+use super::aov::{collect_aovs, AovImages};
+use super::colour::resolve;
+use super::edges::one_sample::OneSampleEdges;
+use super::edges::trim_edge::{composite, find_trim_edges};
+use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
 use super::line_style::{LineKind, LineStyle};
 use super::lines::{self, draw_lines, LineImage, LineInput, MeshLines};
-use super::neighbourhood::around;
 use super::plan::{Plan, Surfaces};
 use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
-use super::scene::{Outlines, Scene, Tone};
+use super::scene::{Outlines, Scene};
 use super::settings::{Antialias, FrameMode, Settings};
-use super::settled::Settled;
 use super::shade::{shade, Edges, ShadeBuffers, Shaded};
 use super::stage::Stage;
 use super::stats::{timed, RenderStats};
-use super::supersample;
 use super::surface_key::SurfaceKey;
-use super::tessellate::{Mesh, Tessellator};
+use super::tessellate::{vertex_count, Mesh, Segments, Tessellator};
 use super::trim_cut::MeshCut;
-use super::trim_edge::{self, trim_edges, TrimEdges};
 use super::visibility_shade::shade_visibility;
-use super::xtoon_tone::{self, Ahead};
+use super::xtoon_tone::{self, Views, XToonDetail};
 use super::RenderError;
 use crate::geom::PatchLibrary;
 
@@ -45,42 +42,6 @@ pub struct RenderedFrame {
     pub stats: RenderStats,
 }
 
-/// The AOVs a scene asked for (`None` for the others). Under supersampling the matte is the
-/// average of a pixel's samples; the others are taken from its central sample.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct AovImages {
-    pub matte: Option<Vec<f32>>,
-    /// Patch index per pixel, `u32::MAX` on the background.
-    pub patch_id: Option<Vec<u32>>,
-    /// NDC depth per pixel, `f32::INFINITY` on the background.
-    pub depth: Option<Vec<f32>>,
-    pub normal: Option<Vec<Vec3>>,
-    pub uv: Option<Vec<Vec2>>,
-    /// `N·H` of the initial half vector, 0 on the background.
-    pub n_dot_h: Option<Vec<f32>>,
-    /// The lines alone: linear RGB, straight alpha their coverage.
-    pub outline: Option<Vec<Vec4>>,
-}
-
-impl AovImages {
-    /// How many AOV images there are.
-    #[must_use]
-    pub fn count(&self) -> usize {
-        [
-            self.matte.is_some(),
-            self.patch_id.is_some(),
-            self.depth.is_some(),
-            self.normal.is_some(),
-            self.uv.is_some(),
-            self.n_dot_h.is_some(),
-            self.outline.is_some(),
-        ]
-        .iter()
-        .filter(|&&on| on)
-        .count()
-    }
-}
-
 /// Renders frames of one model, keeping its tessellation, working memory and worker threads
 /// between frames. A frame whose camera, image and accuracy settings are the previous frame's
 /// (only materials, highlights, the light or outline settings changed) reuses its mesh,
@@ -88,7 +49,7 @@ impl AovImages {
 /// ([`Plan::reusing_surfaces`]), and the bytes are those of a fresh renderer's frame.
 pub struct Renderer {
     library: Arc<PatchLibrary>,
-    stages: Stages,
+    buffers: StageBuffers,
     pool: Option<(usize, ThreadPool)>,
     /// The most vertices a frame's mesh may have; None: no limit.
     max_vertices: Option<u64>,
@@ -96,7 +57,7 @@ pub struct Renderer {
 
 /// What the stages keep from one frame to the next: the mesh, and every buffer whose size
 /// depends only on the image and the mesh, so that a frame allocates just the images it returns.
-struct Stages {
+struct StageBuffers {
     /// What the mesh, visibility buffer and G-buffer now hold, once a frame has filled them.
     kept: Option<KeptSurfaces>,
     tessellator: Tessellator,
@@ -125,7 +86,7 @@ impl Renderer {
     pub fn new(library: impl Into<Arc<PatchLibrary>>) -> Self {
         let library = library.into();
         Self {
-            stages: Stages {
+            buffers: StageBuffers {
                 kept: None,
                 tessellator: Tessellator::new(Arc::clone(&library)),
                 clip: Vec::new(),
@@ -152,8 +113,14 @@ impl Renderer {
     /// tessellation stage would make.
     #[must_use]
     pub fn mesh_vertices(&self, camera: &super::Camera, settings: &Settings) -> u64 {
+        vertex_count(&self.library, &self.segments(camera, settings))
+    }
+
+    /// The segments per span of every patch in the mesh for `camera`'s view with `settings`
+    /// ([`Tessellator::segments`]).
+    fn segments(&self, camera: &super::Camera, settings: &Settings) -> Vec<Segments> {
         let aspect = settings.width as f32 / settings.height as f32;
-        self.stages.tessellator.vertices(
+        self.buffers.tessellator.segments(
             settings.density,
             camera.view_projection(aspect),
             settings.width,
@@ -184,15 +151,21 @@ impl Renderer {
                 looks: scene.looks.len(),
             });
         }
-        if let Some(most) = self.max_vertices {
-            let vertices = self.mesh_vertices(&scene.camera, settings);
-            if vertices > most {
-                return Err(RenderError::MeshTooLarge { vertices, most });
+        // The segments the guard counts are the ones the tessellation stage meshes.
+        let segments = match self.max_vertices {
+            Some(most) => {
+                let segments = self.segments(&scene.camera, settings);
+                let vertices = vertex_count(&self.library, &segments);
+                if vertices > most {
+                    return Err(RenderError::MeshTooLarge { vertices, most });
+                }
+                Some(segments)
             }
-        }
-        let (stages, library) = (&mut self.stages, &*self.library);
+            None => None,
+        };
+        let (buffers, library) = (&mut self.buffers, &*self.library);
         if settings.threads == 0 {
-            return Ok(stages.render(library, scene, settings));
+            return Ok(buffers.render(library, scene, settings, segments));
         }
         if self
             .pool
@@ -209,7 +182,7 @@ impl Renderer {
             self.pool = Some((settings.threads, pool));
         }
         let pool = &self.pool.as_ref().expect("the pool was just made").1;
-        Ok(pool.install(|| stages.render(library, scene, settings)))
+        Ok(pool.install(|| buffers.render(library, scene, settings, segments)))
     }
 }
 
@@ -222,7 +195,7 @@ struct KeptSurfaces {
 
 /// What a frame is drawn at: its image in samples and the scene's view.
 #[derive(Clone, Copy)]
-struct Frame {
+struct SampleGrid {
     /// Samples per pixel side.
     k: u32,
     /// The image in samples.
@@ -230,14 +203,17 @@ struct Frame {
     view_projection: Mat4,
 }
 
-impl Stages {
+impl StageBuffers {
+    /// The frame of `scene` with `settings`; with `segments`, the mesh's segments per span as
+    /// the memory guard counted them, meshed without counting them again.
     fn render(
         &mut self,
         library: &PatchLibrary,
         scene: &Scene,
         settings: &Settings,
+        segments: Option<Vec<Segments>>,
     ) -> RenderedFrame {
-        let (mut frame, total) = timed(|| self.stages(library, scene, settings));
+        let (mut frame, total) = timed(|| self.stages(library, scene, settings, segments));
         frame.stats.total_seconds = total;
         frame
     }
@@ -248,6 +224,7 @@ impl Stages {
         library: &PatchLibrary,
         scene: &Scene,
         settings: &Settings,
+        segments: Option<Vec<Segments>>,
     ) -> RenderedFrame {
         let plan = Plan::new(scene, settings);
         let key = SurfaceKey::new(&scene.camera, settings, &plan);
@@ -272,7 +249,7 @@ impl Stages {
         };
         let mut stats = RenderStats::new(plan);
         let k = settings.samples_per_side();
-        let frame = Frame {
+        let grid = SampleGrid {
             k,
             samples: Viewport {
                 width: settings.width * k,
@@ -282,7 +259,7 @@ impl Stages {
                 .camera
                 .view_projection(settings.width as f32 / settings.height as f32),
         };
-        let Stages {
+        let StageBuffers {
             kept,
             tessellator,
             clip,
@@ -307,10 +284,10 @@ impl Stages {
             None => {
                 // Until the buffers are filled again they hold no frame's surfaces.
                 *kept = None;
-                let mesh = tessellate(tessellator, settings, &frame, &mut stats);
+                let mesh = tessellate(tessellator, settings, &grid, segments, &mut stats);
                 generation += u64::from(stats.tessellation_rebuilt);
                 let covered = rasterize(
-                    rasterizer, mesh, library, &frame, clip, visibility, &mut stats,
+                    rasterizer, mesh, library, &grid, clip, visibility, &mut stats,
                 );
                 if plan.runs(Stage::GBuffer) {
                     fill_gbuffer(
@@ -320,7 +297,7 @@ impl Stages {
                         library,
                         scene,
                         plan.frames,
-                        frame.view_projection,
+                        grid.view_projection,
                         &mut stats,
                     );
                 }
@@ -331,102 +308,53 @@ impl Stages {
         let (mut shaded, edges) = match plan.surfaces {
             Surfaces::Visibility => (
                 shade_from_visibility(visibility, mesh, scene, covered, &mut stats),
-                Edged::default(),
+                OneSampleEdges::default(),
             ),
             Surfaces::Texels => {
                 let views = xtoon_tone::views(scene);
-                let ahead = plan
+                let detailed = plan
                     .runs(Stage::Detail)
                     .then(|| detail(gbuffer, scene, &views, &mut stats));
                 // Highlights see the abstracted frames of the X-Toon patches that ask for them.
-                let highlight_gbuffer = ahead.as_ref().map_or(&*gbuffer, |a| &a.gbuffer);
-                let edges = if plan.runs(Stage::EdgeWidths) {
+                let highlight_gbuffer = detailed.as_ref().map_or(&*gbuffer, |d| &d.gbuffer);
+                let mut edges = OneSampleEdges::default();
+                if plan.runs(Stage::EdgeWidths) {
                     let settle = (plan.frames != settings.frames)
-                        .then_some((frame.view_projection, settings.frames));
-                    let adaptive = matches!(settings.antialias, Antialias::Adaptive(_));
-                    let view_projection = frame.view_projection;
-                    let input = (highlight_gbuffer, scene, view_projection);
-                    let draw_trims = plan.runs(Stage::TrimEdges);
-                    widths(input, adaptive, draw_trims, settle, &mut stats)
-                } else {
-                    Edged::default()
-                };
-                let tones = ahead.as_ref().map(|a| a.tones.as_slice());
-                let (shaded, seconds) = timed(|| {
-                    let mut shaded = shade(
-                        highlight_gbuffer,
-                        scene,
-                        &views,
-                        tones,
-                        edges.shading(settings.antialias),
-                        shading,
-                    );
-                    if let Some(trims) = &edges.trims {
-                        let hard = Edges {
-                            widths: None,
-                            bands: None,
-                            highlights: None,
-                            settled: None,
-                            signed: None,
-                        };
-                        let mut buffers = ShadeBuffers::default();
-                        let two = |g: &GBuffer| shade(g, scene, &views, None, hard, &mut buffers);
-                        trim_edge::composite(trims, two, &mut shaded);
+                        .then_some((grid.view_projection, settings.frames));
+                    edges = edge_widths(highlight_gbuffer, scene, settings, settle, &mut stats);
+                    if plan.runs(Stage::TrimEdges) {
+                        let input = (highlight_gbuffer, scene, grid.view_projection);
+                        trim_edges(input, &mut edges, &mut stats);
                     }
-                    shaded
-                });
-                stats.record(Stage::Shade, shaded.shaded, seconds);
-                stats.highlight_pixels = shaded.highlighted;
-                stats.xtoon_pixels = shaded.xtoon;
+                    edge_widths_beside_undrawn(highlight_gbuffer, &mut edges, &mut stats);
+                }
+                let tones = detailed.as_ref().map(|d| d.tones.as_slice());
+                let input = (highlight_gbuffer, scene, &views, tones);
+                let shaded = shade_texels(input, &edges, settings, shading, &mut stats);
                 (shaded, edges)
             }
         };
-        match (plan.runs(Stage::Outline), &scene.outlines) {
-            (true, Some(outlines)) => {
-                let (intersections, seconds) = timed(|| {
-                    if lines::draws(&styles, LineKind::Intersection) {
-                        mesh_lines.intersections(mesh, library, generation)
-                    } else {
-                        &[]
-                    }
-                });
-                let input = LineInput {
-                    library,
-                    mesh,
-                    intersections,
-                    camera: &scene.camera,
-                    view_projection: frame.view_projection,
-                    visibility,
-                    k,
-                    size: (settings.width, settings.height),
-                    styles: &styles,
-                };
-                let recycled = kept_lines.take().map(|kept| kept.image);
-                let image = outline(&input, outlines, recycled, &mut stats);
-                stats.add_seconds(Stage::Outline, seconds);
-                *kept_lines = Some(KeptLines {
-                    outlines: *outlines,
-                    styles,
-                    image,
-                });
-            }
-            (false, Some(_)) if plan.reuses(Stage::Outline) => {}
-            (_, _) => *kept_lines = None,
-        }
+        outline(
+            (&plan, scene, styles),
+            (library, mesh, generation),
+            (visibility, &grid, settings),
+            (mesh_lines, kept_lines),
+            &mut stats,
+        );
         let lines = kept_lines.as_ref().map(|kept| &kept.image);
         if let (true, Antialias::Adaptive(k)) = (plan.runs(Stage::Supersample), settings.antialias)
         {
             let widths = edges.widths.as_ref();
             let straddles = widths.map(|w| gbuffer.gather(&w.straddles, false));
-            let input = supersample::Frame {
+            let input = SupersampleInput {
                 library,
                 scene,
                 mesh,
                 clip,
-                view_projection: frame.view_projection,
+                view_projection: grid.view_projection,
                 frames: settings.frames,
                 k,
-                image: frame.samples,
+                image: grid.samples,
                 detail: plan.uses(Stage::Detail),
                 widths: widths.is_some(),
                 straddles: straddles.as_deref(),
@@ -436,9 +364,7 @@ impl Stages {
                 drawn_pixels: edges.trims.as_ref().map(|t| t.drawn.as_slice()),
                 lines,
             };
-            let (done, seconds) = timed(|| supersample::supersample(&input, &mut shaded));
-            stats.record(Stage::Supersample, done.pixels, seconds);
-            stats.exact_frames += done.frames;
+            supersample(&input, &mut shaded, &mut stats);
         }
         let aovs = if plan.runs(Stage::Aov) {
             aov(scene, gbuffer, lines, &mut shaded, settings, &mut stats)
@@ -446,7 +372,7 @@ impl Stages {
             AovImages::default()
         };
         let mut colour = if plan.runs(Stage::Resolve) {
-            resolve_stage(&shaded.colour, settings, &frame, &mut stats)
+            resolve_stage(&shaded.colour, settings, &grid, &mut stats)
         } else {
             shaded.colour
         };
@@ -464,20 +390,23 @@ impl Stages {
     }
 }
 
-/// [`Stage::Tessellate`]: the mesh for this view, rebuilt only when its segment counts change.
+/// [`Stage::Tessellate`]: the mesh for this view, rebuilt only when its segment counts change;
+/// of `segments` where they were counted already.
 fn tessellate<'t>(
     tessellator: &'t mut Tessellator,
     settings: &Settings,
-    frame: &Frame,
+    grid: &SampleGrid,
+    segments: Option<Vec<Segments>>,
     stats: &mut RenderStats,
 ) -> &'t Mesh {
-    let ((mesh, rebuilt), seconds) = timed(|| {
-        tessellator.mesh(
+    let ((mesh, rebuilt), seconds) = timed(|| match segments {
+        Some(segments) => tessellator.mesh_of(segments),
+        None => tessellator.mesh(
             settings.density,
-            frame.view_projection,
+            grid.view_projection,
             settings.width,
             settings.height,
-        )
+        ),
     });
     stats.tessellation_rebuilt = rebuilt;
     stats.triangles = mesh.triangles.len();
@@ -492,7 +421,7 @@ fn rasterize(
     rasterizer: &mut Rasterizer,
     mesh: &Mesh,
     library: &PatchLibrary,
-    frame: &Frame,
+    grid: &SampleGrid,
     clip: &mut Vec<Vec4>,
     visibility: &mut VisibilityBuffer,
     stats: &mut RenderStats,
@@ -501,7 +430,7 @@ fn rasterize(
         mesh.positions
             .par_iter()
             .with_min_len(PIXELS_PER_JOB)
-            .map(|p| frame.view_projection * p.extend(1.0))
+            .map(|p| grid.view_projection * p.extend(1.0))
             .collect_into_vec(clip);
         let options = RasterOptions {
             threads: 0,
@@ -509,7 +438,7 @@ fn rasterize(
         };
         let cut = MeshCut::of(mesh, library);
         rasterizer.rasterize_cut_into(
-            frame.samples,
+            grid.samples,
             clip,
             &mesh.triangles,
             cut.as_ref().map(|c| c as &dyn Cut),
@@ -571,235 +500,156 @@ fn fill_gbuffer(
 }
 
 /// [`Stage::Detail`]: the X-Toon tones and abstracted frames ahead of shading.
-fn detail(
+fn detail(gbuffer: &GBuffer, scene: &Scene, views: &Views, stats: &mut RenderStats) -> XToonDetail {
+    let (detailed, seconds) = timed(|| xtoon_tone::detail(gbuffer, scene, views));
+    stats.record(Stage::Detail, detailed.toned, seconds);
+    detailed
+}
+
+/// [`Stage::EdgeWidths`], up to the widths ([`OneSampleEdges::find`]): how the edges of the
+/// tone's bands and of the highlights meet each pixel, under adaptive anti-aliasing whether it
+/// is drawn right at one sample; with `settle`, the view-projection and the settings' frames
+/// where the G-buffer's are interpolated, the texels those edges are drawn from are evaluated
+/// again in those frames. The widths follow [`Stage::TrimEdges`]
+/// ([`edge_widths_beside_undrawn`]).
+fn edge_widths<'s>(
     gbuffer: &GBuffer,
-    scene: &Scene,
-    views: &xtoon_tone::Views,
-    stats: &mut RenderStats,
-) -> Ahead {
-    let (ahead, seconds) = timed(|| xtoon_tone::run_ahead(gbuffer, scene, views));
-    stats.record(Stage::Detail, ahead.toned, seconds);
-    ahead
-}
-
-/// What [`Stage::EdgeWidths`] finds per texel.
-#[derive(Default)]
-struct Edged<'s> {
-    /// Each highlight layer's signed value, on a frame with highlights: the shade stage's, for
-    /// the texels it shades with hard edges.
-    signed: Option<SignedValues<'s>>,
-    /// The highlight's edge widths, on a frame with highlights.
-    widths: Option<EdgeWidths>,
-    /// How the tone's band edges meet the pixel, on a frame with banded cel ramps.
-    bands: Option<Vec<BandEdge>>,
-    /// How the highlight's edges meet the pixel, on a frame with highlights under adaptive
-    /// anti-aliasing.
-    highlights: Option<HighlightEdges>,
-    /// Whether the pixel's colour is right as drawn at one sample, under adaptive
-    /// anti-aliasing ([`drawn`]).
-    drawn: Option<Vec<bool>>,
-    /// Where the G-buffer's frames are interpolated, the texels the one-sample pass draws its
-    /// edges from, with the settings' frames: the centres of the pixels a band edge crosses
-    /// straight, and the neighbourhoods of those a highlight edge crosses smoothly.
-    settled: Settled,
-    /// The pixels about the rims of trims drawn right at one sample, under adaptive
-    /// anti-aliasing on a frame with trimmed patches ([`trim_edges`]).
-    trims: Option<TrimEdges>,
-}
-
-impl Edged<'_> {
-    /// What the one-sample shading takes of them under `antialias`: under analytic
-    /// anti-aliasing the highlight footprints of every pixel; under adaptive anti-aliasing the
-    /// highlight edges that cross a pixel smoothly alone, since a pixel any other highlight
-    /// edge crosses is drawn again at k × k samples, each with its own footprint (hard edges
-    /// there mark only the pixels the edges cross, where analytic ones also mark their
-    /// neighbours, which a partly covered pixel beside them differs from).
-    fn shading(&self, antialias: Antialias) -> Edges<'_> {
-        let adaptive = match antialias {
-            Antialias::Adaptive(_) => true,
-            Antialias::None | Antialias::Analytic | Antialias::Supersample(_) => false,
-        };
-        Edges {
-            widths: self
-                .widths
-                .as_ref()
-                .filter(|_| !adaptive)
-                .map(|w| w.footprints.as_slice()),
-            bands: self.bands.as_deref(),
-            highlights: self.highlights.as_ref(),
-            settled: Some(&self.settled),
-            signed: self.signed.as_ref(),
-        }
-    }
-}
-
-/// [`Stage::EdgeWidths`]: per texel, the highlight's edge width over the pixel's footprint
-/// and how the tone's band edges meet the pixel; under `adaptive` anti-aliasing also how the
-/// highlight's edges meet it and whether it is [`drawn`] right at one sample, and with
-/// `draw_trims`, [`Stage::TrimEdges`]: which pixels about the rims of trimmed patches are
-/// drawn right ([`trim_edges`], seen through `view_projection`), timed apart. With `settle`,
-/// the view-projection and the settings' frames where the G-buffer's are interpolated, the
-/// texels the straight band edges and smooth highlight edges are drawn from are evaluated
-/// again in those frames ([`Settled`]).
-fn widths<'s>(
-    (gbuffer, scene, view_projection): (&GBuffer, &'s Scene, Mat4),
-    adaptive: bool,
-    draw_trims: bool,
+    scene: &'s Scene,
+    settings: &Settings,
     settle: Option<(Mat4, FrameMode)>,
     stats: &mut RenderStats,
-) -> Edged<'s> {
-    let mut frames = 0;
-    let mut trim_seconds = 0.0;
-    let mut judged = 0;
-    let (edged, seconds) = timed(|| {
-        // The texels' patches side by side: the neighbours are looked up by patch, and the
-        // texels themselves are large.
-        let patches: Vec<u32> = gbuffer.texels.iter().map(|t| t.patch).collect();
-        let signed = scene
-            .has_highlights()
-            .then(|| signed_values(gbuffer, scene));
-        let mut highlights = signed
-            .as_ref()
-            .filter(|_| adaptive)
-            .map(|s| highlight_edges(gbuffer, s, &patches));
-        let mut bands = scene
-            .has_band_edges()
-            .then(|| band_edges(gbuffer, scene, &patches));
-        let settled = match settle {
-            Some((view_projection, mode)) => {
-                // The centres of the pixels a band edge crosses straight, and the
-                // neighbourhoods of those a highlight edge crosses smoothly.
-                let mut picked = vec![false; gbuffer.texels.len()];
-                for (pick, band) in picked.iter_mut().zip(bands.iter().flatten()) {
-                    *pick = matches!(band, BandEdge::Straight { .. });
-                }
-                for slot in highlights.iter().flat_map(|h| h.neighbourhoods(gbuffer)) {
-                    picked[slot] = true;
-                }
-                let (settled, evaluated) =
-                    Settled::evaluate(gbuffer, scene, view_projection, mode, &picked);
-                frames = evaluated;
-                if let Some(bands) = &mut bands {
-                    settle_straight_edges(bands, &settled, scene);
-                }
-                if let (Some(highlights), Some(signed)) = (&mut highlights, &signed) {
-                    highlights.settle(gbuffer, scene, signed, &settled);
-                }
-                settled
-            }
-            None => Settled::default(),
-        };
-        let mut drawn = adaptive.then(|| {
-            let kinds = highlights.as_ref().map(|h| h.kinds.as_slice());
-            drawn(gbuffer, scene, bands.as_deref(), kinds)
-        });
-        let trims = drawn.as_mut().filter(|_| draw_trims).and_then(|drawn| {
-            let (trims, seconds) = timed(|| trim_edges(gbuffer, scene, view_projection, drawn));
-            trim_seconds = seconds;
-            let trims = trims?;
-            judged = trims.judged;
-            for (&slot, _) in gbuffer.slot.iter().zip(&trims.drawn).filter(|(_, &d)| d) {
-                if slot != EMPTY {
-                    drawn[slot as usize] = true;
-                }
-            }
-            frames += trims.frames;
-            Some(trims)
-        });
-        // Under adaptive anti-aliasing the widths serve the samples of the pixels that are
-        // not drawn (started from the texels around them) and mark those a highlight may
-        // cross unseen: they are wanted only beside such pixels.
-        let wanted = drawn.as_ref().map(|drawn| beside_undrawn(gbuffer, drawn));
-        let widths = signed
-            .as_ref()
-            .map(|s| edge_widths_of(gbuffer, s, &patches, wanted.as_deref()));
-        Edged {
-            signed,
-            widths,
-            bands,
-            highlights,
-            drawn,
-            settled,
-            trims,
-        }
-    });
-    stats.record(
-        Stage::EdgeWidths,
-        gbuffer.texels.len() as u64,
-        seconds - trim_seconds,
-    );
-    if draw_trims {
-        stats.record(Stage::TrimEdges, judged, trim_seconds);
-    }
+) -> OneSampleEdges<'s> {
+    let adaptive = matches!(settings.antialias, Antialias::Adaptive(_));
+    let ((edges, frames), seconds) =
+        timed(|| OneSampleEdges::find(gbuffer, scene, adaptive, settle));
+    stats.record(Stage::EdgeWidths, gbuffer.texels.len() as u64, seconds);
     stats.exact_frames += frames;
-    edged
+    edges
 }
 
-/// Per texel of `gbuffer`, whether some texel of its 3 × 3 neighbourhood is not `drawn` (per
-/// texel): the neighbourhoods of the few texels that are not, marked from each. A texel beside
-/// an uncovered pixel is never drawn right, so it marks itself.
-#[must_use]
-fn beside_undrawn(gbuffer: &GBuffer, drawn: &[bool]) -> Vec<bool> {
-    let size = (gbuffer.width as usize, gbuffer.height as usize);
-    let mut beside = vec![false; drawn.len()];
-    for (t, _) in gbuffer.texels.iter().zip(drawn).filter(|(_, &d)| !d) {
-        for n in around(t.pixel as usize, size) {
-            let slot = gbuffer.slot[n];
-            if slot != EMPTY {
-                beside[slot as usize] = true;
-            }
-        }
+/// [`Stage::TrimEdges`]: which pixels about the rims of trimmed patches are drawn right at one
+/// sample ([`find_trim_edges`], seen through `view_projection`), added to those `edges` draws
+/// right.
+fn trim_edges(
+    (gbuffer, scene, view_projection): (&GBuffer, &Scene, Mat4),
+    edges: &mut OneSampleEdges,
+    stats: &mut RenderStats,
+) {
+    let (trims, seconds) = timed(|| {
+        let drawn = edges.drawn.as_deref()?;
+        find_trim_edges(gbuffer, scene, view_projection, drawn)
+    });
+    let judged = trims.as_ref().map_or(0, |t| t.judged);
+    stats.record(Stage::TrimEdges, judged, seconds);
+    if let Some(trims) = trims {
+        stats.exact_frames += trims.frames;
+        edges.add_trims(gbuffer, trims);
     }
-    beside
 }
 
-/// Per texel of `gbuffer`, whether its pixel's colour is right as drawn at one sample: its box
-/// lies inside one patch, its tone is a cel ramp whose band edges are clear of the box or
-/// cross it straight (any cel ramp without `bands`), its highlight's edges are clear of the box
-/// or cross it smoothly (any highlight without `highlights`), and not both a band edge and a
-/// highlight edge cross it. More samples would not change such a pixel; at least one of `bands`
-/// and `highlights` is given, each of which sees whether the box lies inside one patch.
-#[must_use]
-fn drawn(
+/// The rest of [`Stage::EdgeWidths`], once [`Stage::TrimEdges`] has drawn what it draws: the
+/// highlight's edge widths, under adaptive anti-aliasing beside the pixels not drawn right at
+/// one sample alone ([`OneSampleEdges::take_widths`]), timed with the stage.
+fn edge_widths_beside_undrawn(
     gbuffer: &GBuffer,
-    scene: &Scene,
-    bands: Option<&[BandEdge]>,
-    highlights: Option<&[HighlightEdge]>,
-) -> Vec<bool> {
-    gbuffer
-        .texels
-        .par_iter()
-        .enumerate()
-        .with_min_len(PIXELS_PER_JOB)
-        .map(|(k, t)| {
-            let band = match bands {
-                Some(bands) => bands[k],
-                None => match scene.looks[t.patch as usize].tone {
-                    Tone::Cel(_) => BandEdge::Clear,
-                    Tone::XToon(_) => BandEdge::Hard,
-                },
+    edges: &mut OneSampleEdges,
+    stats: &mut RenderStats,
+) {
+    let ((), seconds) = timed(|| edges.take_widths(gbuffer));
+    stats.add_seconds(Stage::EdgeWidths, seconds);
+}
+
+/// [`Stage::Shade`] from the texels: each texel's tone and highlight with the edges as
+/// [`OneSampleEdges::shading`] gives them for the settings' anti-aliasing, then the pixels the
+/// rims of trims cross, from one sample on each side ([`composite`]).
+fn shade_texels(
+    (gbuffer, scene, views, tones): (&GBuffer, &Scene, &Views, Option<&[Vec3]>),
+    edges: &OneSampleEdges,
+    settings: &Settings,
+    shading: &mut ShadeBuffers,
+    stats: &mut RenderStats,
+) -> Shaded {
+    let (shaded, seconds) = timed(|| {
+        let mut shaded = shade(
+            gbuffer,
+            scene,
+            views,
+            tones,
+            edges.shading(settings.antialias),
+            shading,
+        );
+        if let Some(trims) = &edges.trims {
+            let hard = Edges {
+                widths: None,
+                bands: None,
+                highlights: None,
+                settled: None,
+                signed: None,
             };
-            let highlight = highlights.map_or(HighlightEdge::Clear, |h| h[k]);
-            let both = matches!(
-                (band, highlight),
-                (BandEdge::Straight { .. }, HighlightEdge::Smooth)
-            );
-            band.is_drawn() && highlight.is_drawn() && !both
-        })
-        .collect()
+            let mut buffers = ShadeBuffers::default();
+            let two = |g: &GBuffer| shade(g, scene, views, None, hard, &mut buffers);
+            composite(trims, two, &mut shaded);
+        }
+        shaded
+    });
+    stats.record(Stage::Shade, shaded.shaded, seconds);
+    stats.highlight_pixels = shaded.highlighted;
+    stats.xtoon_pixels = shaded.xtoon;
+    shaded
 }
 
 /// [`Stage::Outline`]: the lines, found on the mesh and tested against the frame's depth, as
-/// coverage at output resolution (composited over the colour once it is resolved).
+/// coverage at output resolution (composited over the colour once it is resolved), kept in
+/// `kept_lines` with the outlines and `styles` they were drawn with; the previous frame's stay
+/// where the plan reuses them, and none are kept where the scene draws none.
 fn outline(
-    input: &LineInput,
-    outlines: &Outlines,
-    recycled: Option<LineImage>,
+    (plan, scene, styles): (&Plan, &Scene, Vec<LineStyle>),
+    (library, mesh, generation): (&PatchLibrary, &Mesh, u64),
+    (visibility, grid, settings): (&VisibilityBuffer, &SampleGrid, &Settings),
+    (mesh_lines, kept_lines): (&mut MeshLines, &mut Option<KeptLines>),
     stats: &mut RenderStats,
-) -> LineImage {
-    let (lines, seconds) = timed(|| draw_lines(input, outlines, recycled));
-    stats.record(Stage::Outline, lines.inked, seconds);
-    lines
+) {
+    match (plan.runs(Stage::Outline), &scene.outlines) {
+        (true, Some(outlines)) => {
+            let (intersections, seconds) = timed(|| {
+                if lines::draws(&styles, LineKind::Intersection) {
+                    mesh_lines.intersections(mesh, library, generation)
+                } else {
+                    &[]
+                }
+            });
+            let input = LineInput {
+                library,
+                mesh,
+                intersections,
+                camera: &scene.camera,
+                view_projection: grid.view_projection,
+                visibility,
+                k: grid.k,
+                size: (settings.width, settings.height),
+                styles: &styles,
+            };
+            let recycled = kept_lines.take().map(|kept| kept.image);
+            let (image, drawn) = timed(|| draw_lines(&input, outlines, recycled));
+            stats.record(Stage::Outline, image.inked, drawn);
+            stats.add_seconds(Stage::Outline, seconds);
+            *kept_lines = Some(KeptLines {
+                outlines: *outlines,
+                styles,
+                image,
+            });
+        }
+        (false, Some(_)) if plan.reuses(Stage::Outline) => {}
+        (_, _) => *kept_lines = None,
+    }
+}
+
+/// [`Stage::Supersample`]: the pixels more samples could change, drawn again at K × K samples
+/// ([`antialias::supersample`]).
+fn supersample(input: &SupersampleInput, shaded: &mut Shaded, stats: &mut RenderStats) {
+    let (done, seconds) = timed(|| antialias::supersample(input, shaded));
+    stats.record(Stage::Supersample, done.pixels, seconds);
+    stats.exact_frames += done.frames;
 }
 
 /// [`Stage::Aov`]: the AOVs the scene asked for, at output resolution.
@@ -821,111 +671,11 @@ fn aov(
 fn resolve_stage(
     samples: &[Vec4],
     settings: &Settings,
-    frame: &Frame,
+    grid: &SampleGrid,
     stats: &mut RenderStats,
 ) -> Vec<Vec4> {
-    let (colour, seconds) = timed(|| resolve(samples, settings.width, settings.height, frame.k));
+    let (colour, seconds) = timed(|| resolve(samples, settings.width, settings.height, grid.k));
     let pixels = u64::from(settings.width) * u64::from(settings.height);
     stats.record(Stage::Resolve, pixels, seconds);
     colour
-}
-
-/// Straight alpha to premultiplied: `(α rgb, α)`.
-#[inline]
-#[must_use]
-pub(super) fn premultiplied(c: Vec4) -> Vec4 {
-    (c.truncate() * c.w).extend(c.w)
-}
-
-/// Premultiplied alpha back to straight: `(rgb / α, α)`, and zero where `α = 0`.
-#[inline]
-#[must_use]
-pub(super) fn straight(p: Vec4) -> Vec4 {
-    if p.w > 0.0 {
-        (p.truncate() / p.w).extend(p.w)
-    } else {
-        Vec4::ZERO
-    }
-}
-
-/// Resolves `k × k` samples per pixel by averaging premultiplied colour:
-/// `α = mean(α_s)`, `rgb = mean(α_s rgb_s) / α`.
-fn resolve(samples: &[Vec4], width: u32, height: u32, k: u32) -> Vec<Vec4> {
-    let premultiplied: Vec<Vec4> = samples.iter().copied().map(premultiplied).collect();
-    box_filter(&premultiplied, width, height, k)
-        .into_iter()
-        .map(straight)
-        .collect()
-}
-
-/// The mean of each pixel's `k × k` samples, for an output of `width × height` pixels.
-fn box_filter<T>(samples: &[T], width: u32, height: u32, k: u32) -> Vec<T>
-where
-    T: Copy + Default + Add<Output = T> + Mul<f32, Output = T>,
-{
-    let (width, k) = (width as usize, k as usize);
-    let sample_width = width * k;
-    let weight = 1.0 / (k * k) as f32;
-    (0..width * height as usize)
-        .map(|i| {
-            let (x, y) = (i % width, i / width);
-            let mut sum = T::default();
-            for sy in 0..k {
-                for sx in 0..k {
-                    sum = sum + samples[(y * k + sy) * sample_width + x * k + sx];
-                }
-            }
-            sum * weight
-        })
-        .collect()
-}
-
-/// The AOVs the scene asked for, at output resolution.
-fn collect_aovs(
-    scene: &Scene,
-    gbuffer: &GBuffer,
-    lines: Option<&LineImage>,
-    shaded: &mut Shaded,
-    settings: &Settings,
-) -> AovImages {
-    let (width, height, k) = (settings.width, settings.height, settings.samples_per_side());
-    let centre = |x: u32, y: u32| gbuffer.at(x * k + k / 2, y * k + k / 2);
-    let pixels = || (0..height).flat_map(move |y| (0..width).map(move |x| (x, y)));
-    let a = scene.aovs;
-    AovImages {
-        matte: shaded
-            .matte
-            .take()
-            .map(|samples| box_filter(&samples, width, height, k)),
-        n_dot_h: shaded
-            .n_dot_h
-            .take()
-            .map(|samples| box_filter(&samples, width, height, k)),
-        patch_id: a.patch_id.then(|| {
-            pixels()
-                .map(|(x, y)| centre(x, y).map_or(u32::MAX, |t| t.patch))
-                .collect()
-        }),
-        depth: a.depth.then(|| {
-            pixels()
-                .map(|(x, y)| centre(x, y).map_or(f32::INFINITY, |t| t.depth))
-                .collect()
-        }),
-        normal: a.normal.then(|| {
-            pixels()
-                .map(|(x, y)| centre(x, y).map_or(Vec3::ZERO, |t| t.frame.n))
-                .collect()
-        }),
-        uv: a.uv.then(|| {
-            pixels()
-                .map(|(x, y)| centre(x, y).map_or(Vec2::ZERO, |t| t.uv))
-                .collect()
-        }),
-        outline: a.outline.then(|| {
-            lines.map_or_else(
-                || vec![Vec4::ZERO; width as usize * height as usize],
-                LineImage::alone,
-            )
-        }),
-    }
 }

@@ -24,7 +24,8 @@ pub enum FrameMode {
 /// Edge anti-aliasing.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 pub enum Antialias {
-    /// One sample per pixel: hard edges, the paper's look.
+    /// One sample per pixel: hard edges, the look of Anjyo & Hiramitsu's stylized highlights
+    /// (2003).
     #[default]
     None,
     /// One sample per pixel; highlight edges smoothed over the pixel's footprint of the signed

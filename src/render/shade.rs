@@ -3,13 +3,13 @@
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::band_edge::BandEdge;
 use super::directions::{initial_half_vector, initial_half_vectors, view_lanes};
-use super::edge_width::SignedValues;
+use super::edges::band_edge::BandEdge;
+use super::edges::edge_width::SignedValues;
+use super::edges::highlight_edge::{HighlightEdge, HighlightEdges};
+use super::edges::settled::SettledTexels;
 use super::gbuffer::{GBuffer, Texel, PIXELS_PER_JOB};
-use super::highlight_edge::{HighlightEdge, HighlightEdges};
 use super::scene::{Scene, Tone};
-use super::settled::Settled;
 use super::xtoon_tone::{self, Views};
 use crate::highlight::{ChunkScratch, Footprint, LocalChunk, Shade};
 use crate::math::{Lanes, LANES};
@@ -46,14 +46,16 @@ pub(super) struct ShadeBuffers {
 /// of shading; then on a patch with a highlight `H = normalize(L + V)`, the highlight
 /// expression's coverage c and colour h, and `colour = (1 − c) tone + c h`.
 ///
-/// With edge `widths` (analytic anti-aliasing, [`edge_widths`](super::edge_width::edge_widths)),
-/// each highlight edge covers the pixel as a straight edge with the pixel's footprint of the
-/// signed inside value `s = ε − ‖N − H'‖²/2` would ([`Footprint::coverage`]). Without them,
-/// edges are hard (the paper's look), but where `highlights` (adaptive anti-aliasing,
-/// [`highlight_edges`](super::highlight_edge::highlight_edges)) has one layer's edge crossing a
-/// pixel smoothly, which covers it as the quadratic of that layer's `s` does. Likewise with `bands`
-/// ([`band_edges`](super::band_edge::band_edges)), a cel tone whose band edge crosses the pixel
-/// straight takes the box's mean colour ([`CelRamp::shade_over_box`](crate::toon::CelRamp::shade_over_box)).
+/// With edge `widths` (analytic anti-aliasing,
+/// [`edge_widths`](super::edges::edge_width::edge_widths)), each highlight edge covers the
+/// pixel as a straight edge with the pixel's footprint of the signed inside value
+/// `s = ε − ‖N − H'‖²/2` would ([`Footprint::coverage`]). Without them, edges are hard (the
+/// look of Anjyo & Hiramitsu's stylized highlights, 2003), but where `highlights` (adaptive
+/// anti-aliasing, [`highlight_edges`](super::edges::highlight_edge::highlight_edges)) has one
+/// layer's edge crossing a pixel smoothly, which covers it as the quadratic of that layer's
+/// `s` does. Likewise with `bands` ([`band_edges`](super::edges::band_edge::band_edges)), a cel
+/// tone whose band edge crosses the pixel straight takes the box's mean colour
+/// ([`CelRamp::shade_over_box`](crate::toon::CelRamp::shade_over_box)).
 pub(super) fn shade(
     gbuffer: &GBuffer,
     scene: &Scene,
@@ -126,7 +128,7 @@ pub(super) struct Edges<'a> {
     /// smoothly is drawn from its quadratic about its settled texel where there is one
     /// (adaptive anti-aliasing). For the whole G-buffer, by slot.
     pub highlights: Option<&'a HighlightEdges>,
-    pub settled: Option<&'a Settled>,
+    pub settled: Option<&'a SettledTexels>,
     /// Without `widths`, each highlight layer's signed value at each texel, found before
     /// (for the whole G-buffer, by slot): the hard shades are taken from them.
     pub signed: Option<&'a SignedValues<'a>>,
@@ -307,7 +309,7 @@ struct Found<'a> {
     /// How each texel's highlight edges meet its box.
     smooth: Option<(usize, &'a HighlightEdges)>,
     /// The texels evaluated again in the settings' frames.
-    settled: Option<&'a Settled>,
+    settled: Option<&'a SettledTexels>,
     /// Each layer's signed value at each texel.
     signed: Option<(usize, &'a SignedValues<'a>)>,
 }
@@ -316,8 +318,8 @@ struct Found<'a> {
 /// highlight (no half vector is built then): with `widths`, each with its footprint; else hard,
 /// from the signed values `found` where it has them, but where `found.smooth` has an edge
 /// crossing the box smoothly, with that edge's cover of the box
-/// ([`SmoothEdge::coverage`](super::highlight_edge::SmoothEdge::coverage)) about the `s` of the
-/// texel's settled copy where there is one.
+/// ([`SmoothEdge::coverage`](super::edges::highlight_edge::SmoothEdge::coverage)) about the `s`
+/// of the texel's settled copy where there is one.
 fn highlight<'s>(
     scene: &Scene,
     texels: &[Texel],

@@ -72,7 +72,7 @@ mod tests {
 
     use super::*;
     use crate::geom::PatchLibrary;
-    use crate::render::plan::tests::{camera, empty_scene};
+    use crate::render::fixtures::{camera, empty_scene};
     use crate::render::{Aovs, Outlines, Scene};
 
     /// The plan of a scene with no patches under `settings`: the shade stage reads the

@@ -272,6 +272,12 @@ impl Tessellator {
         height: u32,
     ) -> (&Mesh, bool) {
         let segments = self.segments(density, view_projection, width, height);
+        self.mesh_of(segments)
+    }
+
+    /// The mesh of `segments` per span for every patch (as [`Tessellator::segments`] gives
+    /// them): the cached one when they are its own. Returns whether it had to be rebuilt.
+    pub fn mesh_of(&mut self, segments: Vec<Segments>) -> (&Mesh, bool) {
         let rebuilt = !matches!(&self.cached, Some((s, _)) if *s == segments);
         if rebuilt {
             // The grids of the patches whose counts changed, in parallel; the others' are kept.

@@ -163,6 +163,7 @@ fn uniform_tone(mesh: &Mesh, to_eye: Option<&[Vec3]>, scene: &Scene, t: usize) -
 mod tests {
     use super::*;
     use crate::formats::load_patches;
+    use crate::render::fixtures::clip_space;
     use crate::render::raster::{rasterize, RasterOptions, Viewport};
     use crate::render::scene::{Aovs, PatchLook};
     use crate::render::tessellate::{Density, Tessellator};
@@ -228,11 +229,7 @@ mod tests {
             for n in &mut reversed.normals {
                 *n = -*n;
             }
-            let clip: Vec<_> = mesh
-                .positions
-                .iter()
-                .map(|p| view_projection * p.extend(1.0))
-                .collect();
+            let clip = clip_space(mesh, view_projection);
             let viewport = Viewport { width, height };
             let (visibility, _) =
                 rasterize(viewport, &clip, &mesh.triangles, &RasterOptions::default());

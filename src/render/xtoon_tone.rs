@@ -35,7 +35,7 @@ pub(super) fn views<'s>(scene: &'s Scene) -> Views<'s> {
 
 /// What the detail stage computes ahead of shading.
 #[derive(Debug)]
-pub(super) struct Ahead {
+pub(super) struct XToonDetail {
     /// Per texel, the X-Toon tone (zero on cel patches).
     pub tones: Vec<Vec3>,
     /// The G-buffer with the abstracted frame on every texel of a patch whose designed
@@ -47,7 +47,7 @@ pub(super) struct Ahead {
 
 /// The detail stage: the X-Toon tone of every texel of `gbuffer` on a patch with a view, and
 /// the abstracted frames of the patches whose designed highlight uses them.
-pub(super) fn run_ahead(gbuffer: &GBuffer, scene: &Scene, views: &Views) -> Ahead {
+pub(super) fn detail(gbuffer: &GBuffer, scene: &Scene, views: &Views) -> XToonDetail {
     let abstract_highlights: Vec<bool> = scene
         .looks
         .iter()
@@ -91,7 +91,7 @@ pub(super) fn run_ahead(gbuffer: &GBuffer, scene: &Scene, views: &Views) -> Ahea
             toned
         })
         .sum();
-    Ahead {
+    XToonDetail {
         tones,
         gbuffer: GBuffer {
             width: gbuffer.width,

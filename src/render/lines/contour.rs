@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::super::camera::{Camera, Projection};
 use super::super::tessellate::{Mesh, PatchGrid};
 use super::piece::Piece;
-use super::to_screen;
+use super::screen::to_screen;
 use crate::geom::{NurbsSurface, PatchLibrary, Trim};
 use crate::render::line_style::LineKind;
 

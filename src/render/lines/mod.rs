@@ -5,7 +5,7 @@
 //! The curves are decided on the surface, not by comparing neighbouring pixels, so that a line
 //! does not break up when the view turns: a silhouette is where `N·(P − E)` changes sign
 //! ([`contour`]), a border or crease is a piece of a patch's domain boundary ([`border`]) or of
-//! a trimmed patch's trim loops ([`trim_edge`]), an
+//! a trimmed patch's trim loops ([`trim_border`]), an
 //! intersection is where two patches pass through each other ([`intersection`], found once per
 //! mesh: [`MeshLines`]).
 //! Pieces that share an end are joined into lines ([`chain`]); each line is cut into samples
@@ -20,17 +20,18 @@ mod chain;
 mod contour;
 mod intersection;
 mod piece;
+mod screen;
 mod stroke;
-mod trim_edge;
+mod trim_border;
 mod visible;
 
-use glam::{Mat4, Vec2, Vec3, Vec4};
+use glam::{Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::camera::Camera;
+use super::colour::{premultiplied, straight};
 use super::line_style::{LineKind, LineStyle};
 use super::raster::VisibilityBuffer;
-use super::renderer::{premultiplied, straight};
 use super::scene::Outlines;
 use super::tessellate::Mesh;
 use crate::geom::PatchLibrary;
@@ -209,7 +210,7 @@ pub(super) fn draw_lines(
         outlines,
         styles,
     ));
-    pieces.extend(trim_edge::trim_edges(
+    pieces.extend(trim_border::trim_borders(
         input.mesh,
         input.library,
         input.view_projection,
@@ -279,21 +280,4 @@ pub(super) fn draw_lines(
         inked: band_inked.iter().map(|&n| u64::from(n)).sum(),
         band_inked,
     }
-}
-
-/// A point of the image in pixels (pixel `(i, j)`'s centre at `(i + 0.5, j + 0.5)`) and its NDC
-/// depth, from a point in clip space; None at or behind the eye.
-#[inline]
-fn to_screen(clip: Vec4, (w, h): (u32, u32)) -> Option<(Vec2, f32)> {
-    if clip.w <= 1e-6 || !clip.is_finite() {
-        return None;
-    }
-    let ndc = clip.truncate() / clip.w;
-    Some((
-        Vec2::new(
-            (ndc.x + 1.0) * 0.5 * w as f32,
-            (1.0 - ndc.y) * 0.5 * h as f32,
-        ),
-        ndc.z,
-    ))
 }

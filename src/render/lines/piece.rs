@@ -3,8 +3,8 @@
 
 use glam::{DVec3, Mat4, Vec2, Vec3};
 
+use super::screen::to_screen;
 use super::stroke::Capsule;
-use super::to_screen;
 use crate::render::line_style::{LineKind, LineStyle};
 
 /// A straight piece of a line between two points.

@@ -42,8 +42,11 @@
 
 mod bin;
 mod clip;
+mod cut;
 mod setup;
 mod tile;
+mod viewport;
+mod visibility;
 
 use std::ops::{Add, Mul};
 
@@ -57,76 +60,17 @@ use clip::{Planes, Verdict};
 use setup::{Screen, ScreenVertex, TriangleSetup};
 use tile::Scratch;
 
+pub use cut::Cut;
 pub use setup::{MAX_VIEWPORT_SIDE, SUBPIXEL_BITS};
+pub use viewport::Viewport;
+pub use visibility::{Hit, VisibilityBuffer};
+
+use cut::Kept;
 
 /// A vertex in homogeneous clip space (after the projection matrix): x, y in [−w, w] are on
 /// screen, depth z in [0, w] (near plane z = 0, far plane z = w; glam's `Mat4::perspective_rh` /
 /// `orthographic_rh` conventions), w > 0 in front of the camera.
 pub type ClipVertex = Vec4;
-
-/// The pixel grid rendered to. Pixel (0, 0) is the top-left; NDC y = +1 is the top row.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Viewport {
-    pub width: u32,
-    pub height: u32,
-}
-
-/// Per pixel (row-major, top row first): the nearest triangle and where on it the pixel centre
-/// lies.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct VisibilityBuffer {
-    pub width: u32,
-    pub height: u32,
-    /// NDC depth z/w in [0, 1] of the nearest surface, `f32::INFINITY` where empty.
-    pub depth: Vec<f32>,
-    /// Index into the input triangle list, `u32::MAX` where empty.
-    pub triangle: Vec<u32>,
-    /// Perspective-correct `(b1, b2)` of the pixel centre relative to the original triangle's
-    /// vertices 1 and 2 (`b0 = 1 − b1 − b2`), also after clipping; `[0, 0]` where empty.
-    pub barycentric: Vec<[f32; 2]>,
-}
-
-/// What one pixel of a [`VisibilityBuffer`] holds when a triangle covers it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hit {
-    pub triangle: u32,
-    pub barycentric: [f32; 2],
-    pub depth: f32,
-}
-
-impl VisibilityBuffer {
-    /// Sizes the buffer for `viewport`. The tiles write every pixel they own, so a buffer of
-    /// that size is left as it is; one of another size is replaced by an empty one, filled in
-    /// parallel.
-    fn resize(&mut self, viewport: Viewport) {
-        let pixels = viewport.width as usize * viewport.height as usize;
-        (self.width, self.height) = (viewport.width, viewport.height);
-        if self.triangle.len() != pixels {
-            self.depth = filled(pixels, f32::INFINITY);
-            self.triangle = filled(pixels, u32::MAX);
-            self.barycentric = filled(pixels, [0.0; 2]);
-        }
-    }
-
-    /// The triangle covering pixel `(x, y)`, or `None` where empty or outside the buffer.
-    #[must_use]
-    pub fn hit(&self, x: u32, y: u32) -> Option<Hit> {
-        if x >= self.width || y >= self.height {
-            return None;
-        }
-        let i = y as usize * self.width as usize + x as usize;
-        (self.triangle[i] != u32::MAX).then(|| Hit {
-            triangle: self.triangle[i],
-            barycentric: self.barycentric[i],
-            depth: self.depth[i],
-        })
-    }
-}
-
-/// `len` copies of `value`, written in parallel.
-fn filled<T: Copy + Send + Sync>(len: usize, value: T) -> Vec<T> {
-    (0..len).into_par_iter().map(|_| value).collect()
-}
 
 /// How to run [`rasterize`]. The output does not depend on either setting.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -201,22 +145,6 @@ where
 {
     a0 * (1.0 - b[0] - b[1]) + a1 * b[0] + a2 * b[1]
 }
-
-/// Which parts of the triangles are drawn, when not all are: the samples a trimmed patch's trim
-/// cuts away are not, so that what is behind them shows.
-pub trait Cut: Sync {
-    /// Where triangle `triangle` lies: wholly drawn, wholly cut away (never set up), or to be
-    /// asked sample by sample ([`Cut::keeps`]).
-    fn region(&self, triangle: u32) -> Region;
-
-    /// Whether the sample at the perspective-correct barycentrics `b` of triangle `triangle`
-    /// (one whose region is [`Region::Both`]) is drawn.
-    fn keeps(&self, triangle: u32, b: [f32; 2]) -> bool;
-}
-
-/// What a call draws of its triangles: what the cut keeps of them, in each row `y` over the
-/// pixels `rows[y].0 .. rows[y].1` ([`Rasterizer::rasterize_rows_into`]).
-pub(super) type Kept<'a> = (Option<&'a dyn Cut>, Option<&'a [(u32, u32)]>);
 
 /// Triangles set up per parallel job; the output does not depend on it.
 const CHUNK_TRIANGLES: usize = 1024;
@@ -371,7 +299,7 @@ impl Rasterizer {
             .par_iter()
             .map(|p| Vertex::new(*p, &planes, &screen))
             .collect_into_vec(&mut self.vertices);
-        let scene = Scene {
+        let input = SetupInput {
             positions,
             vertices: &self.vertices,
             planes,
@@ -386,7 +314,7 @@ impl Rasterizer {
             .zip(triangles.par_chunks(CHUNK_TRIANGLES))
             .enumerate()
             .for_each(|(i, (chunk, run))| {
-                chunk.set_up(&scene, &grid, run, (i * CHUNK_TRIANGLES) as u32);
+                chunk.set_up(&input, &grid, run, (i * CHUNK_TRIANGLES) as u32);
             });
 
         let chunks = &self.chunks;
@@ -450,7 +378,7 @@ impl Vertex {
 }
 
 /// What setting up a triangle needs to know about the frame.
-struct Scene<'a> {
+struct SetupInput<'a> {
     positions: &'a [ClipVertex],
     vertices: &'a [Vertex],
     planes: Planes,
@@ -469,21 +397,27 @@ struct Chunk {
 impl Chunk {
     /// Sets up `triangles`, the first of which has index `first`, and bins them, replacing what
     /// the chunk held.
-    fn set_up(&mut self, scene: &Scene<'_>, grid: &TileGrid, triangles: &[[u32; 3]], first: u32) {
+    fn set_up(
+        &mut self,
+        input: &SetupInput<'_>,
+        grid: &TileGrid,
+        triangles: &[[u32; 3]],
+        first: u32,
+    ) {
         self.setups.clear();
         self.stats = RasterStats {
             triangles_in: triangles.len(),
             ..RasterStats::default()
         };
         for (index, corners) in (first..).zip(triangles) {
-            scene.set_up(index, corners, &mut self.setups, &mut self.stats);
+            input.set_up(index, corners, &mut self.setups, &mut self.stats);
         }
         self.stats.triangles_rasterized = self.setups.len();
         self.bins.fill(grid, &self.setups);
     }
 }
 
-impl Scene<'_> {
+impl SetupInput<'_> {
     /// Culls, clips and sets up triangle `index` with vertex indices `corners`, appending what
     /// is left of it to `out` and counting the outcome in `stats`.
     fn set_up(

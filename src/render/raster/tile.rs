@@ -2,8 +2,9 @@
 //! one resolve per pixel that writes the winner's index, depth and barycentrics.
 
 use super::bin::TileGrid;
+use super::cut::Kept;
 use super::setup::{PixelRect, TriangleSetup};
-use super::{Kept, VisibilityBuffer};
+use super::visibility::VisibilityBuffer;
 
 /// The pixels of one tile in the frame buffers, as one slice per pixel row.
 pub(super) struct TileTarget<'a> {

@@ -6,24 +6,24 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU8, Ordering};
 
 use super::band_edge::{band_clear_of_box, JUMP};
-use super::edge_width::signed_values_of;
-use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
+use super::edge_width::{signed_values_of, SignedValues};
 use super::highlight_edge::{highlights_clear_of_box, SMOOTH_BEND};
-use super::neighbourhood::around;
-use super::renderer::{premultiplied, straight};
-use super::scene::{Scene, Tone};
-use super::seeded::{away_from_borders, uv_slopes};
-use super::settings::FrameMode;
-use super::shade::Shaded;
-use super::supersample::landed_depth;
 use crate::geom::PatchLibrary;
 use crate::math::{BoxQuadratic, LevelCrossing};
+use crate::render::colour::{premultiplied, straight};
+use crate::render::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
+use crate::render::neighbourhood::around;
+use crate::render::probe::landed_depth;
+use crate::render::probe::{away_from_borders, uv_slopes};
+use crate::render::scene::{Scene, Tone};
+use crate::render::settings::FrameMode;
+use crate::render::shade::Shaded;
 
 /// What the trim edges of a frame draw at one sample.
 #[derive(Clone, Debug, Default)]
-pub(super) struct TrimEdges {
+pub(in crate::render) struct TrimEdges {
     /// Per pixel of the image, whether it lies about a trim's rim and its colour is right as
-    /// drawn at one sample ([`trim_edges`]).
+    /// drawn at one sample ([`find_trim_edges`]).
     pub drawn: Vec<bool>,
     /// The pixels among them a rim crosses.
     pub crossed: Vec<Crossed>,
@@ -35,7 +35,7 @@ pub(super) struct TrimEdges {
 
 /// A pixel a trim's rim crosses, drawn from one sample on each side of it.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Crossed {
+pub(in crate::render) struct Crossed {
     pub pixel: u32,
     /// The fraction of the box the trimmed patch keeps.
     pub cover: f32,
@@ -50,7 +50,7 @@ pub(super) struct Crossed {
 
 /// A candidate drawn right: where the rim crosses it, what its cut part shows at the centre
 /// (`None` inside: the background), and the trimmed patch's samples at its nine centres.
-type Judged = (Option<Option<Texel>>, [usize; 9]);
+type DrawnCandidate = (Option<Option<Texel>>, [usize; 9]);
 
 /// A pixel whose 3 × 3 neighbourhood shows two things: the trimmed patch `front`, and `other`
 /// (a patch behind it, or [`EMPTY`] for the background).
@@ -98,7 +98,7 @@ struct Candidate {
 /// drawn right too where each of their rims, carried to its box
 /// ([`BoxQuadratic::moved_to`]), stays on the cut side over it.
 #[must_use]
-pub(super) fn trim_edges(
+pub(in crate::render) fn find_trim_edges(
     gbuffer: &GBuffer,
     scene: &Scene,
     view_projection: Mat4,
@@ -109,19 +109,56 @@ pub(super) fn trim_edges(
     if !library.patches.iter().any(|p| p.trim.is_some()) || w < 3 || h < 3 {
         return None;
     }
-    // What pixel `n` shows: its patch, or EMPTY.
-    let thing = |n: usize| {
-        let slot = gbuffer.slot[n];
-        if slot == EMPTY {
-            EMPTY
-        } else {
-            gbuffer.texels[slot as usize].patch
-        }
+    let candidates = candidates(gbuffer, scene, drawn);
+    let mut edges = TrimEdges {
+        drawn: vec![false; w * h],
+        judged: candidates.len() as u64,
+        ..TrimEdges::default()
     };
-    // A candidate's nine show its trimmed patch P beside another thing, so some texel of P
-    // among them has the other thing in its own nine: its neighbourhood is not all on its
-    // patch, and it is not drawn right. The candidates lie within the 3 × 3 neighbourhoods of
-    // such texels, and are tried in pixel order.
+    if candidates.is_empty() {
+        return Some(edges);
+    }
+    let mut asked = Asked::of(&candidates, (w, h));
+    asked.by_patch(library.patches.len());
+    let mut samples = Samples::start(gbuffer, library, &asked.wanted);
+    let outline = ended_by_outline(gbuffer, &candidates, &asked, &samples);
+    let view = (scene, view_projection);
+    edges.frames = samples.seek_off_patch(gbuffer, view, (&candidates, &outline), &asked);
+    let signed = signed_values_of(&samples.probes, scene);
+    let judged = (candidates.as_slice(), outline.as_slice(), &asked, &signed);
+    let crossings = judge(gbuffer, scene, judged, &samples, &mut edges.drawn);
+    settle_crossings(
+        gbuffer,
+        view,
+        &crossings,
+        (&mut samples, &signed),
+        &mut edges,
+    );
+    draw_beside_crossed(gbuffer, &mut edges);
+    Some(edges)
+}
+
+/// What pixel `n` of `gbuffer` shows: its patch, or [`EMPTY`].
+#[must_use]
+fn patch_shown(gbuffer: &GBuffer, n: usize) -> u32 {
+    let slot = gbuffer.slot[n];
+    if slot == EMPTY {
+        EMPTY
+    } else {
+        gbuffer.texels[slot as usize].patch
+    }
+}
+
+/// The candidates ([`candidate`]) among the pixels of `gbuffer` not yet `drawn` right (per
+/// texel).
+///
+/// A candidate's nine show its trimmed patch P beside another thing, so some texel of P
+/// among them has the other thing in its own nine: its neighbourhood is not all on its
+/// patch, and it is not drawn right. The candidates lie within the 3 × 3 neighbourhoods of
+/// such texels, and are tried in pixel order.
+fn candidates(gbuffer: &GBuffer, scene: &Scene, drawn: &[bool]) -> Vec<Candidate> {
+    let library = scene.library;
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     let beside_other: Vec<u32> = drawn
         .par_iter()
         .enumerate()
@@ -130,7 +167,7 @@ pub(super) fn trim_edges(
         .filter(|t| {
             trimmed(scene, t.patch)
                 && cel(scene, t.patch)
-                && around(t.pixel as usize, (w, h)).any(|n| thing(n) != t.patch)
+                && around(t.pixel as usize, (w, h)).any(|n| patch_shown(gbuffer, n) != t.patch)
         })
         .map(|t| t.pixel)
         .collect();
@@ -159,177 +196,275 @@ pub(super) fn trim_edges(
             is_away
         }
     };
-    let candidates: Vec<Candidate> = nearby
+    nearby
         .par_iter()
-        .filter_map(|&p| candidate(gbuffer, &thing, scene, drawn, &away_from_sides, p as usize))
-        .collect();
-    let mut edges = TrimEdges {
-        drawn: vec![false; w * h],
-        judged: candidates.len() as u64,
-        ..TrimEdges::default()
-    };
-    if candidates.is_empty() {
-        return Some(edges);
-    }
+        .filter_map(|&p| candidate(gbuffer, scene, drawn, &away_from_sides, p as usize))
+        .collect()
+}
 
-    // The samples: each surface a candidate needs at each of its nine centres, once. Per
-    // pixel, 1 + the index of its entry in `asked` (0 for none: the pages of an image of
-    // zeros not written to are never touched), which holds up to two (surface, sample) pairs.
-    let mut asked_at = vec![0u32; w * h];
-    let mut asked: Vec<[(u32, u32); 2]> = Vec::new();
-    let mut wanted: Vec<(usize, u32, usize)> = Vec::new();
-    for candidate in &candidates {
-        for n in around(candidate.pixel as usize, (w, h)) {
-            for surface in [candidate.front, candidate.other] {
-                if surface == EMPTY {
-                    continue;
-                }
-                if asked_at[n] == 0 {
-                    asked.push([(EMPTY, EMPTY); 2]);
-                    asked_at[n] = asked.len() as u32;
-                }
-                let entry = &mut asked[asked_at[n] as usize - 1];
-                if entry.iter().any(|e| e.0 == surface) {
-                    continue;
-                }
-                // A third surface asked of one pixel is not sampled: its candidate fails.
-                if let Some(free) = entry.iter_mut().find(|e| e.0 == EMPTY) {
-                    *free = (surface, wanted.len() as u32);
-                    wanted.push((n, surface, candidate.pixel as usize));
+/// The samples the candidates ask for, each surface at each pixel once.
+struct Asked {
+    /// Per pixel, 1 + the index of its entry in `entries` (0 for none).
+    at: Vec<u32>,
+    /// Up to two (surface, sample) pairs a pixel, ([`EMPTY`], [`EMPTY`]) for none.
+    entries: Vec<[(u32, u32); 2]>,
+    /// Per sample: its pixel, its surface, and the candidate that asked for it.
+    wanted: Vec<(usize, u32, usize)>,
+}
+
+impl Asked {
+    /// The samples: each surface a candidate needs at each of its nine centres, once. Per
+    /// pixel, 1 + the index of its entry in `asked` (0 for none: the pages of an image of
+    /// zeros not written to are never touched), which holds up to two (surface, sample) pairs.
+    fn of(candidates: &[Candidate], (w, h): (usize, usize)) -> Self {
+        let mut asked_at = vec![0u32; w * h];
+        let mut asked: Vec<[(u32, u32); 2]> = Vec::new();
+        let mut wanted: Vec<(usize, u32, usize)> = Vec::new();
+        for candidate in candidates {
+            for n in around(candidate.pixel as usize, (w, h)) {
+                for surface in [candidate.front, candidate.other] {
+                    if surface == EMPTY {
+                        continue;
+                    }
+                    if asked_at[n] == 0 {
+                        asked.push([(EMPTY, EMPTY); 2]);
+                        asked_at[n] = asked.len() as u32;
+                    }
+                    let entry = &mut asked[asked_at[n] as usize - 1];
+                    if entry.iter().any(|e| e.0 == surface) {
+                        continue;
+                    }
+                    // A third surface asked of one pixel is not sampled: its candidate fails.
+                    if let Some(free) = entry.iter_mut().find(|e| e.0 == EMPTY) {
+                        *free = (surface, wanted.len() as u32);
+                        wanted.push((n, surface, candidate.pixel as usize));
+                    }
                 }
             }
         }
-    }
-    // The samples patch by patch, each patch's in the order asked: as asked, the two surfaces
-    // of a pixel alternate, and the probes and signed values below, taken a run of one patch
-    // at a time, would find runs of one. Each patch's run starts after the runs of those
-    // before it (a counting sort).
-    let mut next = vec![0u32; library.patches.len()];
-    for &(_, surface, _) in &wanted {
-        next[surface as usize] += 1;
-    }
-    let mut first = 0;
-    for count in &mut next {
-        (*count, first) = (first, first + *count);
-    }
-    let mut renumbered = vec![0u32; wanted.len()];
-    for (at, &(_, surface, _)) in renumbered.iter_mut().zip(&wanted) {
-        *at = next[surface as usize];
-        next[surface as usize] += 1;
-    }
-    for entry in asked.iter_mut().flatten().filter(|e| e.0 != EMPTY) {
-        entry.1 = renumbered[entry.1 as usize];
-    }
-    let mut by_patch = vec![(0, 0, 0); wanted.len()];
-    for (&at, &sample) in renumbered.iter().zip(&wanted) {
-        by_patch[at as usize] = sample;
-    }
-    let wanted = by_patch;
-    // A centre that shows the surface is its own sample; another is the surface found on the
-    // centre's ray from the surface's nearest texel (a probe).
-    let started: Vec<Option<(Texel, f64, bool)>> = wanted
-        .par_iter()
-        .map(|&(n, surface, pixel)| start(gbuffer, library, pixel, n, surface))
-        .collect();
-    let mut probes: Vec<Texel> = Vec::with_capacity(started.len());
-    let mut uv_reach: Vec<f64> = Vec::with_capacity(started.len());
-    let mut landed: Vec<bool> = Vec::with_capacity(started.len());
-    let mut foreign: Vec<u32> = Vec::new();
-    for (k, start) in started.into_iter().enumerate() {
-        // Without a start (not reached: a candidate's surfaces are seen about it) the
-        // sample is missing, as one whose ray misses its surface.
-        let (texel, reach, own, found) = match start {
-            Some((texel, reach, own)) => (texel, reach, own, true),
-            None => (UNFILLED, 0.0, true, false),
-        };
-        if !own {
-            foreign.push(k as u32);
+        Self {
+            at: asked_at,
+            entries: asked,
+            wanted,
         }
-        probes.push(texel);
-        uv_reach.push(reach);
-        landed.push(own && found);
     }
-    let foreign: Vec<usize> = foreign.into_iter().map(|k| k as usize).collect();
-    // Per probe, its trim's signed distance and the reach it was sought within.
-    let trim_of = |t: &Texel, uv_reach: f64| {
-        let Some(trim) = &library.patches[t.patch as usize].trim else {
-            return Some((f64::INFINITY, f64::INFINITY));
-        };
-        // Without a reach (no slope of (u, v) to take it from) the rim cannot be placed.
-        let reach = TRIM_REACH * uv_reach;
-        if reach.is_nan() || reach <= 0.0 {
-            return None;
+
+    /// The samples patch by patch, each patch's in the order asked: as asked, the two surfaces
+    /// of a pixel alternate, and the probes and signed values below, taken a run of one patch
+    /// at a time, would find runs of one. Each patch's run starts after the runs of those
+    /// before it (a counting sort) among the `patches`.
+    fn by_patch(&mut self, patches: usize) {
+        let wanted = &self.wanted;
+        let mut next = vec![0u32; patches];
+        for &(_, surface, _) in wanted {
+            next[surface as usize] += 1;
         }
-        let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
-        Some((trim.try_signed_distance(u, v, reach)?, reach))
-    };
-    // The sample asked of `surface` at pixel `n`, and (`find`) the same where it landed.
-    let entry = |n: usize, surface: u32| {
-        let entry = asked.get((asked_at[n] as usize).checked_sub(1)?)?;
+        let mut first = 0;
+        for count in &mut next {
+            (*count, first) = (first, first + *count);
+        }
+        let mut renumbered = vec![0u32; wanted.len()];
+        for (at, &(_, surface, _)) in renumbered.iter_mut().zip(wanted) {
+            *at = next[surface as usize];
+            next[surface as usize] += 1;
+        }
+        for entry in self.entries.iter_mut().flatten().filter(|e| e.0 != EMPTY) {
+            entry.1 = renumbered[entry.1 as usize];
+        }
+        let mut by_patch = vec![(0, 0, 0); wanted.len()];
+        for (&at, &sample) in renumbered.iter().zip(wanted) {
+            by_patch[at as usize] = sample;
+        }
+        self.wanted = by_patch;
+    }
+
+    /// The sample asked of `surface` at pixel `n`.
+    fn entry(&self, n: usize, surface: u32) -> Option<usize> {
+        let entry = self.entries.get((self.at[n] as usize).checked_sub(1)?)?;
         entry.iter().find(|e| e.0 == surface).map(|e| e.1 as usize)
-    };
-    // The own samples' trims now; those off the patch once they are on their rays.
-    let mut off_patch = vec![false; probes.len()];
-    for &k in &foreign {
-        off_patch[k] = true;
     }
-    let mut trim: Vec<Option<(f64, f64)>> = probes
-        .par_iter()
-        .zip(&uv_reach)
-        .zip(&off_patch)
-        .map(|((t, &uv_reach), &off)| if off { None } else { trim_of(t, uv_reach) })
-        .collect();
-    // A candidate against the background where the trimmed patch keeps, at each of its own
-    // texels about the pixel, more than the rim's reach (four pixels): the rim cannot reach
-    // the background's centres, a pixel or so away, and what ends the patch there is its
-    // outline. The judgement would fail; its samples off the patch are not sought.
-    let outline: Vec<bool> = candidates
+}
+
+/// The samples asked for, as probes, with their trims.
+struct Samples {
+    probes: Vec<Texel>,
+    /// Per probe, the reach of (u, v) over a pixel there ([`start`]).
+    uv_reach: Vec<f64>,
+    /// Per probe, whether it is on its pixel's ray: its pixel's own texel, or a probe found
+    /// there.
+    landed: Vec<bool>,
+    /// The probes started off their pixel's own texel, to be moved onto their rays.
+    foreign: Vec<usize>,
+    /// Per probe, its trim's signed distance and the reach it was sought within.
+    trim: Vec<Option<(f64, f64)>>,
+}
+
+impl Samples {
+    /// A centre that shows the surface is its own sample; another is the surface found on the
+    /// centre's ray from the surface's nearest texel (a probe). The own samples' trims now;
+    /// those off the patch once they are on their rays.
+    fn start(gbuffer: &GBuffer, library: &PatchLibrary, wanted: &[(usize, u32, usize)]) -> Self {
+        let started: Vec<Option<(Texel, f64, bool)>> = wanted
+            .par_iter()
+            .map(|&(n, surface, pixel)| start(gbuffer, library, pixel, n, surface))
+            .collect();
+        let mut probes: Vec<Texel> = Vec::with_capacity(started.len());
+        let mut uv_reach: Vec<f64> = Vec::with_capacity(started.len());
+        let mut landed: Vec<bool> = Vec::with_capacity(started.len());
+        let mut foreign: Vec<u32> = Vec::new();
+        for (k, start) in started.into_iter().enumerate() {
+            // Without a start (not reached: a candidate's surfaces are seen about it) the
+            // sample is missing, as one whose ray misses its surface.
+            let (texel, reach, own, found) = match start {
+                Some((texel, reach, own)) => (texel, reach, own, true),
+                None => (UNFILLED, 0.0, true, false),
+            };
+            if !own {
+                foreign.push(k as u32);
+            }
+            probes.push(texel);
+            uv_reach.push(reach);
+            landed.push(own && found);
+        }
+        let foreign: Vec<usize> = foreign.into_iter().map(|k| k as usize).collect();
+        let mut off_patch = vec![false; probes.len()];
+        for &k in &foreign {
+            off_patch[k] = true;
+        }
+        let trim: Vec<Option<(f64, f64)>> = probes
+            .par_iter()
+            .zip(&uv_reach)
+            .zip(&off_patch)
+            .map(|((t, &uv_reach), &off)| {
+                if off {
+                    None
+                } else {
+                    trim_at(library, t, uv_reach)
+                }
+            })
+            .collect();
+        Self {
+            probes,
+            uv_reach,
+            landed,
+            foreign,
+            trim,
+        }
+    }
+
+    /// The sample asked of `surface` at pixel `n` where it landed on its ray.
+    fn find(&self, asked: &Asked, n: usize, surface: u32) -> Option<usize> {
+        asked.entry(n, surface).filter(|&k| self.landed[k])
+    }
+
+    /// The probes off their pixel's own texel that the `candidates` not ended by their
+    /// `outline` ask for, moved onto their rays ([`onto_rays`]) and their trims taken there;
+    /// the others are not sought, and are left out of `foreign`. Returns the frames evaluated.
+    fn seek_off_patch(
+        &mut self,
+        gbuffer: &GBuffer,
+        (scene, view_projection): (&Scene, Mat4),
+        (candidates, outline): (&[Candidate], &[bool]),
+        asked: &Asked,
+    ) -> u64 {
+        let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+        let mut sought = vec![false; self.probes.len()];
+        for (c, _) in candidates.iter().zip(outline).filter(|(_, &o)| !o) {
+            for n in around(c.pixel as usize, (w, h)) {
+                for surface in [c.front, c.other] {
+                    if let Some(k) = asked.entry(n, surface).filter(|_| surface != EMPTY) {
+                        sought[k] = true;
+                    }
+                }
+            }
+        }
+        let foreign: Vec<usize> = std::mem::take(&mut self.foreign)
+            .into_iter()
+            .filter(|&k| sought[k])
+            .collect();
+        let (found, frames) =
+            onto_rays(gbuffer, scene, view_projection, &mut self.probes, &foreign);
+        for (&k, found) in foreign.iter().zip(found) {
+            self.landed[k] = found;
+        }
+        let library = scene.library;
+        let found_trims: Vec<Option<(f64, f64)>> = foreign
+            .par_iter()
+            .map(|&k| trim_at(library, &self.probes[k], self.uv_reach[k]))
+            .collect();
+        for (&k, value) in foreign.iter().zip(found_trims) {
+            self.trim[k] = value;
+        }
+        self.foreign = foreign;
+        frames
+    }
+}
+
+/// Per probe `t`, its trim's signed distance and the reach it was sought within: `TRIM_REACH`
+/// times `uv_reach`, the reach of (u, v) over a pixel there.
+#[must_use]
+fn trim_at(library: &PatchLibrary, t: &Texel, uv_reach: f64) -> Option<(f64, f64)> {
+    let Some(trim) = &library.patches[t.patch as usize].trim else {
+        return Some((f64::INFINITY, f64::INFINITY));
+    };
+    // Without a reach (no slope of (u, v) to take it from) the rim cannot be placed.
+    let reach = TRIM_REACH * uv_reach;
+    if reach.is_nan() || reach <= 0.0 {
+        return None;
+    }
+    let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
+    Some((trim.try_signed_distance(u, v, reach)?, reach))
+}
+
+/// Per candidate, whether its outline ends it: a candidate against the background where the
+/// trimmed patch keeps, at each of its own texels about the pixel, more than the rim's reach
+/// (four pixels): the rim cannot reach the background's centres, a pixel or so away, and what
+/// ends the patch there is its outline. The judgement would fail; its samples off the patch
+/// are not sought.
+fn ended_by_outline(
+    gbuffer: &GBuffer,
+    candidates: &[Candidate],
+    asked: &Asked,
+    samples: &Samples,
+) -> Vec<bool> {
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    candidates
         .par_iter()
         .map(|c| {
             c.other == EMPTY
                 && around(c.pixel as usize, (w, h)).all(|n| {
-                    if thing(n) != c.front {
+                    if patch_shown(gbuffer, n) != c.front {
                         return true;
                     }
-                    let Some(k) = entry(n, c.front) else {
+                    let Some(k) = asked.entry(n, c.front) else {
                         return false;
                     };
-                    matches!(trim[k], Some((d, reach)) if d >= reach)
+                    matches!(samples.trim[k], Some((d, reach)) if d >= reach)
                 })
         })
-        .collect();
-    let mut sought = vec![false; probes.len()];
-    for (c, _) in candidates.iter().zip(&outline).filter(|(_, &o)| !o) {
-        for n in around(c.pixel as usize, (w, h)) {
-            for surface in [c.front, c.other] {
-                if let Some(k) = entry(n, surface).filter(|_| surface != EMPTY) {
-                    sought[k] = true;
-                }
-            }
-        }
-    }
-    let foreign: Vec<usize> = foreign.into_iter().filter(|&k| sought[k]).collect();
-    let onto_rays = |probes: &mut [Texel], which: &[usize]| -> (Vec<bool>, u64) {
-        onto_rays(gbuffer, scene, view_projection, probes, which)
-    };
-    let (found, frames) = onto_rays(&mut probes, &foreign);
-    edges.frames = frames;
-    for (&k, found) in foreign.iter().zip(found) {
-        landed[k] = found;
-    }
-    let found_trims: Vec<Option<(f64, f64)>> = foreign
-        .par_iter()
-        .map(|&k| trim_of(&probes[k], uv_reach[k]))
-        .collect();
-    for (&k, value) in foreign.iter().zip(found_trims) {
-        trim[k] = value;
-    }
-    let signed = signed_values_of(&probes, scene);
-    let find = |n: usize, surface: u32| entry(n, surface).filter(|&k| landed[k]);
+        .collect()
+}
 
-    let judged: Vec<Option<Judged>> = candidates
+/// A pixel the rim crosses: the pixel, what its cut part shows at the centre (`None`: the
+/// background), and the trimmed patch's samples at its nine centres.
+type Crossing = (u32, Option<Texel>, [usize; 9]);
+
+/// Judges each of the `candidates` not ended by their `outline` ([`find_trim_edges`]) and
+/// marks those drawn right in `drawn` (per pixel); the pixels the rim crosses: (pixel, what
+/// lies beyond, the trimmed patch's samples).
+fn judge(
+    gbuffer: &GBuffer,
+    scene: &Scene,
+    (candidates, outline, asked, signed): (&[Candidate], &[bool], &Asked, &SignedValues),
+    samples: &Samples,
+    drawn: &mut [bool],
+) -> Vec<Crossing> {
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
+    let probes = &samples.probes;
+    let find = |n: usize, surface: u32| samples.find(asked, n, surface);
+    let judged: Vec<Option<DrawnCandidate>> = candidates
         .par_iter()
-        .zip(&outline)
+        .zip(outline)
         .map(|(candidate, &outline)| {
             if outline {
                 return None;
@@ -340,9 +475,9 @@ pub(super) fn trim_edges(
                 *slot = find(n, candidate.front)?;
             }
             let surface = |probes_of: &[usize; 9]| Surface {
-                probes: &probes,
-                signed: &signed,
-                trim: &trim,
+                probes,
+                signed,
+                trim: &samples.trim,
                 indices: *probes_of,
             };
             let front_surface = surface(&front);
@@ -351,7 +486,7 @@ pub(super) fn trim_edges(
             // it does not, or either within `RIM_SLACK` of the rim.
             for (k, n) in around(pixel, (w, h)).enumerate() {
                 let (distance, reach) = front_surface.trim_value(k)?;
-                let seen = thing(n);
+                let seen = patch_shown(gbuffer, n);
                 let on_rim = distance.abs() * TRIM_REACH < RIM_SLACK * reach;
                 let expected = if distance > 0.0 {
                     candidate.front
@@ -388,52 +523,72 @@ pub(super) fn trim_edges(
             Some((crossing, front))
         })
         .collect();
-    // The pixels the rim crosses: (pixel, what lies beyond, the trimmed patch's samples).
     let mut crossings = Vec::new();
     for (candidate, judged) in candidates.iter().zip(judged) {
         if let Some((crossing, front)) = judged {
-            edges.drawn[candidate.pixel as usize] = true;
+            drawn[candidate.pixel as usize] = true;
             if let Some(beyond) = crossing {
                 crossings.push((candidate.pixel, beyond, front));
             }
         }
     }
+    crossings
+}
 
-    // Where the rim crosses a pixel, the trimmed patch's own texels about it are found again
-    // on their rays (the G-buffer's may be interpolated from the mesh, a few hundredths of a
-    // pixel off), and the cover taken again from them.
-    let mut settle = vec![false; probes.len()];
+/// Where the rim crosses a pixel, the trimmed patch's own texels about it are found again
+/// on their rays (the G-buffer's may be interpolated from the mesh, a few hundredths of a
+/// pixel off), and the cover taken again from them: each of the `crossings` that keeps a
+/// crossing rim is one of `edges.crossed`, the others are not drawn right.
+fn settle_crossings(
+    gbuffer: &GBuffer,
+    (scene, view_projection): (&Scene, Mat4),
+    crossings: &[Crossing],
+    (samples, signed): (&mut Samples, &SignedValues),
+    edges: &mut TrimEdges,
+) {
+    let mut settle = vec![false; samples.probes.len()];
     for &k in crossings.iter().flat_map(|(_, _, front)| front) {
         settle[k] = true;
     }
-    for &k in &foreign {
+    for &k in &samples.foreign {
         settle[k] = false;
     }
-    let settled: Vec<usize> = (0..probes.len()).filter(|&k| settle[k]).collect();
-    let (found, frames) = onto_rays(&mut probes, &settled);
+    let settled: Vec<usize> = (0..samples.probes.len()).filter(|&k| settle[k]).collect();
+    let (found, frames) = onto_rays(
+        gbuffer,
+        scene,
+        view_projection,
+        &mut samples.probes,
+        &settled,
+    );
     edges.frames += frames;
+    let library = scene.library;
     let settled_trims: Vec<Option<(f64, f64)>> = settled
         .par_iter()
         .zip(found)
-        .map(|(&k, found)| found.then(|| trim_of(&probes[k], uv_reach[k])).flatten())
+        .map(|(&k, found)| {
+            found
+                .then(|| trim_at(library, &samples.probes[k], samples.uv_reach[k]))
+                .flatten()
+        })
         .collect();
     for (&k, value) in settled.iter().zip(settled_trims) {
-        trim[k] = value;
+        samples.trim[k] = value;
     }
     let crossed: Vec<Option<Crossed>> = crossings
         .par_iter()
         .map(|&(pixel, beyond, front)| {
             let surface = Surface {
-                probes: &probes,
-                signed: &signed,
-                trim: &trim,
+                probes: &samples.probes,
+                signed,
+                trim: &samples.trim,
                 indices: front,
             };
             match surface.kept_cover_and_rim() {
                 Some((cover, Some(rim))) => Some(Crossed {
                     pixel,
                     cover,
-                    kept: probes[front[4]],
+                    kept: samples.probes[front[4]],
                     beyond,
                     rim,
                 }),
@@ -447,10 +602,14 @@ pub(super) fn trim_edges(
             None => edges.drawn[pixel as usize] = false,
         }
     }
+}
 
-    // An uncovered pixel whose nine are all uncovered, beside pixels the rim crosses, shows
-    // the background when each of their rims, carried over to its box, stays cut over it: per
-    // crossed pixel, the neighbours it tries and whether its rim stays cut over each.
+/// An uncovered pixel whose nine are all uncovered, beside pixels the rim crosses, shows
+/// the background when each of their rims, carried over to its box, stays cut over it: per
+/// crossed pixel, the neighbours it tries and whether its rim stays cut over each. Those every
+/// crossed pixel beside them draws right are drawn right.
+fn draw_beside_crossed(gbuffer: &GBuffer, edges: &mut TrimEdges) {
+    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
     let tried: Vec<(u32, bool)> = edges
         .crossed
         .par_iter()
@@ -464,7 +623,7 @@ pub(super) fn trim_edges(
                     x > 0 && y > 0 && x + 1 < w && y + 1 < h && !edges.drawn[n]
                 })
                 .map(move |n| {
-                    let empty = around(n, (w, h)).all(|m| thing(m) == EMPTY);
+                    let empty = around(n, (w, h)).all(|m| patch_shown(gbuffer, m) == EMPTY);
                     let d = |a: usize, b: usize| a as f32 - b as f32;
                     let moved = crossed.rim.moved_to(d(n % w, c % w), d(n / w, c / w));
                     let cut = moved.centre + moved.reach() < 0.0;
@@ -481,16 +640,14 @@ pub(super) fn trim_edges(
     for (drawn, &b) in edges.drawn.iter_mut().zip(&beside) {
         *drawn |= b == 1;
     }
-    Some(edges)
 }
 
-/// The pixel `pixel`'s candidacy ([`trim_edges`]): not drawn right yet, inside the image by a
+/// The pixel `pixel`'s candidacy ([`find_trim_edges`]): not drawn right yet, inside the image by a
 /// pixel, its nine showing a trimmed patch with a cel tone and one other thing, the
 /// background or a patch with a cel tone whose texels all lie behind the trimmed patch's, and
 /// the trimmed patch's texels there away from its domain's sides (`away_from_sides`, per slot).
 fn candidate(
     gbuffer: &GBuffer,
-    thing: &impl Fn(usize) -> u32,
     scene: &Scene,
     drawn: &[bool],
     away_from_sides: &impl Fn(u32) -> bool,
@@ -505,10 +662,10 @@ fn candidate(
         return None;
     }
     // The two things seen (what the pixel shows, and another), before their depths.
-    let own = thing(pixel);
+    let own = patch_shown(gbuffer, pixel);
     let mut other = None;
     for n in around(pixel, (w, h)) {
-        let seen = thing(n);
+        let seen = patch_shown(gbuffer, n);
         if seen == own || other == Some(seen) {
             continue;
         }
@@ -547,8 +704,8 @@ fn candidate(
         return None;
     }
     // Beside the side of its domain, a patch ends there, not at its trim.
-    let inside =
-        around(pixel, (w, h)).all(|n| thing(n) != front || away_from_sides(gbuffer.slot[n]));
+    let inside = around(pixel, (w, h))
+        .all(|n| patch_shown(gbuffer, n) != front || away_from_sides(gbuffer.slot[n]));
     inside.then_some(Candidate {
         pixel: pixel as u32,
         front,
@@ -659,7 +816,7 @@ fn start(
 /// One surface at the nine centres about a pixel: its probes, by index.
 struct Surface<'a> {
     probes: &'a [Texel],
-    signed: &'a super::edge_width::SignedValues<'a>,
+    signed: &'a SignedValues<'a>,
     /// Per probe, its trim's signed distance and the reach it was sought within.
     trim: &'a [Option<(f64, f64)>],
     indices: [usize; 9],
@@ -752,7 +909,7 @@ impl Surface<'_> {
 const TRIM_REACH: f64 = 4.0;
 
 /// How near the rim, in pixels (as the box's reach in (u, v) measures them), a centre may show
-/// either side of it ([`trim_edges`]). The rasterizer tests the trim at the (u, v) the mesh's
+/// either side of it ([`find_trim_edges`]). The rasterizer tests the trim at the (u, v) the mesh's
 /// triangles interpolate, and a centre the exact trim keeps just inside the rim may show the
 /// other thing: over five frames of the speaker at 1280 × 720 under `final`, 602 of the 606
 /// centres that did lay within 0.1 pixels of the rim (the other 4 beyond 0.3), and on the car
@@ -763,9 +920,9 @@ const RIM_SLACK: f64 = 0.125;
 
 /// Draws the pixels of `edges` a rim crosses in `shaded`: the premultiplied mix
 /// `cover · kept + (1 − cover) · beyond` of the colours (and the matte and `N·H`) of the two
-/// samples at the pixel's centre, shaded as `shade` shades ([`trim_edges`]); nothing beyond is
+/// samples at the pixel's centre, shaded as `shade` shades ([`find_trim_edges`]); nothing beyond is
 /// the background, transparent.
-pub(super) fn composite(
+pub(in crate::render) fn composite(
     edges: &TrimEdges,
     shade: impl FnOnce(&GBuffer) -> Shaded,
     shaded: &mut Shaded,

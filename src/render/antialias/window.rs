@@ -3,7 +3,7 @@
 
 use glam::{Mat4, Vec4};
 
-use super::raster::Viewport;
+use crate::render::raster::Viewport;
 
 /// The pixels `[x, x + width) × [y, y + height)` of an image `full` pixels in size.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

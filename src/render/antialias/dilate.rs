@@ -3,7 +3,7 @@
 /// Sets every flag of the `width × height` grid `flags` within `radius` (in x and in y: a
 /// square) of one that is set, in time linear in the grid: a sliding count along each row, then
 /// one down the columns, a row at a time. `rows` is scratch.
-pub(super) fn dilate(
+pub(in crate::render) fn dilate(
     flags: &mut [bool],
     (width, height): (usize, usize),
     radius: usize,

@@ -4,8 +4,8 @@
 use glam::Vec4;
 use rayon::prelude::*;
 
-use super::gbuffer::EMPTY;
-use super::renderer::premultiplied;
+use crate::render::colour::premultiplied;
+use crate::render::gbuffer::EMPTY;
 
 /// Which pixels of an image the one-sample pass drew right: per pixel the slot of its texel
 /// ([`EMPTY`] for none), per texel whether its pixel was drawn right, and per pixel whether it

@@ -3,24 +3,24 @@
 
 use glam::Mat4;
 
-use super::gbuffer::{Evaluate, GBuffer, Texel};
-use super::scene::Scene;
-use super::settings::FrameMode;
+use crate::render::gbuffer::{Evaluate, GBuffer, Texel};
+use crate::render::scene::Scene;
+use crate::render::settings::FrameMode;
 
 /// Copies of some texels of a G-buffer, by slot, with frames better than the G-buffer's.
 #[derive(Clone, Debug, Default)]
-pub(super) struct Settled {
+pub(in crate::render) struct SettledTexels {
     /// The texels' slots in the G-buffer, increasing.
     slots: Vec<u32>,
     texels: Vec<Texel>,
 }
 
-impl Settled {
+impl SettledTexels {
     /// The texels of `gbuffer` that `picked` marks (per slot), their frames evaluated in `mode`
     /// ([`GBuffer::evaluate_frames`]), and the frames evaluated. A pixel an edge crosses at one
     /// sample takes its colour from where the edge is, which an interpolated frame misplaces by
     /// a small part of a pixel.
-    pub(super) fn evaluate(
+    pub(in crate::render) fn evaluate(
         gbuffer: &GBuffer,
         scene: &Scene,
         view_projection: Mat4,
@@ -46,7 +46,7 @@ impl Settled {
 
     /// The settled copy of the texel in slot `slot`, if it was settled.
     #[must_use]
-    pub(super) fn get(&self, slot: usize) -> Option<&Texel> {
+    pub(in crate::render) fn get(&self, slot: usize) -> Option<&Texel> {
         let slot = u32::try_from(slot).ok()?;
         self.slots
             .binary_search(&slot)
@@ -55,7 +55,7 @@ impl Settled {
     }
 
     /// The settled texels with their slots, in slot order.
-    pub(super) fn iter(&self) -> impl Iterator<Item = (usize, &Texel)> {
+    pub(in crate::render) fn iter(&self) -> impl Iterator<Item = (usize, &Texel)> {
         self.slots.iter().map(|&k| k as usize).zip(&self.texels)
     }
 }

@@ -1,28 +1,30 @@
-//! [`Stage::Supersample`](super::Stage::Supersample): the pixels of a one-sample frame that more
-//! samples could change, drawn again at K × K samples a tile at a time and averaged into it.
+//! [`Stage::Supersample`](crate::render::Stage::Supersample): the pixels of a one-sample frame
+//! that more samples could change, drawn again at K × K samples a tile at a time and averaged
+//! into it.
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{Mat4, Vec4};
 use rayon::prelude::*;
 
 use super::contrast::{pixels_to_supersample, DrawnRight};
 use super::dilate::dilate;
-use super::gbuffer::{Evaluate, GBuffer, EMPTY};
-use super::lines::LineImage;
 use super::near_border::NearBorder;
-use super::neighbourhood::around;
 use super::open_side::{beside_open_sides, open_sides};
-use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
-use super::renderer::{premultiplied, straight};
-use super::scene::Scene;
-use super::seeded::{self, Seeded};
-use super::settings::FrameMode;
-use super::shade::{shade, Edges, ShadeBuffers, Shaded};
-use super::tessellate::Mesh;
-use super::trim_cut::{MeshCut, Renumbered};
+use super::resolved::Resolved;
+use super::seeded::{self, SeedInput};
 use super::window::Window;
-use super::xtoon_tone::{self, Views};
 use crate::geom::PatchLibrary;
 use crate::highlight::Footprint;
+use crate::render::gbuffer::{Evaluate, GBuffer, EMPTY};
+use crate::render::lines::LineImage;
+use crate::render::neighbourhood::around;
+use crate::render::probe::landed_depth;
+use crate::render::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
+use crate::render::scene::Scene;
+use crate::render::settings::FrameMode;
+use crate::render::shade::{shade, Edges, ShadeBuffers, Shaded};
+use crate::render::tessellate::Mesh;
+use crate::render::trim_cut::{MeshCut, Renumbered};
+use crate::render::xtoon_tone::{self, Views};
 
 /// Side of a tile in output pixels. A tile's samples, with its apron, are all a worker holds:
 /// at 8 × 8 samples, 128 × 128 samples plus the apron. The marked pixels lie along edges, so
@@ -32,7 +34,7 @@ use crate::highlight::Footprint;
 pub const TILE: u32 = 16;
 
 /// What the stage needs of the frame.
-pub(super) struct Frame<'a> {
+pub(in crate::render) struct SupersampleInput<'a> {
     pub library: &'a PatchLibrary,
     pub scene: &'a Scene<'a>,
     pub mesh: &'a Mesh,
@@ -69,7 +71,7 @@ pub(super) struct Frame<'a> {
 
 /// What the stage did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(super) struct Done {
+pub(in crate::render) struct Done {
     /// Pixels drawn again at K × K samples.
     pub pixels: u64,
     /// NURBS frames evaluated for their samples (and the tiles' aprons); 0 with interpolated
@@ -77,65 +79,8 @@ pub(super) struct Done {
     pub frames: u64,
 }
 
-/// One pixel's average over its samples.
-pub(super) struct Resolved {
-    pub pixel: u32,
-    pub colour: Vec4,
-    pub matte: f32,
-    pub n_dot_h: f32,
-}
-
-impl Resolved {
-    /// Pixel `pixel` as the mean of `samples`, indices into `shaded`'s images: premultiplied
-    /// colour `α = mean(α_s)`, `rgb = mean(α_s rgb_s)/α`, and the mean matte and `N·H` (0
-    /// where `shaded` has none).
-    pub(super) fn average(
-        pixel: u32,
-        shaded: &Shaded,
-        samples: impl ExactSizeIterator<Item = usize>,
-    ) -> Self {
-        let weight = 1.0 / samples.len() as f32;
-        let (mut colour, mut matte, mut n_dot_h) = (Vec4::ZERO, 0.0, 0.0);
-        for s in samples {
-            colour += premultiplied(shaded.colour[s]);
-            matte += shaded.matte.as_ref().map_or(0.0, |m| m[s]);
-            n_dot_h += shaded.n_dot_h.as_ref().map_or(0.0, |n| n[s]);
-        }
-        Self {
-            pixel,
-            colour: straight(colour * weight),
-            matte: matte * weight,
-            n_dot_h: n_dot_h * weight,
-        }
-    }
-}
-
-/// The depth at which `point` lands on sample `sample` of a `width × height` grid of samples
-/// seen through `to_screen`: its NDC depth when it projects within [`HIT_SAMPLES`] of the
-/// sample's centre (its ray meets the surface there), `None` otherwise or when not finite.
-pub(super) fn landed_depth(
-    to_screen: Mat4,
-    point: Vec3,
-    sample: u32,
-    (width, height): (u32, u32),
-) -> Option<f32> {
-    let p = to_screen * point.extend(1.0);
-    let (x, y) = (
-        (p.x / p.w + 1.0) * 0.5 * width as f32,
-        (1.0 - p.y / p.w) * 0.5 * height as f32,
-    );
-    let centre = ((sample % width) as f32 + 0.5, (sample / width) as f32 + 0.5);
-    let depth = p.z / p.w;
-    // Written so that a point that is not finite is no hit.
-    (p.w > 0.0
-        && (x - centre.0).abs() <= HIT_SAMPLES
-        && (y - centre.1).abs() <= HIT_SAMPLES
-        && depth.is_finite())
-    .then_some(depth)
-}
-
-/// Draws again, at `frame.k × frame.k` samples, each pixel of `shaded` (a one-sample image of
-/// `frame.image`'s size) whose colour or matte differs from a neighbour's, or that a highlight
+/// Draws again, at `input.k × input.k` samples, each pixel of `shaded` (a one-sample image of
+/// `input.image`'s size) whose colour or matte differs from a neighbour's, or that a highlight
 /// edge may cross unseen ([`pixels_to_supersample`]), or where two patches end side by side
 /// ([`beside_open_sides`]), and puts there the average of its samples: premultiplied colour
 /// `α = mean(α_s)`, `rgb = mean(α_s rgb_s)/α`, and the mean matte and `N·H`.
@@ -149,22 +94,22 @@ pub(super) fn landed_depth(
 /// over the span of its samples that belong to marked pixels or lie within the apron of them,
 /// and only those samples are kept: their G-buffer, detail, edge widths and shading are those of
 /// the whole supersampled image at those samples. Memory is one tile per worker.
-pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
-    let (w, h) = (frame.image.width, frame.image.height);
-    let gbuffer = frame.gbuffer;
-    let drawn = frame.drawn.map(|texels| DrawnRight {
+pub(in crate::render) fn supersample(input: &SupersampleInput, shaded: &mut Shaded) -> Done {
+    let (w, h) = (input.image.width, input.image.height);
+    let gbuffer = input.gbuffer;
+    let drawn = input.drawn.map(|texels| DrawnRight {
         slot: &gbuffer.slot,
         texels,
-        pixels: frame.drawn_pixels,
+        pixels: input.drawn_pixels,
     });
     // Where patches end side by side, a gap between them may be thinner than a pixel.
-    let open = open_sides(frame.mesh, frame.library);
+    let open = open_sides(input.mesh, input.library);
     let beside_open = open
         .iter()
         .flatten()
         .any(|&o| o)
-        .then(|| beside_open_sides(gbuffer, frame.library, &open, frame.drawn));
-    let also = match (frame.straddles, beside_open) {
+        .then(|| beside_open_sides(gbuffer, input.library, &open, input.drawn));
+    let also = match (input.straddles, beside_open) {
         (Some(straddles), Some(mut beside)) => {
             for (b, &s) in beside.iter_mut().zip(straddles) {
                 *b |= s;
@@ -177,12 +122,12 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     let mut marked = pixels_to_supersample(
         &shaded.colour,
         shaded.matte.as_deref(),
-        also.as_deref().or(frame.straddles),
+        also.as_deref().or(input.straddles),
         drawn,
         w,
         h,
     );
-    if let (Some(lines), None, None) = (frame.lines, &shaded.matte, &shaded.n_dot_h) {
+    if let (Some(lines), None, None) = (input.lines, &shaded.matte, &shaded.n_dot_h) {
         for (p, m) in marked.iter_mut().enumerate().filter(|(_, m)| **m) {
             *m = !lines.hides(p);
         }
@@ -191,20 +136,20 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
     if pixels == 0 {
         return Done::default();
     }
-    let views = xtoon_tone::views(frame.scene);
-    let (mut marked, seeded) = split_seeded(frame, marked);
+    let views = xtoon_tone::views(input.scene);
+    let (mut marked, seeded) = split_seeded(input, marked);
 
     let (mut resolved, mut frames) = if seeded.is_empty() {
         (Vec::new(), 0)
     } else {
-        let input = Seeded {
-            library: frame.library,
-            scene: frame.scene,
-            view_projection: frame.view_projection,
-            gbuffer: frame.gbuffer,
-            footprints: frame.footprints,
-            image: frame.image,
-            k: frame.k,
+        let input = SeedInput {
+            library: input.library,
+            scene: input.scene,
+            view_projection: input.view_projection,
+            gbuffer: input.gbuffer,
+            footprints: input.footprints,
+            image: input.image,
+            k: input.k,
         };
         let drawn = seeded::draw(&input, &views, &seeded, &mut seeded::Buffers::default());
         for &p in &drawn.failed {
@@ -218,7 +163,7 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
         let (x, y) = (i as u32 % w, i as u32 / w);
         tile_marked[((y / TILE) * tiles_x + x / TILE) as usize] = true;
     }
-    let bins = bin_triangles(frame, &tile_marked, (tiles_x, tiles_y), APRON);
+    let bins = bin_triangles(input, &tile_marked, (tiles_x, tiles_y), APRON);
     let tiles: Vec<(u32, &Vec<u32>)> = (0..tiles_x * tiles_y)
         .zip(&bins)
         .filter(|&(t, _)| tile_marked[t as usize])
@@ -227,7 +172,7 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
         .into_par_iter()
         .map_init(TileBuffers::default, |buffers, (t, bin)| {
             let (tx, ty) = (t % tiles_x, t / tiles_x);
-            buffers.draw(frame, &views, &marked, (tx, ty), APRON, bin)
+            buffers.draw(input, &views, &marked, (tx, ty), APRON, bin)
         })
         .collect();
     for (tile, tile_frames) in results {
@@ -252,21 +197,21 @@ pub(super) fn supersample(frame: &Frame, shaded: &mut Shaded) -> Done {
 /// frames are refined (it refines its samples' (u, v) from the points around them),
 /// nothing runs ahead of shading (the X-Toon detail reads a neighbourhood of samples), and its
 /// neighbourhood shows the surfaces to start from ([`seeded::seedable`]).
-fn split_seeded(frame: &Frame, mut marked: Vec<bool>) -> (Vec<bool>, Vec<u32>) {
-    let (w, h) = (frame.image.width as usize, frame.image.height as usize);
-    let samples = u64::from(frame.image.width * frame.k) * u64::from(frame.image.height * frame.k);
-    if frame.frames != FrameMode::Refined || frame.detail || samples > u64::from(u32::MAX) {
+fn split_seeded(input: &SupersampleInput, mut marked: Vec<bool>) -> (Vec<bool>, Vec<u32>) {
+    let (w, h) = (input.image.width as usize, input.image.height as usize);
+    let samples = u64::from(input.image.width * input.k) * u64::from(input.image.height * input.k);
+    if input.frames != FrameMode::Refined || input.detail || samples > u64::from(u32::MAX) {
         return (marked, Vec::new());
     }
     let near_border = NearBorder::new(
-        frame.mesh,
-        frame.clip,
-        frame.image,
+        input.mesh,
+        input.clip,
+        input.image,
         (seeded::BORDER_PIXELS, seeded::POLE_PIXELS),
     );
     let seeded: Vec<u32> = (0..w * h)
         .into_par_iter()
-        .filter(|&p| marked[p] && seeded::seedable(frame.gbuffer, frame.scene, &near_border, p))
+        .filter(|&p| marked[p] && seeded::seedable(input.gbuffer, input.scene, &near_border, p))
         .map(|p| p as u32)
         .collect();
     for &p in &seeded {
@@ -283,24 +228,24 @@ const APRON: u32 = 1;
 /// window (with `apron`), in mesh order; empty for the others. A triangle with a vertex at or
 /// behind the eye goes to every marked tile (the rasterizer clips it).
 fn bin_triangles(
-    frame: &Frame,
+    input: &SupersampleInput,
     marked: &[bool],
     (tiles_x, tiles_y): (u32, u32),
     apron: u32,
 ) -> Vec<Vec<u32>> {
-    let side = (TILE * frame.k) as f32;
+    let side = (TILE * input.k) as f32;
     let (sw, sh) = (
-        (frame.image.width * frame.k) as f32,
-        (frame.image.height * frame.k) as f32,
+        (input.image.width * input.k) as f32,
+        (input.image.height * input.k) as f32,
     );
     let a = apron as f32;
-    let ranges: Vec<Option<[u32; 4]>> = frame
+    let ranges: Vec<Option<[u32; 4]>> = input
         .mesh
         .triangles
         .par_iter()
         .with_min_len(4096)
         .map(|tri| {
-            let c = tri.map(|v| frame.clip.get(v as usize).copied().unwrap_or(Vec4::NAN));
+            let c = tri.map(|v| input.clip.get(v as usize).copied().unwrap_or(Vec4::NAN));
             if c.iter().any(|c| !c.is_finite()) {
                 return None;
             }
@@ -365,10 +310,6 @@ struct TileBuffers {
 /// Rings of samples grown outward from the mesh's coverage under refined frames.
 const GROWN_RINGS: usize = 2;
 
-/// How far, in samples, a grown sample's refined surface point may project from the sample's
-/// centre and still count as a hit.
-const HIT_SAMPLES: f32 = 0.05;
-
 /// Covers, [`GROWN_RINGS`] times, each drawn empty sample beside a covered one with that
 /// neighbour's triangle and barycentrics, and marks it in `grown` (one flag per sample).
 ///
@@ -404,8 +345,9 @@ fn grow(visibility: &mut VisibilityBuffer, drawn: &[bool], grown: &mut Vec<bool>
 impl TileBuffers {
     /// Per texel, whether to keep it: every texel the mesh covers, and a grown one whose
     /// refined surface point projects (through `to_screen`, the window's view-projection) within
-    /// [`HIT_SAMPLES`] of its sample's centre — its ray hits the surface — on a part of its patch
-    /// the patch's trim keeps, and whose depth is then set from that point.
+    /// [`HIT_SAMPLES`](crate::render::probe::HIT_SAMPLES) of its sample's centre — its ray hits
+    /// the surface — on a part of its patch the patch's trim keeps, and whose depth is then set
+    /// from that point.
     fn grown_hits(&mut self, to_screen: Mat4, width: u32, library: &PatchLibrary) -> Vec<bool> {
         let size = (width, self.gbuffer.height);
         self.gbuffer
@@ -433,14 +375,14 @@ impl TileBuffers {
     /// and the NURBS frames evaluated.
     fn draw(
         &mut self,
-        frame: &Frame,
+        input: &SupersampleInput,
         views: &Views,
         marked: &[bool],
         (tx, ty): (u32, u32),
         apron: u32,
         bin: &[u32],
     ) -> (Vec<Resolved>, u64) {
-        let (k, image) = (frame.k, frame.image);
+        let (k, image) = (input.k, input.image);
         let full = Viewport {
             width: image.width * k,
             height: image.height * k,
@@ -468,7 +410,7 @@ impl TileBuffers {
         let to_window = window.clip_from_image();
 
         // The tile's own vertex list: the bin's vertices, sorted, in the window's clip space.
-        let mesh = frame.mesh;
+        let mesh = input.mesh;
         self.vertices.clear();
         self.vertices
             .extend(bin.iter().flat_map(|&t| mesh.triangles[t as usize]));
@@ -478,7 +420,7 @@ impl TileBuffers {
         self.clip.extend(
             self.vertices
                 .iter()
-                .map(|&v| to_window * frame.clip[v as usize]),
+                .map(|&v| to_window * input.clip[v as usize]),
         );
         let local = |v: u32| self.vertices.binary_search(&v).unwrap_or(0) as u32;
         self.triangles.clear();
@@ -488,7 +430,7 @@ impl TileBuffers {
             threads: 0,
             ..RasterOptions::default()
         };
-        let mesh_cut = MeshCut::of(mesh, frame.library);
+        let mesh_cut = MeshCut::of(mesh, input.library);
         let cut = mesh_cut.as_ref().map(|cut| Renumbered {
             cut,
             triangles: bin,
@@ -536,7 +478,7 @@ impl TileBuffers {
                 *t = if drawn { bin[*t as usize] } else { EMPTY };
             }
         }
-        if frame.frames == FrameMode::Refined {
+        if input.frames == FrameMode::Refined {
             grow(&mut self.visibility, &self.drawn, &mut self.grown);
             for (e, _) in self
                 .evaluate
@@ -550,29 +492,29 @@ impl TileBuffers {
             self.grown.clear();
         }
 
-        let scene = frame.scene;
+        let scene = input.scene;
         let frames = self.gbuffer.fill(
             &self.visibility,
             mesh,
-            frame.library,
+            input.library,
             &scene.camera,
-            to_window * frame.view_projection,
-            frame.frames,
+            to_window * input.view_projection,
+            input.frames,
             Some(&self.evaluate),
         );
         if !self.grown.is_empty() {
-            let to_screen = to_window * frame.view_projection;
-            let keep = self.grown_hits(to_screen, window.width, frame.library);
+            let to_screen = to_window * input.view_projection;
+            let keep = self.grown_hits(to_screen, window.width, input.library);
             self.gbuffer.retain(&keep);
         }
-        let ahead = frame
+        let detailed = input
             .detail
-            .then(|| xtoon_tone::run_ahead(&self.gbuffer, scene, views));
-        let gbuffer = ahead.as_ref().map_or(&self.gbuffer, |a| &a.gbuffer);
-        let widths = frame
+            .then(|| xtoon_tone::detail(&self.gbuffer, scene, views));
+        let gbuffer = detailed.as_ref().map_or(&self.gbuffer, |a| &a.gbuffer);
+        let widths = input
             .widths
-            .then(|| super::edge_width::edge_widths(gbuffer, scene).footprints);
-        let tones = ahead.as_ref().map(|a| a.tones.as_slice());
+            .then(|| crate::render::edges::edge_width::edge_widths(gbuffer, scene).footprints);
+        let tones = detailed.as_ref().map(|a| a.tones.as_slice());
         let samples = shade(
             gbuffer,
             scene,

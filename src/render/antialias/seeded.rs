@@ -4,17 +4,18 @@
 use glam::{Mat4, Vec2};
 use rayon::prelude::*;
 
-use super::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
 use super::near_border::NearBorder;
-use super::neighbourhood::around;
-use super::raster::Viewport;
-use super::scene::Scene;
-use super::settings::FrameMode;
-use super::shade::{shade, Edges, ShadeBuffers};
-use super::supersample::{landed_depth, Resolved};
-use super::xtoon_tone::Views;
-use crate::geom::{Edge, PatchLibrary};
+use super::resolved::Resolved;
+use crate::geom::PatchLibrary;
 use crate::highlight::Footprint;
+use crate::render::gbuffer::{Evaluate, GBuffer, Texel, EMPTY, UNFILLED};
+use crate::render::neighbourhood::around;
+use crate::render::probe::{landed_depth, uv_slopes};
+use crate::render::raster::Viewport;
+use crate::render::scene::Scene;
+use crate::render::settings::FrameMode;
+use crate::render::shade::{shade, Edges, ShadeBuffers};
+use crate::render::xtoon_tone::Views;
 
 /// Pixels drawn together: the samples of one batch, and their candidates, are all the memory
 /// the path holds (about 2 MB at 4 × 4 samples).
@@ -26,7 +27,7 @@ const BATCH_PIXELS: usize = 1024;
 const FOLD: f32 = 0.05;
 
 /// What the path needs of the frame.
-pub(super) struct Seeded<'a> {
+pub(in crate::render) struct SeedInput<'a> {
     pub library: &'a PatchLibrary,
     pub scene: &'a Scene<'a>,
     pub view_projection: Mat4,
@@ -66,7 +67,7 @@ pub(super) struct Seeded<'a> {
 /// the tiles (soft IoU 0.99946 and 0.99965 against the analytic shapes either way), at the cost
 /// of a sample's fraction of a pixel where a patch seen edge-on would continue a trim edge.
 #[must_use]
-pub(super) fn seedable(
+pub(in crate::render) fn seedable(
     gbuffer: &GBuffer,
     scene: &Scene,
     near_border: &NearBorder,
@@ -99,92 +100,14 @@ pub(super) fn seedable(
 
 /// How far from a silhouette pixel's centre, in pixels on screen, the side of a patch's domain
 /// must pass for the silhouette to be drawn from the surfaces around it ([`seedable`]).
-pub(super) const BORDER_PIXELS: f32 = 3.0;
+pub(in crate::render) const BORDER_PIXELS: f32 = 3.0;
 
 /// How far from a silhouette pixel's centre, in pixels on screen, a collapsed side (a pole)
 /// must lie for the silhouette to be drawn from the surfaces around it. (u, v) turns about a
 /// pole, and a start moved from a texel by its slope can miss every sample the surface covers:
 /// on the sphere at 256 × 256 with its pole at the top of its outline, the half-covered pixels
 /// 4 to 5 pixels beside the pole came out empty.
-pub(super) const POLE_PIXELS: f32 = 12.0;
-
-/// How far inside its patch's domain, in pixels by the slope of its (u, v), a texel must lie
-/// to be [`away_from_borders`].
-const INSIDE_PIXELS: f32 = 3.0;
-
-/// Whether texel `slot` lies [`INSIDE_PIXELS`] or more inside its patch's domain, measured by
-/// the slope of its (u, v) ([`uv_slopes`]); not when it has no slope along x or y (no neighbour
-/// on its patch there).
-pub(super) fn away_from_borders(gbuffer: &GBuffer, library: &PatchLibrary, slot: u32) -> bool {
-    sides_within(gbuffer, library, slot, INSIDE_PIXELS).is_some_and(|near| !near.contains(&true))
-}
-
-/// Per side of its patch's domain ([`Edge::ALL`] order), whether texel `slot` lies within
-/// `pixels` of it, measured by the slope of its (u, v) ([`uv_slopes`]): not `u − r_u > u₀` for
-/// the side `u = u₀`, with `r = (|∂(u, v)/∂x| + |∂(u, v)/∂y|) · pixels`. `None` where it has no
-/// slope along x or y (no neighbour on its patch there).
-#[must_use]
-pub(super) fn sides_within(
-    gbuffer: &GBuffer,
-    library: &PatchLibrary,
-    slot: u32,
-    pixels: f32,
-) -> Option<[bool; 4]> {
-    let t = &gbuffer.texels[slot as usize];
-    let (Some(along_x), Some(along_y)) = uv_slopes(gbuffer, slot) else {
-        return None;
-    };
-    let reach = (along_x.abs() + along_y.abs()) * pixels;
-    let domain = library.patches[t.patch as usize].surface.domain();
-    let (u, v) = (f64::from(t.uv.x), f64::from(t.uv.y));
-    let (ru, rv) = (f64::from(reach.x), f64::from(reach.y));
-    // Not inside by the reach is within it: a (u, v) that is not a number is near every side.
-    Some(Edge::ALL.map(|side| {
-        let inside = match side {
-            Edge::UMin => u - ru > domain.u.0,
-            Edge::UMax => u + ru < domain.u.1,
-            Edge::VMin => v - rv > domain.v.0,
-            Edge::VMax => v + rv < domain.v.1,
-        };
-        !inside
-    }))
-}
-
-/// The change of (u, v) per pixel at texel `slot`, along x and along y: the central (or
-/// one-sided) differences to its neighbours on its patch; `None` along an axis where no
-/// neighbour is on the patch or (u, v) jumps (a seam of a closed surface). A sample started
-/// from the texel's (u, v) moved by them to the sample's offset takes Newton a step or two
-/// fewer.
-pub(super) fn uv_slopes(gbuffer: &GBuffer, slot: u32) -> (Option<Vec2>, Option<Vec2>) {
-    let t = &gbuffer.texels[slot as usize];
-    let (w, h) = (gbuffer.width as usize, gbuffer.height as usize);
-    let i = t.pixel as usize;
-    let (x, y) = (i % w, i / w);
-    let uv_at = |pixel: Option<usize>| {
-        let n = gbuffer.texel(pixel?)?;
-        (n.patch == t.patch && (n.uv - t.uv).abs().max_element() < SEAM).then_some(n.uv)
-    };
-    let slope = |before: Option<Vec2>, after: Option<Vec2>| match (before, after) {
-        (Some(b), Some(a)) => Some((a - b) * 0.5),
-        (Some(b), None) => Some(t.uv - b),
-        (None, Some(a)) => Some(a - t.uv),
-        (None, None) => None,
-    };
-    (
-        slope(
-            uv_at((x > 0).then(|| i - 1)),
-            uv_at((x + 1 < w).then(|| i + 1)),
-        ),
-        slope(
-            uv_at((y > 0).then(|| i - w)),
-            uv_at((y + 1 < h).then(|| i + w)),
-        ),
-    )
-}
-
-/// The most (u, v) may change between neighbouring pixels and still be taken for a slope rather
-/// than a seam.
-const SEAM: f32 = 0.25;
+pub(in crate::render) const POLE_PIXELS: f32 = 12.0;
 
 /// Whether every pixel of the 3 × 3 neighbourhood of `pixel` (inside the image) is covered.
 fn covered_around(gbuffer: &GBuffer, pixel: u32) -> bool {
@@ -265,12 +188,12 @@ impl Seeds {
     /// seed nearest the sample, its (u, v) moved by the seed's slopes to the sample's offset.
     fn fill(
         &self,
-        frame: &Seeded,
+        input: &SeedInput,
         (j, pixel): (usize, u32),
         candidates: &mut [Candidate],
         texels: &mut [Texel],
     ) {
-        let (k, w) = (frame.k, frame.image.width);
+        let (k, w) = (input.k, input.image.width);
         let full_width = w * k;
         let (px, py) = (pixel % w, pixel / w);
         let mut out = candidates.iter_mut().zip(texels.iter_mut());
@@ -300,8 +223,8 @@ impl Seeds {
                     return;
                 };
                 let seed = &self.seeds[i];
-                let t = frame.gbuffer.texels[seed.slot as usize];
-                let domain = frame.library.patches[t.patch as usize].surface.domain();
+                let t = input.gbuffer.texels[seed.slot as usize];
+                let domain = input.library.patches[t.patch as usize].surface.domain();
                 let offset = centre - seed.centre;
                 let uv = t.uv + (seed.slopes.0 * offset.x + seed.slopes.1 * offset.y);
                 *candidate = Candidate {
@@ -324,7 +247,7 @@ impl Seeds {
 
 /// The memory of the seeded path, kept from one batch to the next.
 #[derive(Default)]
-pub(super) struct Buffers {
+pub(in crate::render) struct Buffers {
     shading: ShadeBuffers,
     seeds: Vec<Seeds>,
     candidates: Vec<Candidate>,
@@ -336,7 +259,7 @@ pub(super) struct Buffers {
     footprints: Vec<Footprint>,
 }
 
-/// Draws each of `pixels` at `frame.k × frame.k` samples and returns their averages, the pixels
+/// Draws each of `pixels` at `input.k × input.k` samples and returns their averages, the pixels
 /// it could not draw, and the frames evaluated.
 ///
 /// Each sample is tried from each patch its pixel's 3 × 3 neighbourhood shows, starting from
@@ -349,7 +272,12 @@ pub(super) struct Buffers {
 /// The samples are shaded with their seed's footprint over the sample (a `k`-th of the
 /// pixel's), and a pixel takes the mean of its samples as the rasterized tiles do
 /// ([`Resolved::average`]).
-pub(super) fn draw(frame: &Seeded, views: &Views, pixels: &[u32], buffers: &mut Buffers) -> Drawn {
+pub(in crate::render) fn draw(
+    input: &SeedInput,
+    views: &Views,
+    pixels: &[u32],
+    buffers: &mut Buffers,
+) -> Drawn {
     let mut drawn = Drawn {
         resolved: Vec::with_capacity(pixels.len()),
         failed: Vec::new(),
@@ -357,13 +285,13 @@ pub(super) fn draw(frame: &Seeded, views: &Views, pixels: &[u32], buffers: &mut 
     };
     for batch in pixels.chunks(BATCH_PIXELS) {
         let out = (&mut drawn.resolved, &mut drawn.failed);
-        drawn.frames += draw_batch(frame, views, batch, buffers, out);
+        drawn.frames += draw_batch(input, views, batch, buffers, out);
     }
     drawn
 }
 
 /// What [`draw`] did.
-pub(super) struct Drawn {
+pub(in crate::render) struct Drawn {
     /// The pixels drawn, averaged.
     pub resolved: Vec<Resolved>,
     /// The pixels inside a surface (their neighbourhood covered) some sample of which met no
@@ -375,13 +303,13 @@ pub(super) struct Drawn {
 }
 
 fn draw_batch(
-    frame: &Seeded,
+    input: &SeedInput,
     views: &Views,
     pixels: &[u32],
     buffers: &mut Buffers,
     (resolved, failed): (&mut Vec<Resolved>, &mut Vec<u32>),
 ) -> u64 {
-    let (k, image, gbuffer) = (frame.k, frame.image, frame.gbuffer);
+    let (k, image, gbuffer) = (input.k, input.image, input.gbuffer);
     let per_pixel = (k * k) as usize;
     let full = (image.width * k, image.height * k);
     let Buffers {
@@ -423,8 +351,8 @@ fn draw_batch(
         .zip(seeds.par_iter())
         .zip(pixels.par_iter())
         .enumerate()
-        .for_each(|(j, (((c, t), s), &pixel))| s.fill(frame, (j, pixel), c, t));
-    let mut frames = probe(frame, texels, full, Evaluate::QuickProbe);
+        .for_each(|(j, (((c, t), s), &pixel))| s.fill(input, (j, pixel), c, t));
+    let mut frames = probe(input, texels, full, Evaluate::QuickProbe);
 
     // Per sample, the nearest candidate that landed on its ray on a part of its patch the trim
     // keeps, pixel by pixel.
@@ -437,7 +365,7 @@ fn draw_batch(
         .for_each(|(j, (chosen, range))| {
             for index in range[0]..range[1] {
                 let t = &texels[index];
-                let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full)
+                let Some(depth) = landed_depth(input.view_projection, t.position, t.pixel, full)
                 else {
                     continue;
                 };
@@ -445,7 +373,7 @@ fn draw_batch(
                 if slot.is_some_and(|(nearest, _)| depth >= nearest) {
                     continue;
                 }
-                let patch = &frame.library.patches[t.patch as usize];
+                let patch = &input.library.patches[t.patch as usize];
                 // One that landed where the patch is trimmed away lets the sample see past it.
                 if patch.keeps(f64::from(t.uv.x), f64::from(t.uv.y)) {
                     *slot = Some((depth, index as u32));
@@ -453,7 +381,7 @@ fn draw_batch(
             }
         });
 
-    frames += retry_beside_landed(frame, pixels, candidates, texels, chosen);
+    frames += retry_beside_landed(input, pixels, candidates, texels, chosen);
 
     // The samples as a G-buffer k wide, one k × k block per pixel down it.
     samples.width = k;
@@ -473,7 +401,7 @@ fn draw_batch(
             ..texels[index as usize]
         });
         let seed = candidates[index as usize].seed as usize;
-        let footprint = frame.footprints.map_or(Footprint::HARD, |f| f[seed]);
+        let footprint = input.footprints.map_or(Footprint::HARD, |f| f[seed]);
         footprints.push(Footprint {
             x: footprint.x / k as f32,
             y: footprint.y / k as f32,
@@ -481,11 +409,11 @@ fn draw_batch(
     }
     let shaded = shade(
         samples,
-        frame.scene,
+        input.scene,
         views,
         None,
         Edges {
-            widths: frame.footprints.map(|_| footprints.as_slice()),
+            widths: input.footprints.map(|_| footprints.as_slice()),
             bands: None,
             highlights: None,
             settled: None,
@@ -512,18 +440,18 @@ fn draw_batch(
 /// would be taken for one it misses. The starts that land are appended to `candidates` and
 /// `texels` and chosen. Returns the frames evaluated.
 fn retry_beside_landed(
-    frame: &Seeded,
+    input: &SeedInput,
     pixels: &[u32],
     candidates: &mut Vec<Candidate>,
     texels: &mut Vec<Texel>,
     chosen: &mut [Option<(f32, u32)>],
 ) -> u64 {
-    let (k, w) = (frame.k, frame.image.width);
+    let (k, w) = (input.k, input.image.width);
     let per_pixel = (k * k) as usize;
-    let full = (w * k, frame.image.height * k);
+    let full = (w * k, input.image.height * k);
     let first = texels.len();
     for (j, &pixel) in pixels.iter().enumerate() {
-        if covered_around(frame.gbuffer, pixel) {
+        if covered_around(input.gbuffer, pixel) {
             continue;
         }
         let block = &chosen[j * per_pixel..(j + 1) * per_pixel];
@@ -560,13 +488,13 @@ fn retry_beside_landed(
     if texels.len() == first {
         return 0;
     }
-    let frames = probe(frame, &mut texels[first..], full, Evaluate::Probe);
+    let frames = probe(input, &mut texels[first..], full, Evaluate::Probe);
     for index in first..texels.len() {
         let t = &texels[index];
-        let Some(depth) = landed_depth(frame.view_projection, t.position, t.pixel, full) else {
+        let Some(depth) = landed_depth(input.view_projection, t.position, t.pixel, full) else {
             continue;
         };
-        let patch = &frame.library.patches[t.patch as usize];
+        let patch = &input.library.patches[t.patch as usize];
         if patch.keeps(f64::from(t.uv.x), f64::from(t.uv.y)) {
             chosen[candidates[index].sample as usize] = Some((depth, index as u32));
         }
@@ -577,12 +505,12 @@ fn retry_beside_landed(
 /// Refines each of `texels` onto the ray of its sample in the `full` grid of samples, as a
 /// probe of kind `evaluate` ([`GBuffer::evaluate_frames`] with refined frames); returns the
 /// frames evaluated.
-fn probe(frame: &Seeded, texels: &mut [Texel], full: (u32, u32), evaluate: Evaluate) -> u64 {
+fn probe(input: &SeedInput, texels: &mut [Texel], full: (u32, u32), evaluate: Evaluate) -> u64 {
     GBuffer::evaluate_frames(
         texels,
-        frame.library,
-        &frame.scene.camera,
-        frame.view_projection,
+        input.library,
+        &input.scene.camera,
+        input.view_projection,
         full,
         FrameMode::Refined,
         evaluate,

@@ -3,17 +3,17 @@
 
 use rayon::prelude::*;
 
-use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
-use super::neighbourhood::one_patch_around;
-use super::scene::{Scene, Tone};
-use super::settled::Settled;
+use super::settled::SettledTexels;
 use crate::highlight::Footprint;
 use crate::math::{BoxQuadratic, LevelCrossing};
+use crate::render::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use crate::render::neighbourhood::one_patch_around;
+use crate::render::scene::{Scene, Tone};
 use crate::toon::CelRamp;
 
 /// How a pixel's cel tone meets the edges of its ramp's bands.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum BandEdge {
+pub(in crate::render) enum BandEdge {
     /// Its box lies inside one patch and no band edge crosses it: its centre's colour is the
     /// box's.
     Clear,
@@ -42,19 +42,23 @@ impl BandEdge {
 /// The most of a pixel's area that a band edge drawn straight may misplace, by the bend of `n·l`
 /// over the box ([`classify`]): a third of the sixteenth of a pixel by which 4 × 4 samples place
 /// an edge.
-pub(super) const STRAIGHT_AREA: f32 = 0.02;
+pub(in crate::render) const STRAIGHT_AREA: f32 = 0.02;
 
 /// The most the slope of `n·l` may change along itself from one pixel to the next, against
 /// itself, for the quadratic to stand for `n·l` over the box: more is a jump, one part of a
 /// patch in front of another, or the surface turning away toward a silhouette.
-pub(super) const JUMP: f32 = 0.5;
+pub(in crate::render) const JUMP: f32 = 0.5;
 
 /// Per texel of `gbuffer`, how its cel tone's band edges meet its pixel ([`classify`] of `n·l`
 /// at the nine texels of its 3 × 3 neighbourhood), [`BandEdge::Hard`] where a neighbour is off
 /// the image, uncovered or on another patch ([`one_patch_around`], `patches` per texel), or
 /// the tone is not a cel ramp.
 #[must_use]
-pub(super) fn band_edges(gbuffer: &GBuffer, scene: &Scene, patches: &[u32]) -> Vec<BandEdge> {
+pub(in crate::render) fn band_edges(
+    gbuffer: &GBuffer,
+    scene: &Scene,
+    patches: &[u32],
+) -> Vec<BandEdge> {
     // Per texel its n·l, side by side: the neighbours are looked up by it, and the texels
     // themselves are large.
     let n_dot_l: Vec<f32> = gbuffer
@@ -88,7 +92,11 @@ pub(super) fn band_edges(gbuffer: &GBuffer, scene: &Scene, patches: &[u32]) -> V
 
 /// Puts in each [`BandEdge::Straight`] of `edges` (per texel) the `n·l` of its texel's settled
 /// frame, where `settled` has one.
-pub(super) fn settle_straight_edges(edges: &mut [BandEdge], settled: &Settled, scene: &Scene) {
+pub(in crate::render) fn settle_straight_edges(
+    edges: &mut [BandEdge],
+    settled: &SettledTexels,
+    scene: &Scene,
+) {
     for (slot, t) in settled.iter() {
         if let BandEdge::Straight { n_dot_l, .. } = &mut edges[slot] {
             let n = t.frame.n;
@@ -100,7 +108,7 @@ pub(super) fn settle_straight_edges(edges: &mut [BandEdge], settled: &Settled, s
 /// Whether no band edge of `ramp` reaches the box, from `n·l` at its 3 × 3 neighbourhood
 /// ([`classify`]).
 #[must_use]
-pub(super) fn band_clear_of_box(ramp: &CelRamp, d: &[[f32; 3]; 3]) -> bool {
+pub(in crate::render) fn band_clear_of_box(ramp: &CelRamp, d: &[[f32; 3]; 3]) -> bool {
     classify(ramp, d) == BandEdge::Clear
 }
 
@@ -147,20 +155,16 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
+    use crate::render::fixtures::nine;
 
     fn ramp() -> CelRamp {
         CelRamp::two_tone(Vec3::ZERO, Vec3::ONE, 0.1)
     }
 
-    /// `f` at the nine centres around the pixel.
-    fn around(f: impl Fn(f32, f32) -> f32) -> [[f32; 3]; 3] {
-        std::array::from_fn(|y| std::array::from_fn(|x| f(x as f32 - 1.0, y as f32 - 1.0)))
-    }
-
     #[test]
     fn a_straight_edge_across_the_box_is_drawn_with_its_slopes() {
         // n·l = 0.12 − 0.03 x + 0.01 y: the threshold 0.1 is 0.02 away, the box reaches 0.02.
-        let d = around(|x, y| 0.12 - 0.03 * x + 0.01 * y);
+        let d = nine(|x, y| 0.12 - 0.03 * x + 0.01 * y);
         match classify(&ramp(), &d) {
             BandEdge::Straight {
                 n_dot_l,
@@ -175,7 +179,7 @@ mod tests {
             other => panic!("{other:?}"),
         }
         // One pixel farther on, the box no longer reaches the edge.
-        let d = around(|x, y| 0.15 - 0.03 * x + 0.01 * y);
+        let d = nine(|x, y| 0.15 - 0.03 * x + 0.01 * y);
         assert_eq!(classify(&ramp(), &d), BandEdge::Clear);
     }
 
@@ -183,7 +187,7 @@ mod tests {
     fn a_bend_or_a_jump_over_the_box_is_hard() {
         // Curving along the slope, with the edge 0.4 px from the centre: the curve moves it by
         // c 0.4²/(2 · 0.01), 0.0032 of the pixel for c = 0.0004, 0.032 for c = 0.004.
-        let along = |c: f32| around(move |x, _| 0.096 + 0.01 * x + 0.5 * c * x * x);
+        let along = |c: f32| nine(move |x, _| 0.096 + 0.01 * x + 0.5 * c * x * x);
         assert!(matches!(
             classify(&ramp(), &along(0.0004)),
             BandEdge::Straight { .. }
@@ -191,17 +195,17 @@ mod tests {
         assert_eq!(classify(&ramp(), &along(0.004)), BandEdge::Hard);
         // Bending across the slope: on average c/(24 · 0.01) of the pixel, 0.004 for
         // c = 0.001, 0.033 for c = 0.008.
-        let across = |c: f32| around(move |x, y| 0.1 + 0.01 * y + 0.5 * c * x * x);
+        let across = |c: f32| nine(move |x, y| 0.1 + 0.01 * y + 0.5 * c * x * x);
         assert!(matches!(
             classify(&ramp(), &across(0.001)),
             BandEdge::Straight { .. }
         ));
         assert_eq!(classify(&ramp(), &across(0.008)), BandEdge::Hard);
         // One column lies on a part of the patch far behind: n·l jumps there.
-        let jump = around(|x, _| if x > 0.5 { 0.9 } else { 0.1 + 0.01 * x });
+        let jump = nine(|x, _| if x > 0.5 { 0.9 } else { 0.1 + 0.01 * x });
         assert_eq!(classify(&ramp(), &jump), BandEdge::Hard);
         // Not finite: hard.
-        let nan = around(|x, _| if x > 0.5 { f32::NAN } else { 0.1 });
+        let nan = nine(|x, _| if x > 0.5 { f32::NAN } else { 0.1 });
         assert_eq!(classify(&ramp(), &nan), BandEdge::Hard);
     }
 
@@ -209,7 +213,7 @@ mod tests {
     fn the_curved_reach_finds_an_edge_the_slopes_alone_miss() {
         // A saddle, flat along the centre row and column, that rises past the threshold toward
         // two corners of the box (0.05 + 0.3 · ¼ = 0.125 there): no slope, all bend.
-        let d = around(|x, y| 0.05 + 0.3 * x * y);
+        let d = nine(|x, y| 0.05 + 0.3 * x * y);
         assert!(d[1][1] < 0.1 && d[1][2] == d[1][0] && d[2][1] == d[0][1]);
         assert_eq!(classify(&ramp(), &d), BandEdge::Hard);
     }

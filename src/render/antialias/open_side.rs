@@ -3,11 +3,11 @@
 
 use rayon::prelude::*;
 
-use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
-use super::neighbourhood::around;
-use super::seeded::sides_within;
-use super::tessellate::Mesh;
 use crate::geom::{Edge, PatchLibrary};
+use crate::render::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
+use crate::render::neighbourhood::around;
+use crate::render::probe::sides_within;
+use crate::render::tessellate::Mesh;
 
 /// How near an open side of its patch's domain, in pixels by the slope of its (u, v), a texel
 /// beside another patch must lie for the pair's pixels to be drawn at k × k samples.
@@ -17,7 +17,7 @@ const OPEN_SIDE_PIXELS: f32 = 1.5;
 /// boundary in `mesh` that no other patch continues (the mesh's boundary pieces with nothing
 /// across).
 #[must_use]
-pub(super) fn open_sides(mesh: &Mesh, library: &PatchLibrary) -> Vec<[bool; 4]> {
+pub(in crate::render) fn open_sides(mesh: &Mesh, library: &PatchLibrary) -> Vec<[bool; 4]> {
     let mut open = vec![[false; 4]; library.patches.len()];
     for edge in mesh.borders.iter().filter(|e| e.across.is_none()) {
         let domain = library.patches[edge.patch as usize].surface.domain();
@@ -48,7 +48,7 @@ pub(super) fn open_sides(mesh: &Mesh, library: &PatchLibrary) -> Vec<[bool; 4]> 
 /// goes on. `drawn`, per texel when known, says which were drawn right at one sample: their
 /// neighbourhoods lie on their own patches, and they are passed over.
 #[must_use]
-pub(super) fn beside_open_sides(
+pub(in crate::render) fn beside_open_sides(
     gbuffer: &GBuffer,
     library: &PatchLibrary,
     open: &[[bool; 4]],

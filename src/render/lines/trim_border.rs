@@ -1,4 +1,4 @@
-//! Trim edges: where a trimmed patch's trim loops cut its surface, drawn as borders.
+//! Trim borders: where a trimmed patch's trim loops cut its surface, drawn as borders.
 
 use glam::{DVec2, DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use super::super::tessellate::Mesh;
 use super::contour::LONGEST_PIECE_PIXELS;
 use super::piece::Piece;
-use super::to_screen;
+use super::screen::to_screen;
 use crate::geom::{NurbsSurface, PatchLibrary};
 use crate::render::line_style::{LineKind, LineStyle};
 
@@ -21,7 +21,7 @@ const FLAT_PIXELS: f32 = 0.02;
 /// segment is cut evenly in (u, v). The pieces of a loop share their ends exactly, so they chain
 /// into one line.
 #[must_use]
-pub(crate) fn trim_edges(
+pub(crate) fn trim_borders(
     mesh: &Mesh,
     library: &PatchLibrary,
     view_projection: Mat4,

@@ -3,9 +3,9 @@
 
 use glam::{Vec2, Vec4};
 
-use super::raster::Viewport;
-use super::tessellate::Mesh;
 use crate::math::distance_to_segment_f32;
+use crate::render::raster::Viewport;
+use crate::render::tessellate::Mesh;
 
 /// Side of a cell of the grid the projected border pieces are binned in, in pixels.
 const CELL: f32 = 32.0;
@@ -20,7 +20,7 @@ const POINT_PIXELS: f32 = 1e-3;
 
 /// The sides of the patches' domains on screen: the mesh's border pieces projected, each
 /// binned in the cells of a [`CELL`]-pixel grid that lie within its reach of it.
-pub(super) struct NearBorder {
+pub(in crate::render) struct NearBorder {
     columns: usize,
     rows: usize,
     /// Per cell, the indices into `pieces` of those within `reach` of it.
@@ -170,7 +170,7 @@ mod tests {
 
     use super::*;
     use crate::geom::Domain;
-    use crate::render::tessellate::{Density, Tessellator};
+    use crate::render::fixtures::{self, ball_library, mesh_in_view};
     use crate::render::Camera;
 
     #[test]
@@ -179,25 +179,14 @@ mod tests {
         // equator and turned so that the seam runs across the front, over the top and past
         // the silhouette, each pixel is near a side exactly when the sides themselves, dense
         // points of the surface projected, pass within the reach of its centre.
-        let library = crate::render::plan::tests::ball_library();
+        let library = ball_library();
         let (width, height, reach) = (96u32, 96u32, 3.0f32);
         let camera = Camera {
             eye: Vec3::new(2.5, -4.0, 2.0),
-            ..crate::render::plan::tests::camera()
+            ..fixtures::camera()
         };
-        let view_projection = camera.view_projection(1.0);
-        let mut tessellator = Tessellator::new(library.clone());
-        let (mesh, _) = tessellator.mesh(
-            Density::ScreenTolerance { pixels: 0.05 },
-            view_projection,
-            width,
-            height,
-        );
-        let clip: Vec<Vec4> = mesh
-            .positions
-            .iter()
-            .map(|p| view_projection * p.extend(1.0))
-            .collect();
+        let (mesh, view_projection, clip) = mesh_in_view(&library, &camera, (width, height), 0.05);
+        let mesh = &mesh;
         let near = NearBorder::new(mesh, &clip, Viewport { width, height }, (reach, reach));
 
         let surface = &library.patches[0].surface;

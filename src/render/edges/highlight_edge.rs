@@ -5,14 +5,14 @@
 use rayon::prelude::*;
 
 use super::band_edge::JUMP;
-use super::directions::initial_half_vector;
 use super::edge_width::SignedValues;
-use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
-use super::neighbourhood::{around, one_patch_around};
-use super::scene::Scene;
-use super::settled::Settled;
+use super::settled::SettledTexels;
 use crate::highlight::PreparedLayer;
 use crate::math::{BoxQuadratic, LevelCrossing};
+use crate::render::directions::initial_half_vector;
+use crate::render::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use crate::render::neighbourhood::{around, one_patch_around};
+use crate::render::scene::Scene;
 
 /// The most of a pixel's area by which a layer's edge may depart from straight over the box (as
 /// [`BoxQuadratic::crossing`] measures it) for the quadratic through the nine centres to follow
@@ -22,11 +22,11 @@ use crate::math::{BoxQuadratic, LevelCrossing};
 /// analytic sphere at 256², `final`'s highlight matte holds or improves on every view of the
 /// accuracy ladder from 0.02 up to this (ε = 0.001 at 30° off centre: 1 − IoU 1.1 · 10⁻³ at
 /// 0.02, 5.1 · 10⁻⁴ at 0.2), and the teapot's smooth pixels stop growing beyond it.
-pub(super) const SMOOTH_BEND: f32 = 0.2;
+pub(in crate::render) const SMOOTH_BEND: f32 = 0.2;
 
 /// How a pixel's highlight meets the edges of its layers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum HighlightEdge {
+pub(in crate::render) enum HighlightEdge {
     /// Its box lies inside one patch and no layer's edge reaches it (or the patch has no
     /// highlight): its centre's highlight is the box's.
     Clear,
@@ -54,7 +54,7 @@ impl HighlightEdge {
 
 /// The one layer's edge across a [`HighlightEdge::Smooth`] pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct SmoothEdge {
+pub(in crate::render) struct SmoothEdge {
     /// The layer, numbered left to right in its expression.
     pub layer: usize,
     /// Its `s` over the box.
@@ -77,7 +77,7 @@ impl SmoothEdge {
 /// Per texel of a G-buffer, how its highlight's edges meet its pixel, and the edge of each
 /// smooth one.
 #[derive(Clone, Debug, Default)]
-pub(super) struct HighlightEdges {
+pub(in crate::render) struct HighlightEdges {
     pub kinds: Vec<HighlightEdge>,
     /// The slots of the [`HighlightEdge::Smooth`] texels, increasing, and their edges.
     smooth_slots: Vec<u32>,
@@ -113,7 +113,7 @@ impl HighlightEdges {
         gbuffer: &GBuffer,
         scene: &Scene,
         signed: &SignedValues,
-        settled: &Settled,
+        settled: &SettledTexels,
     ) {
         let size = (gbuffer.width as usize, gbuffer.height as usize);
         let smooth: Vec<bool> = self
@@ -163,7 +163,7 @@ enum Classified {
 /// neighbour is off the image, uncovered or on another patch ([`one_patch_around`], `patches`
 /// per texel).
 #[must_use]
-pub(super) fn highlight_edges(
+pub(in crate::render) fn highlight_edges(
     gbuffer: &GBuffer,
     signed: &SignedValues,
     patches: &[u32],
@@ -216,7 +216,7 @@ pub(super) fn highlight_edges(
 /// Whether no edge of `layers` reaches the box, from each layer's `s` at its 3 × 3
 /// neighbourhood ([`classify`]).
 #[must_use]
-pub(super) fn highlights_clear_of_box(
+pub(in crate::render) fn highlights_clear_of_box(
     layers: &[&PreparedLayer],
     values: impl Fn(usize) -> [[f32; 3]; 3],
 ) -> bool {
@@ -273,11 +273,7 @@ fn classify(layers: &[&PreparedLayer], values: impl Fn(usize) -> [[f32; 3]; 3]) 
 mod tests {
     use super::*;
     use crate::highlight::{Expr, Layer, Mask, PreparedExpr};
-
-    /// `f` at the nine centres around the pixel.
-    fn around(f: impl Fn(f32, f32) -> f32) -> [[f32; 3]; 3] {
-        std::array::from_fn(|y| std::array::from_fn(|x| f(x as f32 - 1.0, y as f32 - 1.0)))
-    }
+    use crate::render::fixtures::nine;
 
     fn prepared(layers: Vec<Layer>) -> Vec<PreparedLayer> {
         layers
@@ -301,18 +297,18 @@ mod tests {
         // past its reach.
         let edge = |x: f32, y: f32| 0.02 - 0.1 * x + 0.02 * y - 0.002 * y * y;
         let values = |j: usize| match j {
-            0 => around(|x, _| 0.5 + 0.05 * x),
-            _ => around(edge),
+            0 => nine(|x, _| 0.5 + 0.05 * x),
+            _ => nine(edge),
         };
         match classify(&layers, values) {
             Classified::Smooth(e) => {
                 assert_eq!(e.layer, 1);
-                assert_eq!(e.quadratic, BoxQuadratic::through(&around(edge)));
+                assert_eq!(e.quadratic, BoxQuadratic::through(&nine(edge)));
             }
             other => panic!("{other:?}"),
         }
         // Both layers far from their edges: clear.
-        let far = |j: usize| around(move |x, _| if j == 0 { -0.5 } else { 0.5 } + 0.01 * x);
+        let far = |j: usize| nine(move |x, _| if j == 0 { -0.5 } else { 0.5 } + 0.01 * x);
         assert_eq!(classify(&layers, far), Classified::Clear);
     }
 
@@ -320,29 +316,29 @@ mod tests {
     fn two_edges_a_bend_or_a_jump_is_hard() {
         let layers = prepared(vec![plain(), plain()]);
         let layers: Vec<&_> = layers.iter().collect();
-        let edge = || around(|x, y| 0.02 - 0.1 * x + 0.02 * y);
+        let edge = || nine(|x, y| 0.02 - 0.1 * x + 0.02 * y);
         // Both layers' edges cross the box.
         assert_eq!(classify(&layers, |_| edge()), Classified::Hard);
         // A highlight a pixel across: its edge bends right round over the box.
         let small = |j: usize| {
             if j == 0 {
-                around(|x, y| 0.01 - 0.1 * (x * x + y * y))
+                nine(|x, y| 0.01 - 0.1 * (x * x + y * y))
             } else {
-                around(|_, _| -1.0)
+                nine(|_, _| -1.0)
             }
         };
         assert_eq!(classify(&layers, small), Classified::Hard);
         // One column lies on a part of the patch far behind: s jumps there.
         let jump = |j: usize| {
             if j == 0 {
-                around(|x, _| if x > 0.5 { 0.9 } else { 0.01 - 0.05 * x })
+                nine(|x, _| if x > 0.5 { 0.9 } else { 0.01 - 0.05 * x })
             } else {
-                around(|_, _| -1.0)
+                nine(|_, _| -1.0)
             }
         };
         assert_eq!(classify(&layers, jump), Classified::Hard);
         // Not finite: hard.
-        let nan = |_: usize| around(|x, _| if x > 0.5 { f32::NAN } else { -1.0 });
+        let nan = |_: usize| nine(|x, _| if x > 0.5 { f32::NAN } else { -1.0 });
         assert_eq!(classify(&layers, nan), Classified::Hard);
     }
 
@@ -361,18 +357,18 @@ mod tests {
         let with = |first: [[f32; 3]; 3], second: [[f32; 3]; 3]| {
             move |j: usize| if j == 0 { first } else { second }
         };
-        let outside = around(|_, _| -1.0);
+        let outside = nine(|_, _| -1.0);
         // The feathered layer at s = 0.05 ± 0.02: within its fade (0.1 either side of 0).
-        let fading = around(|x, _| 0.05 + 0.02 * x);
+        let fading = nine(|x, _| 0.05 + 0.02 * x);
         assert_eq!(classify(&layers, with(fading, outside)), Classified::Hard);
         // Beyond its fade, and the masked layer outside: clear.
-        let beyond = around(|x, _| 0.2 + 0.02 * x);
+        let beyond = nine(|x, _| 0.2 + 0.02 * x);
         assert_eq!(classify(&layers, with(beyond, outside)), Classified::Clear);
         // The masked layer wholly inside: the mask may cut the box.
-        let inside = around(|_, _| 1.0);
+        let inside = nine(|_, _| 1.0);
         assert_eq!(classify(&layers, with(beyond, inside)), Classified::Hard);
         // The masked layer's edge across the box: hard.
-        let across = around(|x, _| 0.01 + 0.1 * x);
+        let across = nine(|x, _| 0.01 + 0.1 * x);
         assert_eq!(classify(&layers, with(beyond, across)), Classified::Hard);
     }
 
@@ -382,7 +378,7 @@ mod tests {
         // centre instead, the edge passes through it: a half.
         let edge = SmoothEdge {
             layer: 0,
-            quadratic: BoxQuadratic::through(&around(|x, _| 0.03 - 0.1 * x)),
+            quadratic: BoxQuadratic::through(&nine(|x, _| 0.03 - 0.1 * x)),
         };
         assert!((edge.coverage(0.03) - 0.8).abs() < 1e-5);
         assert!((edge.coverage(0.0) - 0.5).abs() < 1e-5);

@@ -5,15 +5,15 @@ use rayon::prelude::*;
 
 use glam::Vec3;
 
-use super::directions::{initial_half_vectors, view_lanes};
-use super::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
-use super::scene::Scene;
 use crate::highlight::{Footprint, LocalChunk, PreparedLayer};
 use crate::math::{Lanes, LANES};
+use crate::render::directions::{initial_half_vectors, view_lanes};
+use crate::render::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
+use crate::render::scene::Scene;
 
 /// What the edge-width stage finds per texel.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub(super) struct EdgeWidths {
+pub(in crate::render) struct EdgeWidths {
     /// The footprint the box coverage of each highlight edge takes.
     pub footprints: Vec<Footprint>,
     /// Whether some layer's `s` may change sign within the pixel ([`straddles_zero`]): a
@@ -60,7 +60,7 @@ const PEAK_RATIO: f32 = 4.0;
 
 /// Per texel of a G-buffer, the signed value `s` of each layer of its patch's highlight.
 #[derive(Debug)]
-pub(super) struct SignedValues<'s> {
+pub(in crate::render) struct SignedValues<'s> {
     /// Per patch, its highlight's layers, left to right (none without a highlight).
     pub layers: Vec<Vec<&'s PreparedLayer>>,
     /// The most layers a patch has: the stride of `values`.
@@ -85,13 +85,19 @@ impl SignedValues<'_> {
 
 /// Per texel of `gbuffer`, the signed value of each layer of its patch's highlight
 /// ([`signed_values_of`] its texels).
-pub(super) fn signed_values<'s>(gbuffer: &GBuffer, scene: &'s Scene) -> SignedValues<'s> {
+pub(in crate::render) fn signed_values<'s>(
+    gbuffer: &GBuffer,
+    scene: &'s Scene,
+) -> SignedValues<'s> {
     signed_values_of(&gbuffer.texels, scene)
 }
 
 /// Per texel of `texels`, the signed value of each layer of its patch's highlight, for runs of
 /// texels on one patch up to [`LANES`] at a time, side by side.
-pub(super) fn signed_values_of<'s>(texels: &[Texel], scene: &'s Scene) -> SignedValues<'s> {
+pub(in crate::render) fn signed_values_of<'s>(
+    texels: &[Texel],
+    scene: &'s Scene,
+) -> SignedValues<'s> {
     let layer_lists: Vec<Vec<&PreparedLayer>> = scene
         .looks
         .iter()
@@ -143,7 +149,7 @@ pub(super) fn signed_values_of<'s>(texels: &[Texel], scene: &'s Scene) -> Signed
 /// (a neighbour inside the image that no surface covers) the footprint is 0 along that axis:
 /// there the surface turns away within the pixel, and the edge is left hard, for the
 /// silhouette's own anti-aliasing (supersampling) to smooth.
-pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
+pub(in crate::render) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
     let patches: Vec<u32> = gbuffer.texels.iter().map(|t| t.patch).collect();
     edge_widths_of(gbuffer, &signed_values(gbuffer, scene), &patches, None)
 }
@@ -152,7 +158,7 @@ pub(super) fn edge_widths(gbuffer: &GBuffer, scene: &Scene) -> EdgeWidths {
 /// texels' `patches` (side by side: the neighbours are looked up by patch, and the texels
 /// themselves are large), at the texels `wanted` marks (all without it; [`Footprint::HARD`]
 /// and no straddle elsewhere).
-pub(super) fn edge_widths_of(
+pub(in crate::render) fn edge_widths_of(
     gbuffer: &GBuffer,
     signed: &SignedValues,
     patches: &[u32],
