@@ -1,8 +1,9 @@
 //! What X-Toon costs: the teapot at 1280×720 with an X-Toon tone on every patch against the same
 //! frame with a plain cel ramp, measured side by side in the same run, frame by frame in turn — a depth (LOA) map, a
 //! highlight map, and the depth map with ellipsoid and smoothed shape detail. Exact frames, no
-//! designed highlights, no outlines: the tone is most of the shading work. The paper's GPU
-//! shader ran at 1.19 times the plain toon shader's frame time.
+//! designed highlights, no outlines: the tone is most of the shading work. The GPU shader of
+//! the X-Toon paper (Barla, Thollot & Markosian 2006) ran at 1.19 times the plain toon shader's
+//! frame time.
 //! Run with `cargo bench --bench xtoon`; it prints each variant's frame time by stage, then the
 //! ratios.
 

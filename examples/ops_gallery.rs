@@ -1,5 +1,6 @@
-//! The highlight operations at increasing parameter values on a sphere seen head-on (the paper's
-//! Figure 4), one PNG grid per operation plus one for the Boolean post-operations.
+//! The highlight operations at increasing parameter values on a sphere seen head-on (Figure 4
+//! of Anjyo & Hiramitsu 2003), one PNG grid per operation plus one for the Boolean
+//! post-operations.
 //!
 //! Usage: `cargo run --release --example ops_gallery [OUT_DIR]` (default `out/gallery/`).
 //! Each tile ray-casts the analytic unit sphere orthographically along −z with a two-tone cel

@@ -23,6 +23,7 @@ mod highlight_place;
 mod highlight_serde;
 mod highlight_sphere;
 mod highlight_stability;
+mod import_loops;
 mod job_reload;
 mod model_parts;
 mod patch_files;

@@ -1,5 +1,6 @@
-//! The X-Toon detail maps at their boundaries, against the paper's formulas evaluated in f64,
-//! and their validation: out-of-range parameters are errors, and no input gives NaN.
+//! The X-Toon detail maps at their boundaries, against the formulas of Barla, Thollot &
+//! Markosian 2006 evaluated in f64, and their validation: out-of-range parameters are errors,
+//! and no input gives NaN.
 
 use glam::Vec3;
 use glint::toon::{DetailMap, ViewDetail, XToonError};
@@ -22,7 +23,8 @@ fn at(v: &ViewDetail, z: f32) -> f32 {
     v.value(point, to_eye, to_eye, to_eye, to_eye)
 }
 
-/// The paper's LOA formula `1 − log(z / z_min) / log(r)`, clamped to [0, 1], in f64.
+/// The LOA formula of X-Toon (Barla et al. 2006) `1 − log(z / z_min) / log(r)`, clamped to
+/// [0, 1], in f64.
 fn depth_reference(z: f64, z_min: f64, r: f64) -> f64 {
     (1.0 - (z / z_min).ln() / r.ln()).clamp(0.0, 1.0)
 }
@@ -56,8 +58,8 @@ fn depth_behind_or_at_the_eye_is_full_detail() {
     assert_eq!(at(&v, -5.0), 1.0);
 }
 
-/// The paper's depth-of-field formula in f64 (its assumption `z−_max > 0` holds in the cases
-/// it is used for here), clamped to [0, 1].
+/// The depth-of-field formula of X-Toon (Barla et al. 2006) in f64 (its assumption
+/// `z−_max > 0` holds in the cases it is used for here), clamped to [0, 1].
 fn focus_reference(z: f64, z_c: f64, z_min: f64, r: f64) -> f64 {
     let d = if z < z_c {
         let (near_min, near_max) = (z_c - z_min, z_c - r * z_min);

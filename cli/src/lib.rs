@@ -5,6 +5,7 @@ mod accuracy_csv;
 mod accuracy_plot;
 mod bench;
 mod bench_loop;
+mod error;
 mod farm;
 mod inspect;
 mod key;
@@ -15,6 +16,8 @@ mod probe;
 mod render;
 mod report;
 mod sheet;
+mod stats_report;
+mod stdout;
 pub mod tune;
 mod vary;
 mod verify;
@@ -24,6 +27,9 @@ mod watched;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+
+pub use error::CliError;
+pub(crate) use stdout::write_stdout;
 
 /// glint renders cel-animation frames of NURBS patch models with designed, keyframed stylized
 /// highlights.
@@ -47,35 +53,6 @@ enum Command {
     Verify(verify::VerifyArgs),
     Bench(bench::BenchArgs),
     Farm(farm::FarmArgs),
-}
-
-/// Why a command stopped.
-#[derive(Debug, thiserror::Error)]
-pub enum CliError {
-    /// The input cannot be used (a malformed file, an unknown patch, a value out of range): exit 2.
-    #[error(transparent)]
-    BadInput(anyhow::Error),
-    /// The input was fine but the work failed (an output could not be written): exit 1.
-    #[error(transparent)]
-    Failed(anyhow::Error),
-}
-
-/// Writes a command's output to standard output through `write`; a reader that stopped early
-/// (`glint … | head`) is not a failure. `what` names the output in an error.
-pub(crate) fn write_stdout(
-    what: &str,
-    write: impl FnOnce(&mut dyn std::io::Write) -> anyhow::Result<()>,
-) -> Result<(), CliError> {
-    let mut out = std::io::stdout().lock();
-    match write(&mut out).and_then(|()| std::io::Write::flush(&mut out).map_err(Into::into)) {
-        Err(e)
-            if e.downcast_ref::<std::io::Error>()
-                .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) =>
-        {
-            Ok(())
-        }
-        other => other.map_err(|e| CliError::Failed(e.context(format!("writing {what}")))),
-    }
 }
 
 /// Parses the process arguments, runs the command and returns its exit code.

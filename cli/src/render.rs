@@ -8,9 +8,9 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::stats_report::stats_report;
 use super::CliError;
 use glint::job::{parse_frames, parse_memory_size, JobError, Overrides, RenderJob, Scrutiny};
-use glint::render::{RenderStats, Stage};
 use glint::shot::{Aov, Preset};
 
 /// Render the frames of a shot to PNG files.
@@ -230,46 +230,6 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         started.elapsed().as_secs_f64()
     ));
     Ok(())
-}
-
-/// One line per stage, in pipeline order, for `--stats`: what it processed and its time, or
-/// that the previous frame's result was reused, or that the plan skipped it.
-pub(super) fn stats_report(frame: i64, s: &RenderStats) -> String {
-    let mut out = format!(
-        "frame {frame} stats: {:.2} ms total, {} triangles (tessellation {})",
-        s.total_seconds * 1e3,
-        s.triangles,
-        if s.tessellation_rebuilt {
-            "rebuilt"
-        } else {
-            "cached"
-        }
-    );
-    for stage in Stage::ALL {
-        let name = stage.name();
-        if s.ran(stage) {
-            let st = s[stage];
-            let unit = if stage == Stage::Tessellate {
-                "tri"
-            } else {
-                "px"
-            };
-            out.push_str(&format!(
-                "\n  {name:<12} {:>10} {unit:<3} {:>8.2} ms",
-                st.pixels,
-                st.seconds * 1e3
-            ));
-        } else if s.reused(stage) {
-            out.push_str(&format!("\n  {name:<12} {:>10}", "reused"));
-        } else {
-            out.push_str(&format!("\n  {name:<12} {:>10}", "skipped"));
-        }
-    }
-    out.push_str(&format!(
-        "\n  exact frames {}, highlighted samples {}, X-Toon samples {}",
-        s.exact_frames, s.highlight_pixels, s.xtoon_pixels
-    ));
-    out
 }
 
 /// Progress: a bar on a terminal, one line per frame otherwise (farm logs), nothing when quiet.

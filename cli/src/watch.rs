@@ -10,6 +10,7 @@ use std::time::{Duration, Instant};
 use anyhow::anyhow;
 use notify::{RecommendedWatcher, RecursiveMode, Watcher};
 
+use super::stats_report::stats_report;
 use super::watched::WatchedFiles;
 use super::CliError;
 use glint::formats::atomic::Durability;
@@ -209,7 +210,7 @@ impl Session {
             }
             summary.written.push(job.frame_path(frame));
             if self.printing.stats {
-                println!("{}", super::render::stats_report(frame, &image.stats));
+                println!("{}", stats_report(frame, &image.stats));
             }
         }
         Ok(summary)

@@ -31,10 +31,10 @@ pub fn beside(path: &Path, name: &str) -> PathBuf {
 
 /// Writes the colour to `path` (PNG) and each AOV the frame holds beside it, named after it:
 /// `shot.0001.png` gives `shot.0001.matte.png`, `.patch_id.png` (16-bit indices),
-/// `.patches.png` (flat colours, the paper's Figure 9 view), `.depth.png` (16-bit),
-/// `.normal.png`, `.uv.png`, `.n_dot_h.png` (heat map) and `.outline.png` (the lines alone,
-/// sRGB with alpha). The colour is written last, so once
-/// it exists the whole frame does. Returns the paths written.
+/// `.patches.png` (flat colours, the view of Figure 9 in Anjyo & Hiramitsu 2003), `.depth.png`
+/// (16-bit), `.normal.png`, `.uv.png`, `.n_dot_h.png` (heat map) and `.outline.png` (the lines
+/// alone, sRGB with alpha). The colour is written last, so once it exists the whole frame does.
+/// Returns the paths written.
 pub fn write_pngs(frame: &RenderedFrame, path: &Path) -> Result<Vec<PathBuf>, WriteError> {
     write_pngs_with(frame, path, Durability::Synced)
 }

@@ -3,9 +3,11 @@
 
 pub mod atomic;
 mod bpt;
+mod error;
 pub mod exr;
 mod frame_files;
 pub mod image_encoding;
+mod parse_ron;
 pub mod parts;
 mod patch_ron;
 pub mod png;
@@ -19,11 +21,10 @@ mod usd;
 
 use std::path::Path;
 
-use thiserror::Error;
-
 use crate::geom::PatchLibrary;
 
 pub use bpt::parse_bpt;
+pub use error::FormatError;
 pub use frame_files::{
     beside, write_frame_exr, write_pngs, write_pngs_tagged, write_pngs_with, AOV_FILE_NAMES,
 };
@@ -31,80 +32,6 @@ pub use patch_ron::parse_patch_ron;
 pub use srgb::{linear_to_srgb, srgb_to_linear};
 pub use texture::{read_toon_texture, toon_texture_from_png, toon_texture_from_srgb8};
 pub use usd::{parse_usda, MAX_PATCHES as MAX_USD_PATCHES};
-
-/// A file that could not be read, with where in it the problem is.
-#[derive(Debug, Error)]
-pub enum FormatError {
-    #[error("{path}: {source}")]
-    Io {
-        path: String,
-        source: std::io::Error,
-    },
-    #[error("{path}:{line}:{col}: {message}")]
-    Ron {
-        path: String,
-        line: usize,
-        col: usize,
-        message: String,
-    },
-    #[error("{path}:{line}:{col}: {message}")]
-    Usd {
-        path: String,
-        line: usize,
-        col: usize,
-        message: String,
-    },
-    #[error("{path}:{line}: {message}")]
-    Bpt {
-        path: String,
-        line: usize,
-        message: String,
-    },
-    #[error("{path}: {message}")]
-    Image { path: String, message: String },
-    /// The file as a whole cannot be read as text (not a regular file, too large).
-    #[error("{path}: cannot read the file: {message}")]
-    File { path: String, message: String },
-    #[error(
-        "{path}: unknown patch file type; use .ron (a patch library), .bpt (Bezier patches) or .usda (USD text)"
-    )]
-    UnknownKind { path: String },
-    #[error(
-        "{path} names the parts of a model, it is not one; give the model it is beside ({model})"
-    )]
-    PartsFile { path: String, model: String },
-}
-
-impl FormatError {
-    /// A RON error in `text` (shown as `shown`) at the value `path` leads to, or at the
-    /// deepest value on it that is written.
-    #[must_use]
-    pub fn ron_at(text: &str, shown: &str, path: &[ron_paths::Step], message: String) -> Self {
-        let offset = ron_paths::locate_or_nearest(text, path);
-        let (line, col) = ron_location::position_of(text, offset);
-        FormatError::Ron {
-            path: shown.into(),
-            line,
-            col,
-            message,
-        }
-    }
-}
-
-/// Parses `text` (shown as `shown`) as `T`, with errors placed where they are written: a value
-/// that failed its own checks, which serde reports at its closing bracket, at its start.
-fn parse_ron<T: serde::de::DeserializeOwned>(text: &str, shown: &str) -> Result<T, FormatError> {
-    ron::Options::default().from_str(text).map_err(|e| {
-        let (at, message) =
-            ron_location::explain_at(text, &e.code, (e.span.start.line, e.span.start.col));
-        FormatError::Ron {
-            path: shown.into(),
-            line: at.0,
-            col: at.1,
-            message,
-        }
-    })
-}
 
 /// A `.usd`, `.usdc` or `.usdz` file at `path`: a `.usd` that is text is read as `.usda`; a
 /// binary layer through the `usd-binary` feature, or refused with the conversion to run.

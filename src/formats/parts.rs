@@ -9,9 +9,10 @@ use std::path::{Path, PathBuf};
 use serde::de::{self, Deserializer, Visitor};
 use serde::Deserialize;
 
+use super::parse_ron::parse_ron;
 use super::ron_location::closest_name;
 use super::ron_paths::Step;
-use super::{parse_ron, FormatError};
+use super::FormatError;
 use crate::geom::{NamedPatch, PatchGroup};
 
 /// Groups as written: each name with its members.

@@ -4,9 +4,10 @@
 use glam::DVec3;
 use serde::Deserialize;
 
+use super::parse_ron::parse_ron;
 use super::parts::{resolve_groups, GroupsSpec};
 use super::ron_paths::Step::{Field, Index};
-use super::{parse_ron, FormatError};
+use super::FormatError;
 use crate::geom::{shapes, GeomError, NamedPatch, NurbsSurface, PatchLibrary};
 
 #[derive(Deserialize)]

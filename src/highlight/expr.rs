@@ -1,4 +1,5 @@
-//! The paper's Boolean post-operations: a patch's highlight as an expression over layers.
+//! The Boolean post-operations of Anjyo & Hiramitsu 2003: a patch's highlight as an expression
+//! over layers.
 
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
@@ -200,7 +201,8 @@ pub enum PreparedExpr {
 impl PreparedExpr {
     /// The highlight at a point with frame `frame`, patch parameters `uv` and initial unit
     /// highlight vector `h`. `footprint` is the pixel's footprint of the signed value
-    /// ([`Footprint::HARD`]: the paper's hard edge; the renderer's for analytic anti-aliasing),
+    /// ([`Footprint::HARD`]: the hard edge of Anjyo & Hiramitsu 2003; the renderer's for
+    /// analytic anti-aliasing),
     /// which each layer's edge covers ([`Footprint::coverage`]).
     #[must_use]
     pub fn eval(&self, frame: &TangentFrame, uv: Vec2, h: Vec3, footprint: Footprint) -> Shade {

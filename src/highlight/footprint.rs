@@ -6,7 +6,7 @@ use crate::math::box_coverage;
 
 /// How much the signed inside value `s` changes from one pixel to the next along x and along
 /// y: what the renderer knows of the pixel's box for analytic anti-aliasing. Zero: a hard edge
-/// at the pixel's centre, the paper's.
+/// at the pixel's centre, as in Anjyo & Hiramitsu 2003.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Footprint {
     /// `|∂s/∂x|` over one pixel.

@@ -1,4 +1,5 @@
-//! The initial highlight vector (Blinn's half vector) and the paper's inverse, the virtual light.
+//! The initial highlight vector (Blinn's half vector) and its inverse from Anjyo & Hiramitsu
+//! 2003, the virtual light.
 
 use glam::Vec3;
 
@@ -64,8 +65,8 @@ impl View {
     }
 }
 
-/// Blinn's half vector `H = (L + V) / ‖L + V‖` for unit L and V, the paper's original
-/// highlight vector.
+/// Blinn's half vector `H = (L + V) / ‖L + V‖` for unit L and V, the original highlight vector
+/// of Anjyo & Hiramitsu 2003.
 ///
 /// When `L = −V` (the light straight behind the point as seen from the eye) `L + V` vanishes
 /// and no half vector exists. As L approaches −V from any side, H turns perpendicular to V, which

@@ -4,7 +4,7 @@ use glam::Vec3;
 
 /// The signed inside value `s = ε − ‖N − H‖² / 2` (docs/highlights.md).
 ///
-/// For unit vectors `‖N − H‖² / 2 = 1 − (N, H)`, so `s > 0` is the paper's Eq. 3,
+/// For unit vectors `‖N − H‖² / 2 = 1 − (N, H)`, so `s > 0` is Eq. 3 of Anjyo & Hiramitsu 2003,
 /// `(N, H) > 1 − ε`. Written as a squared distance it keeps its precision in f32 for the tiny ε of
 /// a pin-point glint, where `1 − (N, H)` rounds to a multiple of 2⁻²⁴ and loses it all.
 #[inline]
@@ -22,7 +22,7 @@ pub fn inside(n: Vec3, h: Vec3, epsilon: f32) -> bool {
 
 /// Coverage in `[0, 1]` from a signed inside value `s` and an edge width `w` (in units of `s`).
 ///
-/// `w ≤ 0` is the paper's hard edge: 1 where `s > 0`, else 0. `w > 0` is a smoothstep over the
+/// `w ≤ 0` is the hard edge of Anjyo & Hiramitsu 2003: 1 where `s > 0`, else 0. `w > 0` is a smoothstep over the
 /// band `[−w/2, w/2]` centred on the hard edge, so coverage is ½ exactly on it: the renderer passes
 /// a pixel's footprint of `s` for analytic anti-aliasing, and a layer's feather widens the band.
 #[inline]
@@ -79,7 +79,8 @@ mod tests {
 
     #[test]
     fn the_edge_itself_is_outside() {
-        // ‖N − H‖² / 2 = 1/2 exactly, so s = 0 at ε = 1/2: the paper's strict inequality.
+        // ‖N − H‖² / 2 = 1/2 exactly, so s = 0 at ε = 1/2: the strict inequality of Anjyo &
+        // Hiramitsu 2003.
         assert_eq!(signed_inside(Vec3::Z, Vec3::ZERO, 0.5), 0.0);
         assert!(!inside(Vec3::Z, Vec3::ZERO, 0.5));
     }

@@ -43,8 +43,8 @@ pub struct Layer<P = f32> {
     /// hard edge.
     #[serde(default)]
     pub feather: Option<P>,
-    /// Keeps the highlight only inside a rectangle of the patch's (u, v) parameters, the paper's
-    /// clean-up of "an unnecessary part of a highlight". None (the default): no mask.
+    /// Keeps the highlight only inside a rectangle of the patch's (u, v) parameters, Anjyo &
+    /// Hiramitsu's clean-up (2003) of "an unnecessary part of a highlight". None (the default): no mask.
     #[serde(default)]
     pub mask: Option<Mask<P>>,
     /// Keeps the highlight's centre on a surface point on every frame: the stack's placing
@@ -76,8 +76,8 @@ pub struct Mask<P = f32> {
 }
 
 impl Layer {
-    /// The paper's highlight: the stack's region `(N, H') > 1 − ε` in one opaque colour, with a
-    /// hard edge and no mask.
+    /// The highlight of Anjyo & Hiramitsu 2003: the stack's region `(N, H') > 1 − ε` in one
+    /// opaque colour, with a hard edge and no mask.
     #[must_use]
     pub fn new(stack: Vec<Op>, epsilon: f32, colour: [f32; 3]) -> Self {
         Self {

@@ -28,8 +28,8 @@ pub enum Op<P = f32> {
     /// Translation. Paper: `H' = H + α du + β dv`, `t(H) = H' / ‖H'‖`.
     ///
     /// On a convex surface the highlight moves toward `+du` for `α > 0` (its centre is where
-    /// `t(H) = N`). |α|, |β| ≤ 10⁶: the paper warns that large values make H nearly tangent, and
-    /// the bound keeps squared lengths finite in f32.
+    /// `t(H) = N`). |α|, |β| ≤ 10⁶: Anjyo & Hiramitsu 2003 warn that large values make H nearly
+    /// tangent, and the bound keeps squared lengths finite in f32.
     Translate {
         /// α, the step along du.
         alpha: P,
@@ -284,7 +284,7 @@ pub enum PreparedOp {
     },
 }
 
-/// The paper's `sgn`, with `sgn(0) = sgn(−0) = +1`.
+/// The `sgn` of Anjyo & Hiramitsu 2003, with `sgn(0) = sgn(−0) = +1`.
 #[inline]
 fn sgn(x: f32) -> f32 {
     if x < 0.0 {
@@ -433,7 +433,7 @@ impl PreparedOp {
             PreparedOp::Scale { axis, delta } => target.run(|t| t - delta * t.dot(axis) * axis),
             PreparedOp::Split(g) => target.run(|t| t - g * Vec2::new(sgn(t.x), sgn(t.y))),
             PreparedOp::Square { sigma, n, style } => match n {
-                // The paper's n = 2, and 1 and 3: two bits.
+                // Anjyo & Hiramitsu's n = 2 (2003), and 1 and 3: two bits.
                 Exponent::Integer(k) if k < 4 => {
                     square(target, style, sigma, |x| int_pow::<2>(x, k))
                 }
@@ -484,7 +484,8 @@ mod tests {
 
     #[test]
     fn translate_moves_h_along_the_frame_in_world_space() {
-        // The paper's H' = H + α du + β dv, normalized, in f64 on the world vectors.
+        // H' = H + α du + β dv of Anjyo & Hiramitsu 2003, normalized, in f64 on the world
+        // vectors.
         let (frame, [du, dv, n]) = turned_frame();
         let h = (0.1 * du - 0.2 * dv + 0.97 * n).normalize();
         let got = prep(Op::Translate {

@@ -8,7 +8,7 @@ use crate::math::{normalize_lanes, Lanes, LANES};
 
 /// Validated operations in order, with a normalization plan.
 ///
-/// Each operation of the paper ends by normalizing. Rotation, scaling and tangent squaring are
+/// Each operation of Anjyo & Hiramitsu 2003 ends by normalizing. Rotation, scaling and tangent squaring are
 /// homogeneous (`op(cH) = c op(H)` for c > 0), so the stack normalizes only where the next
 /// operation needs a unit H ([`PreparedOp::needs_unit_input`]) and at the end: the same direction
 /// as normalizing after every op, with fewer square roots and divisions. An op whose output is

@@ -17,8 +17,10 @@
 //! # Ok::<(), glint::job::JobError>(())
 //! ```
 
+mod ceiling;
 mod fingerprint;
 mod frame_check;
+mod frame_fingerprint;
 mod frame_list;
 mod memory;
 mod place;
@@ -29,6 +31,7 @@ use std::sync::Arc;
 
 use thiserror::Error;
 
+use ceiling::MemoryCeiling;
 pub use fingerprint::{Fingerprint, FINGERPRINT_KEY};
 pub use frame_check::{aov_file_names, FileProblem, Scrutiny};
 pub use frame_list::{frame_spec, parse_frames};
@@ -139,8 +142,8 @@ fn frame_memory(shot: &Shot, settings: &Settings, frames: &[i64], renderer: &Ren
     estimate_peak_bytes(settings, &shot.aovs, vertices)
 }
 
-/// Refuses a job whose frames would need more memory than the ceiling `overrides` sets
-/// (default [`default_memory_ceiling`]), estimated at up to 16 of its frames
+/// Refuses a job whose frames would need more memory than `ceiling` (the one the overrides
+/// set, default [`default_memory_ceiling`]), estimated at up to 16 of its frames
 /// ([`sampled_frames`](memory::sampled_frames)) with the mesh `renderer` would make for each;
 /// then limits `renderer`'s meshes to what is left beside the image, so that a frame between
 /// those whose view would need a larger mesh is refused when it comes. An allocation of the
@@ -151,20 +154,17 @@ fn limit_memory(
     settings: &Settings,
     frames: &[i64],
     renderer: &mut Renderer,
-    ceiling: Option<u64>,
+    ceiling: MemoryCeiling,
 ) -> Result<(), JobError> {
     let refuse = |message: String| JobError::Overrides {
         shot: shot.path.display().to_string(),
         message,
     };
     let needed = frame_memory(shot, settings, frames, renderer);
-    let (limit, whose) = match ceiling {
-        Some(limit) => (limit, "the ceiling --max-memory sets"),
-        None => (
-            default_memory_ceiling(),
-            "the default ceiling, three quarters of this machine's memory",
-        ),
-    };
+    let MemoryCeiling {
+        bytes: limit,
+        whose,
+    } = ceiling;
     let size = format!("{}×{}", settings.width, settings.height);
     if needed > limit {
         return Err(refuse(format!(
@@ -202,6 +202,8 @@ pub struct RenderJob {
     durability: Durability,
     /// What every frame's fingerprint shares, made when first asked for.
     digest: std::sync::OnceLock<Option<sha2::Sha256>>,
+    /// The memory ceiling, made once: a reload keeps it.
+    ceiling: MemoryCeiling,
 }
 
 /// What [`RenderJob::reload`] did with the model.
@@ -226,13 +228,8 @@ impl RenderJob {
     pub fn new(shot: Shot, overrides: &Overrides) -> Result<Self, JobError> {
         let (shot, settings, frames) = apply(shot, overrides)?;
         let mut renderer = Renderer::new(Arc::clone(&shot.library));
-        limit_memory(
-            &shot,
-            &settings,
-            &frames,
-            &mut renderer,
-            overrides.max_memory,
-        )?;
+        let ceiling = MemoryCeiling::set_or_default(overrides.max_memory);
+        limit_memory(&shot, &settings, &frames, &mut renderer, ceiling)?;
         Ok(Self {
             shot,
             overrides: overrides.clone(),
@@ -241,6 +238,7 @@ impl RenderJob {
             renderer,
             durability: Durability::Synced,
             digest: std::sync::OnceLock::new(),
+            ceiling,
         })
     }
 
@@ -265,7 +263,7 @@ impl RenderJob {
             Reloaded::ModelChanged
         };
         let (shot, settings, frames) = apply(shot, &self.overrides)?;
-        let ceiling = self.overrides.max_memory;
+        let ceiling = self.ceiling;
         if reloaded == Reloaded::ModelChanged {
             let mut renderer = Renderer::new(Arc::clone(&shot.library));
             limit_memory(&shot, &settings, &frames, &mut renderer, ceiling)?;

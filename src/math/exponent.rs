@@ -1,7 +1,8 @@
 //! Exponents that are integers in the common case: raised by multiplication, in straight-line
 //! code that vectorizes, and by `powf` otherwise.
 
-/// The squaring exponent n, with integers (the paper's case) raised by multiplication.
+/// The squaring exponent n, with integers (the case in Anjyo & Hiramitsu 2003) raised by
+/// multiplication.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Exponent {
     /// An integer n from 1 to [`Exponent::MAX_INTEGER`].

@@ -3,10 +3,8 @@
 
 use glam::Vec3;
 
+use super::lane_count::LANES;
 use super::normalize::normalize_lanes;
-
-/// The most vectors [`Lanes`] holds, and how many `normalize_lanes` works on at once.
-pub const LANES: usize = 64;
 
 /// Up to [`LANES`] vectors side by side, one array per coordinate: loops over the arrays
 /// vectorize where a loop over `Vec3`s would not.

@@ -6,6 +6,7 @@
 mod box_coverage;
 mod box_quadratic;
 mod exponent;
+mod lane_count;
 mod lanes;
 mod normalize;
 mod segment;
@@ -14,6 +15,7 @@ pub use box_coverage::box_coverage;
 pub use box_quadratic::{BoxQuadratic, LevelCrossing};
 pub(crate) use exponent::int_pow;
 pub use exponent::Exponent;
-pub use lanes::{Lanes, LANES};
+pub use lane_count::LANES;
+pub use lanes::Lanes;
 pub(crate) use normalize::{normalize_lanes, normalize_or};
 pub use segment::{distance_to_segment, distance_to_segment_f32};

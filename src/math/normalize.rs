@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::lanes::LANES;
+use super::lane_count::LANES;
 
 /// Below this squared length a vector counts as zero and is not normalized.
 const MIN_LENGTH_SQUARED: f32 = 1e-12;

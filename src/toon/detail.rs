@@ -5,7 +5,7 @@ use glam::{Vec2, Vec3};
 use serde::Deserialize;
 
 use super::error::XToonError;
-use super::xtoon::PointRun;
+use super::point_run::PointRun;
 use crate::math::{Exponent, Lanes};
 use crate::param::{check, Range};
 
@@ -35,7 +35,7 @@ pub enum DetailMap<P = f32> {
     /// `D = log(z / z+_max) / log(z+_min / z+_max)` for `z > z_c`.
     ///
     /// D = 1 in the focus band `[z−_min, z+_min]` and falls to 0 at `z±_max`, continuously on
-    /// both sides. The paper assumes `z−_max > 0`; where the eye comes nearer to the focus than
+    /// both sides. Barla, Thollot & Markosian 2006 assume `z−_max > 0`; where the eye comes nearer to the focus than
     /// `r z_min`, the near ramp ends at `max(z_c − r z_min, z−_min / r)` instead (the two agree
     /// where they meet), and where the eye is inside the band (`z−_min ≤ 0`) everything in
     /// front of the focus is in focus.
@@ -54,7 +54,7 @@ pub enum DetailMap<P = f32> {
     },
     /// Highlight. Paper (Phong): `D = |v·r|^s` with `r = 2 (n·l) n − l` the reflected light.
     ///
-    /// As in the paper the absolute value also lights the mirror spot where `r = −v`; it lies
+    /// As in Barla, Thollot & Markosian 2006 the absolute value also lights the mirror spot where `r = −v`; it lies
     /// where `n·l = −n·v < 0`, in the dark tones, so a texture whose dark tones do not change
     /// down the detail axis does not show it.
     Highlight {

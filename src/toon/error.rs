@@ -3,9 +3,8 @@
 
 use thiserror::Error;
 
+use super::abstraction::{Abstraction, MAX_ITERATIONS};
 use crate::param::ParamError;
-
-use super::shape::Abstraction;
 
 /// Why an X-Toon description, texture or abstracted shape cannot be used.
 #[derive(Clone, Debug, PartialEq, Error)]
@@ -37,6 +36,3 @@ pub enum XToonError {
         built: Abstraction,
     },
 }
-
-/// The most smoothing iterations of [`Abstraction::Smoothed`].
-pub const MAX_ITERATIONS: u32 = 1000;

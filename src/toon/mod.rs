@@ -10,24 +10,25 @@
 //! ([`PreparedXToon::in_view`]). What needs the model's points — its principal box, its
 //! smoothed control net — is built once per model ([`Abstraction::build`]).
 
+mod abstraction;
 mod cel;
 mod detail;
 mod error;
 mod grid;
 mod normal_average;
+mod point_run;
 mod shape;
 mod smooth;
 mod texture;
 pub mod texture_families;
 mod xtoon;
 
+pub use abstraction::{Abstraction, MAX_ITERATIONS};
 pub use cel::{CelRamp, ToneError};
 pub use detail::{DetailMap, PreparedDetail, ViewDetail};
-pub use error::{XToonError, MAX_ITERATIONS};
-pub use shape::{
-    AbstractShape, Abstraction, HighlightFrame, PreparedShape, PrincipalBox, ShapeDetail,
-};
+pub use error::XToonError;
+pub(crate) use point_run::PointRun;
+pub use shape::{AbstractShape, HighlightFrame, PreparedShape, PrincipalBox, ShapeDetail};
 pub use smooth::SmoothedNormals;
 pub use texture::{ToonTexture, MAX_TEXTURE_SIDE};
-pub(crate) use xtoon::PointRun;
 pub use xtoon::{PreparedXToon, ViewXToon, XToon};

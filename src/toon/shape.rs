@@ -8,38 +8,13 @@ use glam::{DMat3, DVec3, Mat3, Vec2, Vec3};
 use nalgebra::{Matrix3, SymmetricEigen};
 use serde::Deserialize;
 
-use super::error::{XToonError, MAX_ITERATIONS};
+use super::abstraction::{Abstraction, MAX_ITERATIONS};
+use super::error::XToonError;
+use super::point_run::PointRun;
 use super::smooth::SmoothedNormals;
-use super::xtoon::PointRun;
 use crate::geom::PatchLibrary;
 use crate::math::Lanes;
 use crate::param::{check, Range};
-
-/// The abstracted shape whose normals the shading blends toward.
-///
-/// RON: `Sphere`, `Ellipsoid`, `Cylinder`, `Smoothed(iterations: 10)`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub enum Abstraction {
-    /// A sphere about the centre of the model's principal box: `n_a = normalize(p − c)`.
-    Sphere,
-    /// The ellipsoid of the model's principal box (axes from the eigenvectors of the covariance
-    /// of its control points, semi-axes `a_i` from their extent along each axis). `n_a` is the
-    /// true gradient of `Σ x_i² / a_i²`, `normalize(R (x / a²))` with `x = Rᵀ (p − c)` the
-    /// point in the principal frame — the normal of the ellipsoid through p, exact on it.
-    Ellipsoid,
-    /// A cylinder through the box centre along the principal axis `e` (largest variance):
-    /// `n_a = normalize((p − c) − ((p − c)·e) e)`.
-    Cylinder,
-    /// The model's normals smoothed: `n_a` is the kernel average of the model's normals over a
-    /// ball of radius `½ h √iterations` around the point, h the mean control-net spacing, as
-    /// that many rounds of averaging with the neighbours would spread them (see
-    /// [`SmoothedNormals::new`]).
-    Smoothed {
-        /// Smoothing iterations, 1 to 1000.
-        iterations: u32,
-    },
-}
 
 /// Which frame the highlight operations of a patch with shape detail use: the designed
 /// highlight's operations and the X-Toon highlight detail map `|v·r|^s`.

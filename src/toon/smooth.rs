@@ -6,7 +6,7 @@ use glam::{DVec3, Vec2, Vec3};
 use super::error::XToonError;
 use super::grid::Grid;
 use super::normal_average::{AreaSample, NormalAverage};
-use super::xtoon::PointRun;
+use super::point_run::PointRun;
 use crate::geom::{GridEvaluator, NurbsSurface, PatchLibrary};
 use crate::math::Lanes;
 

@@ -10,7 +10,8 @@ pub const WIDTH: usize = 256;
 /// Texture height in texels (the detail axis).
 pub const HEIGHT: usize = 64;
 
-/// The paper's effect families, each with the detail map it is made for.
+/// The effect families of X-Toon (Barla, Thollot & Markosian 2006), each with the detail map it
+/// is made for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Family {
     /// Figure 7b, levels of abstraction (depth map; also depth of field, Figure 8a): three

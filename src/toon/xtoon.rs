@@ -3,11 +3,12 @@
 
 use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use serde::Deserialize;
 
 use super::detail::{DetailMap, PreparedDetail, ViewDetail};
 use super::error::XToonError;
+use super::point_run::PointRun;
 use super::shape::{AbstractShape, HighlightFrame, PreparedShape, ShapeDetail};
 use super::texture::ToonTexture;
 use crate::math::{Lanes, LANES};
@@ -24,7 +25,8 @@ use crate::math::{Lanes, LANES};
 pub struct XToon<P = f32> {
     /// Where the detail D comes from.
     pub detail: DetailMap<P>,
-    /// Use `1 − D` (the paper's Figure 4: low detail where the map is high). Default false.
+    /// Use `1 − D` (Figure 4 of Barla, Thollot & Markosian 2006: low detail where the map is
+    /// high). Default false.
     #[serde(default)]
     pub invert: bool,
     /// Shading normals blended toward an abstracted shape. None (or left out): the true
@@ -123,60 +125,6 @@ pub struct ViewXToon<'a> {
     detail: ViewDetail,
 }
 
-/// Up to [`LANES`] points of one patch side by side, one array per coordinate, as
-/// [`ViewXToon::shade_run`] reads them.
-#[derive(Clone, Debug)]
-pub struct PointRun {
-    /// How many points: the first `len` of each array.
-    pub len: usize,
-    /// The patch they lie on.
-    pub patch: usize,
-    /// World positions.
-    pub position: Lanes,
-    /// Unit normals, facing the viewer.
-    pub normal: Lanes,
-    /// Patch parameters.
-    pub u: [f32; LANES],
-    pub v: [f32; LANES],
-}
-
-impl Default for PointRun {
-    /// No points.
-    fn default() -> Self {
-        Self {
-            len: 0,
-            patch: 0,
-            position: Lanes::default(),
-            normal: Lanes::default(),
-            u: [0.0; LANES],
-            v: [0.0; LANES],
-        }
-    }
-}
-
-impl PointRun {
-    /// The run of the one point at `position` with unit normal `normal`, on patch `patch` at
-    /// `uv`.
-    #[must_use]
-    pub fn one(position: Vec3, normal: Vec3, patch: usize, uv: Vec2) -> Self {
-        let mut run = Self {
-            len: 1,
-            patch,
-            ..Self::default()
-        };
-        run.set(0, position, normal, uv);
-        run
-    }
-
-    /// Sets the `k`-th point.
-    #[inline(always)]
-    pub fn set(&mut self, k: usize, position: Vec3, normal: Vec3, uv: Vec2) {
-        self.position.set(k, position);
-        self.normal.set(k, normal);
-        (self.u[k], self.v[k]) = uv.into();
-    }
-}
-
 impl ViewXToon<'_> {
     /// Whether the tone reads the view vector: the orientation maps do, the depth maps do not.
     #[inline]
@@ -239,7 +187,7 @@ mod tests {
     use super::*;
     use crate::geom::{shapes, NamedPatch, PatchLibrary};
     use crate::toon::Abstraction;
-    use glam::DVec3;
+    use glam::{DVec3, Vec2};
 
     /// A unit vector that turns with `k`.
     fn direction(k: usize, turn: f32) -> Vec3 {

@@ -383,15 +383,16 @@ fn format_of(
         .map_err(|e| TuneError::Bad(e.body_text()))
 }
 
-/// A frame's pixels as `format` carries them, with its size and timing in headers.
+/// A frame's pixels as `format` carries them, with its size and timing in headers; a frame
+/// that cannot be encoded is a failure ([`TuneError::Failed`]).
 fn image_response(
     image: &FrameImage,
     format: Format,
     extra: Option<(&'static str, String)>,
-) -> Response {
+) -> Result<Response, TuneError> {
     let (content_type, body) = match format {
         Format::Raw => ("application/octet-stream", image.rgba.clone()),
-        Format::Png => ("image/png", png_bytes(image)),
+        Format::Png => ("image/png", png_bytes(image)?),
     };
     let mut response = Response::new(Body::from(body));
     let headers: &mut HeaderMap = response.headers_mut();
@@ -408,24 +409,31 @@ fn image_response(
     if let Some((name, value)) = extra {
         set(name, value);
     }
-    response
+    Ok(response)
 }
 
-/// The frame as a PNG, compressed for speed rather than size.
-fn png_bytes(image: &FrameImage) -> Vec<u8> {
+/// The frame as a PNG, compressed for speed rather than size; a frame whose pixels are not
+/// `width × height × 4` bytes, or that the encoder refuses (an empty one), is a failure.
+fn png_bytes(image: &FrameImage) -> Result<Vec<u8>, TuneError> {
     use image::codecs::png::{CompressionType, FilterType, PngEncoder};
     use image::ImageEncoder;
+    let (width, height) = (image.width, image.height);
+    let expected = u64::from(width) * u64::from(height) * 4;
+    if image.rgba.len() as u64 != expected {
+        return Err(TuneError::Failed(format!(
+            "encoding the frame as PNG: a {width}×{height} frame has {expected} bytes of \
+             pixels, not {}",
+            image.rgba.len()
+        )));
+    }
     let mut out = Vec::new();
     let encoder = PngEncoder::new_with_quality(&mut out, CompressionType::Fast, FilterType::Sub);
-    match encoder.write_image(
-        &image.rgba,
-        image.width,
-        image.height,
-        image::ExtendedColorType::Rgba8,
-    ) {
-        Ok(()) => out,
-        Err(_) => Vec::new(),
-    }
+    encoder
+        .write_image(&image.rgba, width, height, image::ExtendedColorType::Rgba8)
+        .map_err(|e| {
+            TuneError::Failed(format!("encoding the {width}×{height} frame as PNG: {e}"))
+        })?;
+    Ok(out)
 }
 
 async fn frame(
@@ -437,7 +445,7 @@ async fn frame(
         let format = format_of(query)?;
         let request: FrameRequest = json_body(&body)?;
         let image = with_session(&shared, move |s| s.render(&request)).await?;
-        Ok::<_, TuneError>(image_response(&image, format, None))
+        image_response(&image, format, None)
     }
     .await;
     result.unwrap_or_else(IntoResponse::into_response)
@@ -487,11 +495,7 @@ async fn drag(
         .await?;
         let changes =
             serde_json::to_string(&changes).map_err(|e| TuneError::Failed(e.to_string()))?;
-        Ok::<_, TuneError>(image_response(
-            &image,
-            format,
-            Some(("x-glint-changes", changes)),
-        ))
+        image_response(&image, format, Some(("x-glint-changes", changes)))
     }
     .await;
     result.unwrap_or_else(IntoResponse::into_response)
@@ -566,4 +570,60 @@ async fn wait(
     let _ = tokio::time::timeout(WAIT, versions.wait_for(|&v| v != seen)).await;
     let version = *versions.borrow();
     axum::Json(Version { version }).into_response()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A frame of `width × height` pixels holding `bytes` bytes.
+    fn image_of(width: u32, height: u32, bytes: usize) -> FrameImage {
+        FrameImage {
+            width,
+            height,
+            rgba: vec![128; bytes],
+            render_ms: 1.0,
+            stages: vec!["shade"],
+        }
+    }
+
+    /// The status and the body of the answer to `image` asked for as a PNG.
+    fn png_answer(image: &FrameImage) -> (StatusCode, Vec<u8>) {
+        let response =
+            image_response(image, Format::Png, None).unwrap_or_else(IntoResponse::into_response);
+        let status = response.status();
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .build()
+            .unwrap();
+        let body = runtime
+            .block_on(axum::body::to_bytes(response.into_body(), usize::MAX))
+            .unwrap();
+        (status, body.to_vec())
+    }
+
+    #[test]
+    fn a_frame_encodes_as_a_png() {
+        let (status, body) = png_answer(&image_of(3, 2, 3 * 2 * 4));
+        assert_eq!(status, StatusCode::OK);
+        assert_eq!(&body[1..4], b"PNG");
+    }
+
+    #[test]
+    fn a_frame_the_encoder_fails_on_is_a_500_with_one_line_saying_why() {
+        for (image, says) in [
+            (
+                image_of(3, 2, 5),
+                "a 3×2 frame has 24 bytes of pixels, not 5",
+            ),
+            (image_of(0, 0, 0), "encoding the 0×0 frame as PNG: "),
+        ] {
+            let (status, body) = png_answer(&image);
+            let body = String::from_utf8(body).unwrap();
+            assert_eq!(status, StatusCode::INTERNAL_SERVER_ERROR);
+            assert_eq!(body.lines().count(), 1, "{body}");
+            let error: serde_json::Value = serde_json::from_str(&body).unwrap();
+            let message = error["error"].as_str().unwrap();
+            assert!(message.contains(says), "{message}");
+        }
+    }
 }

@@ -1,0 +1,43 @@
+//! What `--stats` prints of a frame: each stage's work and time.
+
+use glint::render::{RenderStats, Stage};
+
+/// One line per stage, in pipeline order, for `--stats`: what it processed and its time, or
+/// that the previous frame's result was reused, or that the plan skipped it.
+pub(crate) fn stats_report(frame: i64, s: &RenderStats) -> String {
+    let mut out = format!(
+        "frame {frame} stats: {:.2} ms total, {} triangles (tessellation {})",
+        s.total_seconds * 1e3,
+        s.triangles,
+        if s.tessellation_rebuilt {
+            "rebuilt"
+        } else {
+            "cached"
+        }
+    );
+    for stage in Stage::ALL {
+        let name = stage.name();
+        if s.ran(stage) {
+            let st = s[stage];
+            let unit = if stage == Stage::Tessellate {
+                "tri"
+            } else {
+                "px"
+            };
+            out.push_str(&format!(
+                "\n  {name:<12} {:>10} {unit:<3} {:>8.2} ms",
+                st.pixels,
+                st.seconds * 1e3
+            ));
+        } else if s.reused(stage) {
+            out.push_str(&format!("\n  {name:<12} {:>10}", "reused"));
+        } else {
+            out.push_str(&format!("\n  {name:<12} {:>10}", "skipped"));
+        }
+    }
+    out.push_str(&format!(
+        "\n  exact frames {}, highlighted samples {}, X-Toon samples {}",
+        s.exact_frames, s.highlight_pixels, s.xtoon_pixels
+    ));
+    out
+}

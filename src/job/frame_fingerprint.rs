@@ -1,0 +1,67 @@
+//! How a job fingerprints its frames: what the whole job shares, hashed once, and each frame's
+//! values.
+
+use std::fmt::Write as _;
+
+use sha2::{Digest, Sha256};
+
+use super::fingerprint::Fingerprint;
+use super::RenderJob;
+
+/// The part of every frame's fingerprint that the whole job shares: glint's version, the
+/// settings (not the thread count, which changes no byte), the AOVs asked for, the model as
+/// placed, and the bytes of every patch file and texture. `None` when an asset cannot
+/// be read (the job's frames then have no fingerprint, and are never taken as current).
+fn job_digest(job: &RenderJob) -> Option<Sha256> {
+    let shot = job.shot();
+    let mut settings = *job.settings();
+    settings.threads = 0;
+    let mut hash = Sha256::new();
+    let mut text = String::new();
+    let _ = write!(
+        text,
+        "glint {}\n{settings:?}\n{:?}\n{:?}\n",
+        env!("CARGO_PKG_VERSION"),
+        shot.aovs,
+        shot.library
+    );
+    hash.update(text.as_bytes());
+    for asset in shot.asset_inputs() {
+        let bytes = std::fs::read(asset).ok()?;
+        hash.update((bytes.len() as u64).to_le_bytes());
+        hash.update(&bytes);
+    }
+    Some(hash)
+}
+
+impl RenderJob {
+    /// The fingerprint of frame `frame`: what the whole job shares (glint's version, the
+    /// settings but the thread count, the AOVs, the model as placed, the bytes of
+    /// every patch file and texture) and every value the shot has at that frame
+    /// ([`crate::shot::Shot::at`]). `None` when an asset cannot be read. Two frames share it only when they
+    /// would be rendered from the same values, so an edit of one key changes the fingerprints
+    /// of exactly the frames it changes.
+    #[must_use]
+    pub fn fingerprint(&self, frame: i64) -> Option<Fingerprint> {
+        let mut hash = self.digest.get_or_init(|| job_digest(self)).clone()?;
+        let state = self.shot().at(frame as f64);
+        let mut text = String::new();
+        let _ = write!(
+            text,
+            "{:?}",
+            (
+                state.camera,
+                state.light,
+                state.materials,
+                state.highlights,
+                state.outlines,
+                state.lines
+            )
+        );
+        hash.update(text.as_bytes());
+        let digest = hash.finalize();
+        Some(Fingerprint(
+            digest[..16].iter().map(|b| format!("{b:02x}")).collect(),
+        ))
+    }
+}
