@@ -9,6 +9,7 @@ use std::process::{Child, Stdio};
 use std::sync::mpsc::{self, Receiver};
 use std::time::{Duration, Instant};
 
+use crate::common::ball_shot::{save_as_an_editor_does, BallShot};
 use crate::common::{glint, repo_file};
 
 /// How long any one event may take to show: far beyond what it needs, so that only an event
@@ -97,30 +98,16 @@ impl Watching {
     }
 }
 
-/// The one-frame shot of the sphere, 24×24, with a highlight of width `epsilon`.
+/// The one-frame shot of the ball, 24×24, with a highlight of width `epsilon`.
 fn shot_text(epsilon: f32) -> String {
-    format!(
-        r#"Shot(
-    resolution: (24, 24),
-    frames: (1, 1),
-    fps: 24,
-    output: "out/ball.#.png",
-    instances: [(name: "ball", file: "sphere.ron", material: "blue")],
-    materials: {{ "blue": Cel(base: (0.04, 0.07, 0.2), bands: [(0.05, (0.2, 0.3, 0.7))]) }},
-    camera: (eye: (0.0, -6.0, 1.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4)),
-    light: Directional(towards: (0.35, -1.0, 0.45)),
-    highlights: [(patches: "ball/*", expr: Layer((stack: [], epsilon: {epsilon}, colour: (1.0, 1.0, 1.0))))],
-    render: (preset: Preview),
-)
-"#
-    )
-}
-
-/// Saves `text` at `path` as an editor does: a new file renamed over the old one.
-fn save(path: &Path, text: &str) {
-    let temporary = path.with_file_name(".ball.ron.swp");
-    std::fs::write(&temporary, text).unwrap();
-    std::fs::rename(&temporary, path).unwrap();
+    BallShot {
+        size: (24, 24),
+        epsilon,
+        lit: "(0.2, 0.3, 0.7)",
+        include: None,
+        preset: Some("Preview"),
+    }
+    .text()
 }
 
 fn is_frame_line(line: &str) -> bool {
@@ -137,14 +124,14 @@ fn edits_render_a_broken_edit_prints_its_error_and_the_fix_renders() {
     .unwrap();
     let shot = dir.path().join("ball.ron");
     let frame = dir.path().join("out/ball.1.png");
-    save(&shot, &shot_text(0.02));
+    save_as_an_editor_does(&shot, &shot_text(0.02));
 
     let mut watching = Watching::start(&shot);
     watching.wait_for("first frame", is_frame_line);
     watching.wait_for("watching line", |l| l.starts_with("out: watching 2 files"));
     let first = std::fs::read(&frame).unwrap();
 
-    save(&shot, &shot_text(0.15));
+    save_as_an_editor_does(&shot, &shot_text(0.15));
     let line = watching.wait_for("frame after the edit", is_frame_line);
     assert!(line.contains("ball.ron changed"), "{line}");
     assert!(
@@ -154,7 +141,7 @@ fn edits_render_a_broken_edit_prints_its_error_and_the_fix_renders() {
     let edited = std::fs::read(&frame).unwrap();
     assert_ne!(first, edited, "the wider highlight is in the new frame");
 
-    save(&shot, &shot_text(0.15).replace("epsilon", "epsilom"));
+    save_as_an_editor_does(&shot, &shot_text(0.15).replace("epsilon", "epsilom"));
     let error = watching.wait_for("error line", |l| l.starts_with("err: "));
     assert!(
         error.starts_with(&format!("err: error: {}:", shot.display())),
@@ -162,7 +149,7 @@ fn edits_render_a_broken_edit_prints_its_error_and_the_fix_renders() {
     );
     assert!(error.contains("epsilom"), "{error}");
 
-    save(&shot, &shot_text(0.3));
+    save_as_an_editor_does(&shot, &shot_text(0.3));
     watching.wait_for("frame after the fix", is_frame_line);
     let fixed = std::fs::read(&frame).unwrap();
     assert!(fixed != edited && fixed != first);

@@ -2,41 +2,27 @@
 //! not change, so the next frame reuses the tessellation and the surfaces; a new model when
 //! they did; a broken edit leaves the job as it was.
 
-use std::path::Path;
-
 use glint::job::{Overrides, Reloaded, RenderJob};
 use glint::render::Stage;
 use glint::shot::Preset;
 
-/// A one-frame shot of the unit sphere in `sphere.ron` beside it, with a highlight of width
-/// `epsilon` and its ramp's lit colour `lit`; `include` names an include file if any.
+use crate::common::ball_shot::{save_as_an_editor_does, BallShot};
+
+/// The one-frame shot of the ball, 40×30, with a highlight of width `epsilon` and its ramp's lit
+/// colour `lit`; `include` names an include file if any.
 fn shot_text(epsilon: f32, lit: &str, include: Option<&str>) -> String {
-    let includes = include.map_or_else(String::new, |i| format!("includes: [{i:?}],"));
-    format!(
-        r#"Shot(
-    resolution: (40, 30),
-    frames: (1, 1),
-    fps: 24,
-    output: "out/ball.#.png",
-    {includes}
-    instances: [(name: "ball", file: "sphere.ron", material: "blue")],
-    materials: {{ "blue": Cel(base: (0.04, 0.07, 0.2), bands: [(0.05, {lit})]) }},
-    camera: (eye: (0.0, -6.0, 1.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4)),
-    light: Directional(towards: (0.35, -1.0, 0.45)),
-    highlights: [(patches: "ball/*", expr: Layer((stack: [], epsilon: {epsilon}, colour: (1.0, 1.0, 1.0))))],
-)
-"#
-    )
+    BallShot {
+        size: (40, 30),
+        epsilon,
+        lit,
+        include,
+        preset: None,
+    }
+    .text()
 }
 
 fn sphere(radius: f32) -> String {
     format!("(patches: [(name: \"sphere\", surface: Sphere(radius: {radius}))])")
-}
-
-fn write(path: &Path, text: &str) {
-    let temporary = path.with_extension("tmp");
-    std::fs::write(&temporary, text).unwrap();
-    std::fs::rename(&temporary, path).unwrap();
 }
 
 fn overrides() -> Overrides {
@@ -50,13 +36,13 @@ fn overrides() -> Overrides {
 fn an_edit_that_keeps_the_patch_files_keeps_the_model_and_the_surfaces() {
     let dir = tempfile::tempdir().unwrap();
     let (shot, model) = (dir.path().join("ball.ron"), dir.path().join("sphere.ron"));
-    write(&model, &sphere(1.0));
-    write(&shot, &shot_text(0.05, "(0.2, 0.3, 0.7)", None));
+    save_as_an_editor_does(&model, &sphere(1.0));
+    save_as_an_editor_does(&shot, &shot_text(0.05, "(0.2, 0.3, 0.7)", None));
     let mut job = RenderJob::load(&shot, &overrides()).unwrap();
     let before = job.render_frame(1.0).unwrap();
     let library = std::sync::Arc::clone(&job.shot().library);
 
-    write(&shot, &shot_text(0.12, "(0.2, 0.3, 0.7)", None));
+    save_as_an_editor_does(&shot, &shot_text(0.12, "(0.2, 0.3, 0.7)", None));
     assert_eq!(job.reload().unwrap(), Reloaded::ModelKept);
     assert!(std::sync::Arc::ptr_eq(&library, &job.shot().library));
     let after = job.render_frame(1.0).unwrap();
@@ -72,7 +58,7 @@ fn an_edit_that_keeps_the_patch_files_keeps_the_model_and_the_surfaces() {
     assert_eq!(after.colour, fresh.colour);
 
     // The patch file changes: a new model, tessellated anew.
-    write(&model, &sphere(0.8));
+    save_as_an_editor_does(&model, &sphere(0.8));
     assert_eq!(job.reload().unwrap(), Reloaded::ModelChanged);
     assert!(!std::sync::Arc::ptr_eq(&library, &job.shot().library));
     let smaller = job.render_frame(1.0).unwrap();
@@ -84,13 +70,13 @@ fn an_edit_that_keeps_the_patch_files_keeps_the_model_and_the_surfaces() {
 fn a_broken_edit_leaves_the_job_and_a_new_include_joins_the_inputs() {
     let dir = tempfile::tempdir().unwrap();
     let (shot, model) = (dir.path().join("ball.ron"), dir.path().join("sphere.ron"));
-    write(&model, &sphere(1.0));
-    write(&shot, &shot_text(0.05, "(0.2, 0.3, 0.7)", None));
+    save_as_an_editor_does(&model, &sphere(1.0));
+    save_as_an_editor_does(&shot, &shot_text(0.05, "(0.2, 0.3, 0.7)", None));
     let mut job = RenderJob::load(&shot, &overrides()).unwrap();
     let good = job.render_frame(1.0).unwrap();
     assert_eq!(job.inputs().len(), 2);
 
-    write(&shot, &shot_text(0.05, "(0.2, 0.3)", None));
+    save_as_an_editor_does(&shot, &shot_text(0.05, "(0.2, 0.3)", None));
     let error = job.reload().unwrap_err();
     assert!(error.is_bad_input());
     assert!(
@@ -102,8 +88,8 @@ fn a_broken_edit_leaves_the_job_and_a_new_include_joins_the_inputs() {
     assert_eq!(job.render_frame(1.0).unwrap().colour, good.colour);
 
     let looks = dir.path().join("looks.ron");
-    write(&looks, "Looks(materials: {})");
-    write(
+    save_as_an_editor_does(&looks, "Looks(materials: {})");
+    save_as_an_editor_does(
         &shot,
         &shot_text(0.05, "(0.2, 0.3, 0.7)", Some("looks.ron")),
     );

@@ -1,5 +1,6 @@
 //! Helpers shared by the test modules: running the binary, loading the shipped models.
 
+pub mod ball_shot;
 pub mod http;
 
 use std::path::{Path, PathBuf};
