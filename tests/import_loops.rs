@@ -42,8 +42,9 @@ fn assert_no_loops(crate_roots: &[PathBuf]) {
     }
     assert!(
         lines.is_empty(),
-        "{} import loops between source files:\n{}",
+        "{} import loop{} between source files:\n{}",
         lines.len(),
+        if lines.len() == 1 { "" } else { "s" },
         lines.join("\n")
     );
 }
