@@ -368,6 +368,28 @@ impl NurbsSurface {
         h.rational(origin.point, order)
     }
 
+    /// The surface with its control points replaced by `points`, in the order of
+    /// [`NurbsSurface::control_points`] (weights and knots unchanged); None when the count is not
+    /// the net's.
+    #[must_use]
+    pub fn try_with_points(&self, points: &[DVec3]) -> Option<Self> {
+        if points.len() != self.net.len() {
+            return None;
+        }
+        let net = self
+            .net
+            .iter()
+            .zip(points)
+            .map(|(h, p)| (*p * h.w).extend(h.w))
+            .collect();
+        Some(Self {
+            knots_u: self.knots_u.clone(),
+            knots_v: self.knots_v.clone(),
+            net,
+            rational: self.rational,
+        })
+    }
+
     /// The surface with every control point mapped by `f` (weights unchanged). Exact for affine
     /// maps, since rational surfaces are affinely invariant.
     pub fn map_points(&self, f: impl Fn(DVec3) -> DVec3) -> Self {
