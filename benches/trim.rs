@@ -51,7 +51,8 @@ fn main() {
             Variant::new(label, move || {
                 let frame = first + next.get() % count;
                 next.set(next.get() + 1);
-                let mut scene = shot.at(frame as f64).scene(shot).unwrap();
+                let state = shot.at(frame as f64);
+                let mut scene = state.scene(shot).unwrap();
                 scene.library = &library;
                 Some(renderer.render(&scene, &settings).unwrap().stats)
             })

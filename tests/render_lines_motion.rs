@@ -24,7 +24,8 @@ fn frames(path: &str) -> (Vec<Frame>, Vec<(String, Vec<usize>)>) {
     let mut renderer = Renderer::new(Arc::clone(&shot.library));
     let frames = (shot.frames.0..=shot.frames.1)
         .map(|frame| {
-            let scene = shot.at(frame as f64).scene(&shot).unwrap();
+            let state = shot.at(frame as f64);
+            let scene = state.scene(&shot).unwrap();
             let image = renderer.render(&scene, &settings).unwrap();
             Frame {
                 alpha: image.aovs.outline.unwrap().iter().map(|c| c.w).collect(),

@@ -308,8 +308,8 @@ fn consecutive_frames_of_every_shot_give_a_fresh_jobs_bytes() {
                 .unwrap();
             let name = shot.file_stem().unwrap().to_string_lossy().into_owned();
             assert!(same_output(&second, &fresh), "{name} {preset:?}");
-            let camera_held = job.scene(first as f64 + 1.0).unwrap().camera
-                == job.scene(first as f64 + 2.0).unwrap().camera;
+            let camera_held =
+                job.state(first as f64 + 1.0).camera == job.state(first as f64 + 2.0).camera;
             assert_eq!(
                 second.stats.reused(Stage::Rasterize),
                 camera_held,

@@ -59,7 +59,8 @@ fn every_shot_loads_and_renders_small_and_shows_what_it_is_for() {
             (shot.frames.0 + shot.frames.1) / 2,
             shot.frames.1,
         ] {
-            let mut scene = shot.at(frame as f64).scene(&shot).unwrap();
+            let state = shot.at(frame as f64);
+            let mut scene = state.scene(&shot).unwrap();
             scene.aovs.matte = true;
             scene.aovs.patch_id = true;
             let image = renderer.render(&scene, &settings).unwrap();
@@ -131,7 +132,8 @@ fn the_documented_example_and_look_library_load_and_render() {
     );
     let mut settings = shot.settings_with(None, Some((64, 36)));
     settings.antialias = glint::render::Antialias::None;
-    let scene = shot.at(24.5).scene(&shot).unwrap();
+    let state = shot.at(24.5);
+    let scene = state.scene(&shot).unwrap();
     let image = Renderer::new(Arc::clone(&shot.library))
         .render(&scene, &settings)
         .unwrap();

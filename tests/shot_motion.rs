@@ -19,7 +19,8 @@ fn matte_track(shot: &mut Shot) -> Vec<(f32, Vec2)> {
     let mut renderer = Renderer::new(Arc::clone(&shot.library));
     (shot.frames.0..=shot.frames.1)
         .map(|frame| {
-            let scene = shot.at(frame as f64).scene(shot).unwrap();
+            let state = shot.at(frame as f64);
+            let scene = state.scene(shot).unwrap();
             let image = renderer.render(&scene, &settings).unwrap();
             let matte = image.aovs.matte.unwrap();
             let mut area = 0.0;

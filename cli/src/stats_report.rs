@@ -10,9 +10,12 @@ pub(crate) fn stats_report(frame: i64, s: &RenderStats) -> String {
         s.total_seconds * 1e3,
         s.triangles,
         if s.tessellation_rebuilt {
-            "rebuilt"
+            format!(
+                "rebuilt: {} patch grids evaluated, {} kept",
+                s.grids_evaluated, s.grids_kept
+            )
         } else {
-            "cached"
+            "cached".to_string()
         }
     );
     for stage in Stage::ALL {

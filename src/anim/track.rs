@@ -1,7 +1,7 @@
 use std::fmt;
 use std::marker::PhantomData;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -13,21 +13,34 @@ pub trait Interpolate: Copy {
     const COMPONENTS: usize;
 
     /// The value written as `components` (exactly [`Self::COMPONENTS`] finite numbers).
-    fn from_components(components: &[f32]) -> Result<Self, String>;
+    fn from_components(components: &[f64]) -> Result<Self, String>;
 
     /// The value a fraction `t ∈ [0, 1]` of the way from `a` to `b`.
-    fn interpolate(a: Self, b: Self, t: f32) -> Self;
+    fn interpolate(a: Self, b: Self, t: f64) -> Self;
+}
+
+/// `n` as an f32, refused where it leaves the f32 range.
+fn single(n: f64) -> Result<f32, String> {
+    let single = n as f32;
+    if single.is_finite() {
+        Ok(single)
+    } else {
+        Err(format!(
+            "{n} is not allowed: values must be finite numbers within the f32 range"
+        ))
+    }
 }
 
 impl Interpolate for f32 {
     const COMPONENTS: usize = 1;
 
-    fn from_components(c: &[f32]) -> Result<Self, String> {
-        Ok(c[0])
+    fn from_components(c: &[f64]) -> Result<Self, String> {
+        single(c[0])
     }
 
-    /// `a + t (b − a)`, exact at both ends.
-    fn interpolate(a: Self, b: Self, t: f32) -> Self {
+    /// `a + t (b − a)`, exact at both ends (in f32).
+    fn interpolate(a: Self, b: Self, t: f64) -> Self {
+        let t = t as f32;
         if t >= 1.0 {
             b
         } else {
@@ -39,12 +52,47 @@ impl Interpolate for f32 {
 impl Interpolate for Vec3 {
     const COMPONENTS: usize = 3;
 
-    fn from_components(c: &[f32]) -> Result<Self, String> {
-        Ok(Vec3::new(c[0], c[1], c[2]))
+    fn from_components(c: &[f64]) -> Result<Self, String> {
+        Ok(Vec3::new(single(c[0])?, single(c[1])?, single(c[2])?))
+    }
+
+    /// Componentwise `a + t (b − a)`, exact at both ends (in f32).
+    fn interpolate(a: Self, b: Self, t: f64) -> Self {
+        let t = t as f32;
+        if t >= 1.0 {
+            b
+        } else {
+            a + t * (b - a)
+        }
+    }
+}
+
+impl Interpolate for f64 {
+    const COMPONENTS: usize = 1;
+
+    fn from_components(c: &[f64]) -> Result<Self, String> {
+        Ok(c[0])
+    }
+
+    /// `a + t (b − a)`, exact at both ends.
+    fn interpolate(a: Self, b: Self, t: f64) -> Self {
+        if t >= 1.0 {
+            b
+        } else {
+            a + t * (b - a)
+        }
+    }
+}
+
+impl Interpolate for DVec3 {
+    const COMPONENTS: usize = 3;
+
+    fn from_components(c: &[f64]) -> Result<Self, String> {
+        Ok(DVec3::new(c[0], c[1], c[2]))
     }
 
     /// Componentwise `a + t (b − a)`, exact at both ends.
-    fn interpolate(a: Self, b: Self, t: f32) -> Self {
+    fn interpolate(a: Self, b: Self, t: f64) -> Self {
         if t >= 1.0 {
             b
         } else {
@@ -60,8 +108,8 @@ pub struct Direction(pub Vec3);
 impl Interpolate for Direction {
     const COMPONENTS: usize = 3;
 
-    fn from_components(c: &[f32]) -> Result<Self, String> {
-        Vec3::new(c[0], c[1], c[2])
+    fn from_components(c: &[f64]) -> Result<Self, String> {
+        Vec3::new(single(c[0])?, single(c[1])?, single(c[2])?)
             .try_normalize()
             .map(Direction)
             .ok_or_else(|| format!("the direction ({}, {}, {}) has no length", c[0], c[1], c[2]))
@@ -70,7 +118,8 @@ impl Interpolate for Direction {
     /// Spherical linear interpolation, `sin((1−t)Ω)/sin Ω · a + sin(tΩ)/sin Ω · b` with
     /// `cos Ω = a·b`; linear (then normalized) where Ω is too small for the quotient, and
     /// turning about an axis across `a` when the two are opposite.
-    fn interpolate(Direction(a): Self, Direction(b): Self, t: f32) -> Self {
+    fn interpolate(Direction(a): Self, Direction(b): Self, t: f64) -> Self {
+        let t = t as f32;
         if t >= 1.0 {
             return Direction(b);
         }
@@ -130,7 +179,7 @@ impl<T: Interpolate> Track<T> {
         match (after.checked_sub(1).map(|i| &keys[i]), keys.get(after)) {
             (Some(a), Some(b)) => {
                 let t = (frame - a.frame) / (b.frame - a.frame);
-                T::interpolate(a.value, b.value, t as f32)
+                T::interpolate(a.value, b.value, t)
             }
             (Some(last), None) => last.value,
             (None, Some(first)) => first.value,
@@ -286,16 +335,10 @@ fn value_from<T: Interpolate>(numbers: &[f64]) -> Result<T, String> {
             )
         });
     }
-    let mut components = [0.0f32; 4];
-    for (c, &n) in components.iter_mut().zip(numbers) {
-        *c = n as f32;
-        if !c.is_finite() {
-            return Err(format!(
-                "{n} is not allowed: values must be finite numbers within the f32 range"
-            ));
-        }
+    if let Some(n) = numbers.iter().find(|n| !n.is_finite()) {
+        return Err(format!("{n} is not allowed: values must be finite numbers"));
     }
-    T::from_components(&components[..T::COMPONENTS])
+    T::from_components(numbers)
 }
 
 impl<'de, T: Interpolate> Deserialize<'de> for Track<T> {
@@ -437,7 +480,7 @@ mod tests {
         let b = Direction(Vec3::Y);
         for i in 0..=8 {
             let t = i as f32 / 8.0;
-            let d = Direction::interpolate(a, b, t).0;
+            let d = Direction::interpolate(a, b, f64::from(t)).0;
             assert!((d.length() - 1.0).abs() < 1e-6);
             let angle = d.y.atan2(d.x);
             assert!(
@@ -455,7 +498,7 @@ mod tests {
         let plane = p.cross(q).normalize();
         for i in 1..8 {
             let t = i as f32 / 8.0;
-            let d = Direction::interpolate(Direction(p), Direction(q), t).0;
+            let d = Direction::interpolate(Direction(p), Direction(q), f64::from(t)).0;
             assert!(d.dot(plane).abs() < 1e-6, "{t}: {d}");
             assert!((d.angle_between(p) - t * whole).abs() < 1e-5, "{t}: {d}");
             assert!(
@@ -471,6 +514,6 @@ mod tests {
         assert!((half.y.atan2(half.x) - 0.5 * angle).abs() < 1e-6, "{half}");
         let opposite = Direction::interpolate(a, Direction(-Vec3::X), 0.5).0;
         assert!(opposite.is_finite() && opposite.dot(Vec3::X).abs() < 1e-6);
-        assert!(Direction::from_components(&[0.0, 0.0, 0.0]).is_err());
+        assert!(Direction::from_components(&[0.0f64, 0.0, 0.0]).is_err());
     }
 }

@@ -51,6 +51,32 @@ pub struct PatchLibrary {
     pub groups: Vec<PatchGroup>,
 }
 
+impl PatchLibrary {
+    /// Which of this model's patches `pose` moves, when `pose` is this model posed otherwise:
+    /// the same patches, names, parts and trims, each surface the same but (maybe) its control
+    /// points ([`NurbsSurface::same_but_points`]); a patch is moved when some control point
+    /// differs. None when `pose` is another model.
+    #[must_use]
+    pub fn try_moved_in(&self, pose: &PatchLibrary) -> Option<Vec<bool>> {
+        if self.patches.len() != pose.patches.len() || self.groups != pose.groups {
+            return None;
+        }
+        self.patches
+            .iter()
+            .zip(&pose.patches)
+            .map(|(a, b)| {
+                let same_trim = match (&a.trim, &b.trim) {
+                    (None, None) => true,
+                    (Some(x), Some(y)) => Arc::ptr_eq(x, y) || x == y,
+                    _ => false,
+                };
+                (a.name == b.name && same_trim && a.surface.same_but_points(&b.surface))
+                    .then(|| a.surface != b.surface)
+            })
+            .collect()
+    }
+}
+
 /// A patch name or index that is not in the library.
 #[derive(Clone, Debug, Error, PartialEq)]
 #[error("no patch '{query}'; the patches are: {}", names.join(", "))]

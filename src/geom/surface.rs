@@ -368,6 +368,20 @@ impl NurbsSurface {
         h.rational(origin.point, order)
     }
 
+    /// Whether `other` is this surface with (maybe) other control points: the same knots, net
+    /// and weights (compared bit for bit).
+    #[must_use]
+    pub fn same_but_points(&self, other: &Self) -> bool {
+        self.knots_u == other.knots_u
+            && self.knots_v == other.knots_v
+            && self.net.len() == other.net.len()
+            && self
+                .net
+                .iter()
+                .zip(&other.net)
+                .all(|(a, b)| a.w.to_bits() == b.w.to_bits())
+    }
+
     /// The surface with its control points replaced by `points`, in the order of
     /// [`NurbsSurface::control_points`] (weights and knots unchanged); None when the count is not
     /// the net's.

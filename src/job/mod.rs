@@ -39,8 +39,10 @@ pub use memory::{bytes_text, default_memory_ceiling, estimate_peak_bytes, parse_
 pub use place::{LayerChoice, PlaceError, Placement, Residual};
 
 use crate::formats::atomic::{Durability, WriteError};
-use crate::render::{RenderError, RenderedFrame, Renderer, Scene, Settings};
-use crate::shot::{check_numbered, load_shot, resolve_path, Aov, Preset, Shot, ShotError};
+use crate::render::{RenderError, RenderedFrame, Renderer, Settings};
+use crate::shot::{
+    check_numbered, load_shot, resolve_path, Aov, FrameState, Preset, Shot, ShotError,
+};
 
 /// What a user asks for instead of what the shot says. `None` keeps the shot's own.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -256,8 +258,10 @@ impl RenderJob {
     /// the shot read from its file: for an edit not saved yet (a shot loaded from text with
     /// `load_shot_text`). On an error the job is left as it was.
     pub fn replace_shot(&mut self, mut shot: Shot) -> Result<Reloaded, JobError> {
-        let reloaded = if *shot.library == **self.renderer.library() {
-            shot.library = Arc::clone(self.renderer.library());
+        // The renderer draws poses of the job's model: the new shot keeps it when its model is
+        // the same patch for patch.
+        let reloaded = if *shot.library == *self.shot.library {
+            shot.library = Arc::clone(&self.shot.library);
             Reloaded::ModelKept
         } else {
             Reloaded::ModelChanged
@@ -315,15 +319,18 @@ impl RenderJob {
         self.shot.frame_path(frame)
     }
 
-    /// The scene the shot shows at `frame` (fractional frames allowed).
-    pub fn scene(&self, frame: f64) -> Result<Scene<'_>, JobError> {
-        Ok(self.shot.at(frame).scene(&self.shot)?)
+    /// Every track of the shot read at `frame` (fractional frames allowed), with the model
+    /// there: what [`FrameState::scene`] makes the frame's scene of.
+    #[must_use]
+    pub fn state(&self, frame: f64) -> FrameState {
+        self.shot.at(frame)
     }
 
     /// Renders `frame` (fractional frames allowed): its colour, AOVs and statistics. Nothing
     /// is written.
     pub fn render_frame(&mut self, frame: f64) -> Result<RenderedFrame, JobError> {
-        let scene = self.shot.at(frame).scene(&self.shot)?;
+        let state = self.shot.at(frame);
+        let scene = state.scene(&self.shot)?;
         self.renderer
             .render(&scene, &self.settings)
             .map_err(|source| JobError::Render { frame, source })

@@ -231,11 +231,8 @@ impl RenderJob {
                 height,
             });
         }
-        let mut scene = self
-            .shot
-            .at(frame)
-            .scene(&self.shot)
-            .map_err(JobError::from)?;
+        let state = self.shot.at(frame);
+        let mut scene = state.scene(&self.shot).map_err(JobError::from)?;
         scene.aovs = Aovs {
             patch_id: true,
             uv: true,

@@ -128,6 +128,26 @@ impl Renderer {
         )
     }
 
+    /// Draws `pose`, this renderer's model with some patches moved or deformed, from now on:
+    /// the tessellation evaluates the grids of the moved patches again and keeps the others',
+    /// and the next frame's surfaces are made again. [`RenderError::OtherModel`] when `pose` is
+    /// not this model ([`PatchLibrary::try_moved_in`]).
+    fn repose(&mut self, pose: &PatchLibrary) -> Result<(), RenderError> {
+        let moved = self
+            .library
+            .try_moved_in(pose)
+            .ok_or(RenderError::OtherModel)?;
+        if moved.iter().any(|&m| m) {
+            let library = Arc::new(pose.clone());
+            self.buffers
+                .tessellator
+                .repose(Arc::clone(&library), &moved);
+            self.buffers.kept = None;
+            self.library = library;
+        }
+        Ok(())
+    }
+
     /// The model this renderer draws.
     #[must_use]
     pub fn library(&self) -> &Arc<PatchLibrary> {
@@ -143,7 +163,7 @@ impl Renderer {
         settings.validate()?;
         scene.camera.validate()?;
         if !std::ptr::eq(scene.library, &*self.library) {
-            return Err(RenderError::OtherModel);
+            self.repose(scene.library)?;
         }
         if scene.looks.len() != self.library.patches.len() {
             return Err(RenderError::LooksPerPatch {
@@ -399,16 +419,28 @@ fn tessellate<'t>(
     segments: Option<Vec<Segments>>,
     stats: &mut RenderStats,
 ) -> &'t Mesh {
-    let ((mesh, rebuilt), seconds) = timed(|| match segments {
-        Some(segments) => tessellator.mesh_of(segments),
-        None => tessellator.mesh(
-            settings.density,
-            grid.view_projection,
-            settings.width,
-            settings.height,
-        ),
+    let (rebuilt, seconds) = timed(|| match segments {
+        Some(segments) => tessellator.mesh_of(segments).1,
+        None => {
+            tessellator
+                .mesh(
+                    settings.density,
+                    grid.view_projection,
+                    settings.width,
+                    settings.height,
+                )
+                .1
+        }
     });
+    let tessellator: &'t Tessellator = tessellator;
+    let mesh = tessellator
+        .cached_mesh()
+        .expect("the tessellator has just made its mesh");
     stats.tessellation_rebuilt = rebuilt;
+    if rebuilt {
+        stats.grids_evaluated = tessellator.evaluated();
+        stats.grids_kept = mesh.grids.len() - stats.grids_evaluated;
+    }
     stats.triangles = mesh.triangles.len();
     stats.record(Stage::Tessellate, mesh.triangles.len() as u64, seconds);
     mesh

@@ -31,6 +31,12 @@ pub struct RenderStats {
     /// Whether the mesh had to be rebuilt (false when the cached one served, or the
     /// tessellation was reused).
     pub tessellation_rebuilt: bool,
+    /// Patches whose grid of vertices the tessellation evaluated for this frame's mesh: new
+    /// segment counts, or moved or deformed since the last frame.
+    pub grids_evaluated: usize,
+    /// Patches whose grid was kept from an earlier frame into a rebuilt mesh (0 when the mesh
+    /// was not rebuilt).
+    pub grids_kept: usize,
     pub triangles: usize,
     /// NURBS frames evaluated per pixel (exact and refined frames).
     pub exact_frames: u64,
@@ -54,6 +60,8 @@ impl RenderStats {
             plan,
             stages: [StageStats::default(); Stage::COUNT],
             tessellation_rebuilt: false,
+            grids_evaluated: 0,
+            grids_kept: 0,
             triangles: 0,
             exact_frames: 0,
             highlight_pixels: 0,
@@ -119,10 +127,12 @@ impl Serialize for RenderStats {
             }
         }
         let reused: Vec<&str> = self.plan.reused_stages().map(Stage::name).collect();
-        let mut s = serializer.serialize_struct("RenderStats", 8)?;
+        let mut s = serializer.serialize_struct("RenderStats", 10)?;
         s.serialize_field("stages", &Stages(self))?;
         s.serialize_field("reused", &reused)?;
         s.serialize_field("tessellation_rebuilt", &self.tessellation_rebuilt)?;
+        s.serialize_field("grids_evaluated", &self.grids_evaluated)?;
+        s.serialize_field("grids_kept", &self.grids_kept)?;
         s.serialize_field("triangles", &self.triangles)?;
         s.serialize_field("exact_frames", &self.exact_frames)?;
         s.serialize_field("highlight_pixels", &self.highlight_pixels)?;

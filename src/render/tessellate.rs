@@ -177,6 +177,8 @@ pub struct Tessellator {
     patch_frames: Vec<PatchFrames>,
     /// How many meshes have been made: what identifies the cached one.
     generation: u64,
+    /// How many patches' grids the last mesh made evaluated (the others' were kept).
+    evaluated: usize,
 }
 
 /// One patch's grid of vertices, as evaluated: the segments it was cut with, the parameters of
@@ -259,7 +261,29 @@ impl Tessellator {
             library,
             cached: None,
             generation: 0,
+            evaluated: 0,
         }
+    }
+
+    /// Draws `library` from now on: the same model as this tessellator's, with the patches
+    /// `moved` marks (one flag per patch) moved or deformed. Their grids are evaluated again at
+    /// the next mesh; every other patch's grid is kept. The edges found shared stay those of
+    /// the first library.
+    pub fn repose(&mut self, library: Arc<PatchLibrary>, moved: &[bool]) {
+        for (frames, _) in self.patch_frames.iter_mut().zip(moved).filter(|(_, &m)| m) {
+            *frames = PatchFrames::default();
+        }
+        if moved.iter().any(|&m| m) {
+            self.cached = None;
+        }
+        self.library = library;
+    }
+
+    /// How many patches' grids the last mesh made was evaluated for; the rest were kept from
+    /// earlier meshes.
+    #[must_use]
+    pub fn evaluated(&self) -> usize {
+        self.evaluated
     }
 
     /// The mesh for `density`, seen through `view_projection` on a `width × height` image (used
@@ -281,7 +305,7 @@ impl Tessellator {
         let rebuilt = !matches!(&self.cached, Some((s, _)) if *s == segments);
         if rebuilt {
             // The grids of the patches whose counts changed, in parallel; the others' are kept.
-            PatchFrames::refresh(&mut self.patch_frames, &self.library, &segments);
+            self.evaluated = PatchFrames::refresh(&mut self.patch_frames, &self.library, &segments);
             let mesh = build_mesh(&self.library, &self.patch_frames);
             self.cached = Some((segments, mesh));
             self.generation += 1;

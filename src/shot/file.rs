@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use serde::Deserialize;
 
 use crate::anim::{Direction, Track};
@@ -71,43 +71,60 @@ pub struct InstanceSpec {
     pub material: String,
     #[serde(default)]
     pub transform: TransformSpec,
+    /// Parts of this instance that move against it: each a part's name (without the
+    /// instance's) and its transform in the model's coordinates, applied before the instance's.
+    #[serde(default)]
+    pub parts: BTreeMap<String, TransformSpec>,
     /// Named parts besides the model's own: each a list of patch names or 0-based indices,
     /// selected as `NAME/PART`.
     #[serde(default)]
     pub groups: GroupsSpec,
 }
 
-/// `p ↦ translate + R(axis, degrees) (scale · p)`.
-#[derive(Debug, PartialEq, Deserialize)]
+/// `p ↦ translate + pivot + R(axis, degrees) (scale · (p − pivot))`, every number a track
+/// (docs/shot-format.md, "Moving instances and parts").
+#[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TransformSpec {
-    #[serde(default)]
-    pub translate: (f64, f64, f64),
+    #[serde(default = "origin")]
+    pub translate: Track<DVec3>,
     #[serde(default = "z_axis")]
-    pub axis: (f64, f64, f64),
-    #[serde(default)]
-    pub degrees: f64,
+    pub axis: Track<DVec3>,
+    #[serde(default = "no_turn")]
+    pub degrees: Track<f64>,
     #[serde(default = "one")]
-    pub scale: f64,
+    pub scale: Track<f64>,
+    /// The point the rotation and the scale keep fixed.
+    #[serde(default = "origin")]
+    pub pivot: Track<DVec3>,
 }
 
 impl Default for TransformSpec {
     fn default() -> Self {
         Self {
-            translate: (0.0, 0.0, 0.0),
+            translate: origin(),
             axis: z_axis(),
-            degrees: 0.0,
-            scale: 1.0,
+            degrees: no_turn(),
+            scale: one(),
+            pivot: origin(),
         }
     }
 }
 
-fn z_axis() -> (f64, f64, f64) {
-    (0.0, 0.0, 1.0)
+fn origin() -> Track<DVec3> {
+    Track::Constant(DVec3::ZERO)
 }
 
-fn one() -> f64 {
-    1.0
+fn z_axis() -> Track<DVec3> {
+    Track::Constant(DVec3::Z)
+}
+
+fn no_turn() -> Track<f64> {
+    Track::Constant(0.0)
+}
+
+fn one() -> Track<f64> {
+    Track::Constant(1.0)
 }
 
 /// A material: a cel ramp, or an X-Toon tone (docs/xtoon.md), every number a track.

@@ -6,6 +6,7 @@ use super::file::{LightSpec, ProjectionSpec};
 use super::line_styles::LineFields;
 use super::validated::{Material, MaterialState, Shot};
 use super::ShotError;
+use crate::geom::PatchLibrary;
 use crate::highlight::{Expr, Light};
 use crate::render::{Camera, LineStyle, Outlines, PatchLook, Projection, Scene, Tone};
 use crate::toon::CelRamp;
@@ -14,6 +15,9 @@ use crate::toon::CelRamp;
 #[derive(Clone, Debug, PartialEq)]
 pub struct FrameState {
     pub frame: f64,
+    /// The model at this frame ([`Shot::library_at`]): the shot's own library when nothing
+    /// moves.
+    pub library: Arc<PatchLibrary>,
     pub camera: Camera,
     pub light: Light,
     /// Each material, in the order of [`Shot::material_names`].
@@ -37,6 +41,7 @@ impl Shot {
     pub fn at(&self, frame: f64) -> FrameState {
         let mut state = FrameState {
             frame,
+            library: self.library_at(frame),
             camera: self.camera_at(frame),
             light: self.light_at(frame),
             materials: self.materials.iter().map(|(_, m)| m.at(frame)).collect(),
@@ -50,7 +55,7 @@ impl Shot {
             .enumerate()
             .map(|(entry, h)| {
                 let mut expr = h.expr.map(|t| t.at(frame));
-                self.centre_pins(entry, &mut expr, &state.camera, &state.light);
+                self.centre_pins(entry, &mut expr, &state);
                 expr
             })
             .collect();
@@ -112,7 +117,7 @@ impl Material {
 
 impl FrameState {
     /// The scene the renderer draws for this state of `shot`.
-    pub fn scene<'a>(&self, shot: &'a Shot) -> Result<Scene<'a>, ShotError> {
+    pub fn scene<'a>(&'a self, shot: &'a Shot) -> Result<Scene<'a>, ShotError> {
         let invalid = |message: String| ShotError::File {
             path: shot.path.display().to_string(),
             message: format!("at frame {}: {message}", self.frame),
@@ -150,7 +155,7 @@ impl FrameState {
             })
             .collect();
         Ok(Scene {
-            library: &shot.library,
+            library: &self.library,
             looks,
             camera: self.camera,
             light: self.light,

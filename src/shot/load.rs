@@ -6,17 +6,17 @@ use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use glam::DVec3;
-
 use super::every_frame::check_every_frame;
 use super::file::{HighlightSpec, InstanceSpec, LooksFile, MaterialSpec, RenderSpec, ShotFile};
 use super::glob;
 use super::line_styles::select_lines;
+use super::moving_parts::{check_reach, pose_of};
 use super::no_match::no_match_message;
 use super::output::{check_numbered, resolve_path};
 use super::pin::resolve_pins;
+use super::pose::InstancePose;
 use super::source::Source;
-use super::validated::{placement, Accuracy, Instance, Material, Shot};
+use super::validated::{Accuracy, Instance, Material, Shot};
 use super::written::Written;
 use super::{ShotError, MAX_FRAMES};
 use crate::formats::parts::{parts_file, resolve_groups};
@@ -26,11 +26,6 @@ use crate::formats::{load_patches, read_toon_texture};
 use crate::geom::{NamedPatch, PatchGroup, PatchLibrary, MAX_COORDINATE};
 use crate::render::Settings;
 use crate::toon::{AbstractShape, Abstraction, ToonTexture, XToon};
-
-/// The smallest scale of an instance's transform.
-const MIN_SCALE: f64 = 1e-6;
-/// The largest scale of an instance's transform.
-const MAX_SCALE: f64 = 1e6;
 
 /// The most files an include chain may nest.
 const MAX_INCLUDE_DEPTH: usize = 16;
@@ -72,7 +67,14 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
     let shot_source = &sources[0];
 
     let output = check_frames_and_output(&file.frames, file.fps, &file.output, shot_source)?;
-    let placed = place_instances(&file.instances, &looks, shot_source, &mut inputs)?;
+    let first_frame = file.frames.0 as f64;
+    let placed = place_instances(
+        &file.instances,
+        first_frame,
+        &looks,
+        shot_source,
+        &mut inputs,
+    )?;
     let patch_highlight = select_highlights(&looks.highlights, &placed.library, &sources)?;
     let pins = resolve_pins(&looks.highlights, &placed.library, &sources)?;
     let (accuracy, settings) = render_settings(&file.render, file.resolution, shot_source)?;
@@ -129,6 +131,7 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
         materials,
         highlights,
         patch_material: placed.patch_material,
+        poses: placed.poses,
         patch_highlight,
         pins,
         highlights_written: written_in,
@@ -286,16 +289,20 @@ struct Placed {
     library: PatchLibrary,
     instances: Vec<Instance>,
     patch_material: Vec<usize>,
+    /// How each instance is placed at any frame.
+    poses: Vec<InstancePose>,
 }
 
 /// Reads each patch file once and places a copy of it for each instance.
 fn place_instances(
     specs: &[InstanceSpec],
+    first_frame: f64,
     looks: &Looks,
     source: &Source,
     inputs: &mut Inputs,
 ) -> Result<Placed, ShotError> {
-    let mut models: HashMap<PathBuf, PatchLibrary> = HashMap::new();
+    let within = |x: f64| x.is_finite() && x.abs() <= MAX_COORDINATE;
+    let mut models: HashMap<PathBuf, Arc<PatchLibrary>> = HashMap::new();
     let mut placed = Placed {
         library: PatchLibrary {
             patches: Vec::new(),
@@ -303,6 +310,7 @@ fn place_instances(
         },
         instances: Vec::new(),
         patch_material: Vec::new(),
+        poses: Vec::new(),
     };
     let mut instance_names = HashSet::new();
     for (index, spec) in specs.iter().enumerate() {
@@ -332,21 +340,17 @@ fn place_instances(
                 let names: Vec<&str> = looks.materials.iter().map(|m| m.0.as_str()).collect();
                 at("material", unknown("material", &spec.material, &names))
             })?;
-        let t = &spec.transform;
-        let axis = DVec3::from(t.axis);
-        let translate = DVec3::from(t.translate);
-        let within = |x: f64| x.is_finite() && x.abs() <= MAX_COORDINATE;
-        let placeable = (MIN_SCALE..=MAX_SCALE).contains(&t.scale)
-            && translate.to_array().into_iter().all(within)
-            && within(t.degrees)
-            && axis.to_array().into_iter().all(within)
-            && axis.length_squared() > 0.0;
-        if !placeable {
-            return Err(at("transform", format!(
-                "the transform of instance \"{}\" needs a translation and angle within ±{MAX_COORDINATE:e}, a non-zero axis and a scale in [{MIN_SCALE:e}, {MAX_SCALE:e}]",
-                spec.name
-            )));
-        }
+        spec.transform.check().map_err(|(field, message)| {
+            source.error_at(
+                &[
+                    Field("instances"),
+                    Index(index),
+                    Field("transform"),
+                    Field(field),
+                ],
+                format!("instance \"{}\": {message}", spec.name),
+            )
+        })?;
         let model_path = source.folder.join(&spec.file);
         let key = canonical(&model_path);
         if !models.contains_key(&key) {
@@ -365,14 +369,13 @@ fn place_instances(
             if parts.is_file() {
                 inputs.add(&parts);
             }
-            models.insert(key.clone(), model);
+            models.insert(key.clone(), Arc::new(model));
         }
         let model = &models[&key];
         let own = resolve_groups(&spec.groups, &model.patches, &model.groups).map_err(|e| {
             let to_groups = [Field("instances"), Index(index), Field("groups")];
             source.error_at(&e.path(&to_groups), e.message.clone())
         })?;
-        let place = placement(translate, axis, t.degrees, t.scale);
         let start = placed.library.patches.len();
         for group in model.groups.iter().chain(&own) {
             placed.library.groups.push(PatchGroup {
@@ -380,11 +383,17 @@ fn place_instances(
                 patches: group.patches.iter().map(|p| start + p).collect(),
             });
         }
-        for patch in &model.patches {
-            let surface = patch.surface.map_points(&place);
-            if !surface
-                .control_points()
-                .all(|p| p.to_array().into_iter().all(within))
+        let all_groups: Vec<&PatchGroup> = model.groups.iter().chain(&own).collect();
+        let pose = pose_of(spec, index, model, &all_groups, source, start)?;
+        if pose.moves() {
+            check_reach(&pose, spec, index, source)?;
+        }
+        for (k, patch) in model.patches.iter().enumerate() {
+            let surface = pose.place(k, first_frame);
+            if !pose.moves()
+                && !surface
+                    .control_points()
+                    .all(|p| p.to_array().into_iter().all(within))
             {
                 return Err(at("transform", format!(
                     "the transform of instance \"{}\" places the patch \"{}\" beyond ±{MAX_COORDINATE:e}, where coordinates lose their precision; scale or move the instance less",
@@ -398,6 +407,7 @@ fn place_instances(
             });
             placed.patch_material.push(material);
         }
+        placed.poses.push(pose);
         placed.instances.push(Instance {
             name: spec.name.clone(),
             patches: start..placed.library.patches.len(),

@@ -11,11 +11,14 @@ mod frame_state;
 mod glob;
 mod line_styles;
 mod load;
+mod moving_parts;
 mod no_match;
 mod output;
 mod params;
 mod pin;
+mod pose;
 mod source;
+mod transform;
 mod validated;
 mod written;
 
@@ -31,6 +34,7 @@ pub use glob::matches as matches_patch;
 pub use line_styles::LineFields;
 pub use load::{load_shot, load_shot_text};
 pub use output::{check_numbered, frame_path, resolve_path};
+pub use transform::Placement;
 pub use validated::{Instance, MaterialState, Shot};
 
 /// The longest frame range a shot may have, and the most frames one frame list may name.

@@ -2,6 +2,7 @@
 //! every frame, and on each frame the layer's translation solved for its point.
 
 use super::file::HighlightSpec;
+use super::frame_state::FrameState;
 use super::source::Source;
 use super::validated::Shot;
 use super::written::Written;
@@ -10,8 +11,8 @@ use crate::anim::Track;
 use crate::formats::ron_location::closest_name;
 use crate::formats::ron_paths::Step::{self, Field, Index};
 use crate::geom::PatchLibrary;
-use crate::highlight::{Expr, Light, Pin};
-use crate::render::{Camera, SurfacePoint};
+use crate::highlight::{Expr, Pin};
+use crate::render::SurfacePoint;
 
 /// Where the pin of layer `layer` of highlight entry `written` is: `highlights[i].expr`, the
 /// Booleans' operands down to the layer, its parentheses, `pin`.
@@ -96,23 +97,18 @@ impl Shot {
     }
 
     /// Centres every pinned layer of highlight entry `entry`, read at a frame as `expr`, on its
-    /// pin's point under `camera` and `light` ([`Layer::centred_on`]); the pins are cleared. A
+    /// pin's point on the frame's model under its camera and light ([`Layer::centred_on`]),
+    /// so that a pin on a moving part stays on its point of the part; the pins are cleared. A
     /// layer whose centring fails (an invalid operation before its translation) keeps its pin,
     /// so that preparing it reports the error.
-    pub(super) fn centre_pins(
-        &self,
-        entry: usize,
-        expr: &mut Expr,
-        camera: &Camera,
-        light: &Light,
-    ) {
+    pub(super) fn centre_pins(&self, entry: usize, expr: &mut Expr, state: &FrameState) {
         for (k, layer) in expr.layers_mut().into_iter().enumerate() {
             let (Some(pin), Some(patch)) = (&layer.pin, self.pinned_patch(entry, k)) else {
                 continue;
             };
-            let surface = &self.library.patches[patch].surface;
+            let surface = &state.library.patches[patch].surface;
             let uv = (f64::from(pin.u), f64::from(pin.v));
-            let point = SurfacePoint::new(surface, uv, camera, light);
+            let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
             if let Ok(centred) = layer.centred_on(point.local_half_vector()) {
                 *layer = centred;
             }

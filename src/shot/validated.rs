@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 
 use super::file::{Aov, CameraSpec, HighlightSpec, LightSpec, LineSpec, OutlinesSpec, Preset};
 use super::output::frame_path;
@@ -53,6 +53,8 @@ pub struct Shot {
     pub(super) patch_highlight: Vec<Option<usize>>,
     /// Per highlight entry, per layer left to right: the patch its pin names, if pinned.
     pub(super) pins: Vec<Vec<Option<usize>>>,
+    /// How each instance is placed at any frame, in the order of `instances`.
+    pub(super) poses: Vec<super::pose::InstancePose>,
     /// Per highlight entry: the file it is written in and its index in that file's
     /// `highlights` list.
     pub(super) highlights_written: Vec<(PathBuf, usize)>,
@@ -207,15 +209,4 @@ impl Shot {
             outline: on(Aov::Outline),
         }
     }
-}
-
-/// `p ↦ translate + R(axis, degrees) (scale · p)` as a point map.
-pub(super) fn placement(
-    translate: DVec3,
-    axis: DVec3,
-    degrees: f64,
-    scale: f64,
-) -> impl Fn(DVec3) -> DVec3 {
-    let rotation = glam::DQuat::from_axis_angle(axis.normalize(), degrees.to_radians());
-    move |p| translate + rotation * (scale * p)
 }

@@ -130,7 +130,10 @@ fn one_track<T: Interpolate>(
     edit: &ValueEdit<Vec<f32>>,
 ) -> Result<Vec<Splice>, Problem> {
     let typed = edit
-        .try_map(|components| T::from_components(components))
+        .try_map(|components| {
+            let wide: Vec<f64> = components.iter().map(|&c| f64::from(c)).collect();
+            T::from_components(&wide)
+        })
         .map_err(Problem::Value)?;
     let new = edited(track, &typed).map_err(|frames| match edit {
         ValueEdit::Delete(frame) => Problem::NoKey(*frame, frames),
