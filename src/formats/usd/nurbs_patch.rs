@@ -49,6 +49,13 @@ pub(super) fn surface(prim: &Prim, path: &str) -> Result<PatchRead, PatchError> 
             ));
         }
     }
+    // Time samples of an attribute read as one value must agree: refused at the first that
+    // differs.
+    let held = |p: &Property| -> Result<(), PatchError> {
+        p.held_value()
+            .map(|_| ())
+            .map_err(|e| err(e.at, format!("`{}` {}", p.name, e.message)))
+    };
     let count = |name: &str| -> Result<usize, PatchError> {
         let p = required(name)?;
         match p
@@ -85,6 +92,7 @@ pub(super) fn surface(prim: &Prim, path: &str) -> Result<PatchRead, PatchError> 
     let (ou, ov) = (order("uOrder", nu)?, order("vOrder", nv)?);
     let knots = |name: &str, vertices: usize, order: usize| -> Result<Vec<f64>, PatchError> {
         let p = required(name)?;
+        held(p)?;
         let mut k = numbers(p).map_err(|m| err(p.at, format!("`{name}` {m}")))?;
         if k.len() + 2 == vertices + order && !k.is_empty() {
             repeat_end_knots(&mut k);
@@ -113,6 +121,7 @@ pub(super) fn surface(prim: &Prim, path: &str) -> Result<PatchRead, PatchError> 
     let (ku, kv) = (knots("uKnots", nu, ou)?, knots("vKnots", nv, ov)?);
     for (name, k, vertices, order) in [("uRange", &ku, nu, ou), ("vRange", &kv, nv, ov)] {
         if let Some(p) = prim.property(name) {
+            held(p)?;
             let r = numbers(p).map_err(|m| err(p.at, format!("`{name}` {m}")))?;
             let (lo, hi) = (k[order - 1], k[vertices]);
             let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + lo.abs().max(hi.abs()));

@@ -233,7 +233,7 @@ impl Parser<'_> {
             return Err(ParseError {
                 at,
                 message: format!(
-                    "prim \"{prim}\": `{base}` is animated by a spline; glint reads time samples (bake the spline to samples: usdcat --flatten in.usda -o baked.usda does not, export with time samples)"
+                    "prim \"{prim}\": `{base}` is animated by a spline; glint reads time samples, not splines (export the animation baked to time samples)"
                 ),
             });
         }
