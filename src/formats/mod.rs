@@ -55,6 +55,10 @@ impl Model {
     }
 }
 
+/// A reader of a model's text (`text`, shown in errors as `shown`): its library and, for a USD
+/// layer, its motion.
+type ReadText = fn(&str, &str) -> Result<(PatchLibrary, Option<UsdMotion>), FormatError>;
+
 /// A `.usd`, `.usdc` or `.usdz` file at `path`: a `.usd` that is text is read as `.usda`; a
 /// binary layer through the `usd-binary` feature, or refused with the conversion to run.
 fn load_binary_usd(path: &Path, kind: Option<&str>, shown: String) -> Result<Model, FormatError> {
@@ -121,14 +125,13 @@ pub fn load_model(path: &Path) -> Result<Model, FormatError> {
             model: model.display().to_string(),
         });
     }
-    let parse: fn(&str, &str) -> Result<(PatchLibrary, Option<UsdMotion>), FormatError> =
-        match kind.as_deref() {
-            Some("ron") => |text, shown| Ok((parse_patch_ron(text, shown)?, None)),
-            Some("bpt") => |text, shown| Ok((parse_bpt(text, shown)?, None)),
-            Some("usda") => parse_usda_motion,
-            Some("usd" | "usdc" | "usdz") => return load_binary_usd(path, kind.as_deref(), shown),
-            _ => return Err(FormatError::UnknownKind { path: shown }),
-        };
+    let parse: ReadText = match kind.as_deref() {
+        Some("ron") => |text, shown| Ok((parse_patch_ron(text, shown)?, None)),
+        Some("bpt") => |text, shown| Ok((parse_bpt(text, shown)?, None)),
+        Some("usda") => parse_usda_motion,
+        Some("usd" | "usdc" | "usdz") => return load_binary_usd(path, kind.as_deref(), shown),
+        _ => return Err(FormatError::UnknownKind { path: shown }),
+    };
     let text = text_file::read_text(path).map_err(|e| match e {
         text_file::TextError::Io(source) => FormatError::Io {
             path: shown.clone(),

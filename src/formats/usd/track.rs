@@ -8,8 +8,7 @@
 #[must_use]
 pub(super) fn bracket(times: &[f64], time: f64) -> (usize, usize, f64) {
     let last = times.len().saturating_sub(1);
-    // `!(time > t₀)` is true for NaN too.
-    if !(time > times[0]) {
+    if time.is_nan() || time <= times[0] {
         return (0, 0, 0.0);
     }
     if time >= times[last] {
