@@ -165,14 +165,32 @@ fn a_time_sampled_rotate_turns_the_patch_in_angle() {
     let model = load_model(&repo_file("patches/flag.usda")).unwrap();
     let motion = model.motion.unwrap();
     let vane = patch_index(&model.library, "flag/turn/vane");
-    // The vane's first point, (0.5, 0, 0), turns about z and then moves by the translate
-    // (3, 0, 0): its angle about (3, 0, 0) is the interpolated angle, its distance stays 0.5.
+    // The vane's points as written (under `def NurbsPatch "vane"`), u fastest.
+    let vane_text = &text[text.find("def NurbsPatch \"vane\"").unwrap()..];
+    let head = "points = [";
+    let start = vane_text.find(head).unwrap() + head.len() - 1;
+    let end = start + vane_text[start..].find(']').unwrap() + 1;
+    let written = in_net_order(&tuples(&vane_text[start..end]), 2, 4);
+    // Each point turns about z by the angle interpolated between the samples: its distance
+    // from the axis stays, which a mix of the turned points would not keep.
     for t in [t0 - 5.0, t0, 4.0, 12.5, 20.0, t1, t1 + 5.0] {
         let s = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
         let angle = (a0 + (a1 - a0) * s).to_radians();
-        let p = motion.points_at(vane, t)[0] - DVec3::new(3.0, 0.0, 0.0);
-        assert!((p.y.atan2(p.x) - angle).abs() <= 1e-12, "at {t}: {p}");
-        assert!((p.length() - 0.5).abs() <= 1e-12, "at {t}: {p}");
+        let (sin, cos) = angle.sin_cos();
+        let turned: Vec<DVec3> = written
+            .iter()
+            .map(|p| DVec3::new(cos * p.x - sin * p.y, sin * p.x + cos * p.y, p.z))
+            .collect();
+        let at = motion.points_at(vane, t);
+        let gap = largest_gap(&at, &turned);
+        assert!(gap <= 1e-12, "at {t}: {gap:e}");
+        // The far corner's angle about the pole, directly.
+        let p = at[0];
+        let expected = DVec3::new(-cos, -sin, 0.0);
+        assert!(
+            (p.truncate().normalize() - expected.truncate()).length() <= 1e-12,
+            "at {t}: {p}"
+        );
     }
 }
 

@@ -6,12 +6,14 @@ its time samples are what pipelines write.
 
 It writes patches/flag.usda: a flag on a pole, 24 time codes a second from time code 1 to 24.
 
-- /flag/cloth, a bicubic NurbsPatch 2 units wide along x and 1 high along z, whose `points` are
-  sampled at time codes 1, 12 and 24: a wave along x whose phase moves, each control point
-  (x, 0, z) displaced in y by 0.15 * (x / 2) * sin(pi * x - phase), phase 0, pi/2 and pi.
-- /flag/vane, a bilinear NurbsPatch (a unit square in the xz plane) under the Xform /flag/turn,
-  whose `xformOp:rotateZ` is sampled at time codes 1 (0 degrees) and 24 (90 degrees), after a
-  translate that does not change.
+- /flag/cloth, a bicubic NurbsPatch 2 units wide along x (from the pole at x = 0) and 1 high
+  along z, whose `points` are sampled at time codes 1, 12 and 24: each control point (x, 0, z)
+  is displaced in y by c(x) * (0.4 * sin(pi * x - phase) + (z - 0.5)^2), phase 0, pi/2 and pi,
+  with c = 0, 0, 0.5, 1, 1 along x, so that its edge on the pole stays straight and flat.
+- /flag/turn/vane, a flat NurbsPatch (a unit square in the xz plane, from x = -1 to the pole;
+  linear along x, cubic along z with the cloth's rows) under the Xform /flag/turn, whose `xformOp:rotateZ` is sampled at time codes 1
+  (0 degrees) and 24 (90 degrees): a vane hinged on the pole, sharing the cloth's edge at time
+  code 1.
 """
 
 import math
@@ -20,6 +22,7 @@ import os
 from pxr import Gf, Sdf, Usd, UsdGeom, Vt
 
 NU, NV = 5, 4
+RAMP = [0.0, 0.0, 0.5, 1.0, 1.0]
 TIMES = [1, 12, 24]
 PHASES = [0.0, math.pi / 2, math.pi]
 
@@ -31,7 +34,7 @@ def cloth_points(phase):
         z = j / (NV - 1)
         for i in range(NU):
             x = 2.0 * i / (NU - 1)
-            y = 0.15 * (x / 2.0) * math.sin(math.pi * x - phase)
+            y = RAMP[i] * (0.4 * math.sin(math.pi * x - phase) + (z - 0.5) ** 2)
             points.append(Gf.Vec3f(x, y, z))
     return points
 
@@ -71,20 +74,20 @@ def main():
         points.Set(Vt.Vec3fArray(cloth_points(phase)), Usd.TimeCode(time))
 
     turn = UsdGeom.Xform.Define(stage, "/flag/turn")
-    turn.AddTranslateOp().Set(Gf.Vec3d(3, 0, 0))
     rotate = turn.AddRotateZOp(UsdGeom.XformOp.PrecisionDouble)
     rotate.Set(0.0, Usd.TimeCode(1))
     rotate.Set(90.0, Usd.TimeCode(24))
 
     vane = UsdGeom.NurbsPatch.Define(stage, "/flag/turn/vane")
     vane.CreateUVertexCountAttr(2)
-    vane.CreateVVertexCountAttr(2)
+    vane.CreateVVertexCountAttr(NV)
     vane.CreateUOrderAttr(2)
-    vane.CreateVOrderAttr(2)
+    vane.CreateVOrderAttr(4)
     vane.CreateUKnotsAttr(Vt.DoubleArray([0, 0, 1, 1]))
-    vane.CreateVKnotsAttr(Vt.DoubleArray([0, 0, 1, 1]))
-    vane.CreatePointsAttr(Vt.Vec3fArray([Gf.Vec3f(0.5, 0, 0), Gf.Vec3f(1.5, 0, 0),
-                                         Gf.Vec3f(0.5, 0, 1), Gf.Vec3f(1.5, 0, 1)]))
+    vane.CreateVKnotsAttr(Vt.DoubleArray(open_knots(NV, 4)))
+    # The same rows as the cloth's, so that the shared edge is the same curve.
+    rows = [j / (NV - 1) for j in range(NV)]
+    vane.CreatePointsAttr(Vt.Vec3fArray([Gf.Vec3f(x, 0, z) for z in rows for x in (-1, 0)]))
 
     stage.GetRootLayer().Save()
 

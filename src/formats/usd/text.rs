@@ -509,3 +509,62 @@ fn add_property(
     }
     properties.push(property);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::formats::usd::lexer::tokens;
+
+    fn layer(text: &str) -> Result<Layer, ParseError> {
+        let tokens = tokens(text).map_err(|e| ParseError {
+            at: e.at,
+            message: e.message,
+        })?;
+        parse(&tokens, text.len())
+    }
+
+    #[test]
+    fn time_samples_are_sorted_a_repeated_time_keeps_the_last_and_join_the_default() {
+        let text = "#usda 1.0\n(\n    timeCodesPerSecond = 30\n    startTimeCode = -2\n)\ndef Xform \"a\"\n{\n    double xformOp:rotateZ = 5\n    double xformOp:rotateZ.timeSamples = {\n        10: 3,\n        -1.5: 1,\n        10: 7,\n    }\n}\n";
+        let layer = layer(text).unwrap();
+        assert_eq!(layer.times.time_codes_per_second.map(|t| t.0), Some(30.0));
+        assert_eq!(layer.times.start_time_code.map(|t| t.0), Some(-2.0));
+        assert_eq!(layer.times.end_time_code, None);
+        let prim = &layer.prims[0];
+        assert_eq!(
+            prim.properties.len(),
+            1,
+            "the default and the samples are one property"
+        );
+        let p = &prim.properties[0];
+        assert_eq!(p.default, Some(Value::Number(5.0)));
+        let samples: Vec<(f64, &Value)> = p.samples.iter().map(|s| (s.time, &s.value)).collect();
+        assert_eq!(
+            samples,
+            [(-1.5, &Value::Number(1.0)), (10.0, &Value::Number(7.0))]
+        );
+        assert_eq!(p.first_value(), Some(&Value::Number(1.0)));
+        assert!(p.varies());
+        assert!(p.held_value().is_err());
+        // The sample kept at 10 is the one written last, located at its time code.
+        let last = text.rfind("10: 7").unwrap();
+        assert_eq!(p.samples[1].at, last);
+    }
+
+    #[test]
+    fn a_time_code_that_is_not_a_number_is_refused_where_it_is_written() {
+        let text = "#usda 1.0\ndef Xform \"a\"\n{\n    double xformOp:rotateZ.timeSamples = {\n        \"one\": 3,\n    }\n}\n";
+        let e = layer(text).unwrap_err();
+        assert_eq!(e.at, text.find("\"one\"").unwrap());
+        assert!(e.message.contains("expected a time code"), "{}", e.message);
+    }
+
+    #[test]
+    fn samples_that_agree_are_one_value() {
+        let text = "#usda 1.0\ndef Xform \"a\"\n{\n    int n.timeSamples = {\n        1: 4,\n        2: 4,\n    }\n}\n";
+        let layer = layer(text).unwrap();
+        let p = &layer.prims[0].properties[0];
+        assert!(!p.varies());
+        assert_eq!(p.held_value().unwrap(), Some(&Value::Number(4.0)));
+    }
+}
