@@ -52,6 +52,7 @@ mod toon_texture;
 mod tune_http;
 mod tutorial;
 mod usd_import;
+mod usd_motion;
 
 /// `autotests = false` makes this file the only test crate: a test file it does not declare
 /// would never be compiled, let alone run.

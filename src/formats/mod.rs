@@ -1,5 +1,5 @@
-//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, USD text layers,
-//! 2D toon textures, and the PNG and EXR files of rendered frames.
+//! Readers and writers of files: RON patch libraries, `.bpt` Bezier patches, USD text layers
+//! (with their time samples), 2D toon textures, and the PNG and EXR files of rendered frames.
 
 pub mod atomic;
 mod bpt;
@@ -31,15 +31,37 @@ pub use frame_files::{
 pub use patch_ron::parse_patch_ron;
 pub use srgb::{linear_to_srgb, srgb_to_linear};
 pub use texture::{read_toon_texture, toon_texture_from_png, toon_texture_from_srgb8};
-pub use usd::{parse_usda, MAX_PATCHES as MAX_USD_PATCHES};
+pub use usd::{
+    parse_usda, parse_usda_motion, TimeCodes, UsdMotion, DEFAULT_TIME_CODES_PER_SECOND,
+    MAX_PATCHES as MAX_USD_PATCHES, MAX_SAMPLES as MAX_USD_SAMPLES,
+};
+
+/// A model as read, with how its patches move when the file animates them.
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub library: PatchLibrary,
+    /// Some for a USD text layer whose time samples move a patch; None otherwise.
+    pub motion: Option<UsdMotion>,
+}
+
+impl Model {
+    /// A model that does not move.
+    #[must_use]
+    pub fn still(library: PatchLibrary) -> Self {
+        Self {
+            library,
+            motion: None,
+        }
+    }
+}
+
+/// A reader of a model's text (`text`, shown in errors as `shown`): its library and, for a USD
+/// layer, its motion.
+type ReadText = fn(&str, &str) -> Result<(PatchLibrary, Option<UsdMotion>), FormatError>;
 
 /// A `.usd`, `.usdc` or `.usdz` file at `path`: a `.usd` that is text is read as `.usda`; a
 /// binary layer through the `usd-binary` feature, or refused with the conversion to run.
-fn load_binary_usd(
-    path: &Path,
-    kind: Option<&str>,
-    shown: String,
-) -> Result<PatchLibrary, FormatError> {
+fn load_binary_usd(path: &Path, kind: Option<&str>, shown: String) -> Result<Model, FormatError> {
     let head = std::fs::File::open(path)
         .and_then(|mut f| {
             let mut head = [0u8; 8];
@@ -55,7 +77,8 @@ fn load_binary_usd(
             path: shown.clone(),
             message: e.to_string(),
         })?;
-        return parse_usda(&text, &shown);
+        let (library, motion) = parse_usda_motion(&text, &shown)?;
+        return Ok(Model { library, motion });
     }
     let convert = format!(
         "convert it to text with usdcat, from the usd-core Python package: usdcat --flatten {} -o model.usda",
@@ -70,7 +93,7 @@ fn load_binary_usd(
     #[cfg(feature = "usd-binary")]
     {
         let _ = convert;
-        usd::read_usdc(path, &shown)
+        usd::read_usdc(path, &shown).map(Model::still)
     }
     #[cfg(not(feature = "usd-binary"))]
     Err(FormatError::File {
@@ -82,8 +105,15 @@ fn load_binary_usd(
 }
 
 /// Loads a model: a RON patch library (`.ron`), Bezier patches (`.bpt`) or a USD layer
-/// (`.usda`; `.usd` and `.usdc` too with the `usd-binary` feature), by extension.
+/// (`.usda`; `.usd` and `.usdc` too with the `usd-binary` feature), by extension. A USD
+/// layer's time-sampled values are read at their earliest samples.
 pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
+    Ok(load_model(path)?.library)
+}
+
+/// Loads a model like [`load_patches`], keeping a USD text layer's time samples: its motion
+/// is Some when they move a patch.
+pub fn load_model(path: &Path) -> Result<Model, FormatError> {
     let shown = path.display().to_string();
     let kind = path
         .extension()
@@ -95,10 +125,10 @@ pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
             model: model.display().to_string(),
         });
     }
-    let parse = match kind.as_deref() {
-        Some("ron") => parse_patch_ron,
-        Some("bpt") => parse_bpt,
-        Some("usda") => parse_usda,
+    let parse: ReadText = match kind.as_deref() {
+        Some("ron") => |text, shown| Ok((parse_patch_ron(text, shown)?, None)),
+        Some("bpt") => |text, shown| Ok((parse_bpt(text, shown)?, None)),
+        Some("usda") => parse_usda_motion,
         Some("usd" | "usdc" | "usdz") => return load_binary_usd(path, kind.as_deref(), shown),
         _ => return Err(FormatError::UnknownKind { path: shown }),
     };
@@ -120,11 +150,11 @@ pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
             message: "the file is not UTF-8 text: these bytes do not read as UTF-8".to_string(),
         },
     })?;
-    let mut library = parse(&text, &shown)?;
+    let (mut library, motion) = parse(&text, &shown)?;
     let parts = parts::parts_file(path);
     if parts.is_file() {
         let more = parts::read_parts_file(&parts, &library.patches, &library.groups)?;
         library.groups.extend(more);
     }
-    Ok(library)
+    Ok(Model { library, motion })
 }

@@ -1,5 +1,6 @@
 //! A binary USD layer (`.usdc`, or a binary `.usd`) read into a [`Layer`] through the `openusd`
-//! crate, refusing what the text reader refuses: composition, animated and connected values.
+//! crate, refusing what the text reader refuses (composition, connected values) and time
+//! samples, which glint reads from text layers: `usdcat` converts a binary layer to text.
 //! A binary layer has no lines and columns; its errors name the prim.
 
 use openusd::sdf::{self, AbstractData, SpecType, Specifier};
@@ -35,7 +36,11 @@ pub(super) fn read(path: &std::path::Path) -> Result<Layer, String> {
     for name in children(&*data, &root, "primChildren") {
         prims.push(prim(&*data, "", &name, 0)?);
     }
-    Ok(Layer { up_axis, prims })
+    Ok(Layer {
+        up_axis,
+        times: super::layer::LayerTimes::default(),
+        prims,
+    })
 }
 
 fn field(data: &dyn AbstractData, path: &sdf::Path, name: &str) -> Option<sdf::Value> {
@@ -88,7 +93,7 @@ fn prim(data: &dyn AbstractData, parent: &str, name: &str, depth: usize) -> Resu
     for property_name in children(data, &path, "propertyChildren") {
         let property_path = sdf::Path::from(format!("{shown}.{property_name}").as_str());
         if has(data, &property_path, "timeSamples") || has(data, &property_path, "spline") {
-            return Err(format!("{shown}: `{property_name}` is animated; glint reads one value per attribute (animate in the shot, or export a single frame)"));
+            return Err(format!("{shown}: `{property_name}` is animated; glint reads time samples from text layers only — convert the layer to text with usdcat, from the usd-core Python package: usdcat --flatten in.usdc -o model.usda"));
         }
         let relationship = data.spec_type(&property_path) == Some(SpecType::Relationship);
         let mut type_name = if relationship {
@@ -105,7 +110,8 @@ fn prim(data: &dyn AbstractData, parent: &str, name: &str, depth: usize) -> Resu
         properties.push(Property {
             name: property_name,
             type_name,
-            value: field(data, &property_path, "default").map(|v| value(&v)),
+            default: field(data, &property_path, "default").map(|v| value(&v)),
+            samples: Vec::new(),
             at: NOWHERE,
         });
     }

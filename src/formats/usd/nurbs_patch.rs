@@ -2,7 +2,8 @@
 //! row-major with u varying fastest (`points[v · uVertexCount + u]`), orders (degree + 1),
 //! knot vectors of `count + order` knots — or `count + order − 2`, Maya's own count without the
 //! end knots, which are then repeated — optional `pointWeights`, and ranges that must be the
-//! knots' whole domain.
+//! knots' whole domain. Its `points` may be time-sampled, each sample a whole net; the other
+//! attributes may be time-sampled only with one value in every sample (and `pointWeights` not).
 
 use glam::DVec3;
 
@@ -15,13 +16,20 @@ pub(super) struct PatchError {
     pub message: String,
 }
 
-/// The surface of the `NurbsPatch` prim `prim` at `path`, and, when the patch is left-handed
-/// (its v reversed to make it right-handed), the first and last of its v knots, about whose
-/// middle v was mirrored.
-pub(super) fn surface(
-    prim: &Prim,
-    path: &str,
-) -> Result<(NurbsSurface, Option<(f64, f64)>), PatchError> {
+/// A `NurbsPatch` as read.
+pub(super) struct PatchRead {
+    /// The surface, its points at their earliest sample.
+    pub surface: NurbsSurface,
+    /// When the patch is left-handed (its v reversed to make it right-handed), the first and
+    /// last of its v knots, about whose middle v was mirrored.
+    pub mirrored: Option<(f64, f64)>,
+    /// The time samples of its points, each in the order of `NurbsSurface::control_points`,
+    /// when they hold more than one value; else empty.
+    pub samples: Vec<(f64, Vec<DVec3>)>,
+}
+
+/// The `NurbsPatch` prim `prim` at `path`, read.
+pub(super) fn surface(prim: &Prim, path: &str) -> Result<PatchRead, PatchError> {
     let err = |at: usize, message: String| PatchError {
         at,
         message: format!("{path}: {message}"),
@@ -41,10 +49,20 @@ pub(super) fn surface(
             ));
         }
     }
+    // Time samples of an attribute read as one value must agree: refused at the first that
+    // differs.
+    let held = |p: &Property| -> Result<(), PatchError> {
+        p.held_value()
+            .map(|_| ())
+            .map_err(|e| err(e.at, format!("`{}` {}", p.name, e.message)))
+    };
     let count = |name: &str| -> Result<usize, PatchError> {
         let p = required(name)?;
-        match p.value {
-            Some(Value::Number(n)) if n.fract() == 0.0 && (1.0..=1e6).contains(&n) => {
+        match p
+            .held_value()
+            .map_err(|e| err(e.at, format!("`{name}` {}", e.message)))?
+        {
+            Some(&Value::Number(n)) if n.fract() == 0.0 && (1.0..=1e6).contains(&n) => {
                 Ok(n as usize)
             }
             _ => Err(err(
@@ -74,6 +92,7 @@ pub(super) fn surface(
     let (ou, ov) = (order("uOrder", nu)?, order("vOrder", nv)?);
     let knots = |name: &str, vertices: usize, order: usize| -> Result<Vec<f64>, PatchError> {
         let p = required(name)?;
+        held(p)?;
         let mut k = numbers(p).map_err(|m| err(p.at, format!("`{name}` {m}")))?;
         if k.len() + 2 == vertices + order && !k.is_empty() {
             repeat_end_knots(&mut k);
@@ -102,6 +121,7 @@ pub(super) fn surface(
     let (ku, kv) = (knots("uKnots", nu, ou)?, knots("vKnots", nv, ov)?);
     for (name, k, vertices, order) in [("uRange", &ku, nu, ou), ("vRange", &kv, nv, ov)] {
         if let Some(p) = prim.property(name) {
+            held(p)?;
             let r = numbers(p).map_err(|m| err(p.at, format!("`{name}` {m}")))?;
             let (lo, hi) = (k[order - 1], k[vertices]);
             let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + lo.abs().max(hi.abs()));
@@ -114,20 +134,38 @@ pub(super) fn surface(
         }
     }
     let points_property = required("points")?;
-    let points =
-        vectors(points_property).map_err(|m| err(points_property.at, format!("`points` {m}")))?;
-    if points.len() != nu * nv {
-        return Err(err(
-            points_property.at,
-            format!(
-                "`points` has {} points; uVertexCount × vVertexCount is {nu} × {nv} = {}",
-                points.len(),
-                nu * nv
-            ),
-        ));
+    let net_of = |value: Option<&Value>, at: usize| -> Result<Vec<DVec3>, PatchError> {
+        let points = vectors_of(value).map_err(|m| err(at, format!("`points` {m}")))?;
+        if points.len() != nu * nv {
+            return Err(err(
+                at,
+                format!(
+                    "`points` has {} points; uVertexCount × vVertexCount is {nu} × {nv} = {}",
+                    points.len(),
+                    nu * nv
+                ),
+            ));
+        }
+        Ok(points)
+    };
+    let points = match points_property.samples.first() {
+        None => net_of(points_property.default.as_ref(), points_property.at)?,
+        Some(first) => net_of(Some(&first.value), first.at)?,
+    };
+    let mut sampled = Vec::new();
+    if points_property.varies() {
+        for s in &points_property.samples {
+            sampled.push((s.time, net_of(Some(&s.value), s.at)?));
+        }
     }
     let weights = match prim.property("pointWeights") {
         None => None,
+        Some(p) if !p.samples.is_empty() => {
+            return Err(err(
+                p.at,
+                "`pointWeights` is time-sampled; glint animates `points` only, with weights that do not change".to_string(),
+            ))
+        }
         Some(p) => {
             let w = numbers(p).map_err(|m| err(p.at, format!("`pointWeights` {m}")))?;
             if w.is_empty() {
@@ -146,10 +184,13 @@ pub(super) fn surface(
             }
         }
     };
-    let left_handed = matches!(
-        prim.property("orientation").and_then(|p| p.value.as_ref()),
-        Some(Value::Str(s)) if s == "leftHanded"
-    );
+    let orientation = match prim.property("orientation") {
+        None => None,
+        Some(p) => p
+            .held_value()
+            .map_err(|e| err(e.at, format!("`orientation` {}", e.message)))?,
+    };
+    let left_handed = matches!(orientation, Some(Value::Str(s)) if s == "leftHanded");
     // glint's net is rows along u, each running along v.
     let net: Vec<Vec<DVec3>> = (0..nu)
         .map(|i| (0..nv).map(|j| points[j * nu + i]).collect())
@@ -177,9 +218,37 @@ pub(super) fn surface(
     } else {
         (net, weight_net, kv)
     };
-    NurbsSurface::new(ou - 1, ov - 1, ku, kv, &net, weight_net.as_deref())
-        .map(|s| (s, mirrored))
-        .map_err(|e| err(points_property.at, e.to_string()))
+    let surface = NurbsSurface::new(ou - 1, ov - 1, ku, kv, &net, weight_net.as_deref())
+        .map_err(|e| err(points_property.at, e.to_string()))?;
+    let samples = sampled
+        .into_iter()
+        .map(|(time, points)| {
+            (
+                time,
+                control_point_order(&points, nu, nv, mirrored.is_some()),
+            )
+        })
+        .collect();
+    Ok(PatchRead {
+        surface,
+        mirrored,
+        samples,
+    })
+}
+
+/// USD's `points` (`points[v · nu + u]`, u varying fastest) in the order of
+/// `NurbsSurface::control_points`: `(i, j)` at `i · nv + j`, i along u, j along v — with j
+/// running backwards when the patch was `mirrored` in v.
+#[must_use]
+fn control_point_order(points: &[DVec3], nu: usize, nv: usize, mirrored: bool) -> Vec<DVec3> {
+    let mut out = Vec::with_capacity(nu * nv);
+    for i in 0..nu {
+        for j in 0..nv {
+            let row = if mirrored { nv - 1 - j } else { j };
+            out.push(points[row * nu + i]);
+        }
+    }
+    out
 }
 
 /// Maya's knot vector, which leaves out the end knots, made whole: its first and last knots
@@ -221,9 +290,9 @@ fn is_read(name: &str) -> bool {
         || name.starts_with("trimCurve:")
 }
 
-/// The numbers of a list or tuple of numbers.
+/// The numbers of a list or tuple of numbers, the property's value at every time.
 pub(super) fn numbers(p: &Property) -> Result<Vec<f64>, String> {
-    let items = match &p.value {
+    let items = match p.held_value().map_err(|e| e.message)? {
         Some(Value::List(items) | Value::Tuple(items)) => items,
         _ => return Err("must be a list of numbers".to_string()),
     };
@@ -237,9 +306,14 @@ pub(super) fn numbers(p: &Property) -> Result<Vec<f64>, String> {
         .collect()
 }
 
-/// The points of a list of `(x, y, z)`.
+/// The points of a list of `(x, y, z)`, the property's value at every time.
 pub(super) fn vectors(p: &Property) -> Result<Vec<DVec3>, String> {
-    let Some(Value::List(items)) = &p.value else {
+    vectors_of(p.held_value().map_err(|e| e.message)?)
+}
+
+/// The points of `value`, a list of `(x, y, z)`.
+fn vectors_of(value: Option<&Value>) -> Result<Vec<DVec3>, String> {
+    let Some(Value::List(items)) = value else {
         return Err("must be a list of (x, y, z) points".to_string());
     };
     items

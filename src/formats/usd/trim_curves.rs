@@ -36,7 +36,7 @@ pub(super) fn trim(
     };
     let written = |name: &str| {
         prim.property(name)
-            .filter(|p| !matches!(&p.value, Some(Value::List(items)) if items.is_empty()))
+            .filter(|p| !matches!(p.first_value(), Some(Value::List(items)) if items.is_empty()))
     };
     let counts_property = match written("trimCurve:counts") {
         Some(p) => p,
@@ -284,7 +284,10 @@ fn numbers_of_pairs(p: &Property) -> Result<Vec<(f64, f64)>, String> {
             p.name
         )
     };
-    let Some(Value::List(items)) = &p.value else {
+    let Some(Value::List(items)) = p
+        .held_value()
+        .map_err(|e| format!("`{}` {}", p.name, e.message))?
+    else {
         return Err(bad());
     };
     items
