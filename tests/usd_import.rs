@@ -215,11 +215,11 @@ const REFUSALS: &[Refusal] = &[
         says: &["`over` prims compose"],
     },
     Refusal {
-        name: "time samples",
+        name: "a spline",
         from: "            point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0.5), (1, 1, 0.25)]",
-        to: "            point3f[] points.timeSamples = {\n                1: [(0, 0, 0), (1, 0, 0), (0, 1, 0.5), (1, 1, 0.25)],\n            }",
-        at: "points.timeSamples",
-        says: &["`points` is animated by time samples"],
+        to: "            point3f[] points.spline = {\n                1: [(0, 0, 0)],\n            }",
+        at: "points.spline",
+        says: &["`points` is animated by a spline"],
     },
     Refusal {
         name: "a trim without orders",

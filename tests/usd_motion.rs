@@ -9,12 +9,12 @@ use glint::formats::{load_model, load_patches, parse_usda_motion};
 use crate::common::{glint_with as glint, repo_file, stderr};
 
 /// The text of `patches/flag.usda`, written by `scripts/usd/author_animated.py`.
-fn flag_text() -> String {
+pub(crate) fn flag_text() -> String {
     std::fs::read_to_string(repo_file("patches/flag.usda")).unwrap()
 }
 
 /// The numbers in `text`, a run of `(x, y, z)` tuples, three by three.
-fn tuples(text: &str) -> Vec<DVec3> {
+pub(crate) fn tuples(text: &str) -> Vec<DVec3> {
     let numbers: Vec<f64> = text
         .split(|c: char| matches!(c, '(' | ')' | ',' | '[' | ']') || c.is_whitespace())
         .filter(|s| !s.is_empty())
@@ -33,7 +33,7 @@ fn tuples(text: &str) -> Vec<DVec3> {
 /// The samples of the time-sampled attribute whose line starts with `head` (e.g.
 /// `point3f[] points.timeSamples = {`) in `text`: each line `time: value,` up to the closing
 /// `}`, as the time and the value's text.
-fn samples_after<'a>(text: &'a str, head: &str) -> Vec<(f64, &'a str)> {
+pub(crate) fn samples_after<'a>(text: &'a str, head: &str) -> Vec<(f64, &'a str)> {
     let start = text.find(head).unwrap_or_else(|| panic!("no {head:?}")) + head.len();
     let mut out = Vec::new();
     for line in text[start..].lines() {
@@ -54,7 +54,7 @@ fn samples_after<'a>(text: &'a str, head: &str) -> Vec<(f64, &'a str)> {
 }
 
 /// USD's `points` (u fastest, `nu` along u) in glint's control-point order (`i · nv + j`).
-fn in_net_order(points: &[DVec3], nu: usize, nv: usize) -> Vec<DVec3> {
+pub(crate) fn in_net_order(points: &[DVec3], nu: usize, nv: usize) -> Vec<DVec3> {
     let mut out = Vec::new();
     for i in 0..nu {
         for j in 0..nv {
@@ -65,7 +65,7 @@ fn in_net_order(points: &[DVec3], nu: usize, nv: usize) -> Vec<DVec3> {
 }
 
 /// The value at `t` of samples `(time, value)`, linear between the two around it, the ends held.
-fn mix_at(samples: &[(f64, Vec<DVec3>)], t: f64) -> Vec<DVec3> {
+pub(crate) fn mix_at(samples: &[(f64, Vec<DVec3>)], t: f64) -> Vec<DVec3> {
     if t <= samples[0].0 {
         return samples[0].1.clone();
     }
@@ -78,7 +78,7 @@ fn mix_at(samples: &[(f64, Vec<DVec3>)], t: f64) -> Vec<DVec3> {
     a.iter().zip(b).map(|(p, q)| *p + (*q - *p) * s).collect()
 }
 
-fn largest_gap(a: &[DVec3], b: &[DVec3]) -> f64 {
+pub(crate) fn largest_gap(a: &[DVec3], b: &[DVec3]) -> f64 {
     assert_eq!(a.len(), b.len());
     a.iter()
         .zip(b)
@@ -86,7 +86,7 @@ fn largest_gap(a: &[DVec3], b: &[DVec3]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-fn patch_index(library: &glint::geom::PatchLibrary, name: &str) -> usize {
+pub(crate) fn patch_index(library: &glint::geom::PatchLibrary, name: &str) -> usize {
     library
         .patches
         .iter()

@@ -75,6 +75,10 @@ pub struct InstanceSpec {
     /// instance's) and its transform in the model's coordinates, applied before the instance's.
     #[serde(default)]
     pub parts: BTreeMap<String, TransformSpec>,
+    /// Which time code of an animated USD layer each frame shows (default: the layer's own
+    /// timing).
+    #[serde(default)]
+    pub time_codes: Option<TimeCodesSpec>,
     /// Named parts besides the model's own: each a list of patch names or 0-based indices,
     /// selected as `NAME/PART`.
     #[serde(default)]
@@ -125,6 +129,19 @@ fn no_turn() -> Track<f64> {
 
 fn one() -> Track<f64> {
     Track::Constant(1.0)
+}
+
+/// How an instance's frames map to the time codes of its animated USD layer:
+/// `time code = start + (frame − first frame) · per_frame`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeCodesSpec {
+    /// The time code at the shot's first frame (default: the layer's `startTimeCode`, or 0).
+    #[serde(default)]
+    pub start: Option<f64>,
+    /// Time codes per frame (default: the layer's `timeCodesPerSecond` ÷ the shot's fps).
+    #[serde(default)]
+    pub per_frame: Option<f64>,
 }
 
 /// A material: a cel ramp, or an X-Toon tone (docs/xtoon.md), every number a track.

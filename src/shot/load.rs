@@ -14,7 +14,7 @@ use super::moving_parts::{check_reach, pose_of};
 use super::no_match::no_match_message;
 use super::output::{check_numbered, resolve_path};
 use super::pin::resolve_pins;
-use super::pose::InstancePose;
+use super::pose::{Deform, InstancePose, Timing};
 use super::source::Source;
 use super::validated::{Accuracy, Instance, Material, Shot};
 use super::written::Written;
@@ -22,10 +22,14 @@ use super::{ShotError, MAX_FRAMES};
 use crate::formats::parts::{parts_file, resolve_groups};
 use crate::formats::ron_location::closest_name;
 use crate::formats::ron_paths::Step::{Entry, Field, Index};
-use crate::formats::{load_patches, read_toon_texture};
+use crate::formats::{load_model, read_toon_texture, Model, UsdMotion};
 use crate::geom::{NamedPatch, PatchGroup, PatchLibrary, MAX_COORDINATE};
 use crate::render::Settings;
 use crate::toon::{AbstractShape, Abstraction, ToonTexture, XToon};
+
+/// The largest time code, and time codes per frame, a frame may be mapped with: beyond it the
+/// frame's time code loses its fraction.
+const MAX_TIME_CODE: f64 = 1e12;
 
 /// The most files an include chain may nest.
 const MAX_INCLUDE_DEPTH: usize = 16;
@@ -70,7 +74,7 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
     let first_frame = file.frames.0 as f64;
     let placed = place_instances(
         &file.instances,
-        first_frame,
+        (first_frame, file.fps),
         &looks,
         shot_source,
         &mut inputs,
@@ -296,13 +300,13 @@ struct Placed {
 /// Reads each patch file once and places a copy of it for each instance.
 fn place_instances(
     specs: &[InstanceSpec],
-    first_frame: f64,
+    (first_frame, fps): (f64, f64),
     looks: &Looks,
     source: &Source,
     inputs: &mut Inputs,
 ) -> Result<Placed, ShotError> {
     let within = |x: f64| x.is_finite() && x.abs() <= MAX_COORDINATE;
-    let mut models: HashMap<PathBuf, Arc<PatchLibrary>> = HashMap::new();
+    let mut models: HashMap<PathBuf, (Arc<PatchLibrary>, Option<UsdMotion>)> = HashMap::new();
     let mut placed = Placed {
         library: PatchLibrary {
             patches: Vec::new(),
@@ -354,7 +358,10 @@ fn place_instances(
         let model_path = source.folder.join(&spec.file);
         let key = canonical(&model_path);
         if !models.contains_key(&key) {
-            let model = load_patches(&model_path).map_err(|e| {
+            let Model {
+                library: model,
+                motion,
+            } = load_model(&model_path).map_err(|e| {
                 let message = match &e {
                     crate::formats::FormatError::Io { source, .. } => format!(
                         "cannot read the patch file {}: {source}",
@@ -369,9 +376,10 @@ fn place_instances(
             if parts.is_file() {
                 inputs.add(&parts);
             }
-            models.insert(key.clone(), Arc::new(model));
+            models.insert(key.clone(), (Arc::new(model), motion));
         }
-        let model = &models[&key];
+        let (model, motion) = &models[&key];
+        let deform = deform_of(spec, index, motion.as_ref(), fps, first_frame, source)?;
         let own = resolve_groups(&spec.groups, &model.patches, &model.groups).map_err(|e| {
             let to_groups = [Field("instances"), Index(index), Field("groups")];
             source.error_at(&e.path(&to_groups), e.message.clone())
@@ -384,7 +392,7 @@ fn place_instances(
             });
         }
         let all_groups: Vec<&PatchGroup> = model.groups.iter().chain(&own).collect();
-        let pose = pose_of(spec, index, model, &all_groups, source, start)?;
+        let pose = pose_of(spec, index, model, &all_groups, source, start, deform)?;
         if pose.moves() {
             check_reach(&pose, spec, index, source)?;
         }
@@ -414,6 +422,54 @@ fn place_instances(
         });
     }
     Ok(placed)
+}
+
+/// How instance `spec` (item `index` of the shot's instances) deforms with its model's
+/// `motion`, an animated USD layer's: which time code each frame shows,
+/// `start + (frame − first) · per_frame`, by default from the layer's `startTimeCode` (0 when
+/// it has none) and `timeCodesPerSecond ÷ fps`. `time_codes` on a model that does not move, or
+/// a mapping that is not finite, is refused.
+fn deform_of(
+    spec: &InstanceSpec,
+    index: usize,
+    motion: Option<&UsdMotion>,
+    fps: f64,
+    first: f64,
+    source: &Source,
+) -> Result<Option<Deform>, ShotError> {
+    let at = |message: String| {
+        source.error_at(
+            &[Field("instances"), Index(index), Field("time_codes")],
+            message,
+        )
+    };
+    let Some(motion) = motion else {
+        return match spec.time_codes {
+            None => Ok(None),
+            Some(_) => Err(at(format!(
+                "the model of instance \"{}\" has no time samples, so there are no time codes to map; leave out time_codes",
+                spec.name
+            ))),
+        };
+    };
+    let written = spec.time_codes.unwrap_or_default();
+    let layer = motion.time_codes();
+    let timing = Timing {
+        first,
+        start: written.start.or(layer.start).unwrap_or(0.0),
+        per_frame: written.per_frame.unwrap_or(layer.per_second / fps),
+    };
+    let finite = |x: f64| x.is_finite() && x.abs() <= MAX_TIME_CODE;
+    if !(finite(timing.start) && finite(timing.per_frame)) {
+        return Err(at(format!(
+            "instance \"{}\" maps frames to time codes as {} + (frame − {first}) · {}, which is not finite; give time_codes a start and a per_frame within ±{MAX_TIME_CODE:e}",
+            spec.name, timing.start, timing.per_frame
+        )));
+    }
+    Ok(Some(Deform {
+        motion: motion.clone(),
+        timing,
+    }))
 }
 
 /// The highlight entry of each patch: every pattern picks at least one patch; later entries

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use super::file::InstanceSpec;
-use super::pose::InstancePose;
+use super::pose::{Deform, InstancePose};
 use super::source::Source;
 use super::ShotError;
 use crate::formats::ron_location::closest_name;
@@ -22,6 +22,7 @@ pub(super) fn pose_of(
     groups: &[&PatchGroup],
     source: &Source,
     first_patch: usize,
+    deform: Option<Deform>,
 ) -> Result<InstancePose, ShotError> {
     let at = |part: &str, message: String| {
         source.error_at(
@@ -95,6 +96,7 @@ pub(super) fn pose_of(
         transform: spec.transform.clone(),
         parts,
         chains,
+        deform,
     })
 }
 
@@ -108,11 +110,24 @@ pub(super) fn check_reach(
     index: usize,
     source: &Source,
 ) -> Result<(), ShotError> {
-    let radius = pose
+    let mut radius = pose
         .model
         .control_points()
         .map(|p| p.length())
         .fold(0.0, f64::max);
+    if let Some(deform) = &pose.deform {
+        for &patch in deform.motion.moving() {
+            for &time in deform.motion.sample_times() {
+                let farthest = deform
+                    .motion
+                    .points_at(patch, time)
+                    .iter()
+                    .map(|p| p.length())
+                    .fold(0.0, f64::max);
+                radius = radius.max(farthest);
+            }
+        }
+    }
     let mut chains: Vec<&Vec<usize>> = pose.chains.iter().collect();
     chains.sort();
     chains.dedup();

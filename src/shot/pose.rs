@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use super::file::TransformSpec;
 use super::validated::Shot;
+use crate::formats::UsdMotion;
 use crate::geom::{NamedPatch, NurbsSurface, PatchLibrary};
 
 /// How one instance is placed at any frame.
@@ -22,6 +23,31 @@ pub(super) struct InstancePose {
     /// Per patch of the model, the parts (indices into `parts`) that move it, the outermost
     /// first: each holds every patch of the next.
     pub chains: Vec<Vec<usize>>,
+    /// The model's own motion, when it is an animated USD layer.
+    pub deform: Option<Deform>,
+}
+
+/// An animated USD layer's motion, and which of its time codes each frame shows.
+#[derive(Debug)]
+pub(super) struct Deform {
+    pub motion: UsdMotion,
+    pub timing: Timing,
+}
+
+/// `time code = start + (frame − first) · per_frame`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Timing {
+    pub first: f64,
+    pub start: f64,
+    pub per_frame: f64,
+}
+
+impl Timing {
+    /// The time code frame `frame` shows.
+    #[must_use]
+    pub fn time_code(&self, frame: f64) -> f64 {
+        self.start + (frame - self.first) * self.per_frame
+    }
 }
 
 impl InstancePose {
@@ -29,20 +55,32 @@ impl InstancePose {
     /// part's is keyed.
     #[must_use]
     pub fn moves(&self) -> bool {
-        self.transform.is_keyed() || self.parts.iter().any(|(_, t)| t.is_keyed())
+        self.transform.is_keyed()
+            || self.parts.iter().any(|(_, t)| t.is_keyed())
+            || self.deform.is_some()
     }
 
     /// The model's patch `patch` placed at `frame`: `T_instance(T_outer(… T_inner(p)))` for each
-    /// control point `p`, the parts' transforms applied innermost first.
+    /// control point `p`, the parts' transforms applied innermost first; of an animated USD
+    /// layer, `p` is the control point at the frame's time code
+    /// ([`UsdMotion::points_at`]).
     #[must_use]
     pub fn place(&self, patch: usize, frame: f64) -> NurbsSurface {
+        let model = &self.model.patches[patch].surface;
+        let deformed = self
+            .deform
+            .as_ref()
+            .filter(|d| d.motion.moving().contains(&patch))
+            .and_then(|d| {
+                model.try_with_points(&d.motion.points_at(patch, d.timing.time_code(frame)))
+            });
         let instance = self.transform.at(frame);
         let chain: Vec<_> = self.chains[patch]
             .iter()
             .rev()
             .map(|&part| self.parts[part].1.at(frame))
             .collect();
-        self.model.patches[patch].surface.map_points(|p| {
+        deformed.as_ref().unwrap_or(model).map_points(|p| {
             let inside = chain.iter().fold(p, |q, part| part.apply(q));
             instance.apply(inside)
         })
