@@ -392,7 +392,14 @@ fn place_instances(
             });
         }
         let all_groups: Vec<&PatchGroup> = model.groups.iter().chain(&own).collect();
-        let pose = pose_of(spec, index, model, &all_groups, source, start, deform)?;
+        let pose = pose_of(
+            spec,
+            index,
+            (model, deform, &model_path),
+            &all_groups,
+            source,
+            start,
+        )?;
         if pose.moves() {
             check_reach(&pose, spec, index, source)?;
         }

@@ -1,6 +1,7 @@
 //! An instance's moving parts as written: each found among the instance's parts, their nesting
 //! (every patch moved by parts that hold one another), and how far they can carry the model.
 
+use std::path::Path;
 use std::sync::Arc;
 
 use super::file::InstanceSpec;
@@ -12,17 +13,17 @@ use crate::formats::ron_paths::Step::{Entry, Field, Index};
 use crate::geom::{PatchGroup, PatchLibrary, MAX_COORDINATE};
 
 /// How instance `spec` (item `index` of the shot's instances) is placed at any frame: its
-/// transform, and each of its moving parts found among `groups` (the model's parts and the
-/// instance's own, indices into `model`). Every patch must be moved by parts that nest: of any
-/// two moving parts holding it, one holds every patch of the other (and more).
+/// transform, its model's own motion (`deform`, read from `file`), and each of its moving parts
+/// found among `groups` (the model's parts and the instance's own, indices into `model`). Every
+/// patch must be moved by parts that nest: of any two moving parts holding it, one holds every
+/// patch of the other (and more).
 pub(super) fn pose_of(
     spec: &InstanceSpec,
     index: usize,
-    model: &Arc<PatchLibrary>,
+    (model, deform, file): (&Arc<PatchLibrary>, Option<Deform>, &Path),
     groups: &[&PatchGroup],
     source: &Source,
     first_patch: usize,
-    deform: Option<Deform>,
 ) -> Result<InstancePose, ShotError> {
     let at = |part: &str, message: String| {
         source.error_at(
@@ -97,6 +98,7 @@ pub(super) fn pose_of(
         parts,
         chains,
         deform,
+        file: file.to_path_buf(),
     })
 }
 

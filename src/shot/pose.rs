@@ -2,6 +2,7 @@
 //! transforms of the parts that move inside it, read at that frame.
 
 use std::ops::Range;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::file::TransformSpec;
@@ -25,6 +26,8 @@ pub(super) struct InstancePose {
     pub chains: Vec<Vec<usize>>,
     /// The model's own motion, when it is an animated USD layer.
     pub deform: Option<Deform>,
+    /// The model's file.
+    pub file: PathBuf,
 }
 
 /// An animated USD layer's motion, and which of its time codes each frame shows.
@@ -92,6 +95,16 @@ impl Shot {
     #[must_use]
     pub fn moves(&self) -> bool {
         self.poses.iter().any(InstancePose::moves)
+    }
+
+    /// The files of the models whose own time samples deform them (animated USD layers): what
+    /// a frame uses of such a file is its model at the frame ([`Shot::library_at`]), not all
+    /// its bytes.
+    pub fn deforming_files(&self) -> impl Iterator<Item = &Path> {
+        self.poses
+            .iter()
+            .filter(|p| p.deform.is_some())
+            .map(|p| p.file.as_path())
     }
 
     /// The model at `frame`: [`Shot::library`] itself when nothing moves; otherwise the same
