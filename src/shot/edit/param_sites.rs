@@ -384,6 +384,8 @@ fn layer_sites<'a>(
         feather,
         mask,
         pin,
+        // The frame's axis has no parameter path yet: it is read at a frame, not keyed by path.
+        frame: _,
     } = l;
     for (index, op) in stack.iter_mut().enumerate() {
         let mut number = |param, track, more: &[Step<'a>]| {
