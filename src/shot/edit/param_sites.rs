@@ -384,7 +384,7 @@ fn layer_sites<'a>(
         feather,
         mask,
         pin,
-        // The frame's axis has no parameter path yet: it is read at a frame, not keyed by path.
+        // The frame's axis has no parameter path yet: `glint key` and `tune` cannot name it.
         frame: _,
     } = l;
     for (index, op) in stack.iter_mut().enumerate() {
