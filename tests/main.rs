@@ -20,6 +20,7 @@ mod geometry_stability;
 mod geometry_teapot;
 mod hardening;
 mod highlight_place;
+mod highlight_seams;
 mod highlight_serde;
 mod highlight_sphere;
 mod highlight_stability;

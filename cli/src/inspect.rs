@@ -199,6 +199,7 @@ fn layer_fields(layer: &Layer) -> String {
         mask,
         // At a frame a pin is already solved into the stack's translation.
         pin: _,
+        frame: _,
     } = layer;
     let mut fields = format!(
         "epsilon: {}, colour: {}, opacity: {}",

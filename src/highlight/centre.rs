@@ -3,6 +3,7 @@
 use glam::{Vec2, Vec3};
 
 use super::error::HighlightError;
+use super::frame::TangentFrame;
 use super::layer::Layer;
 use super::ops::Op;
 use super::stack::PreparedStack;
@@ -24,9 +25,31 @@ impl<P> Layer<P> {
 }
 
 impl Layer<f32> {
+    /// [`centring_translation`](Self::centring_translation) for the point whose shading frame
+    /// is `frame` and whose initial unit highlight vector is `h`, in world coordinates: `h` is
+    /// taken into the layer's own frame there ([`LayerFrame`](super::LayerFrame)), as every
+    /// evaluation of the layer takes it. Errors also when the frame's axis is invalid.
+    pub fn centring_translation_at(
+        &self,
+        frame: &TangentFrame,
+        h: Vec3,
+    ) -> Result<Vec2, HighlightError> {
+        self.centring_translation(self.frame.prepare()?.local(frame, h))
+    }
+
+    /// [`centred_on`](Self::centred_on) the point whose shading frame is `frame` and whose
+    /// initial unit highlight vector is `h`, in world coordinates, taken into the layer's own
+    /// frame there ([`centring_translation_at`](Self::centring_translation_at)): what a pin on
+    /// a surface point needs, for a layer in any [`LayerFrame`](super::LayerFrame).
+    pub fn centred_at(&self, frame: &TangentFrame, h: Vec3) -> Result<Layer, HighlightError> {
+        self.centred_on(self.frame.prepare()?.local(frame, h))
+    }
+
     /// `(α, β)` for the placing translation ([`placing_translation`](Self::placing_translation))
-    /// that puts the highlight's centre on the point whose initial highlight vector has frame
-    /// coordinates `h = (t_u, t_v, h_n)`: with `g` the unit output of the operations before it
+    /// that puts the highlight's centre on the point whose initial highlight vector has
+    /// coordinates `h = (t_u, t_v, h_n)` in the layer's own frame there (for
+    /// [`LayerFrame::Patch`](super::LayerFrame::Patch), the patch's frame; from world
+    /// coordinates, [`centring_translation_at`](Self::centring_translation_at)): with `g` the unit output of the operations before it
     /// applied to `h`, the translation maps `g` to `g + (α, β, 0)`, which is `(0, 0, g_n)`, a
     /// positive multiple of N, for `(α, β) = −(g_u, g_v)`.
     ///
@@ -51,8 +74,10 @@ impl Layer<f32> {
     }
 
     /// The layer with its highlight centred on the point whose initial highlight vector has
-    /// frame coordinates `h` ([`centring_translation`](Self::centring_translation)), and no pin.
-    /// A stack without a translation gets one at its start.
+    /// coordinates `h` in the layer's own frame there
+    /// ([`centring_translation`](Self::centring_translation); from world coordinates,
+    /// [`centred_at`](Self::centred_at)), and no pin. A stack without a translation gets one at
+    /// its start.
     pub fn centred_on(&self, h: Vec3) -> Result<Layer, HighlightError> {
         let mut layer = self.clone();
         layer.pin = None;
@@ -175,6 +200,49 @@ mod tests {
         let centred = bare.centred_on(h).unwrap();
         assert_eq!(centred.placing_translation(), Some(0));
         assert!(centred_at(&centred, h) < 1e-6);
+    }
+
+    #[test]
+    fn a_layer_along_an_axis_is_centred_in_its_own_frame() {
+        use crate::highlight::LayerFrame;
+        // A patch frame with u reversed and v along −y, and a layer whose du follows +x.
+        let patch = TangentFrame::new(-Vec3::X, -Vec3::Y, Vec3::Z);
+        let mut along = layer(vec![
+            Op::Translate {
+                alpha: 0.0,
+                beta: 0.0,
+            },
+            Op::Scale {
+                delta: 0.5,
+                axis: Axis::U,
+            },
+        ]);
+        along.frame = LayerFrame::Along {
+            axis: [2.0, 0.0, 0.0],
+        };
+        let h = Vec3::new(0.3, -0.2, (1.0 - 0.13_f32).sqrt());
+        // In the layer's frame (+x, +y, +z) the step cancels h's tangential part.
+        let step = along.centring_translation_at(&patch, h).unwrap();
+        assert!((step - Vec2::new(-0.3, 0.2)).length() < 1e-6, "{step}");
+        let centred = along.centred_at(&patch, h).unwrap();
+        let prepared = centred.prepare().unwrap();
+        assert!(prepared.highlight_vector(&patch, h).truncate().length() < 1e-6);
+        // The patch frame's coordinates would put it elsewhere: the step is not the same.
+        let naive = along
+            .centred_on(patch.to_local(h))
+            .unwrap()
+            .prepare()
+            .unwrap();
+        assert!(naive.highlight_vector(&patch, h).truncate().length() > 0.1);
+        // A patch-framed layer is centred the same either way.
+        let plain = layer(vec![Op::Translate {
+            alpha: 0.0,
+            beta: 0.0,
+        }]);
+        assert_eq!(
+            plain.centred_at(&patch, h).unwrap(),
+            plain.centred_on(patch.to_local(h)).unwrap()
+        );
     }
 
     #[test]

@@ -27,6 +27,19 @@ pub enum HighlightError {
         /// The second (upper) bound given.
         max: f32,
     },
+    /// A layer frame's axis that is zero, or too small or large to normalize in f32.
+    #[error(
+        "frame axis is ({x}, {y}, {z}), which has no direction; give a non-zero vector such as \
+         (1.0, 0.0, 0.0), the direction the layer's du follows"
+    )]
+    AxisWithoutDirection {
+        /// The axis's x component as given.
+        x: f32,
+        /// Its y component.
+        y: f32,
+        /// Its z component.
+        z: f32,
+    },
     /// A highlight placed on a point, in a stack with no translation to place it with.
     #[error(
         "the stack has no Translate to place the highlight with; add \

@@ -7,8 +7,8 @@ use serde::{Deserialize, Serialize};
 use super::error::HighlightError;
 use super::footprint::Footprint;
 use super::frame::TangentFrame;
-use super::layer::{Layer, Paint, PreparedLayer};
-use super::stack::LocalChunk;
+use super::layer::{Layer, LayerScratch, Paint, PreparedLayer};
+use super::point_chunk::PointChunk;
 use crate::math::LANES;
 
 /// A Boolean expression over highlight layers, on soft coverage `a, b ∈ [0, 1]`
@@ -229,37 +229,37 @@ impl PreparedExpr {
             frames.len() == uvs.len() && uvs.len() == hs.len() && hs.len() == out.len(),
             "slice lengths differ"
         );
-        let (mut initial, mut scratch) = (LocalChunk::default(), ChunkScratch::default());
+        let (mut points, mut scratch) = (PointChunk::default(), ChunkScratch::default());
         for (k, o) in out.chunks_mut(LANES).enumerate() {
             let r = k * LANES..k * LANES + o.len();
-            initial.load(&frames[r.clone()], &hs[r.clone()]);
-            self.eval_chunk(&initial, &uvs[r], footprint, &mut scratch, o);
+            points.load(&frames[r.clone()], &hs[r.clone()]);
+            self.eval_chunk(&points, &uvs[r], footprint, &mut scratch, o);
         }
     }
 
-    /// [`eval`](Self::eval) at a chunk of initial highlight vectors already in frame
-    /// coordinates, with (u, v) `uvs`, into `out`; `scratch` is working memory a caller keeps
-    /// from one chunk to the next.
+    /// [`eval`](Self::eval) at a chunk of points (their shading frames and initial highlight
+    /// vectors, which each layer takes into its own frame), with (u, v) `uvs`, into `out`;
+    /// `scratch` is working memory a caller keeps from one chunk to the next.
     ///
     /// # Panics
     /// If `uvs` or `out` is not as long as the chunk.
     pub(crate) fn eval_chunk(
         &self,
-        initial: &LocalChunk,
+        points: &PointChunk,
         uvs: &[Vec2],
         footprint: Footprint,
         scratch: &mut ChunkScratch,
         out: &mut [Shade],
     ) {
-        let n = initial.len();
+        let n = points.len();
         assert!(uvs.len() == n && out.len() == n, "chunk lengths differ");
         let ChunkScratch {
-            vectors,
+            layer,
             shapes,
             paints,
         } = scratch;
         let (s, p) = (&mut shapes[..n], &mut paints[..n]);
-        self.shape_chunk(initial, vectors, uvs, footprint, s, p);
+        self.shape_chunk(points, layer, uvs, footprint, s, p);
         for ((o, s), p) in out.iter_mut().zip(s.iter()).zip(p.iter()) {
             *o = Shade {
                 coverage: s * p.opacity,
@@ -294,11 +294,11 @@ impl PreparedExpr {
         }
     }
 
-    /// Shape coverage and paint at a chunk of initial highlight vectors with (u, v) `uvs`.
+    /// Shape coverage and paint at a chunk of points with (u, v) `uvs`.
     fn shape_chunk(
         &self,
-        initial: &LocalChunk,
-        scratch: &mut LocalChunk,
+        points: &PointChunk,
+        scratch: &mut LayerScratch,
         uvs: &[Vec2],
         footprint: Footprint,
         shapes: &mut [f32],
@@ -306,16 +306,16 @@ impl PreparedExpr {
     ) {
         match self {
             PreparedExpr::Layer(l) => {
-                l.shape_chunk(initial, scratch, uvs, footprint, shapes);
+                l.shape_chunk(points, scratch, uvs, footprint, shapes);
                 paints.fill(l.paint());
             }
             PreparedExpr::Combine(op, a, b) => {
-                a.shape_chunk(initial, scratch, uvs, footprint, shapes, paints);
+                a.shape_chunk(points, scratch, uvs, footprint, shapes, paints);
                 let mut b_shapes = [0.0; LANES];
                 let mut b_paints = [b.first_paint(); LANES];
                 let n = shapes.len();
                 let (bs, bp) = (&mut b_shapes[..n], &mut b_paints[..n]);
-                b.shape_chunk(initial, scratch, uvs, footprint, bs, bp);
+                b.shape_chunk(points, scratch, uvs, footprint, bs, bp);
                 for i in 0..n {
                     (shapes[i], paints[i]) = op.combine((shapes[i], paints[i]), (bs[i], bp[i]));
                 }
@@ -427,7 +427,7 @@ impl PreparedExpr {
 /// Working memory of [`PreparedExpr::eval_chunk`].
 #[derive(Clone, Debug)]
 pub struct ChunkScratch {
-    vectors: LocalChunk,
+    layer: LayerScratch,
     shapes: [f32; LANES],
     paints: [Paint; LANES],
 }
@@ -435,7 +435,7 @@ pub struct ChunkScratch {
 impl Default for ChunkScratch {
     fn default() -> Self {
         Self {
-            vectors: LocalChunk::default(),
+            layer: LayerScratch::default(),
             shapes: [0.0; LANES],
             paints: [Paint {
                 colour: Vec3::ZERO,
@@ -477,6 +477,7 @@ mod tests {
             feather: None,
             mask: None,
             pin: None,
+            frame: crate::highlight::LayerFrame::Patch,
         })
     }
 

@@ -1,5 +1,5 @@
 //! A highlight layer: an op stack, a threshold ε, a paint (colour and opacity), an optional
-//! feather and an optional parameter-space mask.
+//! feather, an optional parameter-space mask, an optional pin, and the frame its stack acts in.
 
 use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
@@ -8,8 +8,10 @@ use super::error::HighlightError;
 use super::footprint::Footprint;
 use super::frame::TangentFrame;
 use super::inside::{coverage_from_signed, signed_inside};
+use super::layer_frame::{LayerFrame, PreparedFrame};
 use super::ops::Op;
 use super::pin::Pin;
+use super::point_chunk::PointChunk;
 use super::stack::{LocalChunk, PreparedStack};
 use crate::math::LANES;
 use crate::param::{check, Range};
@@ -21,7 +23,8 @@ use crate::param::{check, Range};
 /// ```text
 /// (stack: [Translate(alpha: 0.2, beta: 0.0), Square(sigma: 0.2, n: 2.0)], epsilon: 0.05,
 ///  colour: (1.0, 1.0, 1.0), opacity: 1.0, feather: Some(0.005),
-///  mask: Some((u: (0.0, 0.5), v: (0.0, 1.0), feather: 0.05)))
+///  mask: Some((u: (0.0, 0.5), v: (0.0, 1.0), feather: 0.05)),
+///  frame: Along(axis: (1.0, 0.0, 0.0)))
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(
@@ -52,6 +55,10 @@ pub struct Layer<P = f32> {
     /// written.
     #[serde(default)]
     pub pin: Option<Pin<P>>,
+    /// The tangent axes the stack acts along at each point ([`LayerFrame`]): the patch's own
+    /// (the default), or one direction field over every patch the layer is drawn on.
+    #[serde(default, skip_serializing_if = "LayerFrame::is_patch")]
+    pub frame: LayerFrame<P>,
 }
 
 /// The default opacity of a layer as written in a file: 1.
@@ -88,12 +95,14 @@ impl Layer {
             feather: None,
             mask: None,
             pin: None,
+            frame: LayerFrame::Patch,
         }
     }
 }
 
 impl<P: Clone> Layer<P> {
-    /// The layer's own parameters (ε, colour, opacity, feather, mask, pin) with an empty stack:
+    /// The layer's own parameters (ε, colour, opacity, feather, mask, pin, frame) with an empty
+    /// stack:
     /// what is checked apart from the operations.
     #[must_use]
     pub fn without_stack(&self) -> Layer<P> {
@@ -105,6 +114,7 @@ impl<P: Clone> Layer<P> {
             feather: self.feather.clone(),
             mask: self.mask.clone(),
             pin: self.pin.clone(),
+            frame: self.frame.clone(),
         }
     }
 }
@@ -130,6 +140,7 @@ impl<P> Layer<P> {
                 feather: f(&m.feather),
             }),
             pin: self.pin.as_ref().map(|p| p.map(&mut f)),
+            frame: self.frame.map(&mut f),
         }
     }
 }
@@ -165,8 +176,8 @@ impl Mask<f32> {
 }
 
 impl Layer<f32> {
-    /// Checks ε ∈ (0, 2], colour components in [0, 1e4], opacity ∈ [0, 1], feather ≥ 0, the mask ordered, and
-    /// every op; errors say which op.
+    /// Checks ε ∈ (0, 2], colour components in [0, 1e4], opacity ∈ [0, 1], feather ≥ 0, the mask
+    /// ordered, the frame's axis a direction, and every op; errors say which op.
     pub fn validate(&self) -> Result<(), HighlightError> {
         for (i, op) in self.stack.iter().enumerate() {
             op.validate()
@@ -198,7 +209,7 @@ impl Layer<f32> {
         if let Some(m) = &self.mask {
             m.validate()?;
         }
-        Ok(())
+        self.frame.validate()
     }
 
     /// Validates and precomputes the per-point form. A pinned layer is first centred on its
@@ -225,6 +236,7 @@ impl Layer<f32> {
             },
             feather: self.feather.unwrap_or(0.0),
             mask: self.mask.clone(),
+            frame: self.frame.prepare()?,
         })
     }
 }
@@ -246,13 +258,31 @@ pub struct PreparedLayer {
     paint: Paint,
     feather: f32,
     mask: Option<Mask>,
+    frame: PreparedFrame,
+}
+
+/// Working memory of a layer evaluated on a [`PointChunk`]: the initial vectors in the layer's
+/// frame, and the running vectors of its stack.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LayerScratch {
+    initial: LocalChunk,
+    vectors: LocalChunk,
 }
 
 impl PreparedLayer {
-    /// The stack's output `H'` for the initial unit vector `h`, in world coordinates.
+    /// The frame the layer's operations act in at a point whose shading frame is `frame`
+    /// ([`PreparedFrame::at`]): `frame` itself for [`LayerFrame::Patch`].
+    #[must_use]
+    pub fn frame_at(&self, frame: &TangentFrame) -> TangentFrame {
+        self.frame.at(frame)
+    }
+
+    /// The stack's output `H'` for the initial unit vector `h` at a point whose shading frame
+    /// is `frame`, in world coordinates.
     #[must_use]
     pub fn highlight_vector(&self, frame: &TangentFrame, h: Vec3) -> Vec3 {
-        frame.to_world(self.local_vector(frame.to_local(h)))
+        let own = self.frame.at(frame);
+        own.to_world(self.local_vector(own.to_local(h)))
     }
 
     #[inline]
@@ -266,11 +296,12 @@ impl PreparedLayer {
         signed_inside(Vec3::Z, l, self.epsilon)
     }
 
-    /// The signed inside value `s = ε − ‖N − H'‖² / 2` of the stack's output (positive inside).
+    /// The signed inside value `s = ε − ‖N − H'‖² / 2` of the stack's output (positive inside)
+    /// for the initial unit vector `h` at a point whose shading frame is `frame`.
     #[inline]
     #[must_use]
     pub fn signed(&self, frame: &TangentFrame, h: Vec3) -> f32 {
-        self.signed_local(self.local_vector(frame.to_local(h)))
+        self.signed_local(self.local_vector(self.frame.local(frame, h)))
     }
 
     /// [`signed`](Self::signed) at many points: `out[i]` for `frames[i]` and `hs[i]`. Faster per
@@ -283,44 +314,44 @@ impl PreparedLayer {
             frames.len() == hs.len() && hs.len() == out.len(),
             "slice lengths differ"
         );
-        let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
+        let (mut points, mut scratch) = (PointChunk::default(), LayerScratch::default());
         for ((f, h), o) in frames
             .chunks(LANES)
             .zip(hs.chunks(LANES))
             .zip(out.chunks_mut(LANES))
         {
-            initial.load(f, h);
-            self.signed_chunk(&initial, &mut scratch, o);
+            points.load(f, h);
+            self.signed_chunk(&points, &mut scratch, o);
         }
     }
 
-    /// `s` at each vector of a chunk of initial highlight vectors, into `out`; `scratch` is
-    /// overwritten.
+    /// `s` at each point of a chunk, into `out`; `scratch` is overwritten.
     pub(crate) fn signed_chunk(
         &self,
-        initial: &LocalChunk,
-        scratch: &mut LocalChunk,
+        points: &PointChunk,
+        scratch: &mut LayerScratch,
         out: &mut [f32],
     ) {
-        *scratch = *initial;
-        self.stack.apply_chunk(initial, scratch);
-        let (x, y, z) = scratch.lanes();
+        let LayerScratch { initial, vectors } = scratch;
+        initial.load_in(self.frame, points);
+        *vectors = *initial;
+        self.stack.apply_chunk(initial, vectors);
+        let (x, y, z) = vectors.lanes();
         for (o, ((x, y), z)) in out.iter_mut().zip(x.iter().zip(y).zip(z)) {
             *o = self.signed_local(Vec3::new(*x, *y, *z));
         }
     }
 
-    /// Shape coverage before opacity at each vector of a chunk of initial highlight vectors,
-    /// with (u, v) `uvs`, into `out`.
+    /// Shape coverage before opacity at each point of a chunk, with (u, v) `uvs`, into `out`.
     pub(crate) fn shape_chunk(
         &self,
-        initial: &LocalChunk,
-        scratch: &mut LocalChunk,
+        points: &PointChunk,
+        scratch: &mut LayerScratch,
         uvs: &[Vec2],
         footprint: Footprint,
         out: &mut [f32],
     ) {
-        self.signed_chunk(initial, scratch, out);
+        self.signed_chunk(points, scratch, out);
         for (o, uv) in out.iter_mut().zip(uvs) {
             *o = self.shape_from_signed(*o, *uv, footprint);
         }
@@ -383,11 +414,11 @@ impl PreparedLayer {
             frames.len() == uvs.len() && uvs.len() == hs.len() && hs.len() == out.len(),
             "slice lengths differ"
         );
-        let (mut initial, mut scratch) = (LocalChunk::default(), LocalChunk::default());
+        let (mut points, mut scratch) = (PointChunk::default(), LayerScratch::default());
         for (k, o) in out.chunks_mut(LANES).enumerate() {
             let r = k * LANES..k * LANES + o.len();
-            initial.load(&frames[r.clone()], &hs[r.clone()]);
-            self.shape_chunk(&initial, &mut scratch, &uvs[r], footprint, o);
+            points.load(&frames[r.clone()], &hs[r.clone()]);
+            self.shape_chunk(&points, &mut scratch, &uvs[r], footprint, o);
         }
     }
 
@@ -424,6 +455,7 @@ mod tests {
             feather: None,
             mask: None,
             pin: None,
+            frame: LayerFrame::Patch,
         }
     }
 
@@ -608,6 +640,85 @@ mod tests {
             (p.shape(&FRAME, Vec2::ZERO, h, Footprint { x: 0.02, y: 0.0 }) - 0.84375).abs() < 1e-4
         );
         assert!((p.shape(&FRAME, Vec2::ZERO, h, Footprint::HARD) - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn along_evaluates_in_the_projected_axis_frame_one_point_or_many() {
+        let mut l = layer(vec![
+            Op::Translate {
+                alpha: 0.3,
+                beta: -0.1,
+            },
+            Op::Scale {
+                delta: 0.6,
+                axis: crate::highlight::Axis::U,
+            },
+        ]);
+        l.frame = LayerFrame::Along {
+            axis: [1.0, 0.2, 0.5],
+        };
+        let along = l.prepare().unwrap();
+        l.frame = LayerFrame::Patch;
+        let plain = l.prepare().unwrap();
+        let count = LANES + 5;
+        // Frames about several normals, each du turned a different way about N; the
+        // highlight vectors near N.
+        let (mut frames, mut hs, mut own) = (Vec::new(), Vec::new(), Vec::new());
+        for i in 0..count {
+            let t = i as f32 * 0.37;
+            let n = Vec3::new(0.3 * t.sin(), 0.3 * t.cos(), 1.0).normalize();
+            let du = n.any_orthonormal_vector();
+            let (c, s) = (t.cos(), t.sin());
+            let du = c * du + s * n.cross(du);
+            let f = TangentFrame::new(du, n.cross(du), n);
+            // Independently: the axis's component in the tangent plane.
+            let a = Vec3::new(1.0, 0.2, 0.5).normalize();
+            let du2 = (a - a.dot(n) * n).normalize();
+            own.push(TangentFrame::new(du2, n.cross(du2), n));
+            frames.push(f);
+            hs.push((n + Vec3::new(0.1 * s, -0.05, 0.02 * c)).normalize());
+        }
+        let mut out = vec![0.0; count];
+        along.signed_many(&frames, &hs, &mut out);
+        for i in 0..count {
+            // The same as the patch-framed layer at a point whose frame is the field's.
+            let want = plain.signed(&own[i], hs[i]);
+            assert!((along.signed(&frames[i], hs[i]) - want).abs() < 1e-5, "{i}");
+            assert_eq!(out[i], along.signed(&frames[i], hs[i]), "{i}");
+            let world = along.highlight_vector(&frames[i], hs[i]);
+            assert!((world - plain.highlight_vector(&own[i], hs[i])).length() < 1e-5);
+            assert_eq!(along.frame_at(&frames[i]).n, frames[i].n);
+        }
+        // The patch frames differ, so the patch-framed layer differs somewhere.
+        assert!((0..count).any(|i| (plain.signed(&frames[i], hs[i]) - out[i]).abs() > 1e-3));
+    }
+
+    #[test]
+    fn a_layer_reads_its_frame_from_ron_patch_by_default() {
+        let text = "(stack: [], epsilon: 0.1, colour: (1.0, 1.0, 1.0))";
+        let l: Layer = ron::from_str(text).unwrap();
+        assert_eq!(l.frame, LayerFrame::Patch);
+        let text = "(stack: [], epsilon: 0.1, colour: (1.0, 1.0, 1.0), \
+                    frame: Along(axis: (1, 0, 0)))";
+        let l: Layer = ron::from_str(text).unwrap();
+        assert_eq!(
+            l.frame,
+            LayerFrame::Along {
+                axis: [1.0, 0.0, 0.0]
+            }
+        );
+        let text = "(stack: [], epsilon: 0.1, colour: (1.0, 1.0, 1.0), \
+                    frame: Along(axis: (0, 0, 0)))";
+        let l: Layer = ron::from_str(text).unwrap();
+        let msg = l.prepare().unwrap_err().to_string();
+        assert!(msg.contains("frame axis is (0, 0, 0)"), "{msg}");
+        let text = "(stack: [], epsilon: 0.1, colour: (1.0, 1.0, 1.0), \
+                    frame: Along(axis: (1, 0, 0), spin: 2.0))";
+        assert!(ron::from_str::<Layer>(text).is_err());
+        // The axis is three parameters, after every other.
+        let mut seen = Vec::new();
+        l.map(|p| *p + 1.0).for_each_param(|p| seen.push(*p));
+        assert_eq!(seen, [1.1, 2.0, 2.0, 2.0, 2.0, 1.0, 1.0, 1.0]);
     }
 
     #[test]

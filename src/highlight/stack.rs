@@ -2,8 +2,9 @@
 
 use glam::Vec3;
 
-use super::frame::TangentFrame;
+use super::layer_frame::PreparedFrame;
 use super::ops::PreparedOp;
+use super::point_chunk::PointChunk;
 use crate::math::{normalize_lanes, Lanes, LANES};
 
 /// Validated operations in order, with a normalization plan.
@@ -88,13 +89,12 @@ pub struct LocalChunk {
 }
 
 impl LocalChunk {
-    /// Replaces the contents by the coordinates of `hs[i]` in `frames[i]`.
-    ///
-    /// # Panics
-    /// If the slices differ in length or are longer than [`LANES`].
-    pub fn load(&mut self, frames: &[TangentFrame], hs: &[Vec3]) {
-        assert!(hs.len() == frames.len(), "bad chunk");
-        self.set(frames.len(), |i| frames[i].to_local(hs[i]));
+    /// Replaces the contents by each point's initial highlight vector in the layer frame
+    /// `frame` at it ([`PreparedFrame::local`]): the one place where a layer's chunk of world
+    /// vectors becomes its frame's coordinates.
+    pub fn load_in(&mut self, frame: PreparedFrame, points: &PointChunk) {
+        let (frames, hs) = (points.frames(), points.half_vectors());
+        self.set(points.len(), |i| frame.local(&frames[i], hs[i]));
     }
 
     /// Replaces the contents by `local(i)` for i < `len`: vectors already in frame coordinates.
@@ -109,12 +109,6 @@ impl LocalChunk {
         for i in 0..len {
             (x[i], y[i], z[i]) = local(i).into();
         }
-    }
-
-    /// How many vectors.
-    #[must_use]
-    pub fn len(&self) -> usize {
-        self.len
     }
 
     /// Vector `i`.
@@ -155,7 +149,17 @@ fn unit_or(h: Vec3, fallback: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::highlight::{Axis, Op, SquareStyle};
+    use crate::highlight::{Axis, Op, SquareStyle, TangentFrame};
+
+    /// `hs` in the frame `(x, y, z)`, as a chunk.
+    fn chunk_of(hs: &[Vec3]) -> LocalChunk {
+        let mut points = PointChunk::default();
+        let frames = vec![TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z); hs.len()];
+        points.load(&frames, hs);
+        let mut chunk = LocalChunk::default();
+        chunk.load_in(PreparedFrame::Patch, &points);
+        chunk
+    }
 
     fn ops() -> Vec<PreparedOp> {
         [
@@ -207,12 +211,10 @@ mod tests {
             let eager = ops().iter().fold(l, |h, op| op.apply_local(h));
             let lazy = s.apply_local(l);
             assert!((eager - lazy).length() < 1e-6, "{eager} vs {lazy}");
-            let frame = TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z);
-            let mut initial = LocalChunk::default();
-            initial.load(&[frame; 3], &[l; 3]);
+            let initial = chunk_of(&[l; 3]);
             let mut c = initial;
             s.apply_chunk(&initial, &mut c);
-            assert_eq!(c.len(), 3);
+            assert_eq!(c.lanes().0.len(), 3);
             assert_eq!([c.get(0), c.get(1), c.get(2)], [lazy; 3]);
         }
     }
@@ -232,8 +234,7 @@ mod tests {
         assert!((s.apply_local(Vec3::X) + Vec3::Y).length() < 1e-6);
         // The same in a chunk, beside vectors that scale normally.
         let hs = [Vec3::X, Vec3::new(0.3, 0.4, 0.866), Vec3::X, Vec3::Z];
-        let mut initial = LocalChunk::default();
-        initial.load(&[TangentFrame::new(Vec3::X, Vec3::Y, Vec3::Z); 4], &hs);
+        let initial = chunk_of(&hs);
         let mut c = initial;
         s.apply_chunk(&initial, &mut c);
         for (i, h) in hs.iter().enumerate() {

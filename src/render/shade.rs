@@ -11,7 +11,7 @@ use super::edges::settled::SettledTexels;
 use super::gbuffer::{GBuffer, Texel, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
 use super::xtoon_tone::{self, Views};
-use crate::highlight::{ChunkScratch, Footprint, LocalChunk, Shade};
+use crate::highlight::{ChunkScratch, Footprint, PointChunk, Shade};
 use crate::math::{Lanes, LANES};
 use crate::toon::ViewXToon;
 
@@ -211,8 +211,8 @@ struct RunScratch {
     view: Lanes,
     tone: xtoon_tone::ToneScratch,
     half_vectors: [Vec3; LANES],
-    /// The half vectors in the texels' frames.
-    initial: LocalChunk,
+    /// The texels' frames and half vectors.
+    points: PointChunk,
     uvs: [Vec2; LANES],
     expr: ChunkScratch,
     shades: [Shade; LANES],
@@ -224,7 +224,7 @@ impl RunScratch {
             view: Lanes::default(),
             tone: xtoon_tone::ToneScratch::default(),
             half_vectors: [Vec3::ZERO; LANES],
-            initial: LocalChunk::default(),
+            points: PointChunk::default(),
             uvs: [Vec2::ZERO; LANES],
             expr: ChunkScratch::default(),
             shades: [NO_HIGHLIGHT; LANES],
@@ -346,13 +346,13 @@ fn highlight<'s>(
         (None, None) => {
             let hs = &mut scratch.half_vectors[..n];
             initial_half_vectors(scene, texels, &scratch.view, hs);
-            scratch.initial.set(n, |k| texels[k].frame.to_local(hs[k]));
+            scratch.points.set(n, |k| (texels[k].frame, hs[k]));
             for (uv, t) in scratch.uvs.iter_mut().zip(texels) {
                 *uv = t.uv;
             }
             let uvs = &scratch.uvs[..n];
             expr.eval_chunk(
-                &scratch.initial,
+                &scratch.points,
                 uvs,
                 Footprint::HARD,
                 &mut scratch.expr,

@@ -5,7 +5,7 @@ use rayon::prelude::*;
 
 use glam::Vec3;
 
-use crate::highlight::{Footprint, LocalChunk, PreparedLayer};
+use crate::highlight::{Footprint, LayerScratch, PointChunk, PreparedLayer};
 use crate::math::{Lanes, LANES};
 use crate::render::directions::{initial_half_vectors, view_lanes};
 use crate::render::gbuffer::{GBuffer, Texel, EMPTY, PIXELS_PER_JOB};
@@ -25,9 +25,9 @@ pub(in crate::render) struct EdgeWidths {
 struct SignedScratch {
     view: Lanes,
     half_vectors: [Vec3; LANES],
-    /// The half vectors in the texels' frames.
-    initial: LocalChunk,
-    vectors: LocalChunk,
+    /// The texels' frames and half vectors.
+    points: PointChunk,
+    layer: LayerScratch,
     out: [f32; LANES],
 }
 
@@ -36,21 +36,21 @@ impl Default for SignedScratch {
         Self {
             view: Lanes::default(),
             half_vectors: [Vec3::ZERO; LANES],
-            initial: LocalChunk::default(),
-            vectors: LocalChunk::default(),
+            points: PointChunk::default(),
+            layer: LayerScratch::default(),
             out: [0.0; LANES],
         }
     }
 }
 
 impl SignedScratch {
-    /// The initial half vectors of `texels` (up to [`LANES`], on one patch) in their frames.
+    /// The frames and initial half vectors of `texels` (up to [`LANES`], on one patch).
     fn fill(&mut self, scene: &Scene, texels: &[Texel]) {
         let n = texels.len();
         view_lanes(scene, texels, &mut self.view);
         initial_half_vectors(scene, texels, &self.view, &mut self.half_vectors[..n]);
         let hs = &self.half_vectors;
-        self.initial.set(n, |k| texels[k].frame.to_local(hs[k]));
+        self.points.set(n, |k| (texels[k].frame, hs[k]));
     }
 }
 
@@ -127,7 +127,7 @@ pub(in crate::render) fn signed_values_of<'s>(
                         scratch.fill(scene, piece);
                         for (j, layer) in layers.iter().enumerate() {
                             let out = &mut scratch.out[..n];
-                            layer.signed_chunk(&scratch.initial, &mut scratch.vectors, out);
+                            layer.signed_chunk(&scratch.points, &mut scratch.layer, out);
                             for (texel, &s) in values.chunks_exact_mut(most).zip(out.iter()) {
                                 texel[j] = s;
                             }

@@ -384,6 +384,8 @@ fn layer_sites<'a>(
         feather,
         mask,
         pin,
+        // The frame's axis has no parameter path yet: `glint key` and `tune` cannot name it.
+        frame: _,
     } = l;
     for (index, op) in stack.iter_mut().enumerate() {
         let mut number = |param, track, more: &[Step<'a>]| {
