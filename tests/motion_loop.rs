@@ -1,7 +1,8 @@
 //! The animator's commands on a moving shot: `glint place` puts the highlight where asked on
-//! the surface as it is posed at the frame, `glint probe` reports the posed point, and
-//! `glint sheet` tiles the frames of the moving ball. Each check would fail if the model at
-//! rest were used: the ball has left its rest place and turned a quarter turn by frame 10.
+//! the surface as it is posed at the frame, `glint probe` reports the posed point, `glint sheet`
+//! tiles the frames of the moving ball, and `--watch` renders again after an edit of a
+//! transform key. Each check would fail if the model at rest were used: the ball has left its
+//! rest place and turned a quarter turn by frame 10.
 
 use std::path::{Path, PathBuf};
 
@@ -253,5 +254,88 @@ fn a_sheet_of_a_moving_shot_shows_the_ball_where_each_frame_poses_it() {
     assert!(
         drawn(1, moved) && !drawn(1, rest_left),
         "frame 10: the ball moved"
+    );
+}
+
+/// How long any one event of the watch may take to show: far beyond what it needs, so that
+/// only an event that never comes fails the test.
+const DEADLINE: std::time::Duration = std::time::Duration::from_secs(120);
+
+/// Whether the watched frame `frame` of the ball, 32×32, is drawn at world point `(x, z)`.
+fn drawn_at(dir: &Path, frame: i64, (x, z): (f64, f64)) -> bool {
+    let image = image::open(dir.join(format!("out/m.{frame:04}.png")))
+        .unwrap()
+        .to_rgba8();
+    let scale = 32.0 / 6.0;
+    let (px, py) = (15.5 + x * scale, 15.5 - z * scale);
+    image.get_pixel(px.round() as u32, py.round() as u32)[3] > 0
+}
+
+/// The watching process, killed when the test ends however it ends.
+struct Watching(std::process::Child);
+
+impl Drop for Watching {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+#[test]
+fn watch_renders_again_after_an_edit_of_a_transform_key() {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+
+    let dir = tempfile::tempdir().unwrap();
+    let shot = write_moving_ball(dir.path());
+    let small = moving_ball_text().replace(&format!("({SIZE}, {SIZE})"), "(32, 32)");
+    crate::common::ball_shot::save_as_an_editor_does(&shot, &small);
+    let mut watching = Watching(
+        glint()
+            .args(["render", shot.to_str().unwrap(), "--watch"])
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap(),
+    );
+    let stdout = watching.0.stdout.take().unwrap();
+    let (sender, lines) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+            if sender.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    let mut seen = Vec::new();
+    let mut wait_for = |what: &str, wanted: &dyn Fn(&str) -> bool| loop {
+        match lines.recv_timeout(DEADLINE) {
+            Ok(line) => {
+                seen.push(line.clone());
+                if wanted(&line) {
+                    return line;
+                }
+            }
+            Err(_) => panic!("no {what} within {DEADLINE:?}; lines: {seen:#?}"),
+        }
+    };
+    let written = |l: &str| l.contains("30 frames written");
+    wait_for("first render", &written);
+    wait_for("watching line", &|l: &str| l.starts_with("watching"));
+    // Frame 25 holds the rise's last key: the ball's top is at z = 1.5, below (1.5, 1.78).
+    let above = (1.5, 1.78);
+    assert!(!drawn_at(dir.path(), 25, above) && drawn_at(dir.path(), 25, (1.5, 1.2)));
+
+    let raised = small.replace("(20, (1.5, 0.0, 0.5))", "(20, (1.5, 0.0, 0.9))");
+    assert_ne!(raised, small);
+    crate::common::ball_shot::save_as_an_editor_does(&shot, &raised);
+    let line = wait_for("render after the edit", &|l: &str| {
+        written(l) && l.contains("moving.ron changed")
+    });
+    drop(watching);
+    assert!(
+        drawn_at(dir.path(), 25, above),
+        "frame 25 shows the ball raised to z = 0.9: {line}"
     );
 }
