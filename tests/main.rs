@@ -27,6 +27,8 @@ mod highlight_stability;
 mod import_loops;
 mod job_reload;
 mod model_parts;
+mod motion_fingerprint;
+mod motion_loop;
 mod patch_files;
 mod pictures;
 mod raster_coverage;

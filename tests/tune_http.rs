@@ -871,3 +871,51 @@ fn the_command_listens_on_loopback_and_refuses_a_bad_shot_in_one_line() {
     child.wait().unwrap();
     assert_status(&reply, 200);
 }
+
+/// The moving ball of `tests/motion_loop.rs`, served at 160×160.
+fn serve_moving_ball() -> Served {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = crate::motion_loop::write_moving_ball(dir.path());
+    let server = serve(&shot);
+    Served {
+        _dir: dir,
+        shot,
+        server,
+    }
+}
+
+/// The pixel of a 160×160 frame of the moving ball where the camera sees `(x, z)`: 160 pixels
+/// over the orthographic camera's 6 units, z up.
+fn ball_pixel(x: f64, z: f64) -> (f64, f64) {
+    let scale = f64::from(SIZE) / 6.0;
+    let centre = f64::from(SIZE) / 2.0 - 0.5;
+    (centre + x * scale, centre - z * scale)
+}
+
+#[test]
+fn on_a_moving_shot_frames_show_the_scrubbed_pose_and_a_drag_keys_the_moved_surface() {
+    let served = serve_moving_ball();
+    // Frame 10 shows the ball moved right by 1.5 and turned; frame 1 shows it at rest.
+    let alpha_at = |frame: f64, (x, z): (f64, f64)| {
+        let raw = served.post("/api/frame?format=raw", &json!({"frame": frame}));
+        let rgba = pixels(&raw);
+        let (px, py) = ball_pixel(x, z);
+        rgba[(py.round() as usize * SIZE as usize + px.round() as usize) * 4 + 3]
+    };
+    let (rest_left, moved_right) = ((-0.7, 0.0), (2.1, 0.0));
+    assert!(alpha_at(1.0, rest_left) > 0 && alpha_at(1.0, moved_right) == 0);
+    assert!(alpha_at(10.0, moved_right) > 0 && alpha_at(10.0, rest_left) == 0);
+
+    // A pick at frame 10 finds the ball where it moved, a point the ball at rest does not reach.
+    let drop = ball_pixel(1.8, 0.25);
+    let (x, y) = (drop.0.round(), drop.1.round());
+    let reply = served.post("/api/pick", &json!({"frame": 10, "x": x, "y": y}));
+    assert_status(&reply, 200);
+    assert_eq!(reply.json()["patch"], "ball/sphere", "{}", reply.text());
+    let reply = served.post("/api/pick", &json!({"frame": 1, "x": x, "y": y}));
+    assert_status(&reply, 400);
+
+    // A drag there keys the translation that centres the highlight on the turned ball's point.
+    let changes = drag_and_commit(&served, 10.0, (x, y));
+    assert!(changes.iter().all(|c| c["frame"] == 10.0), "{changes:?}");
+}

@@ -1,7 +1,8 @@
 //! `glint probe`: the frame the highlight sees at chosen (u, v) of one patch, as JSON.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use anyhow::anyhow;
 use clap::Args;
@@ -9,7 +10,9 @@ use serde::Serialize;
 
 use super::CliError;
 use glint::formats::load_patches;
-use glint::geom::Frame;
+use glint::formats::ron_paths::top_level_name;
+use glint::geom::{Frame, PatchLibrary};
+use glint::shot::load_shot_text;
 
 /// Print the surface frame at parameters of a patch, as a JSON array.
 ///
@@ -17,13 +20,21 @@ use glint::geom::Frame;
 /// N and the tangents du, dv that the highlight operations move, stretch and split along, and
 /// whether the point is degenerate (a collapsed patch edge such as a sphere's pole, where the
 /// frame is the limit from inside the patch), and whether the patch's trim cuts it away.
+///
+/// The file may also be a shot (a `.ron` file whose top level is `Shot(…)`): its patches are
+/// named INSTANCE/PATCH, and each is probed where --frame poses it, moved by its instance's
+/// and parts' transforms at that frame.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:
   glint probe patches/sphere.ron --patch sphere --uv 0.25,0.5
-  glint probe patches/teapot.bpt --patch 20 --uv 0,0 --uv 0.5,0.5 --uv 1,1")]
+  glint probe patches/teapot.bpt --patch 20 --uv 0,0 --uv 0.5,0.5 --uv 1,1
+  glint probe shots/teapot_turntable.ron --patch teapot/20 --frame 48 --uv 0.5,0.5")]
 pub struct ProbeArgs {
-    /// Patch file: a RON patch library (.ron), Bezier patches (.bpt) or a USD layer (.usda; .usd, .usdc with the usd-binary feature)
+    /// Patch file: a RON patch library (.ron), Bezier patches (.bpt) or a USD layer (.usda; .usd, .usdc with the usd-binary feature); or a shot
     file: PathBuf,
+    /// For a shot, the frame whose pose to probe (fractional frames allowed) [default: the shot's first]
+    #[arg(long, value_name = "F")]
+    frame: Option<f64>,
     /// Patch name, or its 0-based index in the file
     #[arg(long, value_name = "NAME_OR_INDEX")]
     patch: String,
@@ -61,8 +72,46 @@ fn parse_uv(text: &str) -> Result<(f64, f64), String> {
     }
 }
 
+/// The model `path` holds: a patch file's patches, or a shot's model posed at `frame` (the
+/// shot's first frame by default). Errors are one line naming the file.
+fn read_model(path: &Path, frame: Option<f64>) -> Result<Arc<PatchLibrary>, CliError> {
+    let bad = |e: anyhow::Error| CliError::BadInput(e);
+    let is_ron = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ron"));
+    let text = if is_ron {
+        Some(
+            std::fs::read_to_string(path)
+                .map_err(|e| bad(anyhow!("{}: cannot read the file: {e}", path.display())))?,
+        )
+    } else {
+        None
+    };
+    if let Some(text) = text.filter(|t| top_level_name(t) == Some("Shot")) {
+        let shot = load_shot_text(path, text).map_err(|e| bad(e.into()))?;
+        let (first, last) = shot.frames;
+        let frame = frame.unwrap_or(first as f64);
+        if !(frame >= first as f64 && frame <= last as f64) {
+            return Err(bad(anyhow!(
+                "{}: --frame {frame} is outside the shot's frame range {first}-{last}",
+                path.display()
+            )));
+        }
+        return Ok(shot.library_at(frame));
+    }
+    if frame.is_some() {
+        return Err(bad(anyhow!(
+            "{}: --frame poses a shot's model; a patch file has one pose",
+            path.display()
+        )));
+    }
+    Ok(Arc::new(
+        load_patches(path).map_err(|e| CliError::BadInput(e.into()))?,
+    ))
+}
+
 pub fn run(args: &ProbeArgs) -> Result<(), CliError> {
-    let library = load_patches(&args.file).map_err(|e| CliError::BadInput(e.into()))?;
+    let library = read_model(&args.file, args.frame)?;
     let patch = library
         .find(&args.patch)
         .map_err(|e| CliError::BadInput(anyhow!("{}: {e}", args.file.display())))?;

@@ -7,11 +7,13 @@ use sha2::{Digest, Sha256};
 
 use super::fingerprint::Fingerprint;
 use super::RenderJob;
+use crate::geom::PatchLibrary;
 
 /// The part of every frame's fingerprint that the whole job shares: glint's version, the
 /// settings (not the thread count, which changes no byte), the AOVs asked for, the model as
-/// placed, and the bytes of every patch file and texture. `None` when an asset cannot
-/// be read (the job's frames then have no fingerprint, and are never taken as current).
+/// placed when nothing moves (a moving shot's model is each frame's own, [`frame_model`]), and
+/// the bytes of every patch file and texture. `None` when an asset cannot be read (the job's
+/// frames then have no fingerprint, and are never taken as current).
 fn job_digest(job: &RenderJob) -> Option<Sha256> {
     let shot = job.shot();
     let mut settings = *job.settings();
@@ -20,11 +22,13 @@ fn job_digest(job: &RenderJob) -> Option<Sha256> {
     let mut text = String::new();
     let _ = write!(
         text,
-        "glint {}\n{settings:?}\n{:?}\n{:?}\n",
+        "glint {}\n{settings:?}\n{:?}\n",
         env!("CARGO_PKG_VERSION"),
         shot.aovs,
-        shot.library
     );
+    if !shot.moves() {
+        let _ = writeln!(text, "{:?}", shot.library);
+    }
     hash.update(text.as_bytes());
     for asset in shot.asset_inputs() {
         let bytes = std::fs::read(asset).ok()?;
@@ -34,13 +38,24 @@ fn job_digest(job: &RenderJob) -> Option<Sha256> {
     Some(hash)
 }
 
+/// Hashes the model a frame of a moving shot draws: per patch its name, trim, knots, weights
+/// and every control point to the bit (`{:?}` of the library: an `f64` prints as the shortest
+/// text that reads back to the same bits), and the parts. Two frames hash alike only when
+/// every patch is posed alike.
+fn frame_model(hash: &mut Sha256, library: &PatchLibrary) {
+    let mut text = String::new();
+    let _ = writeln!(text, "model {library:?}");
+    hash.update(text.as_bytes());
+}
+
 impl RenderJob {
     /// The fingerprint of frame `frame`: what the whole job shares (glint's version, the
-    /// settings but the thread count, the AOVs, the model as placed, the bytes of
-    /// every patch file and texture) and every value the shot has at that frame
-    /// ([`crate::shot::Shot::at`]). `None` when an asset cannot be read. Two frames share it only when they
-    /// would be rendered from the same values, so an edit of one key changes the fingerprints
-    /// of exactly the frames it changes.
+    /// settings but the thread count, the AOVs, the model as placed when nothing moves, the
+    /// bytes of every patch file and texture) and every value the shot has at that frame
+    /// ([`crate::shot::Shot::at`]), with, when the shot moves, the model posed there.
+    /// `None` when an asset cannot be read. Two frames share it only when they would be
+    /// rendered from the same values, so an edit of one key (of a highlight, the camera or a
+    /// transform) changes the fingerprints of exactly the frames it changes.
     #[must_use]
     pub fn fingerprint(&self, frame: i64) -> Option<Fingerprint> {
         let mut hash = self.digest.get_or_init(|| job_digest(self)).clone()?;
@@ -59,6 +74,9 @@ impl RenderJob {
             )
         );
         hash.update(text.as_bytes());
+        if self.shot().moves() {
+            frame_model(&mut hash, &state.library);
+        }
         let digest = hash.finalize();
         Some(Fingerprint(
             digest[..16].iter().map(|b| format!("{b:02x}")).collect(),

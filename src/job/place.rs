@@ -7,7 +7,7 @@ use thiserror::Error;
 use super::{JobError, RenderJob};
 use crate::highlight::{HighlightError, Layer};
 use crate::render::{Aovs, SurfacePoint};
-use crate::shot::rounded_number_text;
+use crate::shot::{rounded_number_text, FrameState, Shot};
 
 /// Which highlight layer to place; `None` picks as [`RenderJob::place`] says.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -126,8 +126,7 @@ impl RenderJob {
             alpha: placement.translation.x,
             beta: placement.translation.y,
         };
-        placement.residuals =
-            self.residuals(placement.highlight, &placed, &state.camera, &state.light)?;
+        placement.residuals = residuals(&self.shot, placement.highlight, &placed, &state)?;
         Ok(placement)
     }
 
@@ -183,7 +182,9 @@ impl RenderJob {
             )));
         }
         let chosen: &Layer = layers[layer];
-        let surface = &shot.library.patches[patch].surface;
+        // The surface as it is posed at this frame: a moving instance's patch is not where it
+        // rests.
+        let surface = &state.library.patches[patch].surface;
         let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
         let translation = chosen
             .centring_translation(point.local_half_vector())
@@ -249,10 +250,10 @@ impl RenderJob {
         let (Some(&patch), Some(&uv)) = (ids.get(index), uvs.get(index)) else {
             return Err(off_model(position, frame));
         };
-        if patch as usize >= self.shot.library.patches.len() {
+        let Some(named) = state.library.patches.get(patch as usize) else {
             return Err(off_model(position, frame));
-        }
-        let surface = &self.shot.library.patches[patch as usize].surface;
+        };
+        let surface = &named.surface;
         let start = (f64::from(uv.x), f64::from(uv.y));
         let (origin, direction) = scene.camera.ray_through(position, (width, height));
         let uv = surface
@@ -260,72 +261,72 @@ impl RenderJob {
             .unwrap_or(start);
         Ok((patch as usize, uv))
     }
+}
 
-    /// The residual of `layer`, placed, on every patch highlight entry `entry` is drawn on.
-    fn residuals(
-        &self,
-        entry: usize,
-        layer: &Layer,
-        camera: &crate::render::Camera,
-        light: &crate::highlight::Light,
-    ) -> Result<Vec<Residual>, PlaceError> {
-        let prepared = layer
-            .prepare()
-            .map_err(|e| PlaceError::Layer(e.to_string()))?;
-        let shot = &self.shot;
-        let mut residuals = Vec::new();
-        for (patch, named) in shot.library.patches.iter().enumerate() {
-            if shot.highlight_of(patch) != Some(entry) {
-                continue;
-            }
-            let domain = named.surface.domain();
-            let distance = |uv: (f64, f64)| {
-                let point = SurfacePoint::new(&named.surface, uv, camera, light);
-                layer.epsilon - prepared.signed(&point.frame, point.half_vector)
-            };
-            let last = (RESIDUAL_GRID - 1) as f64;
-            let mut best = (f32::INFINITY, domain.center());
-            for i in 0..RESIDUAL_GRID {
-                for j in 0..RESIDUAL_GRID {
-                    let uv = domain.lerp(i as f64 / last, j as f64 / last);
-                    let nearest = distance(uv);
-                    if nearest < best.0 {
-                        best = (nearest, uv);
-                    }
-                }
-            }
-            // Compass search from the best sample: a step along ±u or ±v that lowers the
-            // distance is taken, and the step halves when none does.
-            let mut step = (
-                (domain.u.1 - domain.u.0) / last,
-                (domain.v.1 - domain.v.0) / last,
-            );
-            for _ in 0..REFINE_STEPS {
-                let (u, v) = best.1;
-                let better = [(step.0, 0.0), (-step.0, 0.0), (0.0, step.1), (0.0, -step.1)]
-                    .into_iter()
-                    .map(|(du, dv)| {
-                        let uv = (
-                            (u + du).clamp(domain.u.0, domain.u.1),
-                            (v + dv).clamp(domain.v.0, domain.v.1),
-                        );
-                        (distance(uv), uv)
-                    })
-                    .find(|candidate| candidate.0 < best.0);
-                match better {
-                    Some(candidate) => best = candidate,
-                    None => step = (step.0 / 2.0, step.1 / 2.0),
-                }
-            }
-            residuals.push(Residual {
-                patch,
-                nearest: best.0.max(0.0),
-                uv: best.1,
-                covered: best.0 < layer.epsilon,
-            });
+/// The residual of `layer`, placed, on every patch highlight entry `entry` is drawn on: each
+/// patch posed as `state` has it, under its camera and light.
+fn residuals(
+    shot: &Shot,
+    entry: usize,
+    layer: &Layer,
+    state: &FrameState,
+) -> Result<Vec<Residual>, PlaceError> {
+    let prepared = layer
+        .prepare()
+        .map_err(|e| PlaceError::Layer(e.to_string()))?;
+    let (camera, light) = (&state.camera, &state.light);
+    let mut residuals = Vec::new();
+    for (patch, named) in state.library.patches.iter().enumerate() {
+        if shot.highlight_of(patch) != Some(entry) {
+            continue;
         }
-        Ok(residuals)
+        let domain = named.surface.domain();
+        let distance = |uv: (f64, f64)| {
+            let point = SurfacePoint::new(&named.surface, uv, camera, light);
+            layer.epsilon - prepared.signed(&point.frame, point.half_vector)
+        };
+        let last = (RESIDUAL_GRID - 1) as f64;
+        let mut best = (f32::INFINITY, domain.center());
+        for i in 0..RESIDUAL_GRID {
+            for j in 0..RESIDUAL_GRID {
+                let uv = domain.lerp(i as f64 / last, j as f64 / last);
+                let nearest = distance(uv);
+                if nearest < best.0 {
+                    best = (nearest, uv);
+                }
+            }
+        }
+        // Compass search from the best sample: a step along ±u or ±v that lowers the
+        // distance is taken, and the step halves when none does.
+        let mut step = (
+            (domain.u.1 - domain.u.0) / last,
+            (domain.v.1 - domain.v.0) / last,
+        );
+        for _ in 0..REFINE_STEPS {
+            let (u, v) = best.1;
+            let better = [(step.0, 0.0), (-step.0, 0.0), (0.0, step.1), (0.0, -step.1)]
+                .into_iter()
+                .map(|(du, dv)| {
+                    let uv = (
+                        (u + du).clamp(domain.u.0, domain.u.1),
+                        (v + dv).clamp(domain.v.0, domain.v.1),
+                    );
+                    (distance(uv), uv)
+                })
+                .find(|candidate| candidate.0 < best.0);
+            match better {
+                Some(candidate) => best = candidate,
+                None => step = (step.0 / 2.0, step.1 / 2.0),
+            }
+        }
+        residuals.push(Residual {
+            patch,
+            nearest: best.0.max(0.0),
+            uv: best.1,
+            covered: best.0 < layer.epsilon,
+        });
     }
+    Ok(residuals)
 }
 
 fn off_model(position: (f64, f64), frame: f64) -> PlaceError {

@@ -252,9 +252,10 @@ impl Session {
         let job = &mut self.preview.job;
         let (patch, uv) = job.point_under(frame, (x, y)).map_err(place_error)?;
         let shot = job.shot();
-        let library = &shot.library;
         let highlight = shot.highlight_of(patch);
         let state = shot.at(frame);
+        // The model as posed at this frame: names are the same in every pose, surfaces not.
+        let library = &state.library;
         let covering = match highlight {
             Some(entry) => {
                 let point = SurfacePoint::new(
@@ -370,7 +371,7 @@ impl Session {
                     shot.library.patches[patch].name
                 )));
             }
-            let surface = &shot.library.patches[patch].surface;
+            let surface = &state.library.patches[patch].surface;
             let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
             let centred = chosen
                 .centred_on(point.local_half_vector())
@@ -584,7 +585,7 @@ fn draw(job: &mut RenderJob, frame: f64, overlays: Overlays) -> Result<FrameImag
                 else {
                     continue;
                 };
-                let surface = &shot.library.patches[patch].surface;
+                let surface = &state.library.patches[patch].surface;
                 let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
                 let clip = to_clip * point.position.extend(1.0);
                 if clip.w <= 0.0 {
