@@ -139,3 +139,55 @@ fn the_documented_example_and_look_library_load_and_render() {
         .unwrap();
     assert!(image.aovs.matte.unwrap().iter().any(|&m| m > 0.5));
 }
+
+/// The `ron` block of `doc` that follows the heading `heading`.
+fn block_after<'a>(doc: &'a str, heading: &str) -> &'a str {
+    let section = &doc[doc.find(heading).unwrap_or_else(|| panic!("no {heading}"))..];
+    ron_blocks(section)[0]
+}
+
+#[test]
+fn the_documented_moving_and_animated_instances_load_as_written() {
+    let doc = std::fs::read_to_string(crate::common::repo_file("docs/shot-format.md")).unwrap();
+    let patches = concat!(env!("CARGO_MANIFEST_DIR"), "/../patches/");
+    let dir = tempfile::tempdir().unwrap();
+    let shot = |instance: &str| {
+        format!(
+            r#"Shot(resolution: (32, 18), frames: (1, 48), fps: 24, output: "o.####.png",
+    instances: [{}],
+    materials: {{"porcelain": Cel(base: (0.5, 0.5, 0.5)), "clay": Cel(base: (0.5, 0.2, 0.1))}},
+    camera: (eye: (0, -9, 4), target: (0, 0, 1), projection: Perspective(fov_y_degrees: 30)),
+    light: Directional(towards: (0, -1, 1)))"#,
+            instance.replace("../patches/", patches)
+        )
+    };
+    let moving = block_after(&doc, "### Moving instances and parts");
+    let loaded = glint::shot::load_shot_text(&dir.path().join("a.ron"), shot(moving))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.moves());
+    // The teapot drives and turns as a rigid whole, which keeps the distance between any two of
+    // its points; the cover (knob and lid) turns about its hinge between frames 12 and 36 only,
+    // which changes the distance from a lid point to a body point then, and not before.
+    let gap = |frame: f64| -> f64 {
+        let library = loaded.library_at(frame);
+        let point = |patch: usize| library.patches[patch].surface.point(0.5, 0.5);
+        point(24).distance(point(4))
+    };
+    assert!(
+        (gap(1.0) - gap(12.0)).abs() < 1e-9,
+        "{} {}",
+        gap(1.0),
+        gap(12.0)
+    );
+    assert!(
+        (gap(36.0) - gap(12.0)).abs() > 0.5,
+        "{} {}",
+        gap(36.0),
+        gap(12.0)
+    );
+    assert!(loaded.library_at(24.0).patches[4] != loaded.library_at(1.0).patches[4]);
+    let usd = block_after(&doc, "### Animated USD layers");
+    let animated = glint::shot::load_shot_text(&dir.path().join("b.ron"), shot(usd))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(animated.moves());
+}

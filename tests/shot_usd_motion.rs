@@ -147,3 +147,49 @@ fn time_code_mappings_that_cannot_be_used_are_one_located_line() {
         assert!(!dir.path().join("out").exists());
     }
 }
+
+#[test]
+fn a_frame_s_fingerprint_follows_the_samples_it_uses_and_no_other() {
+    let dir = tempfile::tempdir().unwrap();
+    let usda = dir.path().join("flag.usda");
+    let text = flag_text();
+    std::fs::write(&usda, &text).unwrap();
+    let shot_text = flag_shot(24, "").replace(
+        &repo_file("patches/flag.usda").display().to_string(),
+        &usda.display().to_string(),
+    );
+    let path = dir.path().join("flag.ron");
+    std::fs::write(&path, &shot_text).unwrap();
+    let fingerprints = || -> Vec<String> {
+        let job = glint::job::RenderJob::load(&path, &glint::job::Overrides::default()).unwrap();
+        (1..=24)
+            .map(|f| {
+                job.fingerprint(f)
+                    .expect("the job's files read")
+                    .to_string()
+            })
+            .collect()
+    };
+    let before = fingerprints();
+    // Frames 12 to 24 show time codes between the samples at 12 and 24; moving one point of the
+    // last sample changes exactly them.
+    let head = "            24: [(0, 0, 0), (0.5, -0, 0), (1, 0.125, 0),";
+    assert!(
+        text.contains(head),
+        "the fixture's last sample starts {head}"
+    );
+    std::fs::write(
+        &usda,
+        text.replacen(
+            head,
+            "            24: [(0, 0, 0), (0.5, -0, 0), (1, 0.5, 0),",
+            1,
+        ),
+    )
+    .unwrap();
+    let after = fingerprints();
+    for f in 1..=24usize {
+        let changed = before[f - 1] != after[f - 1];
+        assert_eq!(changed, f > 12, "frame {f}");
+    }
+}

@@ -12,7 +12,8 @@ use crate::geom::PatchLibrary;
 /// The part of every frame's fingerprint that the whole job shares: glint's version, the
 /// settings (not the thread count, which changes no byte), the AOVs asked for, the model as
 /// placed when nothing moves (a moving shot's model is each frame's own, [`frame_model`]), and
-/// the bytes of every patch file and texture. `None` when an asset cannot be read (the job's
+/// the bytes of every patch file and texture but animated USD layers (whose every frame's model
+/// is hashed instead). `None` when an asset cannot be read (the job's
 /// frames then have no fingerprint, and are never taken as current).
 fn job_digest(job: &RenderJob) -> Option<Sha256> {
     let shot = job.shot();
@@ -30,7 +31,16 @@ fn job_digest(job: &RenderJob) -> Option<Sha256> {
         let _ = writeln!(text, "{:?}", shot.library);
     }
     hash.update(text.as_bytes());
+    // What a frame uses of an animated USD layer is its model at that frame (`frame_model`):
+    // the file's bytes would tie every frame to every sample.
+    let deforming: Vec<std::path::PathBuf> = shot
+        .deforming_files()
+        .filter_map(|f| f.canonicalize().ok())
+        .collect();
     for asset in shot.asset_inputs() {
+        if asset.canonicalize().is_ok_and(|a| deforming.contains(&a)) {
+            continue;
+        }
         let bytes = std::fs::read(asset).ok()?;
         hash.update((bytes.len() as u64).to_le_bytes());
         hash.update(&bytes);

@@ -186,8 +186,9 @@ impl RenderJob {
         // rests.
         let surface = &state.library.patches[patch].surface;
         let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
-        let translation = chosen
-            .centring_translation(point.local_half_vector())
+        let translation = shot
+            .layer_on(chosen, patch, frame)
+            .centring_translation_at(&point.frame, point.half_vector)
             .map_err(|e| match e {
                 HighlightError::NoTranslation => {
                     PlaceError::Layer(format!("layer {layer} of highlight {drawn}: {e}"))

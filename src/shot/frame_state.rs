@@ -3,11 +3,12 @@
 use std::sync::Arc;
 
 use super::file::{LightSpec, ProjectionSpec};
+use super::layer_axes::has_axes;
 use super::line_styles::LineFields;
 use super::validated::{Material, MaterialState, Shot};
 use super::ShotError;
 use crate::geom::PatchLibrary;
-use crate::highlight::{Expr, Light};
+use crate::highlight::{Expr, Light, PreparedExpr};
 use crate::render::{Camera, LineStyle, Outlines, PatchLook, Projection, Scene, Tone};
 use crate::toon::CelRamp;
 
@@ -22,11 +23,12 @@ pub struct FrameState {
     pub light: Light,
     /// Each material, in the order of [`Shot::material_names`].
     pub materials: Vec<MaterialState>,
-    /// Each highlight entry's expression, in the order they are written (includes first),
-    /// with every pinned layer centred on its point ([`Layer::centred_on`]) and its pin
+    /// Each highlight entry's expression, in the order they are written (includes first), the
+    /// axes of `Along` layer frames in the model's coordinates ([`Shot::expr_on`] turns them
+    /// into a patch's), with every pinned layer centred on its point ([`Layer::centred_at`]) and its pin
     /// cleared.
     ///
-    /// [`Layer::centred_on`]: crate::highlight::Layer::centred_on
+    /// [`Layer::centred_at`]: crate::highlight::Layer::centred_at
     pub highlights: Vec<Expr>,
     /// The outlines, and the style of a patch no `lines` entry restyles; None without lines.
     pub outlines: Option<(Outlines, LineStyle)>,
@@ -143,10 +145,36 @@ impl FrameState {
                 ))),
             })
             .collect::<Result<Vec<_>, _>>()?;
+        // A layer's `Along` axis is written in its model's coordinates: on a turned patch it is
+        // drawn turned, prepared once per entry and rotation.
+        let mut turned: Vec<(usize, [u64; 4], PreparedExpr)> = Vec::new();
+        let mut highlight_of = |patch: usize| -> Result<Option<PreparedExpr>, ShotError> {
+            let Some(h) = shot.highlight_of(patch) else {
+                return Ok(None);
+            };
+            if !has_axes(&self.highlights[h]) {
+                return Ok(Some(prepared[h].clone()));
+            }
+            let rotation = shot.rotation_at(patch, self.frame);
+            let key = rotation.to_array().map(f64::to_bits);
+            if let Some((_, _, p)) = turned.iter().find(|(e, k, _)| *e == h && *k == key) {
+                return Ok(Some(p.clone()));
+            }
+            let p = shot
+                .expr_on(&self.highlights[h], patch, self.frame)
+                .prepare()
+                .map_err(|e| invalid(e.to_string()))?;
+            turned.push((h, key, p.clone()));
+            Ok(Some(p))
+        };
+        let highlights = (0..shot.library.patches.len())
+            .map(&mut highlight_of)
+            .collect::<Result<Vec<_>, _>>()?;
         let looks = (0..shot.library.patches.len())
-            .map(|patch| PatchLook {
+            .zip(highlights)
+            .map(|(patch, highlight)| PatchLook {
                 tone: tones[shot.material_of(patch)].clone(),
-                highlight: shot.highlight_of(patch).map(|h| prepared[h].clone()),
+                highlight,
                 lines: self.outlines.map(|(_, style)| {
                     shot.patch_lines[patch].iter().fold(style, |style, &entry| {
                         self.lines[entry as usize].over(style)

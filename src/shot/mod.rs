@@ -9,6 +9,8 @@ mod file;
 pub(crate) mod fixtures;
 mod frame_state;
 mod glob;
+mod layer_axes;
+mod library_at;
 mod line_styles;
 mod load;
 mod moving_parts;

@@ -97,7 +97,7 @@ impl Shot {
     }
 
     /// Centres every pinned layer of highlight entry `entry`, read at a frame as `expr`, on its
-    /// pin's point on the frame's model under its camera and light ([`Layer::centred_on`]),
+    /// pin's point on the frame's model under its camera and light ([`Layer::centred_at`]),
     /// so that a pin on a moving part stays on its point of the part; the pins are cleared. A
     /// layer whose centring fails (an invalid operation before its translation) keeps its pin,
     /// so that preparing it reports the error.
@@ -109,8 +109,13 @@ impl Shot {
             let surface = &state.library.patches[patch].surface;
             let uv = (f64::from(pin.u), f64::from(pin.v));
             let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
-            if let Ok(centred) = layer.centred_on(point.local_half_vector()) {
+            // Centred in the layer's frame as the pinned patch draws it; the layer keeps its axis
+            // in the model's coordinates.
+            let drawn = self.layer_on(layer, patch, state.frame);
+            if let Ok(centred) = drawn.centred_at(&point.frame, point.half_vector) {
+                let frame = std::mem::replace(&mut layer.frame, centred.frame.clone());
                 *layer = centred;
+                layer.frame = frame;
             }
         }
     }

@@ -1,14 +1,15 @@
-//! The shot's model at a frame: each instance's patches placed by its transform, and by the
-//! transforms of the parts that move inside it, read at that frame.
+//! How an instance is placed at any frame: its transform, the transforms of the parts that move
+//! inside it, and its model's own time samples.
 
 use std::ops::Range;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 
+use glam::DQuat;
+
 use super::file::TransformSpec;
-use super::validated::Shot;
 use crate::formats::UsdMotion;
-use crate::geom::{NamedPatch, NurbsSurface, PatchLibrary};
+use crate::geom::{NurbsSurface, PatchLibrary};
 
 /// How one instance is placed at any frame.
 #[derive(Debug)]
@@ -90,39 +91,16 @@ impl InstancePose {
     }
 }
 
-impl Shot {
-    /// Whether some instance or part moves over the shot.
+impl InstancePose {
+    /// How the model's patch `patch` is turned at `frame`: `R_instance · R_outer · … · R_inner`,
+    /// the rotation its directions take (the scales are uniform and the translations move no
+    /// direction).
     #[must_use]
-    pub fn moves(&self) -> bool {
-        self.poses.iter().any(InstancePose::moves)
-    }
-
-    /// The files of the models whose own time samples deform them (animated USD layers): what
-    /// a frame uses of such a file is its model at the frame ([`Shot::library_at`]), not all
-    /// its bytes.
-    pub fn deforming_files(&self) -> impl Iterator<Item = &Path> {
-        self.poses
+    pub fn rotation(&self, patch: usize, frame: f64) -> DQuat {
+        self.chains[patch]
             .iter()
-            .filter(|p| p.deform.is_some())
-            .map(|p| p.file.as_path())
-    }
-
-    /// The model at `frame`: [`Shot::library`] itself when nothing moves; otherwise the same
-    /// patches, names, parts and trims, each moving instance's patches placed at `frame`.
-    #[must_use]
-    pub fn library_at(&self, frame: f64) -> Arc<PatchLibrary> {
-        if !self.moves() {
-            return Arc::clone(&self.library);
-        }
-        let mut patches: Vec<NamedPatch> = self.library.patches.clone();
-        for pose in self.poses.iter().filter(|p| p.moves()) {
-            for (k, index) in pose.patches.clone().enumerate() {
-                patches[index].surface = pose.place(k, frame);
-            }
-        }
-        Arc::new(PatchLibrary {
-            patches,
-            groups: self.library.groups.clone(),
-        })
+            .fold(self.transform.at(frame).rotation, |r, &part| {
+                r * self.parts[part].1.at(frame).rotation
+            })
     }
 }

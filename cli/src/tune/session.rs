@@ -373,8 +373,9 @@ impl Session {
             }
             let surface = &state.library.patches[patch].surface;
             let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
-            let centred = chosen
-                .centred_on(point.local_half_vector())
+            let centred = shot
+                .layer_on(&chosen, patch, request.frame)
+                .centred_at(&point.frame, point.half_vector)
                 .map_err(|e| TuneError::Bad(format!("layer {layer} of highlight {entry}: {e}")))?;
             let Some(Op::Translate { alpha, beta }) = centred.stack.first() else {
                 return Err(TuneError::Failed(
