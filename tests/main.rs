@@ -38,6 +38,7 @@ mod render_adaptive;
 mod render_line_styles;
 mod render_lines;
 mod render_lines_motion;
+mod render_motion_reuse;
 mod render_reuse;
 mod render_sphere;
 mod render_teapot;

@@ -38,6 +38,12 @@ pub(crate) fn stats_report(frame: i64, s: &RenderStats) -> String {
             out.push_str(&format!("\n  {name:<12} {:>10}", "skipped"));
         }
     }
+    if s.intersection_pairs_kept + s.intersection_pairs_tested > 0 {
+        out.push_str(&format!(
+            "\n  intersections found again: {} patch pairs kept, {} tested",
+            s.intersection_pairs_kept, s.intersection_pairs_tested
+        ));
+    }
     out.push_str(&format!(
         "\n  exact frames {}, highlighted samples {}, X-Toon samples {}",
         s.exact_frames, s.highlight_pixels, s.xtoon_pixels

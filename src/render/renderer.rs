@@ -15,7 +15,7 @@ use super::edges::one_sample::OneSampleEdges;
 use super::edges::trim_edge::{composite, find_trim_edges};
 use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
 use super::line_style::{LineKind, LineStyle};
-use super::lines::{self, draw_lines, LineImage, LineInput, MeshLines};
+use super::lines::{self, draw_lines, IntersectionsFound, LineImage, LineInput, MeshLines};
 use super::plan::{Plan, Surfaces};
 use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
@@ -643,13 +643,17 @@ fn outline(
 ) {
     match (plan.runs(Stage::Outline), &scene.outlines) {
         (true, Some(outlines)) => {
-            let (intersections, seconds) = timed(|| {
+            let ((intersections, found), seconds) = timed(|| {
                 if lines::draws(&styles, LineKind::Intersection) {
                     mesh_lines.intersections(mesh, library, generation)
                 } else {
-                    &[]
+                    (&[][..], IntersectionsFound::Cached)
                 }
             });
+            if let IntersectionsFound::Again { kept, tested } = found {
+                stats.intersection_pairs_kept = kept;
+                stats.intersection_pairs_tested = tested;
+            }
             let input = LineInput {
                 library,
                 mesh,

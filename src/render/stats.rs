@@ -37,6 +37,13 @@ pub struct RenderStats {
     /// Patches whose grid was kept from an earlier frame into a rebuilt mesh (0 when the mesh
     /// was not rebuilt).
     pub grids_kept: usize,
+    /// Pairs of patches whose intersection lines were kept from the mesh they were last found
+    /// on, neither patch's grid having changed since (0 unless this frame found them again).
+    pub intersection_pairs_kept: usize,
+    /// Pairs of patches intersected triangle by triangle for this frame's lines: those with a
+    /// changed grid whose bounds overlap and which share no vertex position (0 unless this
+    /// frame found the intersections again).
+    pub intersection_pairs_tested: usize,
     pub triangles: usize,
     /// NURBS frames evaluated per pixel (exact and refined frames).
     pub exact_frames: u64,
@@ -62,6 +69,8 @@ impl RenderStats {
             tessellation_rebuilt: false,
             grids_evaluated: 0,
             grids_kept: 0,
+            intersection_pairs_kept: 0,
+            intersection_pairs_tested: 0,
             triangles: 0,
             exact_frames: 0,
             highlight_pixels: 0,
@@ -127,12 +136,14 @@ impl Serialize for RenderStats {
             }
         }
         let reused: Vec<&str> = self.plan.reused_stages().map(Stage::name).collect();
-        let mut s = serializer.serialize_struct("RenderStats", 10)?;
+        let mut s = serializer.serialize_struct("RenderStats", 12)?;
         s.serialize_field("stages", &Stages(self))?;
         s.serialize_field("reused", &reused)?;
         s.serialize_field("tessellation_rebuilt", &self.tessellation_rebuilt)?;
         s.serialize_field("grids_evaluated", &self.grids_evaluated)?;
         s.serialize_field("grids_kept", &self.grids_kept)?;
+        s.serialize_field("intersection_pairs_kept", &self.intersection_pairs_kept)?;
+        s.serialize_field("intersection_pairs_tested", &self.intersection_pairs_tested)?;
         s.serialize_field("triangles", &self.triangles)?;
         s.serialize_field("exact_frames", &self.exact_frames)?;
         s.serialize_field("highlight_pixels", &self.highlight_pixels)?;

@@ -51,6 +51,27 @@ struct Block {
     bounds: Bounds,
 }
 
+/// The meetings of one pair of patches, `pair = [p, q]` with `p < q`, in the order
+/// [`intersections_keeping`] finds them.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct PairMeetings {
+    pub pair: [u32; 2],
+    pub meetings: Vec<Meeting>,
+}
+
+/// What [`intersections_keeping`] found: the meetings of every pair that meets, in pair order,
+/// and how many pairs were kept and how many intersected again.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct Found {
+    /// The pairs that meet somewhere, ordered by `pair`.
+    pub pairs: Vec<PairMeetings>,
+    /// Pairs of patches both marked the same, whose meetings (or none) were taken from before.
+    pub kept: usize,
+    /// Pairs intersected triangle by triangle again: the others, whose bounds overlap and which
+    /// share no vertex position.
+    pub tested: usize,
+}
+
 /// The segments along which triangles of two different patches that share no vertex position
 /// cross each other, in world space. Patches that meet along an edge (or at a corner) are
 /// continuations of one surface and are not intersected with each other; patches that only
@@ -58,8 +79,18 @@ struct Block {
 /// first, so the work grows with the blocks that overlap, not with every pair of triangles.
 /// On trimmed patches, triangles cut away whole are skipped and a segment is kept where both
 /// patches' trims keep it.
+///
+/// A pair's meetings depend on its two patches' grids alone: where `same` marks both patches
+/// of a pair as on the mesh `before` was found on, the pair's meetings are `before`'s (none
+/// when `before` lists no meetings for it) and it is not intersected again. With nothing
+/// marked, every pair is found afresh.
 #[must_use]
-pub(crate) fn intersections(mesh: &Mesh, library: &PatchLibrary) -> Vec<Meeting> {
+pub(crate) fn intersections_keeping(
+    mesh: &Mesh,
+    library: &PatchLibrary,
+    same: &[bool],
+    before: &[PairMeetings],
+) -> Found {
     let blocks: Vec<Vec<Block>> = mesh
         .grids
         .iter()
@@ -76,14 +107,21 @@ pub(crate) fn intersections(mesh: &Mesh, library: &PatchLibrary) -> Vec<Meeting>
         .collect();
     let touching = touching_patches(mesh);
     let patches = blocks.len();
+    let kept_patch = |p: usize| same.get(p).copied().unwrap_or(false);
+    let mut found = Found::default();
     let mut pairs: Vec<(&Block, &Block)> = Vec::new();
     for p in 0..patches {
         for q in p + 1..patches {
+            if kept_patch(p) && kept_patch(q) {
+                found.kept += 1;
+                continue;
+            }
             if !patch_bounds[p].overlaps(&patch_bounds[q])
                 || touching.contains(&(p as u32, q as u32))
             {
                 continue;
             }
+            found.tested += 1;
             for a in &blocks[p] {
                 for b in blocks[q].iter().filter(|b| a.bounds.overlaps(&b.bounds)) {
                     pairs.push((a, b));
@@ -91,10 +129,40 @@ pub(crate) fn intersections(mesh: &Mesh, library: &PatchLibrary) -> Vec<Meeting>
             }
         }
     }
-    pairs
+    let segments: Vec<Vec<Meeting>> = pairs
         .par_iter()
-        .flat_map_iter(|&(a, b)| block_segments(mesh, library, a, b))
-        .collect()
+        .map(|&(a, b)| block_segments(mesh, library, a, b))
+        .collect();
+    // The new meetings grouped by pair, in pair order.
+    let mut fresh: Vec<PairMeetings> = Vec::new();
+    for ((a, b), meetings) in pairs.iter().zip(segments) {
+        let pair = [a.patch, b.patch];
+        match fresh.last_mut() {
+            Some(last) if last.pair == pair => last.meetings.extend(meetings),
+            _ => fresh.push(PairMeetings { pair, meetings }),
+        }
+    }
+    fresh.retain(|p| !p.meetings.is_empty());
+    let kept = before
+        .iter()
+        .filter(|p| p.pair.iter().all(|&k| kept_patch(k as usize)))
+        .cloned();
+    found.pairs = merge_by_pair(fresh, kept);
+    found
+}
+
+/// `a` and `b`, each ordered by pair and with no pair in both, merged in pair order.
+fn merge_by_pair(a: Vec<PairMeetings>, b: impl Iterator<Item = PairMeetings>) -> Vec<PairMeetings> {
+    let mut out = Vec::with_capacity(a.len());
+    let mut b = b.peekable();
+    for next in a {
+        while let Some(earlier) = b.next_if(|k| k.pair < next.pair) {
+            out.push(earlier);
+        }
+        out.push(next);
+    }
+    out.extend(b);
+    out
 }
 
 /// The blocks of one patch's grid.
@@ -299,7 +367,48 @@ fn triangle_crossing(t: &[Vec3; 3], u: &[Vec3; 3]) -> Option<[Vec3; 2]> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::super::tessellate::Tessellator;
     use super::*;
+    use crate::geom::{shapes, NamedPatch};
+
+    /// A torus about z, a ball through its tube and a second ball centred at `(1, y, 0)`
+    /// through both.
+    fn torus_and_balls(y: f64) -> PatchLibrary {
+        let patch = |name: &str, surface| NamedPatch {
+            name: name.into(),
+            trim: None,
+            surface,
+        };
+        PatchLibrary::new(vec![
+            patch("torus", shapes::torus(2.0, 0.5).unwrap()),
+            patch("a", shapes::sphere(DVec3::new(2.0, 0.0, 0.0), 0.8).unwrap()),
+            patch("b", shapes::sphere(DVec3::new(1.0, y, 0.0), 0.6).unwrap()),
+        ])
+    }
+
+    fn mesh_of(library: PatchLibrary) -> (Mesh, PatchLibrary) {
+        let mut tessellator = Tessellator::new(library.clone());
+        let mesh = tessellator.mesh_of(vec![(6, 6); 3]).0.clone();
+        (mesh, library)
+    }
+
+    #[test]
+    fn pairs_of_unmoved_patches_keep_their_meetings_and_the_rest_equal_a_fresh_search() {
+        let (before_mesh, before_library) = mesh_of(torus_and_balls(0.0));
+        let before = intersections_keeping(&before_mesh, &before_library, &[], &[]);
+        // Every pair meets: torus–a, torus–b and a–b.
+        let pairs: Vec<[u32; 2]> = before.pairs.iter().map(|p| p.pair).collect();
+        assert_eq!(pairs, [[0, 1], [0, 2], [1, 2]]);
+        assert_eq!((before.kept, before.tested), (0, 3));
+        // Ball b moves: torus–a is kept, the pairs with b are found again.
+        let (mesh, library) = mesh_of(torus_and_balls(0.1));
+        let kept = intersections_keeping(&mesh, &library, &[true, true, false], &before.pairs);
+        let fresh = intersections_keeping(&mesh, &library, &[], &[]);
+        assert_eq!((kept.kept, kept.tested), (1, 2));
+        assert_eq!(kept.pairs, fresh.pairs);
+        assert_eq!(kept.pairs[0], before.pairs[0]);
+        assert_ne!(kept.pairs[1], before.pairs[1]);
+    }
 
     #[test]
     fn two_crossing_triangles_meet_along_the_segment_their_planes_share_within_both() {

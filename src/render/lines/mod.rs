@@ -33,13 +33,14 @@ use super::colour::{premultiplied, straight};
 use super::line_style::{LineKind, LineStyle};
 use super::raster::VisibilityBuffer;
 use super::scene::Outlines;
-use super::tessellate::Mesh;
+use super::tessellate::{Mesh, PatchGrid};
 use crate::geom::PatchLibrary;
 use piece::Piece;
 use stroke::Capsule;
 use visible::DepthTest;
 
 pub(super) use intersection::Meeting;
+use intersection::PairMeetings;
 
 /// The lines of a frame: per output pixel their coverage and colour.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -117,30 +118,127 @@ impl LineImage {
 }
 
 /// What the lines keep of a mesh from one frame to the next: the curves along which its
-/// patches pass through one another, which depend on the mesh alone.
+/// patches pass through one another, which depend on the mesh alone, pair of patches by pair.
 #[derive(Debug, Default)]
 pub(super) struct MeshLines {
     /// The [`Tessellator::generation`](super::tessellate::Tessellator::generation) of the mesh
     /// they were found on.
     generation: u64,
+    /// Per patch, its grid on that mesh.
+    grids: Vec<GridShape>,
+    /// The meetings of the pairs that meet, in pair order.
+    pairs: Vec<PairMeetings>,
+    /// The meetings of every pair, in pair order.
     intersections: Vec<Meeting>,
+}
+
+/// One patch's grid as the intersections saw it: its vertices' positions and (u, v), row by
+/// row. A patch whose grid is bit for bit the same meets every other unchanged patch where it
+/// did.
+#[derive(Debug, Default, PartialEq)]
+struct GridShape {
+    nu: u32,
+    nv: u32,
+    positions: Vec<Vec3>,
+    uvs: Vec<glam::Vec2>,
+}
+
+impl GridShape {
+    /// Whether patch `patch`'s grid in `mesh` is this one, bit for bit.
+    #[must_use]
+    fn is_in(&self, mesh: &Mesh, patch: usize) -> bool {
+        let grid = &mesh.grids[patch];
+        let range = grid_range(grid);
+        let bits = |a: &[Vec3], b: &[Vec3]| {
+            a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|(p, q)| p.to_array().map(f32::to_bits) == q.to_array().map(f32::to_bits))
+        };
+        let uv_bits = |a: &[glam::Vec2], b: &[glam::Vec2]| {
+            a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|(p, q)| p.to_array().map(f32::to_bits) == q.to_array().map(f32::to_bits))
+        };
+        (self.nu, self.nv) == (grid.nu, grid.nv)
+            && bits(&self.positions, &mesh.positions[range.clone()])
+            && uv_bits(&self.uvs, &mesh.uvs[range])
+    }
+
+    /// Patch `patch`'s grid in `mesh`.
+    #[must_use]
+    fn of(mesh: &Mesh, patch: usize) -> Self {
+        let grid = &mesh.grids[patch];
+        let range = grid_range(grid);
+        Self {
+            nu: grid.nu,
+            nv: grid.nv,
+            positions: mesh.positions[range.clone()].to_vec(),
+            uvs: mesh.uvs[range].to_vec(),
+        }
+    }
+}
+
+/// The vertices of `grid` in its mesh: `first .. first + nu nv`.
+#[must_use]
+fn grid_range(grid: &PatchGrid) -> std::ops::Range<usize> {
+    let first = grid.first as usize;
+    first..first + grid.nu as usize * grid.nv as usize
+}
+
+/// How the intersections of a frame's mesh were had: found again on a new mesh, keeping the
+/// pairs of patches whose grids stayed, or kept whole from the mesh they were found on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum IntersectionsFound {
+    /// The mesh is the one they were found on.
+    Cached,
+    /// Found on a new mesh: `kept` pairs of patches taken from before, `tested` intersected
+    /// again.
+    Again { kept: usize, tested: usize },
 }
 
 impl MeshLines {
     /// The intersections of `mesh` (of `library`'s patches, whose trims they respect), of
     /// tessellation `generation`: found again only when the mesh is not the one they were found
-    /// on.
+    /// on, and then only for the pairs of patches one of whose grids is not bit for bit the one
+    /// the last were found on (the patches of a model keep their trims when it moves).
     pub fn intersections(
         &mut self,
         mesh: &Mesh,
         library: &PatchLibrary,
         generation: u64,
-    ) -> &[Meeting] {
+    ) -> (&[Meeting], IntersectionsFound) {
+        let mut how = IntersectionsFound::Cached;
         if self.generation != generation || generation == 0 {
-            self.intersections = intersection::intersections(mesh, library);
+            let patches = mesh.grids.len();
+            let same: Vec<bool> = if self.grids.len() == patches {
+                (0..patches)
+                    .into_par_iter()
+                    .map(|p| self.grids[p].is_in(mesh, p))
+                    .collect()
+            } else {
+                vec![false; patches]
+            };
+            let before = std::mem::take(&mut self.pairs);
+            let found = intersection::intersections_keeping(mesh, library, &same, &before);
+            self.grids.resize_with(patches, GridShape::default);
+            for (p, _) in same.iter().enumerate().filter(|(_, &s)| !s) {
+                self.grids[p] = GridShape::of(mesh, p);
+            }
+            self.intersections = found
+                .pairs
+                .iter()
+                .flat_map(|p| p.meetings.iter().copied())
+                .collect();
+            self.pairs = found.pairs;
             self.generation = generation;
+            how = IntersectionsFound::Again {
+                kept: found.kept,
+                tested: found.tested,
+            };
         }
-        &self.intersections
+        (&self.intersections, how)
     }
 }
 
