@@ -26,6 +26,8 @@ mod highlight_stability;
 mod import_loops;
 mod job_reload;
 mod model_parts;
+mod motion_pin;
+mod motion_rigid;
 mod patch_files;
 mod pictures;
 mod raster_coverage;
