@@ -29,6 +29,8 @@ mod job_reload;
 mod model_parts;
 mod motion_fingerprint;
 mod motion_loop;
+mod motion_pin;
+mod motion_rigid;
 mod patch_files;
 mod pictures;
 mod raster_coverage;

@@ -17,6 +17,8 @@ enum Shows {
     MovingCamera,
     /// The shading changes (a keyed tone, shape detail or line style), the silhouettes stay.
     AnimatedShading,
+    /// A model moves, turns or deforms while the camera stays: the silhouettes change.
+    MovingModel,
 }
 
 fn purpose(name: &str) -> Shows {
@@ -33,6 +35,7 @@ fn purpose(name: &str) -> Shows {
         | "car_doors" => Shows::MovingCamera,
         "xtoon_backlight" | "xtoon_plastic" | "xtoon_shape_teapot" | "xtoon_shape_torus"
         | "line_styles" => Shows::AnimatedShading,
+        "teapot_lid_opens" | "car_drive" | "usd_flag" => Shows::MovingModel,
         _ => panic!("shots/{name}.ron: say here what it shows"),
     }
 }
@@ -81,7 +84,10 @@ fn every_shot_loads_and_renders_small_and_shows_what_it_is_for() {
         let matte = |k: usize| frames[k].aovs.matte.clone().unwrap();
         let colour = |k: usize| frames[k].colour.clone();
         let silhouettes_stay = ids(0) == ids(1) && ids(1) == ids(2);
-        assert_eq!(silhouettes_stay, shows != Shows::MovingCamera, "{what}");
+        let moving_silhouettes = matches!(shows, Shows::MovingCamera | Shows::MovingModel);
+        assert_eq!(silhouettes_stay, !moving_silhouettes, "{what}");
+        // Only the shots there to show a moving model move one.
+        assert_eq!(shot.moves(), shows == Shows::MovingModel, "{what}");
         match shows {
             Shows::AnimatedHighlight => {
                 assert!(matte(0) != matte(1) || matte(1) != matte(2), "{what}");
@@ -90,7 +96,7 @@ fn every_shot_loads_and_renders_small_and_shows_what_it_is_for() {
             Shows::MovingLight | Shows::AnimatedShading => {
                 assert!(colour(0) != colour(1) && colour(1) != colour(2), "{what}");
             }
-            Shows::MovingCamera => {}
+            Shows::MovingCamera | Shows::MovingModel => {}
         }
     }
     assert!(count >= 4, "only {count} shots");
