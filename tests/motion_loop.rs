@@ -339,3 +339,34 @@ fn watch_renders_again_after_an_edit_of_a_transform_key() {
         "frame 25 shows the ball raised to z = 0.9: {line}"
     );
 }
+
+#[test]
+fn the_patch_map_of_a_moving_shot_shows_the_model_where_the_frame_poses_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = write_moving_ball(dir.path());
+    let map = |frame: &str| {
+        let out_path = dir.path().join(format!("map{frame}.png"));
+        let out = glint()
+            .args(["patches", shot.to_str().unwrap(), "--map"])
+            .arg(&out_path)
+            .args(["--frame", frame, "--size", &format!("{SIZE}x{SIZE}")])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        image::open(&out_path).unwrap().to_rgba8()
+    };
+    // Below the centre row, clear of the label: a point of the ball at rest, and one of the
+    // ball where frame 10 has driven it.
+    let rest_left = DVec3::new(-0.7, 0.0, -0.5);
+    let moved = ball_pose(10.0).0 + DVec3::new(0.6, 0.0, -0.5);
+    for (frame, shown, hidden) in [("1", rest_left, moved), ("10", moved, rest_left)] {
+        let image = map(frame);
+        let background = *image.get_pixel(0, 0);
+        let at = |p: DVec3| {
+            let (x, y) = pixel_of(p);
+            *image.get_pixel(x.round() as u32, y.round() as u32)
+        };
+        assert_ne!(at(shown), background, "frame {frame}: the ball is drawn at {shown}");
+        assert_eq!(at(hidden), background, "frame {frame}: nothing at {hidden}");
+    }
+}

@@ -27,9 +27,9 @@ pub struct MapView<'a> {
 
 /// Renders the patch map of `library` as `view` asks and writes it to `out`, atomically.
 ///
-/// For a shot: its camera at `frame` (default its first frame, which must lie in its range),
-/// its resolution and tessellation at the preview preset; patch names lose their instance
-/// prefix when the shot places one instance. For a patch file: the three-quarter view of
+/// For a shot: its camera and its model at `frame` (default its first frame, which must lie in
+/// its range), its resolution and tessellation at the preview preset; patch names lose their
+/// instance prefix when the shot places one instance. For a patch file: the three-quarter view of
 /// [`try_three_quarter_camera`] at [`DEFAULT_MAP_SIZE`] and the preview preset.
 pub fn write_map(
     library: &Arc<PatchLibrary>,
@@ -38,7 +38,7 @@ pub fn write_map(
 ) -> Result<(), CliError> {
     let bad = |message: String| CliError::BadInput(anyhow!(message));
     let file = view.file.display();
-    let (camera, settings, prefix) = match view.shot {
+    let (camera, settings, prefix, library) = match view.shot {
         Some(shot) => {
             let (first, last) = shot.frames;
             let frame = view.frame.unwrap_or(first as f64);
@@ -52,7 +52,9 @@ pub fn write_map(
                 [only] => Some(format!("{}/", only.name)),
                 _ => None,
             };
-            (shot.at(frame).camera, settings, prefix)
+            // The model as the frame poses it.
+            let state = shot.at(frame);
+            (state.camera, settings, prefix, state.library)
         }
         None => {
             if view.frame.is_some() {
@@ -67,9 +69,15 @@ pub fn write_map(
                         "{file}: the model has no finite control points to frame"
                     ))
                 })?;
-            (camera, Settings::preview(width, height), None)
+            (
+                camera,
+                Settings::preview(width, height),
+                None,
+                Arc::clone(library),
+            )
         }
     };
+    let library = &library;
     let labels = patch_labels(library, prefix.as_deref());
     let legend = part_legend(library, prefix.as_deref());
     let map =
