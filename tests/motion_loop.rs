@@ -366,7 +366,11 @@ fn the_patch_map_of_a_moving_shot_shows_the_model_where_the_frame_poses_it() {
             let (x, y) = pixel_of(p);
             *image.get_pixel(x.round() as u32, y.round() as u32)
         };
-        assert_ne!(at(shown), background, "frame {frame}: the ball is drawn at {shown}");
+        assert_ne!(
+            at(shown),
+            background,
+            "frame {frame}: the ball is drawn at {shown}"
+        );
         assert_eq!(at(hidden), background, "frame {frame}: nothing at {hidden}");
     }
 }
