@@ -12,8 +12,8 @@ use crate::geom::{NamedPatch, PatchLibrary};
 
 impl Shot {
     /// How patch `patch` of the shot's library is turned at `frame` by its instance's and its
-    /// parts' transforms ([`InstancePose::rotation`]); the identity for a patch the shot does not
-    /// have.
+    /// parts' transforms, `R_instance · R_outer · … · R_inner`; the identity for a patch the shot
+    /// does not have.
     #[must_use]
     pub fn rotation_at(&self, patch: usize, frame: f64) -> DQuat {
         self.poses
