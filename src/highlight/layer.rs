@@ -26,7 +26,7 @@ use crate::param::{check, Range};
 ///  mask: Some((u: (0.0, 0.5), v: (0.0, 1.0), feather: 0.05)),
 ///  frame: Along(axis: (1.0, 0.0, 0.0)))
 /// ```
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, PartialEq, Serialize, Deserialize)]
 #[serde(
     deny_unknown_fields,
     bound(deserialize = "P: Deserialize<'de> + From<f32>")
@@ -59,6 +59,27 @@ pub struct Layer<P = f32> {
     /// (the default), or one direction field over every patch the layer is drawn on.
     #[serde(default, skip_serializing_if = "LayerFrame::is_patch")]
     pub frame: LayerFrame<P>,
+}
+
+/// Every field in order, as `#[derive(Debug)]` prints them, but the frame only when it is not the
+/// patch's own: a layer in its patch's frame prints as layers did before they had frames, so
+/// that what a frame's fingerprint hashes of a shot without layer frames stays the same.
+impl<P: std::fmt::Debug> std::fmt::Debug for Layer<P> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut layer = f.debug_struct("Layer");
+        layer
+            .field("stack", &self.stack)
+            .field("epsilon", &self.epsilon)
+            .field("colour", &self.colour)
+            .field("opacity", &self.opacity)
+            .field("feather", &self.feather)
+            .field("mask", &self.mask)
+            .field("pin", &self.pin);
+        if !self.frame.is_patch() {
+            layer.field("frame", &self.frame);
+        }
+        layer.finish()
+    }
 }
 
 /// The default opacity of a layer as written in a file: 1.
