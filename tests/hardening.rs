@@ -542,7 +542,7 @@ fn camera_light_and_placement_beyond_their_ranges_are_refused_where_they_are_wri
         // Eye and target meet at frame 1 only, between two keys that are fine.
         (camera, "camera: (eye: [(0, (0.0, -1.0, 0.0)), (2, (0.0, 1.0, 0.0))], target: (0.0, 0.0, 0.0), projection: Orthographic(height: 2.4)),", "same point"),
         (light, "light: Point(position: (0.0, -3e7, 0.0)),", "within ±1e6"),
-        (ball, r#"(name: "ball", file: "ball.ron", material: "m", transform: (scale: 1e7))"#, "scale in [1e-6, 1e6]"),
+        (ball, r#"(name: "ball", file: "ball.ron", material: "m", transform: (scale: 1e7))"#, "the scale 10000000 must lie in [1e-6, 1e6]"),
         (ball, r#"(name: "ball", file: "ball.ron", material: "m", transform: (translate: (1e300, 0.0, 0.0)))"#, "within ±1e6"),
         (ball, r#"(name: "ball", file: "ball.ron", material: "m", transform: (translate: (999999.5, 0.0, 0.0)))"#, "beyond ±1e6"),
         (ball, r#"(name: "ball", file: "ball.ron", material: "m", transform: (degrees: 1e300))"#, "within ±1e6"),

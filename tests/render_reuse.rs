@@ -308,14 +308,15 @@ fn consecutive_frames_of_every_shot_give_a_fresh_jobs_bytes() {
                 .unwrap();
             let name = shot.file_stem().unwrap().to_string_lossy().into_owned();
             assert!(same_output(&second, &fresh), "{name} {preset:?}");
-            let camera_held =
-                job.state(first as f64 + 1.0).camera == job.state(first as f64 + 2.0).camera;
+            let (one, two) = (job.state(first as f64 + 1.0), job.state(first as f64 + 2.0));
+            // The surfaces are kept while the camera holds and the model does not move.
+            let surfaces_held = one.camera == two.camera && one.library == two.library;
             assert_eq!(
                 second.stats.reused(Stage::Rasterize),
-                camera_held,
+                surfaces_held,
                 "{name} {preset:?}"
             );
-            if camera_held {
+            if surfaces_held {
                 reusing.push(name);
             }
         }

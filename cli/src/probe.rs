@@ -79,11 +79,19 @@ fn read_model(path: &Path, frame: Option<f64>) -> Result<Arc<PatchLibrary>, CliE
     let is_ron = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("ron"));
+    // A file that is not UTF-8 text is left to the patch reader, which says where its first
+    // bad byte is.
     let text = if is_ron {
-        Some(
-            std::fs::read_to_string(path)
-                .map_err(|e| bad(anyhow!("{}: cannot read the file: {e}", path.display())))?,
-        )
+        match std::fs::read_to_string(path) {
+            Ok(text) => Some(text),
+            Err(e) if e.kind() == std::io::ErrorKind::InvalidData => None,
+            Err(e) => {
+                return Err(bad(anyhow!(
+                    "{}: cannot read the file: {e}",
+                    path.display()
+                )))
+            }
+        }
     } else {
         None
     };
