@@ -83,15 +83,9 @@ fn matte_centroid(shot: &Path, frame: f64) -> (f64, f64) {
     let mut job = RenderJob::load(shot, &overrides).unwrap();
     let image = job.render_frame(frame).unwrap();
     let matte = image.aovs.matte.unwrap();
-    let (mut sum, mut sx, mut sy) = (0.0, 0.0, 0.0);
-    for (i, &m) in matte.iter().enumerate() {
-        let (x, y) = (f64::from(i as u32 % SIZE), f64::from(i as u32 / SIZE));
-        sum += f64::from(m);
-        sx += f64::from(m) * x;
-        sy += f64::from(m) * y;
-    }
+    let (centre, sum) = crate::common::matte_centroid_of(&matte, SIZE);
     assert!(sum > 3.0, "the highlight shows at frame {frame}");
-    (sx / sum, sy / sum)
+    centre
 }
 
 #[test]

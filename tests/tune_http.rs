@@ -385,15 +385,9 @@ fn matte_centroid(shot: &Path, frame: f64) -> (f64, f64) {
     let mut job = RenderJob::load(shot, &overrides).unwrap();
     let image = job.render_frame(frame).unwrap();
     let matte = image.aovs.matte.unwrap();
-    let (mut sum, mut sx, mut sy) = (0.0, 0.0, 0.0);
-    for (i, &m) in matte.iter().enumerate() {
-        let (x, y) = ((i as u32 % SIZE) as f64, (i as u32 / SIZE) as f64);
-        sum += f64::from(m);
-        sx += f64::from(m) * x;
-        sy += f64::from(m) * y;
-    }
+    let (centre, sum) = crate::common::matte_centroid_of(&matte, SIZE);
     assert!(sum > 10.0, "the highlight shows");
-    (sx / sum, sy / sum)
+    centre
 }
 
 #[test]

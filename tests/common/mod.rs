@@ -106,3 +106,16 @@ pub fn labels(on: &[bool], (w, h): (usize, usize)) -> (Vec<usize>, Vec<usize>) {
     }
     (label, sizes)
 }
+
+/// The coverage-weighted centroid of a matte `width` pixels wide, pixel `(i, j)`'s centre at
+/// `(i, j)`, and the matte's total coverage.
+pub fn matte_centroid_of(matte: &[f32], width: u32) -> ((f64, f64), f64) {
+    let (mut sum, mut sx, mut sy) = (0.0, 0.0, 0.0);
+    for (i, &m) in matte.iter().enumerate() {
+        let (x, y) = (f64::from(i as u32 % width), f64::from(i as u32 / width));
+        sum += f64::from(m);
+        sx += f64::from(m) * x;
+        sy += f64::from(m) * y;
+    }
+    ((sx / sum, sy / sum), sum)
+}
