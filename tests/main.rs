@@ -50,6 +50,7 @@ mod shot_errors;
 mod shot_files;
 mod shot_key_edit;
 mod shot_motion;
+mod shot_orbit;
 mod shot_usd_motion;
 mod toon_detail;
 mod toon_render;

@@ -411,6 +411,46 @@ const CASES: &[Case] = &[
         at: "Outline]",
         says: &["Outline", "Silhouette", "Intersection"],
     },
+    Case {
+        name: "an eye and an orbit",
+        from: "        eye: (0.0, -6.0, 0.0),",
+        to: "        eye: (0.0, -6.0, 0.0),\n        orbit: Sphere(azimuth: -90.0, elevation: 0.0, distance: 6.0),",
+        file: "shot.ron",
+        at: "Sphere(",
+        says: &["both an `eye` and an `orbit`", "keep one"],
+    },
+    Case {
+        name: "no eye",
+        from: "        eye: (0.0, -6.0, 0.0),\n",
+        to: "",
+        file: "shot.ron",
+        at: "(\n        target",
+        says: &["no eye", "`eye: (x, y, z)`", "orbit: Sphere("],
+    },
+    Case {
+        name: "orbit elevation out of range at a key",
+        from: "        eye: (0.0, -6.0, 0.0),",
+        to: "        orbit: Sphere(azimuth: -90.0, elevation: [(1, 0.0), (10, 95.0)], distance: 6.0),",
+        file: "shot.ron",
+        at: "[(1, 0.0), (10, 95.0)]",
+        says: &["elevation is 95 at frame 10", "within ±89 degrees"],
+    },
+    Case {
+        name: "orbit radius not positive",
+        from: "        eye: (0.0, -6.0, 0.0),",
+        to: "        orbit: Cylinder(azimuth: -90.0, radius: -6.5, height: 1.0),",
+        file: "shot.ron",
+        at: "-6.5",
+        says: &["radius is -6.5 at frame 1", "above 0"],
+    },
+    Case {
+        name: "unknown orbit shape",
+        from: "        eye: (0.0, -6.0, 0.0),",
+        to: "        orbit: Circle(azimuth: -90.0, radius: 6.0),",
+        file: "shot.ron",
+        at: "Circle",
+        says: &["Circle", "Sphere", "Cylinder"],
+    },
 ];
 
 /// The 1-based line and column of the first `needle` in `text`.

@@ -50,9 +50,13 @@ fn shape(path: &ParamPath) -> Shape {
             glint::shot::CameraParam::Eye
             | glint::shot::CameraParam::Target
             | glint::shot::CameraParam::Up => Shape::Vector,
-            glint::shot::CameraParam::FovYDegrees | glint::shot::CameraParam::Height => {
-                Shape::Number
-            }
+            glint::shot::CameraParam::FovYDegrees
+            | glint::shot::CameraParam::Height
+            | glint::shot::CameraParam::OrbitAzimuth
+            | glint::shot::CameraParam::OrbitElevation
+            | glint::shot::CameraParam::OrbitDistance
+            | glint::shot::CameraParam::OrbitRadius
+            | glint::shot::CameraParam::OrbitHeight => Shape::Number,
         },
         ParamPath::Light(_) => Shape::Vector,
         ParamPath::Material { param, .. } => match param {

@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use glam::{DVec3, Vec3};
 use serde::Deserialize;
 
+use super::orbit::OrbitSpec;
 use crate::anim::{Direction, Track};
 use crate::formats::parts::GroupsSpec;
 use crate::highlight::Expr;
@@ -168,11 +169,15 @@ pub enum MaterialSpec {
     },
 }
 
-/// A camera whose placement and lens are tracks.
+/// A camera whose placement and lens are tracks. The eye is given once: as a point (`eye`), or
+/// by an orbit about the target (`orbit`); the shot reader refuses both or neither.
 #[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSpec {
-    pub eye: Track<Vec3>,
+    #[serde(default)]
+    pub eye: Option<Track<Vec3>>,
+    #[serde(default)]
+    pub orbit: Option<OrbitSpec>,
     pub target: Track<Vec3>,
     #[serde(default = "z_up")]
     pub up: Track<Vec3>,

@@ -2,9 +2,12 @@
 
 use std::sync::Arc;
 
+use glam::DVec3;
+
 use super::file::{LightSpec, ProjectionSpec};
 use super::layer_axes::has_axes;
 use super::line_styles::LineFields;
+use super::orbit::OrbitSpec;
 use super::validated::{Material, MaterialState, Shot};
 use super::ShotError;
 use crate::geom::PatchLibrary;
@@ -77,12 +80,32 @@ impl Shot {
             },
         };
         Camera {
-            eye: camera.eye.at(frame),
+            eye: self.eye_at(frame).as_vec3(),
             target: camera.target.at(frame),
             up: camera.up.at(frame),
             projection,
             near: camera.near,
             far: camera.far,
+        }
+    }
+
+    /// The camera's orbit, when its eye orbits the target rather than following an `eye` track.
+    #[must_use]
+    pub fn orbit(&self) -> Option<&OrbitSpec> {
+        self.camera.orbit.as_ref()
+    }
+
+    /// The camera's eye at `frame`, in f64: its `eye` track, or where its orbit puts it about
+    /// the target ([`OrbitSpec::eye_at`]). A camera with neither, which the shot reader
+    /// refuses, looks along +y from one unit before its target.
+    #[must_use]
+    pub fn eye_at(&self, frame: f64) -> DVec3 {
+        let camera = &self.camera;
+        let target = camera.target.at(frame).as_dvec3();
+        match (&camera.orbit, &camera.eye) {
+            (Some(orbit), _) => orbit.eye_at(target, frame),
+            (None, Some(eye)) => eye.at(frame).as_dvec3(),
+            (None, None) => target - DVec3::Y,
         }
     }
 

@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::every_frame::check_every_frame;
-use super::file::{HighlightSpec, InstanceSpec, LooksFile, MaterialSpec, RenderSpec, ShotFile};
+use super::file::{
+    CameraSpec, HighlightSpec, InstanceSpec, LooksFile, MaterialSpec, RenderSpec, ShotFile,
+};
 use super::glob;
 use super::line_styles::select_lines;
 use super::moving_parts::{check_reach, pose_of};
@@ -89,6 +91,8 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
                 .to_string(),
         ));
     }
+
+    check_eye(&file.camera, shot_source)?;
 
     let mut assets = Assets::default();
     let mut materials = Vec::with_capacity(looks.materials.len());
@@ -643,4 +647,21 @@ impl Inputs {
 /// The path with `.` and `..` resolved through the file system where it exists.
 fn canonical(path: &Path) -> PathBuf {
     path.canonicalize().unwrap_or_else(|_| path.to_path_buf())
+}
+
+/// The camera's eye is given once: by `eye` or by `orbit`, not both and not neither.
+fn check_eye(camera: &CameraSpec, source: &Source) -> Result<(), ShotError> {
+    match (&camera.eye, &camera.orbit) {
+        (Some(_), None) | (None, Some(_)) => Ok(()),
+        (Some(_), Some(_)) => Err(source.error_at(
+            &[Field("camera"), Field("orbit")],
+            "the camera has both an `eye` and an `orbit`; keep one: `eye` places the eye, \
+             `orbit` moves it about the target",
+        )),
+        (None, None) => Err(source.error_at(
+            &[Field("camera")],
+            "the camera has no eye: add `eye: (x, y, z)` or an orbit about the target, \
+             `orbit: Sphere(azimuth: …, elevation: …, distance: …)`",
+        )),
+    }
 }

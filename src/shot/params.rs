@@ -32,13 +32,19 @@ impl CameraSpec {
     pub(super) fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
         let CameraSpec {
             eye,
+            orbit,
             target,
             up,
             projection,
             near: _,
             far: _,
         } = self;
-        f(eye);
+        if let Some(eye) = eye {
+            f(eye);
+        }
+        if let Some(orbit) = orbit {
+            orbit.for_each_track(&mut |_, track| f(track));
+        }
         f(target);
         f(up);
         match projection {

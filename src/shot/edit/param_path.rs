@@ -42,6 +42,16 @@ pub enum CameraParam {
     FovYDegrees,
     /// `projection.height` of an orthographic camera.
     Height,
+    /// `orbit.azimuth` of an orbiting camera.
+    OrbitAzimuth,
+    /// `orbit.elevation` of a camera orbiting on a sphere.
+    OrbitElevation,
+    /// `orbit.distance` of a camera orbiting on a sphere.
+    OrbitDistance,
+    /// `orbit.radius` of a camera orbiting on a cylinder.
+    OrbitRadius,
+    /// `orbit.height` of a camera orbiting on a cylinder.
+    OrbitHeight,
 }
 
 /// A track of the light.
@@ -391,17 +401,26 @@ impl FromStr for ParamPath {
 fn read_path(r: &mut Reader) -> Result<ParamPath, String> {
     Ok(
         match r.name(&["camera", "light", "materials", "highlights"])? {
-            "camera" => {
-                ParamPath::Camera(match r.name(&["eye", "target", "up", "projection"])? {
+            "camera" => ParamPath::Camera(
+                match r.name(&["eye", "orbit", "target", "up", "projection"])? {
                     "eye" => CameraParam::Eye,
                     "target" => CameraParam::Target,
                     "up" => CameraParam::Up,
+                    "orbit" => {
+                        match r.name(&["azimuth", "elevation", "distance", "radius", "height"])? {
+                            "azimuth" => CameraParam::OrbitAzimuth,
+                            "elevation" => CameraParam::OrbitElevation,
+                            "distance" => CameraParam::OrbitDistance,
+                            "radius" => CameraParam::OrbitRadius,
+                            _ => CameraParam::OrbitHeight,
+                        }
+                    }
                     _ => match r.name(&["fov_y_degrees", "height"])? {
                         "fov_y_degrees" => CameraParam::FovYDegrees,
                         _ => CameraParam::Height,
                     },
-                })
-            }
+                },
+            ),
             "light" => ParamPath::Light(match r.name(&["towards", "position"])? {
                 "towards" => LightParam::Towards,
                 _ => LightParam::Position,
@@ -554,6 +573,11 @@ impl fmt::Display for ParamPath {
                 CameraParam::Up => "camera.up",
                 CameraParam::FovYDegrees => "camera.projection.fov_y_degrees",
                 CameraParam::Height => "camera.projection.height",
+                CameraParam::OrbitAzimuth => "camera.orbit.azimuth",
+                CameraParam::OrbitElevation => "camera.orbit.elevation",
+                CameraParam::OrbitDistance => "camera.orbit.distance",
+                CameraParam::OrbitRadius => "camera.orbit.radius",
+                CameraParam::OrbitHeight => "camera.orbit.height",
             }),
             ParamPath::Light(param) => f.write_str(match param {
                 LightParam::Towards => "light.towards",

@@ -17,6 +17,7 @@ use crate::highlight::{Axis, Expr, Layer, Op};
 use crate::shot::file::{
     CameraSpec, HighlightSpec, LightSpec, LooksFile, MaterialSpec, ProjectionSpec, ShotFile,
 };
+use crate::shot::orbit::OrbitSpec;
 use crate::shot::source::Source;
 use crate::shot::ShotError;
 use crate::toon::DetailMap;
@@ -178,6 +179,7 @@ impl ParsedFile {
 fn camera_sites<'a>(camera: &'a mut CameraSpec, f: &mut dyn FnMut(Site<'a>)) {
     let CameraSpec {
         eye,
+        orbit,
         target,
         up,
         projection,
@@ -193,7 +195,56 @@ fn camera_sites<'a>(camera: &'a mut CameraSpec, f: &mut dyn FnMut(Site<'a>)) {
             track,
         });
     };
-    site(CameraParam::Eye, &[Field("eye")], TrackMut::Point(eye));
+    if let Some(eye) = eye {
+        site(CameraParam::Eye, &[Field("eye")], TrackMut::Point(eye));
+    }
+    match orbit {
+        Some(OrbitSpec::Sphere {
+            azimuth,
+            elevation,
+            distance,
+        }) => {
+            let orbit_step = Field("orbit");
+            site(
+                CameraParam::OrbitAzimuth,
+                &[orbit_step, Field("azimuth")],
+                TrackMut::Scalar(azimuth),
+            );
+            site(
+                CameraParam::OrbitElevation,
+                &[orbit_step, Field("elevation")],
+                TrackMut::Scalar(elevation),
+            );
+            site(
+                CameraParam::OrbitDistance,
+                &[orbit_step, Field("distance")],
+                TrackMut::Scalar(distance),
+            );
+        }
+        Some(OrbitSpec::Cylinder {
+            azimuth,
+            radius,
+            height,
+        }) => {
+            let orbit_step = Field("orbit");
+            site(
+                CameraParam::OrbitAzimuth,
+                &[orbit_step, Field("azimuth")],
+                TrackMut::Scalar(azimuth),
+            );
+            site(
+                CameraParam::OrbitRadius,
+                &[orbit_step, Field("radius")],
+                TrackMut::Scalar(radius),
+            );
+            site(
+                CameraParam::OrbitHeight,
+                &[orbit_step, Field("height")],
+                TrackMut::Scalar(height),
+            );
+        }
+        None => {}
+    }
     site(
         CameraParam::Target,
         &[Field("target")],

@@ -59,6 +59,14 @@ fn check_every_frame_counted(
     shot.light.for_each_param(&mut add);
     for frame in frames.into_iter().map(f64::from_bits) {
         checks += 1;
+        if let Some(orbit) = &shot.camera.orbit {
+            orbit.check_at(frame).map_err(|e| {
+                shot_source.error_at(
+                    &[Field("camera"), Field("orbit"), Field(e.field)],
+                    e.message,
+                )
+            })?;
+        }
         shot.camera_at(frame).validate().map_err(|e| {
             shot_source.error_at(&[Field("camera")], format!("at frame {frame}: {e}"))
         })?;
