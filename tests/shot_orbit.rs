@@ -87,7 +87,7 @@ fn matches_old_keys(shot: &str, old: &[(f64, [f32; 3])]) {
         let orbit = shot.camera_at(frame);
         let before = Camera {
             eye: Vec3::from(eye),
-            ..orbit.clone()
+            ..orbit
         };
         let moved = farthest_move(&before, &orbit, &points, size);
         assert!(
