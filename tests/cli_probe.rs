@@ -144,3 +144,105 @@ fn bad_patch_files_give_one_located_error_each() {
         );
     }
 }
+
+/// The ball shot's camera, as its text says: orthographic from `(0, −6, 1)` towards the origin,
+/// 2.4 units tall, up +z, at `width × height`.
+const BALL_SIZE: (u32, u32) = (200, 160);
+
+/// Where `p` lands in the ball shot's image by the pinhole of an orthographic camera, worked out
+/// here: right = forward × up normalized, up' = right × forward; pixel centres at integers.
+fn ball_pixel(p: [f64; 3]) -> [f64; 2] {
+    let (eye, target) = ([0.0, -6.0, 1.0], [0.0, 0.0, 0.0]);
+    let f: Vec<f64> = (0..3).map(|i| target[i] - eye[i]).collect();
+    let n = f.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let f = [f[0] / n, f[1] / n, f[2] / n];
+    // forward × (0, 0, 1) = (f.y, −f.x, 0).
+    let r = [f[1], -f[0], 0.0];
+    let rn = (r[0] * r[0] + r[1] * r[1]).sqrt();
+    let r = [r[0] / rn, r[1] / rn, 0.0];
+    let u = [
+        r[1] * f[2] - r[2] * f[1],
+        r[2] * f[0] - r[0] * f[2],
+        r[0] * f[1] - r[1] * f[0],
+    ];
+    let d = [p[0] - target[0], p[1] - target[1], p[2] - target[2]];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (w, h) = (f64::from(BALL_SIZE.0), f64::from(BALL_SIZE.1));
+    let half_height = 1.2;
+    let x = dot(d, r) / (half_height * w / h);
+    let y = dot(d, u) / half_height;
+    [(x + 1.0) * w / 2.0 - 0.5, (1.0 - y) * h / 2.0 - 0.5]
+}
+
+#[test]
+fn probe_on_a_shot_says_where_a_point_lands_and_whether_the_frame_shows_it() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        crate::common::repo_file("patches/sphere.ron"),
+        dir.path().join("sphere.ron"),
+    )
+    .unwrap();
+    let shot = dir.path().join("ball.ron");
+    let text = crate::common::ball_shot::BallShot {
+        size: BALL_SIZE,
+        epsilon: 0.05,
+        lit: "(0.2, 0.3, 0.8)",
+        include: None,
+        preset: None,
+    }
+    .text();
+    std::fs::write(&shot, text).unwrap();
+    // The sphere's (u, v): u the longitude from +x, v from the south pole. The first faces the
+    // camera, the second is on the far side, the third high on the front (where the exact
+    // sphere's parameters are not proportional to angles: its point is the one probed).
+    let points = [
+        ((0.75, 0.5), Some([0.0, -1.0, 0.0]), true),
+        ((0.25, 0.5), Some([0.0, 1.0, 0.0]), false),
+        ((0.7, 0.8), None, true),
+    ];
+    let mut args = vec!["probe", shot.to_str().unwrap(), "--patch", "ball/sphere"];
+    let uvs: Vec<String> = points
+        .iter()
+        .map(|((u, v), _, _)| format!("{u},{v}"))
+        .collect();
+    for uv in &uvs {
+        args.extend(["--uv", uv]);
+    }
+    let out = glint(&args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: Value = serde_json::from_slice(&out.stdout).unwrap();
+    for (probe, (uv, point, seen)) in json.as_array().unwrap().iter().zip(points) {
+        let image = &probe["image"];
+        let pixel = image["pixel"].as_array().unwrap();
+        let point = point.unwrap_or_else(|| vector(&probe["point"]));
+        let want = ball_pixel(point);
+        for c in 0..2 {
+            let got = pixel[c].as_f64().unwrap();
+            assert!(
+                (got - want[c]).abs() < 1e-3,
+                "{uv:?}: {pixel:?} vs {want:?}"
+            );
+        }
+        assert_eq!(image["size"], serde_json::json!([BALL_SIZE.0, BALL_SIZE.1]));
+        assert_eq!(image["in_front"], true, "{uv:?}");
+        assert_eq!(image["in_image"], true, "{uv:?}");
+        assert_eq!(image["visible"], seen, "{uv:?}: {probe}");
+    }
+    // A patch file has no frame to land in.
+    let out = glint(&[
+        "probe",
+        "patches/sphere.ron",
+        "--patch",
+        "sphere",
+        "--uv",
+        "0.5,0.5",
+        "--size",
+        "64x64",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--size and --preset"));
+}

@@ -12,7 +12,10 @@ use super::CliError;
 use glint::formats::load_patches;
 use glint::formats::ron_paths::top_level_name;
 use glint::geom::{Frame, PatchLibrary};
-use glint::shot::load_shot_text;
+use glint::job::{Overrides, RenderJob};
+use glint::shot::{load_shot_text, Preset};
+
+use super::render::{parse_size, PresetArg};
 
 /// Print the surface frame at parameters of a patch, as a JSON array.
 ///
@@ -23,12 +26,18 @@ use glint::shot::load_shot_text;
 ///
 /// The file may also be a shot (a `.ron` file whose top level is `Shot(…)`): its patches are
 /// named INSTANCE/PATCH, and each is probed where --frame poses it, moved by its instance's
-/// and parts' transforms at that frame.
+/// and parts' transforms at that frame. For a shot, each point also says where it lands in
+/// that frame's image (`image.pixel`, in pixels from the top left with a pixel's centre at its
+/// integer coordinates, as `glint place --pixel` reads them), whether it is in front of the
+/// camera and inside the image, and whether the frame shows it (`visible`: the frame, rendered
+/// at --size and --preset, draws the point's patch at its depth there; false when another
+/// surface hides it or it faces away).
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:
   glint probe patches/sphere.ron --patch sphere --uv 0.25,0.5
   glint probe patches/teapot.bpt --patch 20 --uv 0,0 --uv 0.5,0.5 --uv 1,1
-  glint probe shots/teapot_turntable.ron --patch teapot/20 --frame 48 --uv 0.5,0.5")]
+  glint probe shots/teapot_turntable.ron --patch teapot/20 --frame 48 --uv 0.5,0.5
+  glint probe shots/teapot_lid_opens.ron --patch teapot/25 --uv 0.1,0.5 --frame 24 --size 1280x720")]
 pub struct ProbeArgs {
     /// Patch file: a RON patch library (.ron), Bezier patches (.bpt) or a USD layer (.usda; .usd, .usdc with the usd-binary feature); or a shot
     file: PathBuf,
@@ -41,6 +50,12 @@ pub struct ProbeArgs {
     /// Parameters to probe, inside the patch's domain (repeat for more points)
     #[arg(long = "uv", value_name = "U,V", required = true, value_parser = parse_uv)]
     uvs: Vec<(f64, f64)>,
+    /// For a shot, the image size the pixels refer to, instead of the shot's resolution
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// For a shot, the accuracy preset of the frame that decides what is visible [default: the shot's]
+    #[arg(long, value_enum)]
+    preset: Option<PresetArg>,
 }
 
 /// One probed point, as printed.
@@ -58,6 +73,21 @@ struct Probe<'a> {
     degenerate: bool,
     /// The patch is trimmed and its trim cuts this point away: it is not drawn.
     trimmed_away: bool,
+    /// For a shot: where the point lands in the frame's image.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    image: Option<InImage>,
+}
+
+/// Where a probed point of a shot lands in its frame's image.
+#[derive(Serialize)]
+struct InImage {
+    /// Pixels from the top left, a pixel's centre at integer coordinates.
+    pixel: [f64; 2],
+    /// The image's size, `[width, height]`.
+    size: [u32; 2],
+    in_front: bool,
+    in_image: bool,
+    visible: bool,
 }
 
 fn parse_uv(text: &str) -> Result<(f64, f64), String> {
@@ -72,9 +102,20 @@ fn parse_uv(text: &str) -> Result<(f64, f64), String> {
     }
 }
 
-/// The model `path` holds: a patch file's patches, or a shot's model posed at `frame` (the
-/// shot's first frame by default). Errors are one line naming the file.
-fn read_model(path: &Path, frame: Option<f64>) -> Result<Arc<PatchLibrary>, CliError> {
+/// A shot probed at a frame: its job (rendering at the size and preset asked for) and the frame.
+struct ShotAt {
+    job: RenderJob,
+    frame: f64,
+}
+
+/// The model `path` holds: a patch file's patches, or a shot's model posed at `args.frame`
+/// (the shot's first frame by default) with the shot's job. Errors are one line naming the
+/// file.
+fn read_model(
+    path: &Path,
+    args: &ProbeArgs,
+) -> Result<(Arc<PatchLibrary>, Option<ShotAt>), CliError> {
+    let frame = args.frame;
     let bad = |e: anyhow::Error| CliError::BadInput(e);
     let is_ron = path
         .extension()
@@ -105,24 +146,42 @@ fn read_model(path: &Path, frame: Option<f64>) -> Result<Arc<PatchLibrary>, CliE
                 path.display()
             )));
         }
-        return Ok(shot.library_at(frame));
+        let library = shot.library_at(frame);
+        let overrides = Overrides {
+            size: args.size,
+            preset: args.preset.map(Preset::from),
+            ..Overrides::default()
+        };
+        let job = RenderJob::new(shot, &overrides).map_err(|e| bad(e.into()))?;
+        return Ok((library, Some(ShotAt { job, frame })));
     }
-    if frame.is_some() {
-        return Err(bad(anyhow!(
-            "{}: --frame poses a shot's model; a patch file has one pose",
-            path.display()
-        )));
+    let for_a_shot = [
+        (
+            frame.is_some(),
+            "--frame poses a shot's model; a patch file has one pose",
+        ),
+        (
+            args.size.is_some() || args.preset.is_some(),
+            "--size and --preset say how a shot's frame is rendered; a patch file has no frame",
+        ),
+    ];
+    if let Some((_, message)) = for_a_shot.iter().find(|(given, _)| *given) {
+        return Err(bad(anyhow!("{}: {message}", path.display())));
     }
-    Ok(Arc::new(
-        load_patches(path).map_err(|e| CliError::BadInput(e.into()))?,
-    ))
+    let library = load_patches(path).map_err(|e| CliError::BadInput(e.into()))?;
+    Ok((Arc::new(library), None))
 }
 
 pub fn run(args: &ProbeArgs) -> Result<(), CliError> {
-    let library = read_model(&args.file, args.frame)?;
+    let (library, mut shot) = read_model(&args.file, args)?;
     let patch = library
         .find(&args.patch)
         .map_err(|e| CliError::BadInput(anyhow!("{}: {e}", args.file.display())))?;
+    let index = library
+        .patches
+        .iter()
+        .position(|p| std::ptr::eq(p, patch))
+        .unwrap_or_default();
     let surface = &patch.surface;
     let domain = surface.domain();
     let mut probes = Vec::with_capacity(args.uvs.len());
@@ -157,6 +216,10 @@ pub fn run(args: &ProbeArgs) -> Result<(), CliError> {
             dv: dv.to_array(),
             degenerate,
             trimmed_away: !patch.keeps(u, v),
+            image: match shot.as_mut() {
+                Some(ShotAt { job, frame }) => Some(in_image(job, *frame, index, (u, v))?),
+                None => None,
+            },
         });
     }
     let mut out = std::io::stdout().lock();
@@ -164,4 +227,29 @@ pub fn run(args: &ProbeArgs) -> Result<(), CliError> {
         .map_err(anyhow::Error::from)
         .and_then(|()| writeln!(out).map_err(anyhow::Error::from))
         .map_err(|e| CliError::Failed(e.context("writing the probe output")))
+}
+
+/// Where `(u, v)` of patch `patch` lands in `job`'s image at `frame`.
+fn in_image(
+    job: &mut RenderJob,
+    frame: f64,
+    patch: usize,
+    uv: (f64, f64),
+) -> Result<InImage, CliError> {
+    let seen = job.pixel_of(frame, patch, uv).map_err(|e| {
+        let shot = job.shot().path.display().to_string();
+        if e.is_bad_input() {
+            CliError::BadInput(anyhow!("{shot}: {e}"))
+        } else {
+            CliError::Failed(anyhow!("{shot}: {e}"))
+        }
+    })?;
+    let settings = job.settings();
+    Ok(InImage {
+        pixel: [seen.pixel.0, seen.pixel.1],
+        size: [settings.width, settings.height],
+        in_front: seen.in_front,
+        in_image: seen.in_image,
+        visible: seen.visible,
+    })
 }

@@ -23,6 +23,7 @@ mod frame_check;
 mod frame_fingerprint;
 mod frame_list;
 mod memory;
+mod pixel_of;
 mod place;
 mod write;
 
@@ -36,6 +37,7 @@ pub use fingerprint::{Fingerprint, FINGERPRINT_KEY};
 pub use frame_check::{aov_file_names, FileProblem, Scrutiny};
 pub use frame_list::{frame_spec, parse_frames};
 pub use memory::{bytes_text, default_memory_ceiling, estimate_peak_bytes, parse_memory_size};
+pub use pixel_of::{PointInImage, VISIBLE_DEPTH_TOLERANCE};
 pub use place::{LayerChoice, PlaceError, Placement, Residual};
 
 use crate::formats::atomic::{Durability, WriteError};

@@ -77,6 +77,10 @@ pub enum PlaceError {
     /// The layer asked for does not exist, has no translation, or is pinned.
     #[error("{0}")]
     Layer(String),
+    /// The surface point asked for is not on the model: no such patch, or (u, v) outside its
+    /// domain.
+    #[error("{0}")]
+    NoPoint(String),
     /// The frame could not be read or rendered.
     #[error(transparent)]
     Job(#[from] JobError),
@@ -90,7 +94,8 @@ impl PlaceError {
             PlaceError::OutsideImage { .. }
             | PlaceError::OffModel { .. }
             | PlaceError::NoHighlight(_)
-            | PlaceError::Layer(_) => true,
+            | PlaceError::Layer(_)
+            | PlaceError::NoPoint(_) => true,
             PlaceError::Job(e) => e.is_bad_input(),
         }
     }
