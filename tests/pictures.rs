@@ -396,6 +396,73 @@ fn a_sheet_over_time_holds_each_frame_as_rendered_alone_with_its_caption() {
 }
 
 #[test]
+fn a_cropped_sheet_shows_the_rectangle_drawn_again_at_the_tile_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let sheet_path = dir.path().join("crop.png");
+    let shot = "shots/sphere_ops.ron";
+    // 60 × 40 of the 480 × 480 frame at tiles of 180 × 120: three times as many pixels.
+    succeed(&[
+        "sheet",
+        shot,
+        "--frames",
+        "30",
+        "--crop",
+        "200,150,60,40",
+        "--tile",
+        "180x120",
+        "--out",
+        text(&sheet_path),
+    ]);
+    succeed(&[
+        "render",
+        shot,
+        "--frames",
+        "30",
+        "--size",
+        "1440x1440",
+        "--preset",
+        "preview",
+        "--aov",
+        "none",
+        "--out",
+        text(&dir.path().join("big.####.png")),
+    ]);
+    let sheet = png(&sheet_path);
+    let big = png(&dir.path().join("big.0030.png"));
+    let layout = SheetLayout::new(&["frame 30".to_string()], (180, 120), None).unwrap();
+    let (x0, y0) = layout.tile_origin(0);
+    let mut differ = 0;
+    for y in 0..120 {
+        for x in 0..180 {
+            assert_eq!(
+                sheet.get_pixel(x0 + x, y0 + y),
+                big.get_pixel(600 + x, 450 + y),
+                "({x}, {y})"
+            );
+            differ += usize::from(big.get_pixel(600 + x, 450 + y) != big.get_pixel(600, 450));
+        }
+    }
+    assert!(
+        differ > 100,
+        "the rectangle shows something: {differ} pixels differ"
+    );
+    // Without --tile, tiles are 320 wide at the crop's shape.
+    succeed(&[
+        "sheet",
+        shot,
+        "--frames",
+        "1",
+        "--crop",
+        "0,0,160,120",
+        "--out",
+        text(&sheet_path),
+    ]);
+    let (w, h) = png(&sheet_path).dimensions();
+    assert_eq!(w, 4 + 320 + 4);
+    assert!(h > 4 + 240, "{h}");
+}
+
+#[test]
 fn sheet_tiles_default_to_320_pixels_wide_at_the_shot_aspect() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("tt.png");
@@ -427,6 +494,60 @@ fn sheets_that_cannot_be_made_exit_2_and_write_nothing() {
                 o,
             ],
             "70 tiles are more than the 64",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--frames",
+                "1",
+                "--crop",
+                "400,400,100,50",
+                "--out",
+                o,
+            ],
+            "leaves the shot's 480×480 image",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--frames",
+                "1",
+                "--crop",
+                "0,0,100,50",
+                "--tile",
+                "200x200",
+                "--out",
+                o,
+            ],
+            "does not have the shape of --crop's 100×50",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--frames",
+                "1",
+                "--crop",
+                "10,10,2,2",
+                "--out",
+                o,
+            ],
+            "beyond 16384 pixels a side",
+        ),
+        (
+            vec![
+                "sheet",
+                "shots/crescent.ron",
+                "--frames",
+                "1",
+                "--crop",
+                "10,10,0,2",
+                "--out",
+                o,
+            ],
+            "expected X,Y,W,H",
         ),
         (
             vec![

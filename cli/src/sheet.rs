@@ -30,8 +30,11 @@ pub const DEFAULT_TILE_WIDTH: u32 = 320;
 /// `(1.0, 0.9, 0.8)` is one value. A sheet holds at most 64 tiles.
 ///
 /// Each tile is the frame exactly as `glint render --size WxH --preset P` renders it (the
-/// background transparent), with its caption in a strip beneath. The sheet is written
-/// atomically. Exit code 2 for bad input (the shot, the options, too many tiles), 1 when
+/// background transparent), with its caption in a strip beneath. With --crop X,Y,W,H each tile
+/// shows only that rectangle of the frame (in the shot's own pixels, from the top left), drawn
+/// again at the tile's size rather than enlarged: the frame is rendered at the shot's size times
+/// the tile's width over W, and the rectangle cut from it, so small highlights can be compared
+/// at a zoom. The sheet is written atomically. Exit code 2 for bad input (the shot, the options, too many tiles), 1 when
 /// rendering or writing failed.
 #[derive(Debug, Args)]
 #[command(group(ArgGroup::new("tiles").required(true).args(["frames", "vary"])))]
@@ -39,6 +42,8 @@ pub const DEFAULT_TILE_WIDTH: u32 = 320;
   glint sheet shots/sphere_ops.ron --frames 1-96x8 --out out/sphere_ops.sheet.png
   glint sheet shots/teapot_turntable.ron --frames 1,33,65,96 --tile 480x270 --columns 2 \\
       --out out/turntable.sheet.png
+  glint sheet shots/teapot_lid_opens.ron --frames 1-48x6 --crop 240,60,180,135 \\
+      --tile 240x180 --out out/lid_glint.sheet.png
   glint sheet shots/crescent.ron --frame 36 \\
       --vary 'highlights[0].layers[1].stack[1].alpha=0.1,0.3,0.5' \\
       --vary 'highlights[0].layers[0].colour=(1, 1, 1),(1, 0.8, 0.6)' --out out/crescent.png
@@ -56,9 +61,13 @@ pub struct SheetArgs {
     /// A parameter of the shot and the values it takes in turn, PATH=V1,V2,… (repeatable)
     #[arg(long, value_name = "PATH=V1,V2,…", value_parser = parse_vary)]
     vary: Vec<Vary>,
-    /// Each tile's size [default: 320 pixels wide at the shot's aspect]
+    /// Each tile's size [default: 320 pixels wide at the shot's aspect, or at the crop's]
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     tile: Option<(u32, u32)>,
+    /// Show only this rectangle of each frame, X,Y,W,H in the shot's pixels from the top left,
+    /// rendered again at the tile's size (a zoom of tile width / W)
+    #[arg(long, value_name = "X,Y,W,H", value_parser = parse_crop)]
+    crop: Option<Crop>,
     /// Tiles per row [default: the grid nearest a square]
     #[arg(long, value_name = "N")]
     columns: Option<u32>,
@@ -100,7 +109,11 @@ pub fn run(args: &SheetArgs) -> Result<(), CliError> {
             "{shown}: frame {outside} is outside the shot's frame range {first}-{last}"
         )));
     }
-    let tile = args.tile.unwrap_or_else(|| default_tile(&shot));
+    let tile = args.tile.unwrap_or_else(|| default_tile(&shot, args.crop));
+    let zoom = match args.crop {
+        Some(crop) => Some(crop.zoom(&shot, tile).map_err(bad)?),
+        None => None,
+    };
     let layout = SheetLayout::new(&plan.captions, tile, args.columns)
         .map_err(|e: SheetError| bad(e.to_string()))?;
     let file_text = std::fs::read_to_string(&args.shot)
@@ -117,7 +130,7 @@ pub fn run(args: &SheetArgs) -> Result<(), CliError> {
 
     let preset = Preset::from(args.preset);
     let overrides = Overrides {
-        size: Some(tile),
+        size: Some(zoom.map_or(tile, |z| z.render)),
         preset: Some(preset),
         aovs: Some(Vec::new()),
         // The sheet renders the frames checked above and writes no frame files.
@@ -151,6 +164,12 @@ pub fn run(args: &SheetArgs) -> Result<(), CliError> {
                     frame.height
                 ))
             })?;
+        let image = match zoom {
+            Some(z) => {
+                image::imageops::crop_imm(&image, z.origin.0, z.origin.1, tile.0, tile.1).to_image()
+            }
+            None => image,
+        };
         sheet.put(index, &image, &variant.label);
     }
     let image = sheet.into_image();
@@ -278,8 +297,97 @@ fn load_edited(path: &Path, text: &str) -> Result<Shot, CliError> {
 }
 
 /// [`DEFAULT_TILE_WIDTH`] wide at the shot's aspect: height `max(1, round(320 · h / w))`.
-fn default_tile(shot: &Shot) -> (u32, u32) {
-    let (w, h) = (shot.settings.width, shot.settings.height);
+fn default_tile(shot: &Shot, crop: Option<Crop>) -> (u32, u32) {
+    let (w, h) = crop.map_or((shot.settings.width, shot.settings.height), |c| {
+        (c.width, c.height)
+    });
     let height = (f64::from(DEFAULT_TILE_WIDTH) * f64::from(h) / f64::from(w)).round();
     (DEFAULT_TILE_WIDTH, (height as u32).max(1))
+}
+
+/// The largest side of the frame a cropped sheet renders before cutting its rectangle out.
+pub const MAX_ZOOMED_SIDE: u32 = 16384;
+
+/// A rectangle of a frame, in the shot's pixels from the top left.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Crop {
+    x: u32,
+    y: u32,
+    width: u32,
+    height: u32,
+}
+
+/// How a cropped tile is made: the size the frame is rendered at, and where the tile is cut
+/// from it.
+#[derive(Clone, Copy, Debug)]
+struct Zoom {
+    render: (u32, u32),
+    origin: (u32, u32),
+}
+
+fn parse_crop(text: &str) -> Result<Crop, String> {
+    let numbers: Vec<Option<u32>> = text.split(',').map(|n| n.trim().parse().ok()).collect();
+    match numbers[..] {
+        [Some(x), Some(y), Some(width), Some(height)] if width > 0 && height > 0 => Ok(Crop {
+            x,
+            y,
+            width,
+            height,
+        }),
+        _ => Err(format!(
+            "expected X,Y,W,H, four whole numbers of pixels with W and H above 0, such as \
+             300,110,120,90; got '{text}'"
+        )),
+    }
+}
+
+impl Crop {
+    /// The render size and cut for tiles of `tile` pixels: the zoom `s = tile width / W` (the
+    /// tile must have the crop's aspect, to a pixel), the frame at `s` times the shot's size,
+    /// the cut at `s (X, Y)`. Errors when the rectangle leaves the shot's image, the tile's
+    /// aspect is not the crop's, or the frame would be larger than [`MAX_ZOOMED_SIDE`].
+    fn zoom(self, shot: &Shot, tile: (u32, u32)) -> Result<Zoom, String> {
+        let (w, h) = (shot.settings.width, shot.settings.height);
+        let Crop {
+            x,
+            y,
+            width,
+            height,
+        } = self;
+        if u64::from(x) + u64::from(width) > u64::from(w)
+            || u64::from(y) + u64::from(height) > u64::from(h)
+        {
+            return Err(format!(
+                "--crop {x},{y},{width},{height} leaves the shot's {w}×{h} image"
+            ));
+        }
+        let s = f64::from(tile.0) / f64::from(width);
+        let fits = (f64::from(height) * s - f64::from(tile.1)).abs() <= 1.0;
+        if !fits {
+            return Err(format!(
+                "--tile {}x{} does not have the shape of --crop's {width}×{height}; leave --tile out \
+                 or give it {}x{}",
+                tile.0,
+                tile.1,
+                tile.0,
+                (f64::from(height) * s).round()
+            ));
+        }
+        let render = ((f64::from(w) * s).round(), (f64::from(h) * s).round());
+        if render.0.max(render.1) > f64::from(MAX_ZOOMED_SIDE) {
+            return Err(format!(
+                "--crop {width}×{height} at tiles of {}×{} zooms {s:.1}×: the frame would be \
+                 rendered at {}×{}, beyond {MAX_ZOOMED_SIDE} pixels a side; crop more or give a \
+                 smaller --tile",
+                tile.0, tile.1, render.0, render.1
+            ));
+        }
+        let render = ((render.0 as u32).max(tile.0), (render.1 as u32).max(tile.1));
+        // The cut stays inside the frame rendered, whatever the rounding.
+        let origin = (
+            ((f64::from(x) * s).round() as u32).min(render.0.saturating_sub(tile.0)),
+            ((f64::from(y) * s).round() as u32).min(render.1.saturating_sub(tile.1)),
+        );
+        Ok(Zoom { render, origin })
+    }
 }
