@@ -570,3 +570,65 @@ fn place_write_keys_the_translation_and_changes_nothing_else() {
         want.1
     );
 }
+
+#[test]
+fn place_pin_writes_a_pin_on_the_point_under_the_pixel_and_moves_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = dir.path().join("shots");
+    std::fs::create_dir_all(&shots).unwrap();
+    std::fs::create_dir_all(dir.path().join("patches")).unwrap();
+    std::fs::copy(
+        repo_file("patches/sphere.ron"),
+        dir.path().join("patches/sphere.ron"),
+    )
+    .unwrap();
+    let shot = shots.join("sphere_ops.ron");
+    std::fs::copy(repo_file("shots/sphere_ops.ron"), &shot).unwrap();
+    let before = std::fs::read_to_string(&shot).unwrap();
+    assert!(!before.contains("pin:"));
+    for (pixel, at) in [("300,200", (300.0, 200.0)), ("180,260", (180.0, 260.0))] {
+        let out = glint_with(&[
+            "place",
+            shot.to_str().unwrap(),
+            "--frame",
+            "30",
+            "--pixel",
+            pixel,
+            "--pin",
+            "--write",
+            "--json",
+        ]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let text = std::fs::read_to_string(&shot).unwrap();
+        assert_eq!(text.matches("pin:").count(), 1, "{text}");
+        assert!(text.contains(report["pin"].as_str().unwrap()), "{text}");
+        // The pinned point is the one under the pixel: it projects back onto it.
+        let mut pinned = job(&shot);
+        let patch = pinned
+            .shot()
+            .pinned_patch(0, 0)
+            .expect("the first layer is pinned");
+        let uv = (report["u"].as_f64().unwrap(), report["v"].as_f64().unwrap());
+        let back = projected(&pinned, patch, uv, 30.0).unwrap();
+        let miss = ((back.0 - at.0).powi(2) + (back.1 - at.1).powi(2)).sqrt();
+        assert!(miss < 0.5, "{pixel}: the pin projects to {back:?}");
+        // Every track of the file as it was is as it was; the new ones are the pin's.
+        let tracks = |text: &str| glint::shot::track_texts(text).unwrap();
+        let (old, new) = (tracks(&before), tracks(&text));
+        let added: Vec<String> = new
+            .iter()
+            .filter(|t| !old.contains(t))
+            .map(|t| t.0.to_string())
+            .collect();
+        assert!(old.iter().all(|t| new.contains(t)));
+        assert_eq!(
+            added,
+            [
+                "highlights[0].layers[0].pin.u",
+                "highlights[0].layers[0].pin.v"
+            ]
+        );
+        assert!(pinned.render_frame(30.0).is_ok());
+    }
+}

@@ -11,9 +11,10 @@ use serde::Serialize;
 use super::key::write_in_place;
 use super::render::{parse_size, PresetArg};
 use super::{write_stdout, CliError};
-use glint::job::{LayerChoice, Overrides, Placement, RenderJob};
+use glint::job::{LayerChoice, Overrides, PlaceError, Placement, RenderJob};
 use glint::shot::{
-    apply_edits, frame_text, parse_param_path, rounded_number_text, Preset, TrackEdit,
+    apply_edits, edit_layer, frame_text, parse_param_path, rounded_number_text, LayerEdit, Preset,
+    TrackEdit,
 };
 
 /// Solve a highlight's translation so that its centre lands on the point under a pixel.
@@ -30,17 +31,23 @@ use glint::shot::{
 /// shows, for each, how near its highlight comes to a centre there (0 at a centre, below ε
 /// where the highlight shows).
 ///
+/// With --pin the layer is pinned instead: its pin, added or replaced, names the patch and
+/// (u, v) under the pixel, and its translation is solved there on every frame from then on
+/// (--write writes the pin; a pinned layer is moved this way). A layer without a translation
+/// gets one when it is drawn.
+///
 /// Pixels are counted from the top left, in the shot's resolution (or --size); a pixel's
 /// centre is at its integer coordinates, and fractions are allowed. Exit code 2 for a pixel
 /// off the model or outside the image, a patch without a highlight, a layer without a
 /// translation or one that is pinned (its translation is solved on every frame: move its pin
-/// instead).
+/// with --pin instead).
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:
   glint place shots/sphere_ops.ron --frame 1 --pixel 320,180
   glint place shots/crescent.ron --frame 12 --pixel 330,170 --layer 1
   glint place shots/sphere_ops.ron --frame 30 --pixel 200,150 --size 240x240 --json
-  glint place shots/sphere_ops.ron --frame 12 --pixel 300,200 --write")]
+  glint place shots/sphere_ops.ron --frame 12 --pixel 300,200 --write
+  glint place shots/teapot_lid_opens.ron --frame 24 --pixel 322,118 --pin --write")]
 pub struct PlaceArgs {
     /// The shot file (RON)
     shot: PathBuf,
@@ -70,6 +77,9 @@ pub struct PlaceArgs {
     /// atomically, leaving every other byte as it was
     #[arg(long)]
     write: bool,
+    /// Pin the layer to the surface point under the pixel instead of keying its translation
+    #[arg(long)]
+    pin: bool,
 }
 
 fn parse_pixel(text: &str) -> Result<(f64, f64), String> {
@@ -131,6 +141,9 @@ pub fn run(args: &PlaceArgs) -> Result<(), CliError> {
         highlight: args.highlight,
         layer: args.layer,
     };
+    if args.pin {
+        return pin(args, &mut job, frame, choice);
+    }
     let placement = job.place(frame, args.pixel, choice).map_err(|e| {
         let bad = e.is_bad_input();
         let e = anyhow!("{}: {e}", args.shot.display());
@@ -276,4 +289,123 @@ fn write_report(out: &mut dyn Write, r: &Report, p: &Placement) -> std::io::Resu
 /// A number as the report and the keys write it: six significant digits.
 fn number(x: f64) -> String {
     rounded_number_text(x as f32)
+}
+
+/// A pin as printed with --pin --json.
+#[derive(Serialize)]
+struct PinReport<'a> {
+    frame: f64,
+    pixel: [f64; 2],
+    patch: &'a str,
+    u: f32,
+    v: f32,
+    highlight: usize,
+    file: String,
+    path: String,
+    pin: String,
+}
+
+/// `glint place --pin`: the layer drawn on the patch under the pixel pinned there.
+fn pin(
+    args: &PlaceArgs,
+    job: &mut RenderJob,
+    frame: f64,
+    choice: LayerChoice,
+) -> Result<(), CliError> {
+    let shown = args.shot.display();
+    let failed = |e: PlaceError| {
+        let bad = e.is_bad_input();
+        let e = anyhow!("{shown}: {e}");
+        if bad {
+            CliError::BadInput(e)
+        } else {
+            CliError::Failed(e)
+        }
+    };
+    let (patch, uv) = job.point_under(frame, args.pixel).map_err(failed)?;
+    let shot = job.shot();
+    let name = &shot.library.patches[patch].name;
+    let Some(drawn) = shot.highlight_of(patch) else {
+        return Err(CliError::BadInput(anyhow!(
+            "{shown}: {name}, under pixel ({}, {}), has no designed highlight to pin; add an \
+             entry to `highlights` whose patches select it",
+            args.pixel.0,
+            args.pixel.1
+        )));
+    };
+    if let Some(asked) = choice.highlight.filter(|&h| h != drawn) {
+        return Err(CliError::BadInput(anyhow!(
+            "{shown}: highlight {asked} is not the one drawn on {name}, under pixel ({}, {}): \
+             highlight {drawn} is",
+            args.pixel.0,
+            args.pixel.1
+        )));
+    }
+    let layers = shot.at(frame).highlights[drawn].layers().len();
+    let layer = choice.layer.unwrap_or(0);
+    if layer >= layers {
+        return Err(CliError::BadInput(anyhow!(
+            "{shown}: highlight {drawn} has {layers} layer(s), numbered from 0, so there is no \
+             layer {layer}"
+        )));
+    }
+    let (file, index) = shot
+        .highlight_written(drawn)
+        .map_or((shot.path.as_path(), drawn), |(f, i)| (f, i));
+    let rounded = |x: f64| {
+        rounded_number_text(x as f32)
+            .parse::<f32>()
+            .unwrap_or(x as f32)
+    };
+    let (u, v) = (rounded(uv.0), rounded(uv.1));
+    let edit = LayerEdit::Pin {
+        patch: name.clone(),
+        u,
+        v,
+    };
+    let text = std::fs::read_to_string(file)
+        .map_err(|e| CliError::Failed(anyhow!("{}: cannot read the file: {e}", file.display())))?;
+    let edited = edit_layer(&text, index, layer, &edit)
+        .map_err(|e| CliError::BadInput(e.in_file(file).into()))?;
+    let report = PinReport {
+        frame,
+        pixel: [args.pixel.0, args.pixel.1],
+        patch: name,
+        u,
+        v,
+        highlight: drawn,
+        file: file.display().to_string(),
+        path: format!("highlights[{index}].layers[{layer}]"),
+        pin: format!(
+            "pin: (patch: {}, u: {}, v: {})",
+            serde_json::to_string(name).unwrap_or_default(),
+            rounded_number_text(u),
+            rounded_number_text(v)
+        ),
+    };
+    if args.write {
+        write_in_place(file, &edited).map_err(CliError::Failed)?;
+    }
+    write_stdout("the pin", |out| {
+        if args.json {
+            serde_json::to_writer_pretty(&mut *out, &report)?;
+            writeln!(out)?;
+        } else {
+            writeln!(
+                out,
+                "pixel ({}, {}) at frame {}: {}, u = {}, v = {}",
+                report.pixel[0],
+                report.pixel[1],
+                frame_text(frame),
+                report.patch,
+                rounded_number_text(u),
+                rounded_number_text(v)
+            )?;
+            writeln!(out, "{} in {}: {}", report.path, report.file, report.pin)?;
+            if args.write {
+                writeln!(out, "wrote the pin into {}", report.file)?;
+            }
+        }
+        Ok(())
+    })
 }

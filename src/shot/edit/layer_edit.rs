@@ -10,7 +10,7 @@ use super::track_splice::{apply, insert_item, remove_item, Splice};
 use crate::anim::Track;
 use crate::formats::ron_paths::Step::Field;
 use crate::formats::ron_paths::{try_item_spans, try_span};
-use crate::highlight::{Layer, Mask, Op};
+use crate::highlight::{Layer, Mask, Op, Pin};
 
 /// A change to the structure of one highlight layer.
 #[derive(Clone, Debug, PartialEq)]
@@ -28,6 +28,11 @@ pub enum LayerEdit {
     RemoveMask,
     /// The pin moved to the patch named `patch` (a patch name, not a part), its `member` 0.
     PinTo { patch: String },
+    /// The layer pinned to `(u, v)` of the patch named `patch`, constants: a pin added as the
+    /// layer's last field, or the layer's pin replaced whole.
+    Pin { patch: String, u: f32, v: f32 },
+    /// The pin taken out: the layer's translation is used as written again.
+    Unpin,
 }
 
 impl LayerEdit {
@@ -59,8 +64,26 @@ impl LayerEdit {
                     pin.member = 0;
                 }
             }
+            LayerEdit::Pin { patch, u, v } => {
+                layer.pin = Some(Pin {
+                    patch: patch.clone(),
+                    member: 0,
+                    u: Track::Constant(*u),
+                    v: Track::Constant(*v),
+                });
+            }
+            LayerEdit::Unpin => layer.pin = None,
         }
     }
+}
+
+/// Which of a struct's `fields` (spans of `name: value` items in `text`) is `name`.
+fn field_index(text: &str, fields: &[std::ops::Range<usize>], name: &str) -> Option<usize> {
+    fields.iter().position(|span| {
+        text[span.clone()]
+            .strip_prefix(name)
+            .is_some_and(|rest| rest.trim_start().starts_with(':'))
+    })
 }
 
 fn unit_mask() -> Mask<f32> {
@@ -128,7 +151,19 @@ pub fn edit_layer(
         LayerEdit::PinTo { .. } if parsed.pin.is_none() => {
             return Err(bad("the layer has no pin to move".to_string()))
         }
-        LayerEdit::AddMask | LayerEdit::RemoveMask | LayerEdit::PinTo { .. } => {}
+        LayerEdit::Unpin if parsed.pin.is_none() => {
+            return Err(bad("the layer has no pin to remove".to_string()))
+        }
+        LayerEdit::Pin { u, v, .. } if !(u.is_finite() && v.is_finite()) => {
+            return Err(bad(format!(
+                "a pin's (u, v) must be finite, not ({u}, {v})"
+            )))
+        }
+        LayerEdit::AddMask
+        | LayerEdit::RemoveMask
+        | LayerEdit::PinTo { .. }
+        | LayerEdit::Pin { .. }
+        | LayerEdit::Unpin => {}
     }
     edit.apply_to(parsed);
     let unchecked = |reason: &str| bad(format!("{reason}; the file is left as it is"));
@@ -195,15 +230,33 @@ pub fn edit_layer(
         LayerEdit::RemoveMask => {
             let fields = try_item_spans(text, &steps)
                 .ok_or_else(|| unchecked("the layer is not written as it reads"))?;
-            let index = fields
-                .iter()
-                .position(|span| {
-                    let field = &text[span.clone()];
-                    field
-                        .strip_prefix("mask")
-                        .is_some_and(|rest| rest.trim_start().starts_with(':'))
-                })
+            let index = field_index(text, &fields, "mask")
                 .ok_or_else(|| unchecked("the mask is not written as it reads"))?;
+            vec![remove_item(text, &fields, index)]
+        }
+        LayerEdit::Pin { patch, u, v } => {
+            let written = format!(
+                "pin: (patch: {}, u: {}, v: {})",
+                serde_json::to_string(patch).unwrap_or_default(),
+                number_text(*u),
+                number_text(*v)
+            );
+            let fields = try_item_spans(text, &steps)
+                .ok_or_else(|| unchecked("the layer is not written as it reads"))?;
+            match field_index(text, &fields, "pin") {
+                Some(index) => vec![Splice {
+                    span: fields[index].clone(),
+                    text: written,
+                }],
+                None => vec![insert_item(text, &fields, None, &written)
+                    .ok_or_else(|| unchecked("the layer is not written as it reads"))?],
+            }
+        }
+        LayerEdit::Unpin => {
+            let fields = try_item_spans(text, &steps)
+                .ok_or_else(|| unchecked("the layer is not written as it reads"))?;
+            let index = field_index(text, &fields, "pin")
+                .ok_or_else(|| unchecked("the pin is not written as it reads"))?;
             vec![remove_item(text, &fields, index)]
         }
         LayerEdit::PinTo { patch } => {
@@ -382,6 +435,40 @@ mod tests {
         )
         .unwrap_err();
         assert!(e.to_string().contains("no pin"), "{e}");
+    }
+
+    #[test]
+    fn a_pin_is_added_replaced_and_removed() {
+        let text = shot("[]", "");
+        let pin = |u: f32, v: f32| LayerEdit::Pin {
+            patch: "ball/4".to_string(),
+            u,
+            v,
+        };
+        let pinned = edit_layer(&text, 0, 1, &pin(0.25, 0.5)).unwrap();
+        assert!(
+            pinned.contains("pin: (patch: \"ball/4\", u: 0.25, v: 0.5)"),
+            "{pinned}"
+        );
+        // A pin written with keys and a member is replaced whole.
+        let keyed = shot(
+            "[]",
+            "\n            pin: (patch: \"ball/body\", member: 2, u: 0.5, v: [(1, 0.25)]),",
+        );
+        let replaced = edit_layer(&keyed, 0, 1, &pin(0.75, 0.125)).unwrap();
+        assert_eq!(
+            replaced,
+            shot(
+                "[]",
+                "\n            pin: (patch: \"ball/4\", u: 0.75, v: 0.125),"
+            )
+        );
+        let unpinned = edit_layer(&replaced, 0, 1, &LayerEdit::Unpin).unwrap();
+        assert_eq!(unpinned, text);
+        let e = edit_layer(&text, 0, 1, &LayerEdit::Unpin).unwrap_err();
+        assert!(e.to_string().contains("no pin to remove"), "{e}");
+        let e = edit_layer(&text, 0, 1, &pin(f32::NAN, 0.5)).unwrap_err();
+        assert!(e.to_string().contains("finite"), "{e}");
     }
 
     #[test]
