@@ -27,8 +27,8 @@
 //! the moved teapot's patches, rasterize, fill the G-buffer and find its lines again.
 //!
 //! Run with `cargo bench --bench motion`; it prints each variant's frame time by stage, the
-//! grids and intersection pairs the moving frames evaluated and kept, then the ratio
-//! moving / still.
+//! grids, triangles and intersection pairs the first moving frames made again and kept, then
+//! the ratio moving / still.
 
 // Variant::render is for benchmarks that render one scene again and again.
 #[allow(dead_code)]
@@ -125,14 +125,19 @@ fn main() {
     // What one moving frame made again and kept.
     let mut renderer = Renderer::new(Arc::clone(&shot.library));
     let settings = shot.settings_with(None, None);
-    for frame in [1, 2] {
+    for frame in [1, 2, 3] {
         let state = shot.at(frame as f64);
         let scene = state.scene(shot).unwrap();
         let s = renderer.render(&scene, &settings).unwrap().stats;
         println!(
-            "moving frame {frame}: {} grids evaluated, {} kept; intersections: {} patch pairs \
-             kept, {} tested",
-            s.grids_evaluated, s.grids_kept, s.intersection_pairs_kept, s.intersection_pairs_tested
+            "moving frame {frame}: {} grids evaluated, {} kept; {} of {} triangles rasterized; \
+             intersections: {} patch pairs kept, {} tested",
+            s.grids_evaluated,
+            s.grids_kept,
+            s.triangles_rasterized,
+            s.triangles,
+            s.intersection_pairs_kept,
+            s.intersection_pairs_tested
         );
     }
     measured.print_ratios("moving / still", &[("moving", "still")]);
