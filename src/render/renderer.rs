@@ -488,9 +488,12 @@ fn rasterize(
         let cut = MeshCut::of(mesh, library);
         let cut = cut.as_ref().map(|c| c as &dyn Cut);
         let triangles = &mesh.triangles[..];
-        if static_layer.as_ref().is_none_or(|l| !l.holds(&key, mesh)) {
+        moved.resize(mesh.grids.len(), false);
+        if static_layer
+            .as_ref()
+            .is_none_or(|l| !l.holds(&key, mesh, moved))
+        {
             let recycled = static_layer.take().map(|l| l.layer);
-            moved.resize(mesh.grids.len(), false);
             if moved.iter().any(|&m| m) {
                 let held: Vec<bool> = moved.iter().map(|&m| !m).collect();
                 let ranges = triangle_ranges(mesh, |p| held[p]);

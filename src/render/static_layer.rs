@@ -45,13 +45,19 @@ impl StaticLayer {
         }
     }
 
-    /// Whether the layer shows the held patches of `mesh` under `key`: the key, and for every
-    /// held patch its grid, vertex positions (bit for bit), (u, v) and trim regions, are the
-    /// ones it was made from.
+    /// Whether the layer shows the held patches of `mesh` under `key`: none of them is among
+    /// those `moved` marks (moved or deformed since the last frame rasterized), and the key,
+    /// and for every held patch its grid, vertex positions (bit for bit), (u, v) and trim
+    /// regions, are the ones it was made from.
     #[must_use]
-    pub fn holds(&self, key: &SurfaceKey, mesh: &Mesh) -> bool {
+    pub fn holds(&self, key: &SurfaceKey, mesh: &Mesh, moved: &[bool]) -> bool {
         self.key == *key
             && self.held.len() == mesh.grids.len()
+            && !self
+                .held
+                .iter()
+                .zip(moved)
+                .any(|(&held, &moved)| held && moved)
             && self.regions.is_empty() == mesh.triangle_region.is_empty()
             && self
                 .held

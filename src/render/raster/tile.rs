@@ -123,6 +123,13 @@ pub(super) fn render_tile<'s>(
     scratch: &mut Scratch<'s>,
 ) -> TileCounts {
     let width = (target.rect.x1 - target.rect.x0 + 1) as usize;
+    let mut triangles = triangles.peekable();
+    if let (Some(over), None) = (over, triangles.peek()) {
+        return TileCounts {
+            fragments: 0,
+            pixels: copy_over(target, width, over, clamp),
+        };
+    }
     scratch.reset(width * target.depth.len(), over, &target.rect);
     let fragments = triangles
         .map(|setup| draw(setup, &target.rect, width, (cut, rows), scratch))
@@ -211,6 +218,42 @@ fn draw<'s>(
         row[2] += e2.step_y;
     }
     fragments
+}
+
+/// Writes every pixel of the tile (rows `width` wide) into the frame buffers as `over` holds
+/// it, a covered pixel's depth with `clamp` clamped to [0, 1]: what [`resolve`] writes where no triangle is
+/// drawn over `over`. Returns the number of pixels with a triangle.
+fn copy_over(
+    mut target: TileTarget<'_>,
+    width: usize,
+    over: &VisibilityBuffer,
+    clamp: bool,
+) -> u64 {
+    let mut pixels = 0;
+    let stride = over.width as usize;
+    let rows = target
+        .depth
+        .iter_mut()
+        .zip(&mut target.triangle)
+        .zip(&mut target.barycentric);
+    for (dy, ((depth, triangle), barycentric)) in rows.enumerate() {
+        let start = (target.rect.y0 as usize + dy) * stride + target.rect.x0 as usize;
+        let from = start..start + width;
+        triangle.copy_from_slice(&over.triangle[from.clone()]);
+        barycentric.copy_from_slice(&over.barycentric[from.clone()]);
+        depth.copy_from_slice(&over.depth[from]);
+        if clamp {
+            for (z, _) in depth
+                .iter_mut()
+                .zip(&**triangle)
+                .filter(|(_, &t)| t != u32::MAX)
+            {
+                *z = z.clamp(0.0, 1.0);
+            }
+        }
+        pixels += triangle.iter().filter(|&&t| t != u32::MAX).count() as u64;
+    }
+    pixels
 }
 
 /// Writes every pixel of the tile into the frame buffers: the winner's index, depth (with
