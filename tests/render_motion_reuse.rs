@@ -181,6 +181,19 @@ fn a_frame_where_one_teapot_moved_rasterizes_it_alone_and_gives_a_fresh_renderer
             _ => one_teapot,
         };
         assert_eq!(s.triangles_rasterized, drawn, "frame {frame}");
+        // Where both this frame and the one before drew over the same kept visibility, the
+        // still teapot's texels whose visibility stayed are kept; at most its samples.
+        let samples = u64::from(settings.samples_per_side().pow(2));
+        let still_texels = kept.aovs.patch_id.as_ref().map(|ids| {
+            ids.iter().filter(|&&id| id < TEAPOT_PATCHES as u32).count() as u64 * samples
+        });
+        match frame {
+            1 | 2 | 6 => assert_eq!(s.texels_kept, 0, "frame {frame}"),
+            _ => assert!(s.texels_kept > 0, "frame {frame}"),
+        }
+        if let Some(still) = still_texels {
+            assert!(s.texels_kept <= still, "frame {frame}");
+        }
         let fresh = render(
             &mut Renderer::new(Arc::clone(&shot.library)),
             &shot,

@@ -44,6 +44,12 @@ pub(crate) fn stats_report(frame: i64, s: &RenderStats) -> String {
             s.triangles_rasterized, s.triangles
         ));
     }
+    if s.texels_kept > 0 {
+        out.push_str(&format!(
+            "\n  G-buffer: {} texels kept from the previous frame",
+            s.texels_kept
+        ));
+    }
     if s.intersection_pairs_kept + s.intersection_pairs_tested > 0 {
         out.push_str(&format!(
             "\n  intersections found again: {} patch pairs kept, {} tested",

@@ -13,7 +13,7 @@ use super::aov::{collect_aovs, AovImages};
 use super::colour::resolve;
 use super::edges::one_sample::OneSampleEdges;
 use super::edges::trim_edge::{composite, find_trim_edges};
-use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use super::gbuffer::{Earlier, GBuffer, PIXELS_PER_JOB};
 use super::line_style::{LineKind, LineStyle};
 use super::lines::{self, draw_lines, IntersectionsFound, LineImage, LineInput, MeshLines};
 use super::plan::{Plan, Surfaces};
@@ -72,6 +72,16 @@ struct StageBuffers {
     moved: Vec<bool>,
     /// The visibility of the patches that did not move, while it serves.
     static_layer: Option<StaticLayer>,
+    /// How many static layers were made.
+    layers_made: u64,
+    /// The last frame's visibility and G-buffer while this frame's are made: the G-buffer's
+    /// texels on the patches of the static layer both frames drew over are kept where the
+    /// visibility stayed.
+    earlier_visibility: VisibilityBuffer,
+    earlier_gbuffer: GBuffer,
+    /// The key of the frame the G-buffer was last filled for and the static layer its
+    /// visibility was drawn over; None when it was drawn over none, or not filled.
+    filled_over: Option<(SurfaceKey, u64)>,
     gbuffer: GBuffer,
     shading: ShadeBuffers,
     /// What the lines found on the mesh and keep while it stays.
@@ -101,6 +111,10 @@ impl Renderer {
                 visibility: VisibilityBuffer::default(),
                 moved: Vec::new(),
                 static_layer: None,
+                layers_made: 0,
+                earlier_visibility: VisibilityBuffer::default(),
+                earlier_gbuffer: GBuffer::default(),
+                filled_over: None,
                 gbuffer: GBuffer::default(),
                 shading: ShadeBuffers::default(),
                 mesh_lines: MeshLines::default(),
@@ -301,6 +315,10 @@ impl StageBuffers {
             visibility,
             moved,
             static_layer,
+            layers_made,
+            earlier_visibility,
+            earlier_gbuffer,
+            filled_over,
             gbuffer,
             shading,
             mesh_lines,
@@ -322,16 +340,31 @@ impl StageBuffers {
                 *kept = None;
                 let mesh = tessellate(tessellator, settings, &grid, segments, &mut stats);
                 generation += u64::from(stats.tessellation_rebuilt);
+                std::mem::swap(visibility, earlier_visibility);
                 let covered = rasterize(
                     (rasterizer, mesh, library, &grid),
-                    (key, moved, static_layer),
+                    (key, moved, static_layer, layers_made),
                     clip,
                     visibility,
                     &mut stats,
                 );
+                let over = static_layer.as_ref().map(|layer| (key, layer.id));
+                let kept_from = filled_over.take();
                 if plan.runs(Stage::GBuffer) {
+                    // The last fill's texels serve where both frames drew over this layer.
+                    let layer = static_layer
+                        .as_ref()
+                        .filter(|_| over.is_some() && kept_from == over);
+                    if layer.is_some() {
+                        std::mem::swap(gbuffer, earlier_gbuffer);
+                    }
+                    let earlier = layer.map(|layer| Earlier {
+                        visibility: earlier_visibility,
+                        gbuffer: earlier_gbuffer,
+                        patches: layer.held(),
+                    });
                     fill_gbuffer(
-                        gbuffer,
+                        (gbuffer, earlier),
                         visibility,
                         mesh,
                         library,
@@ -340,6 +373,7 @@ impl StageBuffers {
                         grid.view_projection,
                         &mut stats,
                     );
+                    *filled_over = over;
                 }
                 *kept = Some(KeptSurfaces { key, covered });
                 (mesh, covered)
@@ -474,7 +508,12 @@ fn tessellate<'t>(
 /// the samples covered.
 fn rasterize(
     (rasterizer, mesh, library, grid): (&mut Rasterizer, &Mesh, &PatchLibrary, &SampleGrid),
-    (key, moved, static_layer): (SurfaceKey, &mut Vec<bool>, &mut Option<StaticLayer>),
+    (key, moved, static_layer, layers_made): (
+        SurfaceKey,
+        &mut Vec<bool>,
+        &mut Option<StaticLayer>,
+        &mut u64,
+    ),
     clip: &mut Vec<Vec4>,
     visibility: &mut VisibilityBuffer,
     stats: &mut RenderStats,
@@ -501,7 +540,8 @@ fn rasterize(
                 let inputs = (triangles, &ranges[..]);
                 let made =
                     rasterizer.rasterize_layer_into(grid.samples, clip, inputs, cut, &mut layer);
-                *static_layer = Some(StaticLayer::of(key, mesh, held, layer));
+                *layers_made += 1;
+                *static_layer = Some(StaticLayer::of(*layers_made, key, mesh, held, layer));
                 stats.triangles_rasterized += made.triangles_in;
             }
         }
@@ -562,10 +602,10 @@ fn shade_from_visibility(
 }
 
 /// [`Stage::GBuffer`]: the texels of the covered samples, their frames as `frames` (the
-/// plan's, [`Plan::first_frames`]) gives them.
+/// plan's, [`Plan::first_frames`]) gives them; those of `earlier` kept where it allows.
 #[allow(clippy::too_many_arguments)]
 fn fill_gbuffer(
-    gbuffer: &mut GBuffer,
+    (gbuffer, earlier): (&mut GBuffer, Option<Earlier>),
     visibility: &VisibilityBuffer,
     mesh: &Mesh,
     library: &PatchLibrary,
@@ -574,18 +614,18 @@ fn fill_gbuffer(
     view_projection: Mat4,
     stats: &mut RenderStats,
 ) {
-    let (exact, seconds) = timed(|| {
-        gbuffer.fill(
-            visibility,
-            mesh,
-            library,
+    let ((exact, kept), seconds) = timed(|| {
+        gbuffer.fill_keeping(
+            (visibility, mesh, library),
             &scene.camera,
             view_projection,
             frames,
             None,
+            earlier,
         )
     });
     stats.exact_frames = exact;
+    stats.texels_kept = kept;
     stats.record(Stage::GBuffer, gbuffer.texels.len() as u64, seconds);
 }
 

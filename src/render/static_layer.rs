@@ -19,6 +19,8 @@ use crate::geom::Region;
 ///
 /// [`Rasterizer::rasterize_over_into`]: super::raster::Rasterizer::rasterize_over_into
 pub(super) struct StaticLayer {
+    /// Which layer this is, counting those a renderer made.
+    pub id: u64,
     key: SurfaceKey,
     /// Per patch, whether its triangles are in the layer.
     held: Vec<bool>,
@@ -30,11 +32,12 @@ pub(super) struct StaticLayer {
 }
 
 impl StaticLayer {
-    /// The record of a layer of the patches `held` marks, in `mesh` under `key`; its pixels
+    /// The record of layer `id` of the patches `held` marks, in `mesh` under `key`; its pixels
     /// are to be drawn into [`StaticLayer::layer`], which starts as `layer`.
     #[must_use]
-    pub fn of(key: SurfaceKey, mesh: &Mesh, held: Vec<bool>, layer: Layer) -> Self {
+    pub fn of(id: u64, key: SurfaceKey, mesh: &Mesh, held: Vec<bool>, layer: Layer) -> Self {
         Self {
+            id,
             key,
             held,
             grids: mesh.grids.clone(),
@@ -87,6 +90,12 @@ impl StaticLayer {
         let same_regions = self.regions.is_empty()
             || self.regions[triangles.clone()] == mesh.triangle_region[triangles];
         same_positions && same_uvs && same_regions
+    }
+
+    /// Per patch, whether the layer holds it.
+    #[must_use]
+    pub fn held(&self) -> &[bool] {
+        &self.held
     }
 
     /// The triangles of the patches the layer does not hold: those to draw over it.
