@@ -130,3 +130,80 @@ fn frames_with_an_adaptive_density_are_a_fresh_renderer_s_bytes() {
         assert_same_output(&kept, &fresh, &format!("frame {frame}"));
     }
 }
+
+/// Two teapots, seen from the front: `still` stays; `driving` turns all along and drives from
+/// beside it to right in front of it by frame 5, then waits while the camera steps aside
+/// between frames 5 and 6 and holds.
+const PASSING: &str = r#"Shot(
+    resolution: (160, 90),
+    frames: (1, 7),
+    fps: 24,
+    output: "passing.####.png",
+    includes: ["looks/studio.ron"],
+    instances: [
+        (name: "still", file: "../patches/teapot.bpt", material: "porcelain",
+         transform: (translate: (-2.2, 0, 0))),
+        (name: "driving", file: "../patches/teapot.bpt", material: "clay",
+         transform: (translate: [(1, (2.2, 0, 0)), (5, (-2.2, -3.5, 0)), (7, (-2.2, -3.5, 0))],
+                     degrees: [(1, 0), (7, 60)])),
+    ],
+    camera: (
+        eye: [(1, (0, -14, 6)), (5, (0, -14, 6)), (6, (1, -13, 6)), (7, (1, -13, 6))],
+        target: (0, 0, 1.2),
+        projection: Perspective(fov_y_degrees: 32.0),
+    ),
+    light: Directional(towards: (-0.35, -0.55, 0.75)),
+    highlights: [
+        (patches: "*", expr: Layer((stack: [], epsilon: 0.02, colour: (1, 1, 1)))),
+    ],
+    render: (
+        preset: Final,
+        outlines: (width: 1.5, colour: (0.05, 0.04, 0.1), crease_degrees: 70.0),
+        aovs: [Matte, PatchId, Depth, Normal, Uv],
+    ),
+)"#;
+
+#[test]
+fn a_frame_where_one_teapot_moved_rasterizes_it_alone_and_gives_a_fresh_renderer_s_bytes() {
+    let shot = load_shot_text(&repo_file("shots/passing.ron"), PASSING.to_string()).unwrap();
+    // Fixed segment counts: both teapots are cut alike, into the same number of triangles.
+    let settings = settings(&shot, Density::PerSpan { u: 4, v: 4 });
+    let mut renderer = Renderer::new(Arc::clone(&shot.library));
+    for frame in 1..=7 {
+        let kept = render(&mut renderer, &shot, frame, &settings);
+        let s = &kept.stats;
+        let one_teapot = s.triangles / 2;
+        // The first frame draws all; the second, where the driving teapot first moved, draws
+        // the still one's visibility to keep and the driving one's over it; so does frame 6,
+        // where the camera moved; the others draw the driving teapot alone.
+        let drawn = match frame {
+            1 | 2 | 6 => s.triangles,
+            _ => one_teapot,
+        };
+        assert_eq!(s.triangles_rasterized, drawn, "frame {frame}");
+        // Where both this frame and the one before drew over the same kept visibility, the
+        // still teapot's texels whose visibility stayed are kept; at most its samples.
+        let samples = u64::from(settings.samples_per_side().pow(2));
+        let still_texels = kept.aovs.patch_id.as_ref().map(|ids| {
+            ids.iter().filter(|&&id| id < TEAPOT_PATCHES as u32).count() as u64 * samples
+        });
+        match frame {
+            1 | 2 | 6 => assert_eq!(s.texels_kept, 0, "frame {frame}"),
+            _ => assert!(s.texels_kept > 0, "frame {frame}"),
+        }
+        if let Some(still) = still_texels {
+            assert!(s.texels_kept <= still, "frame {frame}");
+        }
+        let fresh = render(
+            &mut Renderer::new(Arc::clone(&shot.library)),
+            &shot,
+            frame,
+            &settings,
+        );
+        assert_eq!(
+            fresh.stats.triangles_rasterized, s.triangles,
+            "frame {frame}"
+        );
+        assert_same_output(&kept, &fresh, &format!("frame {frame}"));
+    }
+}

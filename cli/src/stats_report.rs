@@ -38,6 +38,18 @@ pub(crate) fn stats_report(frame: i64, s: &RenderStats) -> String {
             out.push_str(&format!("\n  {name:<12} {:>10}", "skipped"));
         }
     }
+    if s.ran(Stage::Rasterize) && s.triangles_rasterized < s.triangles {
+        out.push_str(&format!(
+            "\n  rasterized {} of {} triangles: the others' visibility was kept",
+            s.triangles_rasterized, s.triangles
+        ));
+    }
+    if s.texels_kept > 0 {
+        out.push_str(&format!(
+            "\n  G-buffer: {} texels kept from the previous frame",
+            s.texels_kept
+        ));
+    }
     if s.intersection_pairs_kept + s.intersection_pairs_tested > 0 {
         out.push_str(&format!(
             "\n  intersections found again: {} patch pairs kept, {} tested",

@@ -99,6 +99,19 @@ struct Fill<'a> {
     frames: Frames<'a>,
     /// Per pixel, how much of its frame to evaluate (`None`: all of every frame).
     evaluate: Option<&'a [Evaluate]>,
+    /// An earlier fill whose texels are kept where they are the same.
+    earlier: Option<Earlier<'a>>,
+}
+
+/// An earlier fill of a G-buffer of the same size, camera and frame mode, from `visibility`,
+/// whose texels on the patches `patches` marks (one flag per patch) are kept where the
+/// visibility is the same: those patches' mesh (grids, vertices and their frames) and surfaces
+/// being the ones it was filled from, a texel is a function of its pixel's visibility alone.
+#[derive(Clone, Copy)]
+pub(super) struct Earlier<'a> {
+    pub visibility: &'a VisibilityBuffer,
+    pub gbuffer: &'a GBuffer,
+    pub patches: &'a [bool],
 }
 
 /// What evaluating texels' frames on their patches needs to know: the texels' `pixel` indices
@@ -142,6 +155,28 @@ impl GBuffer {
         mode: FrameMode,
         evaluate: Option<&[Evaluate]>,
     ) -> u64 {
+        let surfaces = (visibility, mesh, library);
+        self.fill_keeping(surfaces, camera, view_projection, mode, evaluate, None)
+            .0
+    }
+
+    /// [`GBuffer::fill`], keeping the texels of `earlier` where its visibility is bit for bit
+    /// this one's on a patch it marks: the texel is the one a fill would make, not made again.
+    /// Returns the frames evaluated on the patches and the texels kept.
+    pub(super) fn fill_keeping(
+        &mut self,
+        (visibility, mesh, library): (&VisibilityBuffer, &Mesh, &PatchLibrary),
+        camera: &Camera,
+        view_projection: Mat4,
+        mode: FrameMode,
+        evaluate: Option<&[Evaluate]>,
+        earlier: Option<Earlier>,
+    ) -> (u64, u64) {
+        let earlier = earlier.filter(|e| {
+            e.visibility.triangle.len() == visibility.triangle.len()
+                && e.gbuffer.slot.len() == visibility.triangle.len()
+                && e.patches.len() == mesh.grids.len()
+        });
         (self.width, self.height) = (visibility.width, visibility.height);
         let counts: Vec<usize> = visibility
             .triangle
@@ -169,6 +204,7 @@ impl GBuffer {
                 mode,
             },
             evaluate,
+            earlier,
         };
         blocks
             .into_par_iter()
@@ -180,16 +216,27 @@ impl GBuffer {
                     fill.block(block * PIXELS_PER_JOB, first, texels, slots, scratch);
                 },
             );
-        match (mode, evaluate) {
+        let kept = match earlier {
+            None => 0,
+            Some(_) => self
+                .texels
+                .par_iter()
+                .with_min_len(PIXELS_PER_JOB)
+                .filter(|t| fill.kept(t.pixel as usize).is_some())
+                .count() as u64,
+        };
+        let frames = match (mode, evaluate) {
             (FrameMode::Interpolated, _) => 0,
-            (FrameMode::Exact | FrameMode::Refined, None) => self.texels.len() as u64,
+            (FrameMode::Exact | FrameMode::Refined, None) => self.texels.len() as u64 - kept,
             (FrameMode::Exact | FrameMode::Refined, Some(evaluate)) => {
                 self.texels
                     .iter()
                     .filter(|t| evaluate[t.pixel as usize] != Evaluate::Mesh)
+                    .filter(|t| fill.kept(t.pixel as usize).is_none())
                     .count() as u64
             }
-        }
+        };
+        (frames, kept)
     }
 
     /// The frames of `texels` in `mode`, as [`fill`](Self::fill) evaluates them: with
@@ -223,7 +270,7 @@ impl GBuffer {
         texels.par_chunks_mut(PIXELS_PER_JOB).for_each_init(
             FrameScratch::default,
             |scratch, chunk| {
-                frames.exact_frames(chunk, &|_| evaluate, scratch);
+                frames.exact_frames(chunk, &|_| evaluate, &|_| false, scratch);
             },
         );
         match evaluate {
@@ -295,7 +342,10 @@ impl Fill<'_> {
                 continue;
             }
             *slot = first + k as u32;
-            texels[k] = self.texel(i, triangle);
+            texels[k] = match self.kept(i) {
+                Some(kept) => kept,
+                None => self.texel(i, triangle),
+            };
             k += 1;
         }
         if self.frames.mode != FrameMode::Interpolated {
@@ -303,8 +353,28 @@ impl Fill<'_> {
                 self.evaluate
                     .map_or(Evaluate::Full, |e| e[t.pixel as usize])
             };
-            self.frames.exact_frames(texels, &evaluate, scratch);
+            let kept = |t: &Texel| self.kept(t.pixel as usize).is_some();
+            self.frames.exact_frames(texels, &evaluate, &kept, scratch);
         }
+    }
+
+    /// The earlier fill's texel of pixel `i`, where it is kept: the pixel's triangle is on a
+    /// patch the earlier fill marks, and its triangle, depth and barycentrics are bit for bit
+    /// those the earlier fill saw.
+    fn kept(&self, i: usize) -> Option<Texel> {
+        let earlier = self.earlier.as_ref()?;
+        let triangle = self.visibility.triangle[i];
+        let patch = *self.mesh.triangle_patch.get(triangle as usize)?;
+        let was = earlier.visibility;
+        let same = earlier.patches[patch as usize]
+            && was.triangle[i] == triangle
+            && was.depth[i].to_bits() == self.visibility.depth[i].to_bits()
+            && was.barycentric[i].map(f32::to_bits)
+                == self.visibility.barycentric[i].map(f32::to_bits);
+        if !same {
+            return None;
+        }
+        earlier.gbuffer.texel(i).copied()
     }
 
     /// The texel of pixel `i`, covered by `triangle`: patch, (u, v) and position interpolated
@@ -364,14 +434,14 @@ impl Frames<'_> {
         &self,
         texels: &mut [Texel],
         evaluate: &dyn Fn(&Texel) -> Evaluate,
+        kept: &dyn Fn(&Texel) -> bool,
         scratch: &mut FrameScratch,
     ) {
         let refined = self.mode == FrameMode::Refined;
-        let runs = texels.chunk_by_mut(|a, b| {
-            a.patch == b.patch && (evaluate(a) == Evaluate::Mesh) == (evaluate(b) == Evaluate::Mesh)
-        });
+        let skipped = |t: &Texel| evaluate(t) == Evaluate::Mesh || kept(t);
+        let runs = texels.chunk_by_mut(|a, b| a.patch == b.patch && skipped(a) == skipped(b));
         for run in runs {
-            if evaluate(&run[0]) == Evaluate::Mesh {
+            if skipped(&run[0]) {
                 continue;
             }
             let surface = &self.library.patches[run[0].patch as usize].surface;

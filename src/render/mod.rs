@@ -29,6 +29,7 @@ mod scene;
 mod settings;
 mod shade;
 mod stage;
+mod static_layer;
 mod stats;
 mod surface_key;
 mod surface_point;

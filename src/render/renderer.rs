@@ -13,15 +13,16 @@ use super::aov::{collect_aovs, AovImages};
 use super::colour::resolve;
 use super::edges::one_sample::OneSampleEdges;
 use super::edges::trim_edge::{composite, find_trim_edges};
-use super::gbuffer::{GBuffer, PIXELS_PER_JOB};
+use super::gbuffer::{Earlier, GBuffer, PIXELS_PER_JOB};
 use super::line_style::{LineKind, LineStyle};
 use super::lines::{self, draw_lines, IntersectionsFound, LineImage, LineInput, MeshLines};
 use super::plan::{Plan, Surfaces};
-use super::raster::{Cut, RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
+use super::raster::{Cut, RasterOptions, RasterStats, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
 use super::settings::{Antialias, FrameMode, Settings};
 use super::shade::{shade, Edges, ShadeBuffers, Shaded};
 use super::stage::Stage;
+use super::static_layer::{triangle_ranges, StaticLayer};
 use super::stats::{timed, RenderStats};
 use super::surface_key::SurfaceKey;
 use super::tessellate::{vertex_count, Mesh, Segments, Tessellator};
@@ -46,7 +47,9 @@ pub struct RenderedFrame {
 /// between frames. A frame whose camera, image and accuracy settings are the previous frame's
 /// (only materials, highlights, the light or outline settings changed) reuses its mesh,
 /// visibility buffer and G-buffer: only the stages those changes touch run
-/// ([`Plan::reusing_surfaces`]), and the bytes are those of a fresh renderer's frame.
+/// ([`Plan::reusing_surfaces`]), and the bytes are those of a fresh renderer's frame. A frame
+/// where some patches moved under the same camera and settings rasterizes only the moved
+/// patches, over the kept visibility of the others, with the same bytes.
 pub struct Renderer {
     library: Arc<PatchLibrary>,
     buffers: StageBuffers,
@@ -65,6 +68,20 @@ struct StageBuffers {
     clip: Vec<Vec4>,
     rasterizer: Rasterizer,
     visibility: VisibilityBuffer,
+    /// Per patch, whether it moved or deformed since the last frame rasterized.
+    moved: Vec<bool>,
+    /// The visibility of the patches that did not move, while it serves.
+    static_layer: Option<StaticLayer>,
+    /// How many static layers were made.
+    layers_made: u64,
+    /// The last frame's visibility and G-buffer while this frame's are made: the G-buffer's
+    /// texels on the patches of the static layer both frames drew over are kept where the
+    /// visibility stayed.
+    earlier_visibility: VisibilityBuffer,
+    earlier_gbuffer: GBuffer,
+    /// The key of the frame the G-buffer was last filled for and the static layer its
+    /// visibility was drawn over; None when it was drawn over none, or not filled.
+    filled_over: Option<(SurfaceKey, u64)>,
     gbuffer: GBuffer,
     shading: ShadeBuffers,
     /// What the lines found on the mesh and keep while it stays.
@@ -92,6 +109,12 @@ impl Renderer {
                 clip: Vec::new(),
                 rasterizer: Rasterizer::new(),
                 visibility: VisibilityBuffer::default(),
+                moved: Vec::new(),
+                static_layer: None,
+                layers_made: 0,
+                earlier_visibility: VisibilityBuffer::default(),
+                earlier_gbuffer: GBuffer::default(),
+                filled_over: None,
                 gbuffer: GBuffer::default(),
                 shading: ShadeBuffers::default(),
                 mesh_lines: MeshLines::default(),
@@ -143,6 +166,11 @@ impl Renderer {
                 .tessellator
                 .repose(Arc::clone(&library), &moved);
             self.buffers.kept = None;
+            let since = &mut self.buffers.moved;
+            since.resize(moved.len(), false);
+            for (since, &m) in since.iter_mut().zip(&moved) {
+                *since |= m;
+            }
             self.library = library;
         }
         Ok(())
@@ -285,6 +313,12 @@ impl StageBuffers {
             clip,
             rasterizer,
             visibility,
+            moved,
+            static_layer,
+            layers_made,
+            earlier_visibility,
+            earlier_gbuffer,
+            filled_over,
             gbuffer,
             shading,
             mesh_lines,
@@ -306,12 +340,31 @@ impl StageBuffers {
                 *kept = None;
                 let mesh = tessellate(tessellator, settings, &grid, segments, &mut stats);
                 generation += u64::from(stats.tessellation_rebuilt);
+                std::mem::swap(visibility, earlier_visibility);
                 let covered = rasterize(
-                    rasterizer, mesh, library, &grid, clip, visibility, &mut stats,
+                    (rasterizer, mesh, library, &grid),
+                    (key, moved, static_layer, layers_made),
+                    clip,
+                    visibility,
+                    &mut stats,
                 );
+                let over = static_layer.as_ref().map(|layer| (key, layer.id));
+                let kept_from = filled_over.take();
                 if plan.runs(Stage::GBuffer) {
+                    // The last fill's texels serve where both frames drew over this layer.
+                    let layer = static_layer
+                        .as_ref()
+                        .filter(|_| over.is_some() && kept_from == over);
+                    if layer.is_some() {
+                        std::mem::swap(gbuffer, earlier_gbuffer);
+                    }
+                    let earlier = layer.map(|layer| Earlier {
+                        visibility: earlier_visibility,
+                        gbuffer: earlier_gbuffer,
+                        patches: layer.held(),
+                    });
                     fill_gbuffer(
-                        gbuffer,
+                        (gbuffer, earlier),
                         visibility,
                         mesh,
                         library,
@@ -320,6 +373,7 @@ impl StageBuffers {
                         grid.view_projection,
                         &mut stats,
                     );
+                    *filled_over = over;
                 }
                 *kept = Some(KeptSurfaces { key, covered });
                 (mesh, covered)
@@ -447,13 +501,19 @@ fn tessellate<'t>(
 }
 
 /// [`Stage::Rasterize`]: the mesh's vertices to clip space, then its triangles into the
-/// visibility buffer at the sample resolution, less what the patches' trims cut away. Returns
+/// visibility buffer at the sample resolution, less what the patches' trims cut away. Where
+/// `static_layer` shows the patches it holds as they are now (under `key`), only the others
+/// are drawn, over it; else, where patches `moved` since the last frame rasterized, the others
+/// are drawn into a new layer and the moved ones over it; else the whole mesh is drawn. Returns
 /// the samples covered.
 fn rasterize(
-    rasterizer: &mut Rasterizer,
-    mesh: &Mesh,
-    library: &PatchLibrary,
-    grid: &SampleGrid,
+    (rasterizer, mesh, library, grid): (&mut Rasterizer, &Mesh, &PatchLibrary, &SampleGrid),
+    (key, moved, static_layer, layers_made): (
+        SurfaceKey,
+        &mut Vec<bool>,
+        &mut Option<StaticLayer>,
+        &mut u64,
+    ),
     clip: &mut Vec<Vec4>,
     visibility: &mut VisibilityBuffer,
     stats: &mut RenderStats,
@@ -464,20 +524,58 @@ fn rasterize(
             .with_min_len(PIXELS_PER_JOB)
             .map(|p| grid.view_projection * p.extend(1.0))
             .collect_into_vec(clip);
-        let options = RasterOptions {
-            threads: 0,
-            ..RasterOptions::default()
-        };
         let cut = MeshCut::of(mesh, library);
-        rasterizer.rasterize_cut_into(
-            grid.samples,
-            clip,
-            &mesh.triangles,
-            cut.as_ref().map(|c| c as &dyn Cut),
-            &options,
-            visibility,
-        )
+        let cut = cut.as_ref().map(|c| c as &dyn Cut);
+        let triangles = &mesh.triangles[..];
+        moved.resize(mesh.grids.len(), false);
+        if static_layer
+            .as_ref()
+            .is_none_or(|l| !l.holds(&key, mesh, moved))
+        {
+            let recycled = static_layer.take().map(|l| l.layer);
+            if moved.iter().any(|&m| m) {
+                let held: Vec<bool> = moved.iter().map(|&m| !m).collect();
+                let ranges = triangle_ranges(mesh, |p| held[p]);
+                let mut layer = recycled.unwrap_or_default();
+                let inputs = (triangles, &ranges[..]);
+                let made =
+                    rasterizer.rasterize_layer_into(grid.samples, clip, inputs, cut, &mut layer);
+                *layers_made += 1;
+                *static_layer = Some(StaticLayer::of(*layers_made, key, mesh, held, layer));
+                stats.triangles_rasterized += made.triangles_in;
+            }
+        }
+        moved.fill(false);
+        let raster = match static_layer {
+            Some(layer) => {
+                let ranges = layer.unheld(mesh);
+                rasterizer.rasterize_over_into(
+                    grid.samples,
+                    clip,
+                    (triangles, &ranges),
+                    (cut, &layer.layer),
+                    visibility,
+                )
+            }
+            None => {
+                let options = RasterOptions {
+                    threads: 0,
+                    ..RasterOptions::default()
+                };
+                rasterizer.rasterize_cut_into(
+                    grid.samples,
+                    clip,
+                    triangles,
+                    cut,
+                    &options,
+                    visibility,
+                )
+            }
+        };
+        stats.triangles_rasterized += raster.triangles_in;
+        raster
     });
+    let raster: RasterStats = raster;
     stats.record(Stage::Rasterize, raster.pixels_covered, seconds);
     raster.pixels_covered
 }
@@ -504,10 +602,10 @@ fn shade_from_visibility(
 }
 
 /// [`Stage::GBuffer`]: the texels of the covered samples, their frames as `frames` (the
-/// plan's, [`Plan::first_frames`]) gives them.
+/// plan's, [`Plan::first_frames`]) gives them; those of `earlier` kept where it allows.
 #[allow(clippy::too_many_arguments)]
 fn fill_gbuffer(
-    gbuffer: &mut GBuffer,
+    (gbuffer, earlier): (&mut GBuffer, Option<Earlier>),
     visibility: &VisibilityBuffer,
     mesh: &Mesh,
     library: &PatchLibrary,
@@ -516,18 +614,18 @@ fn fill_gbuffer(
     view_projection: Mat4,
     stats: &mut RenderStats,
 ) {
-    let (exact, seconds) = timed(|| {
-        gbuffer.fill(
-            visibility,
-            mesh,
-            library,
+    let ((exact, kept), seconds) = timed(|| {
+        gbuffer.fill_keeping(
+            (visibility, mesh, library),
             &scene.camera,
             view_projection,
             frames,
             None,
+            earlier,
         )
     });
     stats.exact_frames = exact;
+    stats.texels_kept = kept;
     stats.record(Stage::GBuffer, gbuffer.texels.len() as u64, seconds);
 }
 

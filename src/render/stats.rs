@@ -45,6 +45,15 @@ pub struct RenderStats {
     /// frame found the intersections again).
     pub intersection_pairs_tested: usize,
     pub triangles: usize,
+    /// Triangles drawn into the visibility buffer (or the kept visibility of the patches that
+    /// did not move) for this frame: fewer than [`RenderStats::triangles`] when the triangles
+    /// of patches that did not move were kept from an earlier frame; 0 when the rasterize
+    /// stage did not run.
+    pub triangles_rasterized: usize,
+    /// G-buffer texels kept from the previous frame rather than made again: on patches that
+    /// did not move, where the visibility buffer is the previous frame's (0 when the G-buffer
+    /// was not filled).
+    pub texels_kept: u64,
     /// NURBS frames evaluated per pixel (exact and refined frames).
     pub exact_frames: u64,
     /// Samples on highlighted patches: the only ones a half vector was built for.
@@ -72,6 +81,8 @@ impl RenderStats {
             intersection_pairs_kept: 0,
             intersection_pairs_tested: 0,
             triangles: 0,
+            triangles_rasterized: 0,
+            texels_kept: 0,
             exact_frames: 0,
             highlight_pixels: 0,
             xtoon_pixels: 0,
@@ -136,7 +147,7 @@ impl Serialize for RenderStats {
             }
         }
         let reused: Vec<&str> = self.plan.reused_stages().map(Stage::name).collect();
-        let mut s = serializer.serialize_struct("RenderStats", 12)?;
+        let mut s = serializer.serialize_struct("RenderStats", 14)?;
         s.serialize_field("stages", &Stages(self))?;
         s.serialize_field("reused", &reused)?;
         s.serialize_field("tessellation_rebuilt", &self.tessellation_rebuilt)?;
@@ -145,6 +156,8 @@ impl Serialize for RenderStats {
         s.serialize_field("intersection_pairs_kept", &self.intersection_pairs_kept)?;
         s.serialize_field("intersection_pairs_tested", &self.intersection_pairs_tested)?;
         s.serialize_field("triangles", &self.triangles)?;
+        s.serialize_field("triangles_rasterized", &self.triangles_rasterized)?;
+        s.serialize_field("texels_kept", &self.texels_kept)?;
         s.serialize_field("exact_frames", &self.exact_frames)?;
         s.serialize_field("highlight_pixels", &self.highlight_pixels)?;
         s.serialize_field("xtoon_pixels", &self.xtoon_pixels)?;

@@ -43,12 +43,13 @@
 mod bin;
 mod clip;
 mod cut;
+mod layer;
 mod setup;
 mod tile;
 mod viewport;
 mod visibility;
 
-use std::ops::{Add, Mul};
+use std::ops::{Add, Mul, Range};
 
 use glam::{DVec2, Vec4};
 use rayon::prelude::*;
@@ -61,6 +62,7 @@ use setup::{Screen, ScreenVertex, TriangleSetup};
 use tile::Scratch;
 
 pub use cut::Cut;
+pub use layer::Layer;
 pub use setup::{MAX_VIEWPORT_SIDE, SUBPIXEL_BITS};
 pub use viewport::Viewport;
 pub use visibility::{Hit, VisibilityBuffer};
@@ -272,23 +274,129 @@ impl Rasterizer {
                     ..RasterStats::default()
                 };
             }
+            let drawn = Drawn {
+                ranges: None,
+                over: None,
+                clamp: true,
+            };
             self.rasterize_in_pool(
                 viewport,
                 positions,
                 triangles,
                 (cut, rows),
+                drawn,
                 tile_size,
                 buffer,
             )
         })
     }
 
+    /// [`Rasterizer::rasterize_cut_into`] of only the triangles whose indices lie in `ranges`
+    /// (ascending, not overlapping, within the list), into `layer`: what they show, to be drawn
+    /// over by the others ([`Rasterizer::rasterize_over_into`]).
+    ///
+    /// # Panics
+    /// As [`rasterize`], and if a range is out of order or beyond the list.
+    pub fn rasterize_layer_into(
+        &mut self,
+        viewport: Viewport,
+        positions: &[ClipVertex],
+        (triangles, ranges): (&[[u32; 3]], &[Range<u32>]),
+        cut: Option<&dyn Cut>,
+        layer: &mut Layer,
+    ) -> RasterStats {
+        let drawn = Drawn {
+            ranges: Some(ranges),
+            over: None,
+            clamp: false,
+        };
+        let buffer = layer.buffer_mut();
+        self.rasterize_ranges(viewport, positions, triangles, cut, drawn, buffer)
+    }
+
+    /// The triangles whose indices lie in `ranges` (ascending, not overlapping, within the list)
+    /// drawn over `layer`, the visibility of other triangles of the same list made by
+    /// [`Rasterizer::rasterize_layer_into`] for the same viewport, positions of its triangles
+    /// and cut. The buffer is byte for byte the one [`Rasterizer::rasterize_cut_into`] makes of
+    /// the layer's triangles and these together: the depth test keeps, per pixel, the nearest
+    /// fragment and on equal depth the lower triangle index, whatever the order they are drawn
+    /// in. The statistics count the triangles in `ranges` alone, the pixels covered by either.
+    ///
+    /// # Panics
+    /// As [`Rasterizer::rasterize_layer_into`], and if the layer is not of `viewport`'s size.
+    pub fn rasterize_over_into(
+        &mut self,
+        viewport: Viewport,
+        positions: &[ClipVertex],
+        (triangles, ranges): (&[[u32; 3]], &[Range<u32>]),
+        (cut, layer): (Option<&dyn Cut>, &Layer),
+        buffer: &mut VisibilityBuffer,
+    ) -> RasterStats {
+        let over = layer.buffer();
+        assert!(
+            over.width == viewport.width && over.height == viewport.height,
+            "the layer is of the viewport's size"
+        );
+        let drawn = Drawn {
+            ranges: Some(ranges),
+            over: Some(over),
+            clamp: true,
+        };
+        self.rasterize_ranges(viewport, positions, triangles, cut, drawn, buffer)
+    }
+
+    /// The checks and pool of [`Rasterizer::rasterize_rows_into`] for a draw of some ranges of
+    /// triangles.
+    fn rasterize_ranges(
+        &mut self,
+        viewport: Viewport,
+        positions: &[ClipVertex],
+        triangles: &[[u32; 3]],
+        cut: Option<&dyn Cut>,
+        drawn: Drawn<'_>,
+        buffer: &mut VisibilityBuffer,
+    ) -> RasterStats {
+        assert!(
+            viewport.width <= MAX_VIEWPORT_SIDE && viewport.height <= MAX_VIEWPORT_SIDE,
+            "viewport {}×{} exceeds {MAX_VIEWPORT_SIDE} pixels a side",
+            viewport.width,
+            viewport.height
+        );
+        assert!(
+            triangles.len() < u32::MAX as usize,
+            "u32::MAX marks empty pixels"
+        );
+        let mut end = 0;
+        for range in drawn.ranges.unwrap_or_default() {
+            assert!(
+                range.start >= end && range.start <= range.end,
+                "ranges ascend without overlap"
+            );
+            assert!(
+                range.end as usize <= triangles.len(),
+                "ranges within the list"
+            );
+            end = range.end;
+        }
+        buffer.resize(viewport);
+        if viewport.width == 0 || viewport.height == 0 {
+            return RasterStats::default();
+        }
+        let tile_size = RasterOptions::DEFAULT_TILE_SIZE;
+        let kept = (cut, None);
+        self.rasterize_in_pool(
+            viewport, positions, triangles, kept, drawn, tile_size, buffer,
+        )
+    }
+
+    #[allow(clippy::too_many_arguments)]
     fn rasterize_in_pool(
         &mut self,
         viewport: Viewport,
         positions: &[ClipVertex],
         triangles: &[[u32; 3]],
         (cut, rows): Kept<'_>,
+        drawn: Drawn<'_>,
         tile_size: u32,
         buffer: &mut VisibilityBuffer,
     ) -> RasterStats {
@@ -307,14 +415,25 @@ impl Rasterizer {
             cut,
         };
         let grid = TileGrid::new(screen.bounds, tile_size);
-        let runs = triangles.chunks(CHUNK_TRIANGLES).len();
-        self.chunks.resize_with(runs, Chunk::default);
+        let all = 0..triangles.len() as u32;
+        let whole = std::slice::from_ref(&all);
+        let runs: Vec<(u32, &[[u32; 3]])> = drawn
+            .ranges
+            .unwrap_or(whole)
+            .iter()
+            .flat_map(|range| {
+                let run = &triangles[range.start as usize..range.end as usize];
+                (range.start..)
+                    .step_by(CHUNK_TRIANGLES)
+                    .zip(run.chunks(CHUNK_TRIANGLES))
+            })
+            .collect();
+        self.chunks.resize_with(runs.len(), Chunk::default);
         self.chunks
             .par_iter_mut()
-            .zip(triangles.par_chunks(CHUNK_TRIANGLES))
-            .enumerate()
-            .for_each(|(i, (chunk, run))| {
-                chunk.set_up(&input, &grid, run, (i * CHUNK_TRIANGLES) as u32);
+            .zip(runs.par_iter())
+            .for_each(|(chunk, &(first, run))| {
+                chunk.set_up(&input, &grid, run, first);
             });
 
         let chunks = &self.chunks;
@@ -329,7 +448,13 @@ impl Rasterizer {
                         .iter()
                         .map(|&i| &chunk.setups[i as usize])
                 });
-                tile::render_tile(target, binned, (cut, rows), scratch)
+                tile::render_tile(
+                    target,
+                    binned,
+                    (cut, rows),
+                    (drawn.over, drawn.clamp),
+                    scratch,
+                )
             })
             .reduce(tile::TileCounts::default, |a, b| tile::TileCounts {
                 fragments: a.fragments + b.fragments,
@@ -344,6 +469,18 @@ impl Rasterizer {
             ..stats
         }
     }
+}
+
+/// Which triangles a call draws, over what, and how it writes depth.
+#[derive(Clone, Copy)]
+struct Drawn<'a> {
+    /// The indices of the triangles drawn; None: all of them.
+    ranges: Option<&'a [Range<u32>]>,
+    /// What other triangles show, drawn over ([`Layer`]'s buffer).
+    over: Option<&'a VisibilityBuffer>,
+    /// Whether depth is written clamped to [0, 1], as a visibility buffer holds it, or as
+    /// computed, as a [`Layer`] keeps it for the depth test of the triangles drawn over it.
+    clamp: bool,
 }
 
 /// Runs `job` in a new pool of `threads` threads, or in the current pool when `threads` is 0 (or

@@ -56,6 +56,8 @@ fn split_rows<'a, T>(data: &'a mut [T], width: usize, grid: &TileGrid) -> Vec<Ve
 /// that has it, row-major over the tile.
 pub(super) struct Scratch<'s> {
     depth: Vec<f32>,
+    /// The triangle index of the nearest fragment so far, `u32::MAX` where none.
+    index: Vec<u32>,
     winner: Vec<Option<&'s TriangleSetup>>,
 }
 
@@ -63,15 +65,33 @@ impl Scratch<'_> {
     pub(super) fn new() -> Self {
         Self {
             depth: Vec::new(),
+            index: Vec::new(),
             winner: Vec::new(),
         }
     }
 
-    fn reset(&mut self, pixels: usize) {
-        self.depth.clear();
-        self.depth.resize(pixels, f32::INFINITY);
+    /// Empties the scratch for a tile of `pixels` pixels, or with `over`, starts it at what
+    /// `over` holds over the tile's rectangle `rect` (its row width `width`).
+    fn reset(&mut self, pixels: usize, over: Option<&VisibilityBuffer>, rect: &PixelRect) {
         self.winner.clear();
         self.winner.resize(pixels, None);
+        self.depth.clear();
+        self.index.clear();
+        match over {
+            None => {
+                self.depth.resize(pixels, f32::INFINITY);
+                self.index.resize(pixels, u32::MAX);
+            }
+            Some(over) => {
+                let stride = over.width as usize;
+                for y in rect.y0..=rect.y1 {
+                    let start = y as usize * stride + rect.x0 as usize;
+                    let end = y as usize * stride + rect.x1 as usize + 1;
+                    self.depth.extend_from_slice(&over.depth[start..end]);
+                    self.index.extend_from_slice(&over.triangle[start..end]);
+                }
+            }
+        }
     }
 }
 
@@ -87,20 +107,34 @@ pub(super) struct TileCounts {
 /// Renders `triangles` (in ascending input order) into the tile `target`, in each row `y` of
 /// the image only the pixels `rows[y].0 .. rows[y].1` when `rows` is given.
 ///
-/// Depth test: a fragment replaces the stored one only if strictly nearer, so on equal depth the
-/// triangle drawn first — the lower index — wins, whatever the traversal order of tiles.
+/// With `over`, the tile starts as `over` holds it (a [`Layer`](super::Layer) of other
+/// triangles, depth unclamped) instead of empty; with `clamp`, depth is written clamped to
+/// [0, 1].
+///
+/// Depth test: a fragment replaces the stored one when nearer, or at equal depth when of a
+/// lower triangle index, so that per pixel the least `(depth, index)` wins whatever order the
+/// triangles are drawn in (in ascending order, as here, the second case never arises but over
+/// a layer); pieces of one clipped triangle meet in their clipping order.
 pub(super) fn render_tile<'s>(
     target: TileTarget<'_>,
     triangles: impl Iterator<Item = &'s TriangleSetup>,
     (cut, rows): Kept<'_>,
+    (over, clamp): (Option<&VisibilityBuffer>, bool),
     scratch: &mut Scratch<'s>,
 ) -> TileCounts {
     let width = (target.rect.x1 - target.rect.x0 + 1) as usize;
-    scratch.reset(width * target.depth.len());
+    let mut triangles = triangles.peekable();
+    if let (Some(over), None) = (over, triangles.peek()) {
+        return TileCounts {
+            fragments: 0,
+            pixels: copy_over(target, width, over, clamp),
+        };
+    }
+    scratch.reset(width * target.depth.len(), over, &target.rect);
     let fragments = triangles
         .map(|setup| draw(setup, &target.rect, width, (cut, rows), scratch))
         .sum();
-    let pixels = resolve(target, width, scratch);
+    let pixels = resolve(target, width, scratch, (over, clamp));
     TileCounts { fragments, pixels }
 }
 
@@ -148,6 +182,7 @@ fn draw<'s>(
         let start = (y - tile.y0) as usize * width + (x0 - tile.x0) as usize;
         let span = (x1 - x0 + 1) as usize;
         let depth = &mut scratch.depth[start..start + span];
+        let index = &mut scratch.index[start..start + span];
         let winner = &mut scratch.winner[start..start + span];
         let mut e = [
             row[0] + skipped * e0.step_x,
@@ -155,15 +190,19 @@ fn draw<'s>(
             row[2] + skipped * e2.step_x,
         ];
         let mut entered = false;
-        for (x, (stored, won)) in (x0..).zip(depth.iter_mut().zip(winner)) {
+        let pixels = depth.iter_mut().zip(index).zip(winner);
+        for (x, ((stored, stored_index), won)) in (x0..).zip(pixels) {
             if (e[0] | e[1] | e[2]) >= 0 {
                 entered = true;
                 fragments += 1;
                 let z = setup.depth_at(e);
-                if z < *stored
-                    && cut.is_none_or(|c| c.keeps(setup.triangle, setup.barycentric(x, y)))
-                {
+                let nearer = z < *stored
+                    || (z == *stored
+                        && *stored_index != u32::MAX
+                        && setup.triangle < *stored_index);
+                if nearer && cut.is_none_or(|c| c.keeps(setup.triangle, setup.barycentric(x, y))) {
                     *stored = z;
+                    *stored_index = setup.triangle;
                     *won = Some(setup);
                 }
             } else if entered {
@@ -181,10 +220,53 @@ fn draw<'s>(
     fragments
 }
 
-/// Writes every pixel of the tile into the frame buffers: the winner's index, depth (clamped to
-/// [0, 1] against rounding) and barycentrics, or the empty values; returns the number of pixels
+/// Writes every pixel of the tile (rows `width` wide) into the frame buffers as `over` holds
+/// it, a covered pixel's depth with `clamp` clamped to [0, 1]: what [`resolve`] writes where no triangle is
+/// drawn over `over`. Returns the number of pixels with a triangle.
+fn copy_over(
+    mut target: TileTarget<'_>,
+    width: usize,
+    over: &VisibilityBuffer,
+    clamp: bool,
+) -> u64 {
+    let mut pixels = 0;
+    let stride = over.width as usize;
+    let rows = target
+        .depth
+        .iter_mut()
+        .zip(&mut target.triangle)
+        .zip(&mut target.barycentric);
+    for (dy, ((depth, triangle), barycentric)) in rows.enumerate() {
+        let start = (target.rect.y0 as usize + dy) * stride + target.rect.x0 as usize;
+        let from = start..start + width;
+        triangle.copy_from_slice(&over.triangle[from.clone()]);
+        barycentric.copy_from_slice(&over.barycentric[from.clone()]);
+        depth.copy_from_slice(&over.depth[from]);
+        if clamp {
+            for (z, _) in depth
+                .iter_mut()
+                .zip(&**triangle)
+                .filter(|(_, &t)| t != u32::MAX)
+            {
+                *z = z.clamp(0.0, 1.0);
+            }
+        }
+        pixels += triangle.iter().filter(|&&t| t != u32::MAX).count() as u64;
+    }
+    pixels
+}
+
+/// Writes every pixel of the tile into the frame buffers: the winner's index, depth (with
+/// `clamp`, clamped to [0, 1] against rounding) and barycentrics, what `over` holds there
+/// where no triangle drawn won over it, or the empty values; returns the number of pixels
 /// with a winner.
-fn resolve(mut target: TileTarget<'_>, width: usize, scratch: &Scratch<'_>) -> u64 {
+fn resolve(
+    mut target: TileTarget<'_>,
+    width: usize,
+    scratch: &Scratch<'_>,
+    (over, clamp): (Option<&VisibilityBuffer>, bool),
+) -> u64 {
+    let clamped = |z: f32| if clamp { z.clamp(0.0, 1.0) } else { z };
     let mut pixels = 0;
     let rows = target
         .depth
@@ -200,12 +282,23 @@ fn resolve(mut target: TileTarget<'_>, width: usize, scratch: &Scratch<'_>) -> u
                 Some(setup) => {
                     pixels += 1;
                     (
-                        scratch.depth[start + dx].clamp(0.0, 1.0),
+                        clamped(scratch.depth[start + dx]),
                         setup.triangle,
                         setup.barycentric(target.rect.x0 + dx as i32, y),
                     )
                 }
-                None => (f32::INFINITY, u32::MAX, [0.0; 2]),
+                None => match over {
+                    Some(over) if scratch.index[start + dx] != u32::MAX => {
+                        pixels += 1;
+                        let i = y as usize * over.width as usize + (target.rect.x0 as usize + dx);
+                        (
+                            clamped(over.depth[i]),
+                            over.triangle[i],
+                            over.barycentric[i],
+                        )
+                    }
+                    _ => (f32::INFINITY, u32::MAX, [0.0; 2]),
+                },
             };
         }
     }
