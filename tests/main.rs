@@ -32,6 +32,7 @@ mod motion_fingerprint;
 mod motion_loop;
 mod motion_pin;
 mod motion_rigid;
+mod outline_errors;
 mod patch_files;
 mod pictures;
 mod raster_coverage;

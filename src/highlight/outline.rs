@@ -48,7 +48,9 @@ pub struct Outline<P = f32> {
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum OutlineError {
     /// Fewer than three points.
-    #[error("the outline has {count} points, but it needs at least 3 to enclose a region")]
+    #[error(
+        "the outline needs at least 3 distinct points to enclose a region, and it has {count}"
+    )]
     TooFew {
         /// Points written (corners and Bézier ends).
         count: usize,
