@@ -214,6 +214,11 @@ fn soft_iou(a: &[f32], b: &[f32]) -> f64 {
 
 /// The highlight matte of the layer rendered at 256² under the `final` settings.
 fn rendered(layer: Layer) -> Vec<f32> {
+    rendered_with(layer, Settings::final_quality(SIZE, SIZE))
+}
+
+/// The highlight matte of the layer rendered with `settings` (a square image).
+fn rendered_with(layer: Layer, settings: Settings) -> Vec<f32> {
     let expr: PreparedExpr = Expr::Layer(layer).prepare().unwrap();
     let sphere = AnalyticSphere::new(Projection::Orthographic {
         height: 2.0 * HALF as f32,
@@ -225,7 +230,7 @@ fn rendered(layer: Layer) -> Vec<f32> {
     };
     let scene = sphere.scene(&library, &expr, aovs);
     let frame = Renderer::new(Arc::clone(&library))
-        .render(&scene, &Settings::final_quality(SIZE, SIZE))
+        .render(&scene, &settings)
         .unwrap();
     frame.aovs.matte.unwrap()
 }
@@ -392,5 +397,29 @@ fn a_morph_at_its_midpoint_is_the_outline_of_averaged_points_and_keeps_what_both
             holes, 0,
             "frame {frame}: {holes} pixels of both keys uncovered"
         );
+    }
+}
+
+#[test]
+fn the_layers_documented_under_drawn_outlines_parse_prepare_and_render() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/highlights.md");
+    let doc = std::fs::read_to_string(path).unwrap();
+    let section = &doc[doc.find("## Drawn outlines").unwrap()..];
+    let blocks: Vec<&str> = section
+        .split("```ron\n")
+        .skip(1)
+        .map(|rest| &rest[..rest.find("```").unwrap()])
+        .collect();
+    assert_eq!(blocks.len(), 3, "the star, the heart and the keyed outline");
+    for block in &blocks {
+        let layer: Layer<Track<f32>> =
+            ron::from_str(block).unwrap_or_else(|e| panic!("{e}\n{block}"));
+        assert!(!layer.shape.is_disc());
+        for frame in [1.0, 12.0, 24.0] {
+            let at = layer.map(|t| t.at(frame));
+            let matte = rendered_with(at, Settings::preview(64, 64));
+            let covered: f32 = matte.iter().sum();
+            assert!(covered > 20.0, "frame {frame}: {covered} pixels\n{block}");
+        }
     }
 }
