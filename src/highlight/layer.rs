@@ -210,9 +210,15 @@ impl Mask<f32> {
 
 impl Layer<f32> {
     /// Checks ε ∈ (0, 2], colour components in [0, 1e4], opacity ∈ [0, 1], feather ≥ 0, the mask
-    /// ordered, the frame's axis a direction, the shape ([`Shape::validate`]), and every op;
-    /// errors say which op.
+    /// ordered, the frame's axis a direction, the shape as drawn ([`Shape::validate`]: a
+    /// drawn outline simple), and every op; errors say which op.
     pub fn validate(&self) -> Result<(), HighlightError> {
+        self.validate_but_shape()?;
+        self.shape.validate()
+    }
+
+    /// [`validate`](Self::validate) but for the shape.
+    fn validate_but_shape(&self) -> Result<(), HighlightError> {
         for (i, op) in self.stack.iter().enumerate() {
             op.validate()
                 .map_err(|e| e.at(format!("op {} ({})", i + 1, op.name())))?;
@@ -243,15 +249,18 @@ impl Layer<f32> {
         if let Some(m) = &self.mask {
             m.validate()?;
         }
-        self.frame.validate()?;
-        self.shape.validate()
+        self.frame.validate()
     }
 
     /// Validates and precomputes the per-point form. A pinned layer is first centred on its
     /// point ([`centred_on`](Self::centred_on)) by whoever knows the point; with its pin still
-    /// set it is an error, never a translation silently left as written.
+    /// set it is an error, never a translation silently left as written. A drawn outline is
+    /// checked for its values but not for crossing itself ([`Outline::prepare`]): a frame
+    /// between two keys of a morph may cross itself; [`validate`](Self::validate) checks keys.
+    ///
+    /// [`Outline::prepare`]: super::Outline::prepare
     pub fn prepare(&self) -> Result<PreparedLayer, HighlightError> {
-        self.validate()?;
+        self.validate_but_shape()?;
         if let Some(pin) = &self.pin {
             return Err(HighlightError::Unresolved {
                 patch: pin.patch.clone(),

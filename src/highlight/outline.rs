@@ -47,7 +47,7 @@ pub struct Outline<P = f32> {
 /// An outline that cannot be drawn.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum OutlineError {
-    /// Fewer than three points.
+    /// Fewer than three (distinct) points.
     #[error(
         "the outline needs at least 3 distinct points to enclose a region, and it has {count}"
     )]
@@ -172,13 +172,14 @@ fn vector([x, y]: [f32; 2]) -> DVec2 {
 }
 
 impl Outline<f32> {
-    /// Checks the outline and flattens it: at least 3 and at most [`MAX_OUTLINE_SEGMENTS`]
-    /// points, every coordinate finite, every point and control point within
-    /// `|t'| ≤ OUTLINE_BOUND`, at most [`MAX_FLATTENED_POINTS`] after flattening, no crossing
-    /// ([`first_crossing`]) and some area. Returns the polygon: each corner, and each Bézier
-    /// flattened to within `FLATNESS × d` (d the diagonal of the bounding box of every point
-    /// written), consecutive repeats dropped.
-    pub fn polygon(&self) -> Result<Vec<DVec2>, OutlineError> {
+    /// The outline's values checked and flattened: at least 3 and at most
+    /// [`MAX_OUTLINE_SEGMENTS`] pieces, every coordinate finite, every point and control point
+    /// within `|t'| ≤ OUTLINE_BOUND`, at most [`MAX_FLATTENED_POINTS`] after flattening. These
+    /// hold along a morph once they hold at its keys. Returns the polygon — each corner, and
+    /// each Bézier flattened to within `FLATNESS × d` (d the diagonal of the bounding box of
+    /// every point written), consecutive repeats dropped — with, for each point, the 0-based
+    /// piece it belongs to, and `d²`.
+    fn flattened(&self) -> Result<(Vec<DVec2>, Vec<usize>, f64), OutlineError> {
         let count = self.segments.len();
         if count < 3 {
             return Err(OutlineError::TooFew { count });
@@ -209,7 +210,6 @@ impl Outline<f32> {
             }
         }
         let tolerance = FLATNESS * (high - low).length();
-        // The polygon, and for each of its edges the (0-based) piece it belongs to.
         let (mut points, mut owner) = (Vec::new(), Vec::new());
         let mut start = self.segments[count - 1].end();
         for (k, segment) in self.segments.iter().enumerate() {
@@ -244,6 +244,14 @@ impl Outline<f32> {
             points.pop();
             owner.pop();
         }
+        Ok((points, owner, (high - low).length_squared()))
+    }
+
+    /// Checks the outline as drawn and returns its polygon ([`Self::flattened`]): its values,
+    /// and that it is a simple closed curve — at least 3 distinct points, no crossing
+    /// ([`first_crossing`]), some area.
+    pub fn polygon(&self) -> Result<Vec<DVec2>, OutlineError> {
+        let (points, owner, diagonal_squared) = self.flattened()?;
         if points.len() < 3 {
             return Err(OutlineError::TooFew {
                 count: points.len(),
@@ -262,20 +270,23 @@ impl Outline<f32> {
             });
         }
         let area = polygon_area(&points).abs();
-        if area <= 1e-12 * (high - low).length_squared().max(f64::MIN_POSITIVE) {
+        if area <= 1e-12 * diagonal_squared.max(f64::MIN_POSITIVE) {
             return Err(OutlineError::NoArea);
         }
         Ok(points)
     }
 
-    /// Checks the outline ([`polygon`](Self::polygon)).
+    /// Checks the outline as drawn ([`polygon`](Self::polygon)).
     pub fn validate(&self) -> Result<(), OutlineError> {
         self.polygon().map(|_| ())
     }
 
-    /// The checked outline made ready to evaluate.
+    /// The outline made ready to evaluate, its values checked ([`Self::flattened`]) but not its
+    /// simplicity: a frame between two keys of a morph may cross itself or collapse, and is
+    /// then filled by the non-zero winding rule ([`PreparedOutline::distance`]); the keys
+    /// themselves are checked with [`validate`](Self::validate).
     pub fn prepare(&self) -> Result<PreparedOutline, OutlineError> {
-        Ok(PreparedOutline::new(&self.polygon()?))
+        Ok(PreparedOutline::new(&self.flattened()?.0))
     }
 }
 

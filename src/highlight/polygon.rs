@@ -20,25 +20,27 @@ pub struct PreparedOutline {
 }
 
 impl PreparedOutline {
-    /// The polygon through `points` in order, closed from the last back to the first; the
-    /// points are distinct neighbours of a simple polygon with `|t'| < 1` (the outline's
-    /// validation sees to it).
+    /// The polygon through `points` in order, closed from the last back to the first, with
+    /// `|t'| < 1`. It need not be simple (a frame between two keys of a morph may cross itself):
+    /// inside is where its winding number is not zero. An edge of no length is the distance to
+    /// its point; a polygon of no area (a morph collapsing to a point or a line) covers nothing.
     #[must_use]
     pub fn new(points: &[DVec2]) -> Self {
         let n = points.len();
         let edges = (0..n)
             .map(|k| {
-                let (a, b) = (points[k], points[(k + 1) % n]);
-                let e = b - a;
+                let a = points[k].as_vec2();
+                let e = points[(k + 1) % n].as_vec2() - a;
+                let inverse = 1.0 / e.length_squared();
                 Edge {
-                    a: a.as_vec2(),
-                    e: e.as_vec2(),
-                    inv_len2: (1.0 / e.length_squared()) as f32,
+                    a,
+                    e,
+                    inv_len2: if inverse.is_finite() { inverse } else { 0.0 },
                 }
             })
             .collect();
         let area = polygon_area(points).abs();
-        let r2 = (area / std::f64::consts::PI).min(0.999);
+        let r2 = (area / std::f64::consts::PI).clamp(1e-12, 0.999);
         Self {
             edges,
             scale: (r2 / (1.0 - r2)).sqrt() as f32,
@@ -49,8 +51,12 @@ impl PreparedOutline {
     /// with `t = clamp((p − a_k)·e_k / |e_k|², 0, 1)`, inside where the winding number of the
     /// polygon about p is not zero (for a simple polygon, where an odd number of edges cross
     /// the ray from p toward +x).
+    /// With no edges (no points) every p is outside, at distance 1.
     #[must_use]
     pub fn distance(&self, p: Vec2) -> f32 {
+        if self.edges.is_empty() {
+            return -1.0;
+        }
         let mut nearest = f32::INFINITY;
         let mut winding = 0_i32;
         for edge in &self.edges {
@@ -203,5 +209,27 @@ mod tests {
         assert!(at(-0.5) < at(0.0) && at(0.0) < 0.0);
         assert!((at(1e-4) - at(-1e-4)).abs() < 1e-3);
         assert!(o.signed(Vec3::NEG_Z) < 0.0);
+    }
+
+    #[test]
+    fn a_crossing_or_collapsed_polygon_evaluates_without_nan() {
+        // A bow tie: inside each lobe (winding ±1), outside beyond.
+        let bow = poly(&[(0.0, 0.0), (0.2, 0.2), (0.2, 0.0), (0.0, 0.2)]);
+        assert!(bow.distance(Vec2::new(0.03, 0.1)) > 0.0);
+        assert!(bow.distance(Vec2::new(0.17, 0.1)) > 0.0);
+        assert!(bow.distance(Vec2::new(0.1, 0.19)) < 0.0);
+        // Collapsed to a point, to a line, and to nothing: finite and outside everywhere.
+        for points in [
+            &[(0.1, 0.1)][..],
+            &[(0.0, 0.0), (0.2, 0.0)][..],
+            &[(0.0, 0.0), (0.1, 0.0), (0.2, 0.0)][..],
+            &[][..],
+        ] {
+            let o = poly(points);
+            for p in [Vec3::Z, Vec3::new(0.1, 0.0, 0.99).normalize(), Vec3::NEG_Z] {
+                let s = o.signed(p);
+                assert!(s.is_finite() && s <= 0.0, "{points:?} {p}: {s}");
+            }
+        }
     }
 }

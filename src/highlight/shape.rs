@@ -69,7 +69,8 @@ impl Shape<f32> {
         }
     }
 
-    /// The checked shape made ready to evaluate.
+    /// The shape made ready to evaluate, an outline's values checked but not whether it
+    /// crosses itself ([`Outline::prepare`]).
     pub fn prepare(&self) -> Result<PreparedShape, HighlightError> {
         match self {
             Shape::Disc => Ok(PreparedShape::Disc),

@@ -7,7 +7,7 @@ use super::source::Source;
 use super::validated::{MaterialState, Shot};
 use super::written::Written;
 use super::ShotError;
-use crate::anim::{Keyed, Track};
+use crate::anim::Keyed;
 use crate::formats::ron_paths::Step::{self, Entry, Field, Index};
 use crate::geom::MAX_COORDINATE;
 use crate::highlight::{Expr, HighlightError, Light, Shape};
@@ -115,22 +115,22 @@ fn check_every_frame_counted(
             if !layer.shape.is_disc() {
                 let path = shape_path(*written, &highlight.expr, k);
                 let pattern = &highlight.patches.patterns()[0];
-                check_at(
-                    &shape_frames(first, shot.frames, &layer.shape),
-                    shot.frames,
-                    &mut checks,
-                    |frame| {
-                        layer.shape.map(|t| t.at(frame)).validate().map_err(|e| {
-                            source.error_at(
-                                &path,
-                                format!(
-                                    "the highlight on \"{pattern}\" at frame {frame}: {}",
-                                    in_layer(e)
-                                ),
-                            )
-                        })
-                    },
-                )?;
+                // Counts and bounds hold along a morph once they hold at its keys; a frame
+                // between two keys may cross itself, and is filled by the non-zero winding rule.
+                let frames = key_frames(first, |add| {
+                    let _visited: Shape<()> = layer.shape.map(|t| add(t));
+                });
+                check_at(&frames, shot.frames, &mut checks, |frame| {
+                    layer.shape.map(|t| t.at(frame)).validate().map_err(|e| {
+                        source.error_at(
+                            &path,
+                            format!(
+                                "the highlight on \"{pattern}\" at frame {frame}: {}",
+                                in_layer(e)
+                            ),
+                        )
+                    })
+                })?;
             }
             let own = layer.without_stack();
             let frames = key_frames(first, |add| own.for_each_param(|t| add(t)));
@@ -196,26 +196,6 @@ fn shape_path<P>(written: Written, expr: &Expr<P>, layer: usize) -> Vec<Step<'st
     );
     path.push(Field("shape"));
     path
-}
-
-/// The frames at which a drawn outline is checked: its keys and the first frame, and, for a
-/// keyed outline, every whole frame of the shot's `range` too. Bounds and counts hold along a
-/// morph once they hold at its keys, but an outline simple at two keys can cross itself
-/// between them, so a morph is checked at every frame that renders.
-fn shape_frames(first: f64, (from, to): (i64, i64), shape: &Shape<Track<f32>>) -> Vec<f64> {
-    let mut keyed = false;
-    let mut frames = key_frames(first, |add| {
-        let _visited: Shape<()> = shape.map(|t| {
-            keyed |= matches!(t, Track::Keys(_));
-            add(t);
-        });
-    });
-    if keyed {
-        frames.extend((from..=to).map(|f| f as f64));
-        frames.sort_by(f64::total_cmp);
-        frames.dedup();
-    }
-    frames
 }
 
 /// Runs `check` at each of `frames`, in order, counting the checks in `checks`. Where one
