@@ -247,9 +247,11 @@ impl Outline<f32> {
         Ok((points, owner, (high - low).length_squared()))
     }
 
-    /// Checks the outline as drawn and returns its polygon ([`Self::flattened`]): its values,
-    /// and that it is a simple closed curve — at least 3 distinct points, no crossing
-    /// ([`first_crossing`]), some area.
+    /// Checks the outline as drawn and returns its flattened polygon: its values (as
+    /// [`prepare`](Self::prepare) does: piece counts, finite coordinates within
+    /// [`OUTLINE_BOUND`], at most [`MAX_FLATTENED_POINTS`] after flattening), and that it is a
+    /// simple closed curve — at least 3 distinct points, no crossing (a sweep along x over the
+    /// flattened edges, docs/highlights.md), some area.
     pub fn polygon(&self) -> Result<Vec<DVec2>, OutlineError> {
         let (points, owner, diagonal_squared) = self.flattened()?;
         if points.len() < 3 {
@@ -281,7 +283,8 @@ impl Outline<f32> {
         self.polygon().map(|_| ())
     }
 
-    /// The outline made ready to evaluate, its values checked ([`Self::flattened`]) but not its
+    /// The outline made ready to evaluate, its values checked (piece counts, finite coordinates
+    /// within [`OUTLINE_BOUND`], at most [`MAX_FLATTENED_POINTS`] after flattening) but not its
     /// simplicity: a frame between two keys of a morph may cross itself or collapse, and is
     /// then filled by the non-zero winding rule ([`PreparedOutline::distance`]); the keys
     /// themselves are checked with [`validate`](Self::validate).
