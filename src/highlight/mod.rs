@@ -28,6 +28,7 @@ mod pin;
 mod point_chunk;
 mod polygon;
 mod shape;
+mod shape_text;
 mod stack;
 
 pub use crate::math::box_coverage;
