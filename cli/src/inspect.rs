@@ -200,6 +200,7 @@ fn layer_fields(layer: &Layer) -> String {
         // At a frame a pin is already solved into the stack's translation.
         pin: _,
         frame: _,
+        shape: _,
     } = layer;
     let mut fields = format!(
         "epsilon: {}, colour: {}, opacity: {}",

@@ -3,6 +3,7 @@
 
 use thiserror::Error;
 
+use super::outline::OutlineError;
 use crate::param::ParamError;
 
 /// Why a highlight description cannot be evaluated.
@@ -14,6 +15,9 @@ pub enum HighlightError {
     /// A parameter that is not finite or outside its range.
     #[error(transparent)]
     Param(#[from] ParamError),
+    /// A drawn outline that cannot be drawn.
+    #[error("outline: {0}")]
+    Outline(#[from] OutlineError),
     /// A mask rectangle whose lower bound is not below its upper bound.
     #[error(
         "mask {axis} range is ({min}, {max}), but the first value must be less than the second; \

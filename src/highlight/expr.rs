@@ -478,6 +478,7 @@ mod tests {
             mask: None,
             pin: None,
             frame: crate::highlight::LayerFrame::Patch,
+            shape: crate::highlight::Shape::Disc,
         })
     }
 

@@ -12,6 +12,7 @@ use super::layer_frame::{LayerFrame, PreparedFrame};
 use super::ops::Op;
 use super::pin::Pin;
 use super::point_chunk::PointChunk;
+use super::shape::{PreparedShape, Shape};
 use super::stack::{LocalChunk, PreparedStack};
 use crate::math::LANES;
 use crate::param::{check, Range};
@@ -59,11 +60,16 @@ pub struct Layer<P = f32> {
     /// (the default), or one direction field over every patch the layer is drawn on.
     #[serde(default, skip_serializing_if = "LayerFrame::is_patch")]
     pub frame: LayerFrame<P>,
+    /// What H' is tested against ([`Shape`]): the ε-disc (the default), or a drawn outline in
+    /// the tangent coordinates `t' = ((H', du), (H', dv))`, after the stack as the disc is.
+    #[serde(default, skip_serializing_if = "Shape::is_disc")]
+    pub shape: Shape<P>,
 }
 
 /// Every field in order, as `#[derive(Debug)]` prints them, but the frame only when it is not the
-/// patch's own: a layer in its patch's frame prints as layers did before they had frames, so
-/// that what a frame's fingerprint hashes of a shot without layer frames stays the same.
+/// patch's own and the shape only when it is not the disc: a layer in its patch's frame with the
+/// disc prints as layers did before they had frames and shapes, so that what a frame's
+/// fingerprint hashes of a shot without them stays the same.
 impl<P: std::fmt::Debug> std::fmt::Debug for Layer<P> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let mut layer = f.debug_struct("Layer");
@@ -77,6 +83,9 @@ impl<P: std::fmt::Debug> std::fmt::Debug for Layer<P> {
             .field("pin", &self.pin);
         if !self.frame.is_patch() {
             layer.field("frame", &self.frame);
+        }
+        if !self.shape.is_disc() {
+            layer.field("shape", &self.shape);
         }
         layer.finish()
     }
@@ -117,12 +126,13 @@ impl Layer {
             mask: None,
             pin: None,
             frame: LayerFrame::Patch,
+            shape: Shape::Disc,
         }
     }
 }
 
 impl<P: Clone> Layer<P> {
-    /// The layer's own parameters (ε, colour, opacity, feather, mask, pin, frame) with an empty
+    /// The layer's own parameters (ε, colour, opacity, feather, mask, pin, frame, shape) with an empty
     /// stack:
     /// what is checked apart from the operations.
     #[must_use]
@@ -136,6 +146,7 @@ impl<P: Clone> Layer<P> {
             mask: self.mask.clone(),
             pin: self.pin.clone(),
             frame: self.frame.clone(),
+            shape: self.shape.clone(),
         }
     }
 }
@@ -162,6 +173,7 @@ impl<P> Layer<P> {
             }),
             pin: self.pin.as_ref().map(|p| p.map(&mut f)),
             frame: self.frame.map(&mut f),
+            shape: self.shape.map(&mut f),
         }
     }
 }
@@ -198,8 +210,15 @@ impl Mask<f32> {
 
 impl Layer<f32> {
     /// Checks ε ∈ (0, 2], colour components in [0, 1e4], opacity ∈ [0, 1], feather ≥ 0, the mask
-    /// ordered, the frame's axis a direction, and every op; errors say which op.
+    /// ordered, the frame's axis a direction, the shape as drawn ([`Shape::validate`]: a
+    /// drawn outline simple), and every op; errors say which op.
     pub fn validate(&self) -> Result<(), HighlightError> {
+        self.validate_but_shape()?;
+        self.shape.validate()
+    }
+
+    /// [`validate`](Self::validate) but for the shape.
+    fn validate_but_shape(&self) -> Result<(), HighlightError> {
         for (i, op) in self.stack.iter().enumerate() {
             op.validate()
                 .map_err(|e| e.at(format!("op {} ({})", i + 1, op.name())))?;
@@ -235,9 +254,13 @@ impl Layer<f32> {
 
     /// Validates and precomputes the per-point form. A pinned layer is first centred on its
     /// point ([`centred_on`](Self::centred_on)) by whoever knows the point; with its pin still
-    /// set it is an error, never a translation silently left as written.
+    /// set it is an error, never a translation silently left as written. A drawn outline is
+    /// checked for its values but not for crossing itself ([`Outline::prepare`]): a frame
+    /// between two keys of a morph may cross itself; [`validate`](Self::validate) checks keys.
+    ///
+    /// [`Outline::prepare`]: super::Outline::prepare
     pub fn prepare(&self) -> Result<PreparedLayer, HighlightError> {
-        self.validate()?;
+        self.validate_but_shape()?;
         if let Some(pin) = &self.pin {
             return Err(HighlightError::Unresolved {
                 patch: pin.patch.clone(),
@@ -258,6 +281,7 @@ impl Layer<f32> {
             feather: self.feather.unwrap_or(0.0),
             mask: self.mask.clone(),
             frame: self.frame.prepare()?,
+            shape: self.shape.prepare()?,
         })
     }
 }
@@ -280,6 +304,7 @@ pub struct PreparedLayer {
     feather: f32,
     mask: Option<Mask>,
     frame: PreparedFrame,
+    shape: PreparedShape,
 }
 
 /// Working memory of a layer evaluated on a [`PointChunk`]: the initial vectors in the layer's
@@ -311,13 +336,19 @@ impl PreparedLayer {
         self.stack.apply_local(l)
     }
 
-    /// `s` of the stack's output given in frame coordinates, where N is +z.
+    /// `s` of the stack's output given in frame coordinates, where N is +z: the disc's
+    /// `ε − ‖N − H'‖²/2`, or a drawn outline's signed distance in the same units
+    /// ([`PreparedOutline::signed`](super::PreparedOutline::signed)).
     #[inline]
     fn signed_local(&self, l: Vec3) -> f32 {
-        signed_inside(Vec3::Z, l, self.epsilon)
+        match &self.shape {
+            PreparedShape::Disc => signed_inside(Vec3::Z, l, self.epsilon),
+            PreparedShape::Outline(outline) => outline.signed(l),
+        }
     }
 
-    /// The signed inside value `s = ε − ‖N − H'‖² / 2` of the stack's output (positive inside)
+    /// The signed inside value of the stack's output (positive inside), `s = ε − ‖N − H'‖² / 2`
+    /// for the disc (a drawn outline's in the same units: [`PreparedShape`]),
     /// for the initial unit vector `h` at a point whose shading frame is `frame`.
     #[inline]
     #[must_use]
@@ -477,6 +508,7 @@ mod tests {
             mask: None,
             pin: None,
             frame: LayerFrame::Patch,
+            shape: Shape::Disc,
         }
     }
 

@@ -12,8 +12,10 @@
 //! initial H, Blinn's half vector ([`half_vector`]).
 
 mod centre;
+mod crossing;
 mod error;
 mod expr;
+mod flatten;
 mod footprint;
 mod frame;
 mod half_vector;
@@ -21,14 +23,19 @@ mod inside;
 mod layer;
 mod layer_frame;
 mod ops;
+mod outline;
 mod pin;
 mod point_chunk;
+mod polygon;
+mod shape;
+mod shape_text;
 mod stack;
 
 pub use crate::math::box_coverage;
 pub use error::HighlightError;
 pub(crate) use expr::ChunkScratch;
 pub use expr::{Boolean, Expr, PreparedExpr, Shade};
+pub use flatten::FLATNESS;
 pub use footprint::Footprint;
 pub use frame::TangentFrame;
 pub use half_vector::{blinn_half_vector, half_vector, virtual_light, Light, View};
@@ -37,6 +44,11 @@ pub(crate) use layer::LayerScratch;
 pub use layer::{Layer, Mask, Paint, PreparedLayer};
 pub use layer_frame::{LayerFrame, PreparedFrame, ALONG_TOLERANCE};
 pub use ops::{Axis, Op, PreparedOp, SquareStyle};
+pub use outline::{
+    Outline, OutlineError, Segment, MAX_FLATTENED_POINTS, MAX_OUTLINE_SEGMENTS, OUTLINE_BOUND,
+};
 pub use pin::Pin;
 pub(crate) use point_chunk::PointChunk;
+pub use polygon::PreparedOutline;
+pub use shape::{PreparedShape, Shape};
 pub use stack::PreparedStack;

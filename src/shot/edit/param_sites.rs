@@ -437,6 +437,8 @@ fn layer_sites<'a>(
         pin,
         // The frame's axis has no parameter path yet: `glint key` and `tune` cannot name it.
         frame: _,
+        // Nor has a drawn outline's points.
+        shape: _,
     } = l;
     for (index, op) in stack.iter_mut().enumerate() {
         let mut number = |param, track, more: &[Step<'a>]| {

@@ -8,9 +8,9 @@ use super::validated::{MaterialState, Shot};
 use super::written::Written;
 use super::ShotError;
 use crate::anim::Keyed;
-use crate::formats::ron_paths::Step::{Entry, Field, Index};
+use crate::formats::ron_paths::Step::{self, Entry, Field, Index};
 use crate::geom::MAX_COORDINATE;
-use crate::highlight::{HighlightError, Light};
+use crate::highlight::{Expr, HighlightError, Light, Shape};
 use crate::render::LineStyle;
 
 /// Checks the camera, light, materials, highlights and line styles at every frame they can
@@ -120,6 +120,26 @@ fn check_every_frame_counted(
         };
         for (k, layer) in highlight.expr.layers().into_iter().enumerate() {
             let in_layer = |e: HighlightError| e.at(format!("layer {}", k + 1));
+            if !layer.shape.is_disc() {
+                let path = shape_path(*written, &highlight.expr, k);
+                let pattern = &highlight.patches.patterns()[0];
+                // Counts and bounds hold along a morph once they hold at its keys; a frame
+                // between two keys may cross itself, and is filled by the non-zero winding rule.
+                let frames = key_frames(first, |add| {
+                    let _visited: Shape<()> = layer.shape.map(|t| add(t));
+                });
+                check_at(&frames, shot.frames, &mut checks, |frame| {
+                    layer.shape.map(|t| t.at(frame)).validate().map_err(|e| {
+                        source.error_at(
+                            &path,
+                            format!(
+                                "the highlight on \"{pattern}\" at frame {frame}: {}",
+                                in_layer(e)
+                            ),
+                        )
+                    })
+                })?;
+            }
             let own = layer.without_stack();
             let frames = key_frames(first, |add| own.for_each_param(|t| add(t)));
             check_at(&frames, shot.frames, &mut checks, |frame| {
@@ -171,6 +191,19 @@ fn check_every_frame_counted(
         })?;
     }
     Ok(checks)
+}
+
+/// Where layer `layer` of a highlight entry's expression writes its `shape`.
+fn shape_path<P>(written: Written, expr: &Expr<P>, layer: usize) -> Vec<Step<'static>> {
+    let mut path = vec![Field("highlights"), Index(written.index), Field("expr")];
+    path.extend(
+        expr.layer_route(layer)
+            .unwrap_or_default()
+            .into_iter()
+            .map(Index),
+    );
+    path.push(Field("shape"));
+    path
 }
 
 /// Runs `check` at each of `frames`, in order, counting the checks in `checks`. Where one
