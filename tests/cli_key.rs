@@ -8,7 +8,7 @@ use std::process::Output;
 use crate::common::{repo_file, stderr};
 
 /// A folder holding copies of `shots/` (with `looks/`), `patches/` and `textures/`.
-fn workspace() -> tempfile::TempDir {
+pub(crate) fn workspace() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     for folder in ["shots", "shots/looks", "patches", "textures"] {
         std::fs::create_dir_all(dir.path().join(folder)).unwrap();

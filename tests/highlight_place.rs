@@ -486,19 +486,26 @@ fn a_pin_on_no_patch_or_outside_its_domain_is_refused_where_it_is_written() {
     }
 }
 
-#[test]
-fn place_write_keys_the_translation_and_changes_nothing_else() {
-    let dir = tempfile::tempdir().unwrap();
-    let shots = dir.path().join("shots");
+/// `shots/sphere_ops.ron` and the patch file it reads, copied into `dir` as they sit in the
+/// repository; the copied shot's path.
+fn sphere_ops_copy(dir: &Path) -> PathBuf {
+    let shots = dir.join("shots");
     std::fs::create_dir_all(&shots).unwrap();
-    std::fs::create_dir_all(dir.path().join("patches")).unwrap();
+    std::fs::create_dir_all(dir.join("patches")).unwrap();
     std::fs::copy(
         repo_file("patches/sphere.ron"),
-        dir.path().join("patches/sphere.ron"),
+        dir.join("patches/sphere.ron"),
     )
     .unwrap();
     let shot = shots.join("sphere_ops.ron");
     std::fs::copy(repo_file("shots/sphere_ops.ron"), &shot).unwrap();
+    shot
+}
+
+#[test]
+fn place_write_keys_the_translation_and_changes_nothing_else() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = sphere_ops_copy(dir.path());
     let before = std::fs::read_to_string(&shot).unwrap();
 
     let json = glint_with(&[
@@ -574,16 +581,7 @@ fn place_write_keys_the_translation_and_changes_nothing_else() {
 #[test]
 fn place_pin_writes_a_pin_on_the_point_under_the_pixel_and_moves_it() {
     let dir = tempfile::tempdir().unwrap();
-    let shots = dir.path().join("shots");
-    std::fs::create_dir_all(&shots).unwrap();
-    std::fs::create_dir_all(dir.path().join("patches")).unwrap();
-    std::fs::copy(
-        repo_file("patches/sphere.ron"),
-        dir.path().join("patches/sphere.ron"),
-    )
-    .unwrap();
-    let shot = shots.join("sphere_ops.ron");
-    std::fs::copy(repo_file("shots/sphere_ops.ron"), &shot).unwrap();
+    let shot = sphere_ops_copy(dir.path());
     let before = std::fs::read_to_string(&shot).unwrap();
     assert!(!before.contains("pin:"));
     for (pixel, at) in [("300,200", (300.0, 200.0)), ("180,260", (180.0, 260.0))] {

@@ -9,6 +9,7 @@ mod anim_tracks;
 mod cli_bench_loop;
 mod cli_farm;
 mod cli_key;
+mod cli_layer;
 mod cli_probe;
 mod cli_render;
 mod cli_watch;

@@ -9,6 +9,7 @@ mod error;
 mod farm;
 mod inspect;
 mod key;
+mod layer;
 mod patch_map;
 mod patches;
 mod place;
@@ -45,6 +46,7 @@ enum Command {
     Render(render::RenderArgs),
     Inspect(inspect::InspectArgs),
     Key(key::KeyArgs),
+    Layer(layer::LayerArgs),
     Probe(probe::ProbeArgs),
     Patches(patches::PatchesArgs),
     Place(place::PlaceArgs),
@@ -65,6 +67,7 @@ pub fn main() -> ExitCode {
         Command::Render(args) => render::run(&args),
         Command::Inspect(args) => inspect::run(&args),
         Command::Key(args) => key::run(&args),
+        Command::Layer(args) => layer::run(&args),
         Command::Probe(args) => probe::run(&args),
         Command::Patches(args) => patches::run(&args),
         Command::Place(args) => place::run(&args),

@@ -4,7 +4,7 @@
 use glam::{DVec3, DVec4};
 
 use super::place::PlaceError;
-use super::{JobError, RenderJob};
+use super::RenderJob;
 use crate::render::Aovs;
 
 /// How much nearer or farther than the point the surface a frame draws at its pixel may be, as
@@ -73,17 +73,12 @@ impl RenderJob {
         let in_image = in_front && inside(continuous.0, width) && inside(continuous.1, height);
         let mut visible = false;
         if in_image {
-            let mut scene = state.scene(&self.shot).map_err(JobError::from)?;
-            scene.aovs = Aovs {
+            let aovs = Aovs {
                 patch_id: true,
                 depth: true,
                 ..Aovs::default()
             };
-            scene.outlines = None;
-            let image = self
-                .renderer
-                .render(&scene, &self.settings)
-                .map_err(|source| JobError::Render { frame, source })?;
+            let image = self.lookup_image(&state, aovs)?;
             let index = continuous.1 as usize * width as usize + continuous.0 as usize;
             let id = image
                 .aovs

@@ -6,7 +6,7 @@ use thiserror::Error;
 
 use super::{JobError, RenderJob};
 use crate::highlight::{HighlightError, Layer};
-use crate::render::{Aovs, SurfacePoint};
+use crate::render::{Aovs, RenderedFrame, SurfacePoint};
 use crate::shot::{rounded_number_text, FrameState, Shot};
 
 /// Which highlight layer to place; `None` picks as [`RenderJob::place`] says.
@@ -218,6 +218,26 @@ impl RenderJob {
         })
     }
 
+    /// The frame `state` drawn without lines, with only the AOVs `aovs`: what looking up the
+    /// surface at a pixel reads.
+    pub(super) fn lookup_image(
+        &mut self,
+        state: &FrameState,
+        aovs: Aovs,
+    ) -> Result<RenderedFrame, PlaceError> {
+        let mut scene = state.scene(&self.shot).map_err(JobError::from)?;
+        scene.aovs = aovs;
+        scene.outlines = None;
+        self.renderer
+            .render(&scene, &self.settings)
+            .map_err(|source| {
+                PlaceError::Job(JobError::Render {
+                    frame: state.frame,
+                    source,
+                })
+            })
+    }
+
     /// The patch drawn at image position `pixel` (in pixels, pixel `(i, j)`'s centre at
     /// `(i, j)`) at `frame`, and its parameters where the pixel's ray meets it: the patch from
     /// the patch-id AOV of the frame, its `(u, v)` refined onto the ray by the Newton steps of
@@ -239,17 +259,12 @@ impl RenderJob {
             });
         }
         let state = self.shot.at(frame);
-        let mut scene = state.scene(&self.shot).map_err(JobError::from)?;
-        scene.aovs = Aovs {
+        let aovs = Aovs {
             patch_id: true,
             uv: true,
             ..Aovs::default()
         };
-        scene.outlines = None;
-        let image = self
-            .renderer
-            .render(&scene, &self.settings)
-            .map_err(|source| JobError::Render { frame, source })?;
+        let image = self.lookup_image(&state, aovs)?;
         let index = position.1 as usize * width as usize + position.0 as usize;
         let ids = image.aovs.patch_id.as_deref().unwrap_or_default();
         let uvs = image.aovs.uv.as_deref().unwrap_or_default();
@@ -261,7 +276,7 @@ impl RenderJob {
         };
         let surface = &named.surface;
         let start = (f64::from(uv.x), f64::from(uv.y));
-        let (origin, direction) = scene.camera.ray_through(position, (width, height));
+        let (origin, direction) = state.camera.ray_through(position, (width, height));
         let uv = surface
             .try_refine_on_ray(start, origin, direction)
             .unwrap_or(start);

@@ -198,52 +198,33 @@ fn camera_sites<'a>(camera: &'a mut CameraSpec, f: &mut dyn FnMut(Site<'a>)) {
     if let Some(eye) = eye {
         site(CameraParam::Eye, &[Field("eye")], TrackMut::Point(eye));
     }
-    match orbit {
+    let orbit_tracks = match orbit {
         Some(OrbitSpec::Sphere {
             azimuth,
             elevation,
             distance,
-        }) => {
-            let orbit_step = Field("orbit");
-            site(
-                CameraParam::OrbitAzimuth,
-                &[orbit_step, Field("azimuth")],
-                TrackMut::Scalar(azimuth),
-            );
-            site(
-                CameraParam::OrbitElevation,
-                &[orbit_step, Field("elevation")],
-                TrackMut::Scalar(elevation),
-            );
-            site(
-                CameraParam::OrbitDistance,
-                &[orbit_step, Field("distance")],
-                TrackMut::Scalar(distance),
-            );
-        }
+        }) => vec![
+            (CameraParam::OrbitAzimuth, "azimuth", azimuth),
+            (CameraParam::OrbitElevation, "elevation", elevation),
+            (CameraParam::OrbitDistance, "distance", distance),
+        ],
         Some(OrbitSpec::Cylinder {
             azimuth,
             radius,
             height,
-        }) => {
-            let orbit_step = Field("orbit");
-            site(
-                CameraParam::OrbitAzimuth,
-                &[orbit_step, Field("azimuth")],
-                TrackMut::Scalar(azimuth),
-            );
-            site(
-                CameraParam::OrbitRadius,
-                &[orbit_step, Field("radius")],
-                TrackMut::Scalar(radius),
-            );
-            site(
-                CameraParam::OrbitHeight,
-                &[orbit_step, Field("height")],
-                TrackMut::Scalar(height),
-            );
-        }
-        None => {}
+        }) => vec![
+            (CameraParam::OrbitAzimuth, "azimuth", azimuth),
+            (CameraParam::OrbitRadius, "radius", radius),
+            (CameraParam::OrbitHeight, "height", height),
+        ],
+        None => Vec::new(),
+    };
+    for (param, field, track) in orbit_tracks {
+        site(
+            param,
+            &[Field("orbit"), Field(field)],
+            TrackMut::Scalar(track),
+        );
     }
     site(
         CameraParam::Target,

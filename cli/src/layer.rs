@@ -1,0 +1,134 @@
+//! `glint layer`: a structural edit of one highlight layer — an operation inserted, removed or
+//! moved, a mask added or removed, a pin removed — written into the file the layer is in.
+
+use std::path::PathBuf;
+
+use anyhow::anyhow;
+use clap::{ArgGroup, Args};
+
+use super::key::write_in_place;
+use super::{write_stdout, CliError};
+use glint::highlight::Op;
+use glint::shot::{edit_layer, load_shot, op_text, rounded_number_text, LayerEdit};
+
+/// Change the structure of one highlight layer in its file: insert, remove or move an
+/// operation of its stack, add or remove its mask, or remove its pin.
+///
+/// The layer is layer --layer (left to right through the expression's Booleans, from 0) of
+/// highlight entry --highlight (from 0, includes first); the edit is written into the file the
+/// entry is written in (the shot or an include), atomically, with every other byte as it was,
+/// and the file is read back to check that nothing else changed. An inserted operation's
+/// numbers are constants (key them with `glint key`); a new mask covers the whole patch
+/// (`u: (0, 1), v: (0, 1)`), to narrow with `glint key … --at '…mask.u[0]'`. To add or move a
+/// pin, use `glint place --pin`. Exit code 2 for an index out of range, an operation that is not
+/// valid, a mask or pin that is not there or already is.
+#[derive(Debug, Args)]
+#[command(group(ArgGroup::new("edit").required(true).args(["insert_op", "remove_op", "move_op", "add_mask", "remove_mask", "unpin"])))]
+#[command(after_help = "Examples:
+  glint layer shots/sphere_ops.ron --highlight 0 --insert-op 'Scale(delta: 0.5, axis: V)'
+  glint layer shots/sphere_ops.ron --highlight 0 --insert-op 'Rotate(degrees: 20.0)' --at 0
+  glint layer shots/sphere_ops.ron --highlight 0 --move-op 2 --to 0
+  glint layer shots/sphere_ops.ron --highlight 0 --remove-op 1
+  glint layer shots/crescent.ron --highlight 0 --layer 1 --add-mask")]
+pub struct LayerArgs {
+    /// The shot file (RON)
+    shot: PathBuf,
+    /// The highlight entry, from 0, includes first (as `glint inspect` lists them from 1)
+    #[arg(long, value_name = "N")]
+    highlight: usize,
+    /// The layer of the entry's expression, left to right from 0
+    #[arg(long, value_name = "K", default_value_t = 0)]
+    layer: usize,
+    /// Insert this operation, written as in a shot, e.g. 'Scale(delta: 0.5, axis: V)'
+    #[arg(long, value_name = "OP")]
+    insert_op: Option<String>,
+    /// Where --insert-op goes in the stack, from 0 [default: at the end]
+    #[arg(long, value_name = "I", requires = "insert_op")]
+    at: Option<usize>,
+    /// Remove the operation at this index of the stack, from 0
+    #[arg(long, value_name = "I")]
+    remove_op: Option<usize>,
+    /// Move the operation at this index of the stack, from 0, to --to
+    #[arg(long, value_name = "FROM", requires = "to")]
+    move_op: Option<usize>,
+    /// Where --move-op puts the operation, from 0
+    #[arg(long, value_name = "TO", requires = "move_op")]
+    to: Option<usize>,
+    /// Add a mask over the whole patch
+    #[arg(long)]
+    add_mask: bool,
+    /// Remove the layer's mask
+    #[arg(long)]
+    remove_mask: bool,
+    /// Remove the layer's pin: its translation is used as written again
+    #[arg(long)]
+    unpin: bool,
+}
+
+pub fn run(args: &LayerArgs) -> Result<(), CliError> {
+    let bad = |e: anyhow::Error| CliError::BadInput(e);
+    let shown = args.shot.display();
+    let shot = load_shot(&args.shot).map_err(|e| bad(e.into()))?;
+    let state = shot.at(shot.frames.0 as f64);
+    let Some((file, index)) = shot.highlight_written(args.highlight) else {
+        let count = state.highlights.len();
+        return Err(bad(anyhow!(
+            "{shown}: the shot has {count} highlight entr{}, numbered from 0, so there is no \
+             highlight {}",
+            if count == 1 { "y" } else { "ies" },
+            args.highlight
+        )));
+    };
+    let file = file.to_path_buf();
+    let text = std::fs::read_to_string(&file)
+        .map_err(|e| CliError::Failed(anyhow!("{}: cannot read the file: {e}", file.display())))?;
+    let stack_len = state
+        .highlights
+        .get(args.highlight)
+        .and_then(|expr| expr.layers().get(args.layer).map(|layer| layer.stack.len()))
+        .unwrap_or(0);
+    let (edit, done) = if let Some(written) = &args.insert_op {
+        let op: Op<f32> = ron::from_str(written).map_err(|e| {
+            bad(anyhow!(
+                "--insert-op '{written}' is not an operation as a shot writes one: {e}"
+            ))
+        })?;
+        let at = args.at.unwrap_or(stack_len);
+        let shown_op = op_text(&op, rounded_number_text);
+        (
+            LayerEdit::InsertOp { index: at, op },
+            format!("inserted {shown_op} at stack[{at}]"),
+        )
+    } else if let Some(index) = args.remove_op {
+        (
+            LayerEdit::RemoveOp { index },
+            format!("removed stack[{index}]"),
+        )
+    } else if let (Some(from), Some(to)) = (args.move_op, args.to) {
+        (
+            LayerEdit::MoveOp { from, to },
+            format!("moved stack[{from}] to stack[{to}]"),
+        )
+    } else if args.add_mask {
+        (
+            LayerEdit::AddMask,
+            "added a mask over the whole patch".into(),
+        )
+    } else if args.remove_mask {
+        (LayerEdit::RemoveMask, "removed the mask".into())
+    } else {
+        (LayerEdit::Unpin, "removed the pin".into())
+    };
+    let edited =
+        edit_layer(&text, index, args.layer, &edit).map_err(|e| bad(e.in_file(&file).into()))?;
+    write_in_place(&file, &edited).map_err(CliError::Failed)?;
+    write_stdout("the edit", |out| {
+        writeln!(
+            out,
+            "highlights[{index}].layers[{}] in {}: {done}",
+            args.layer,
+            file.display()
+        )?;
+        Ok(())
+    })
+}
