@@ -44,6 +44,8 @@ mod bin;
 mod clip;
 mod cut;
 mod layer;
+#[cfg(test)]
+mod layer_tests;
 mod setup;
 mod tile;
 mod viewport;
