@@ -11,7 +11,7 @@ use serde::Serialize;
 use super::key::write_in_place;
 use super::render::{parse_size, PresetArg};
 use super::{write_stdout, CliError};
-use glint::job::{LayerChoice, Overrides, PlaceError, Placement, RenderJob};
+use glint::job::{LayerChoice, LayerUnder, Overrides, PlaceError, Placement, RenderJob};
 use glint::shot::{
     apply_edits, edit_layer, frame_text, parse_param_path, rounded_number_text, LayerEdit, Preset,
     TrackEdit,
@@ -322,33 +322,14 @@ fn pin(
             CliError::Failed(e)
         }
     };
-    let (patch, uv) = job.point_under(frame, args.pixel).map_err(failed)?;
+    let LayerUnder {
+        patch,
+        uv,
+        highlight: drawn,
+        layer,
+    } = job.layer_under(frame, args.pixel, choice).map_err(failed)?;
     let shot = job.shot();
     let name = &shot.library.patches[patch].name;
-    let Some(drawn) = shot.highlight_of(patch) else {
-        return Err(CliError::BadInput(anyhow!(
-            "{shown}: {name}, under pixel ({}, {}), has no designed highlight to pin; add an \
-             entry to `highlights` whose patches select it",
-            args.pixel.0,
-            args.pixel.1
-        )));
-    };
-    if let Some(asked) = choice.highlight.filter(|&h| h != drawn) {
-        return Err(CliError::BadInput(anyhow!(
-            "{shown}: highlight {asked} is not the one drawn on {name}, under pixel ({}, {}): \
-             highlight {drawn} is",
-            args.pixel.0,
-            args.pixel.1
-        )));
-    }
-    let layers = shot.at(frame).highlights[drawn].layers().len();
-    let layer = choice.layer.unwrap_or(0);
-    if layer >= layers {
-        return Err(CliError::BadInput(anyhow!(
-            "{shown}: highlight {drawn} has {layers} layer(s), numbered from 0, so there is no \
-             layer {layer}"
-        )));
-    }
     let (file, index) = shot
         .highlight_written(drawn)
         .map_or((shot.path.as_path(), drawn), |(f, i)| (f, i));

@@ -38,7 +38,7 @@ pub use frame_check::{aov_file_names, FileProblem, Scrutiny};
 pub use frame_list::{frame_spec, parse_frames};
 pub use memory::{bytes_text, default_memory_ceiling, estimate_peak_bytes, parse_memory_size};
 pub use pixel_of::{PointInImage, VISIBLE_DEPTH_TOLERANCE};
-pub use place::{LayerChoice, PlaceError, Placement, Residual};
+pub use place::{LayerChoice, LayerUnder, PlaceError, Placement, Residual};
 
 use crate::formats::atomic::{Durability, WriteError};
 use crate::render::{RenderError, RenderedFrame, Renderer, Settings};

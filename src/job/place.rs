@@ -57,6 +57,19 @@ pub struct Residual {
     pub covered: bool,
 }
 
+/// The highlight layer drawn on the surface point under a pixel ([`RenderJob::layer_under`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LayerUnder {
+    /// The patch under the pixel (index into the shot's library).
+    pub patch: usize,
+    /// Its parameters where the pixel's ray meets it.
+    pub uv: (f64, f64),
+    /// The highlight entry drawn on the patch (includes first).
+    pub highlight: usize,
+    /// The layer, left to right from 0.
+    pub layer: usize,
+}
+
 /// Why a highlight cannot be placed at a pixel.
 #[derive(Debug, Error)]
 pub enum PlaceError {
@@ -135,14 +148,16 @@ impl RenderJob {
         Ok(placement)
     }
 
-    /// [`RenderJob::place`] without the residuals (`residuals` is empty): the translation alone,
-    /// for a highlight that follows a pointer.
-    pub fn place_centre(
+    /// The highlight layer drawn on the surface point under `pixel` at `frame`
+    /// ([`point_under`](Self::point_under)): the entry drawn on its patch (which must be
+    /// `choice.highlight` if given), and its layer `choice.layer`, or the first with a
+    /// translation. Errors as [`RenderJob::place`] does for the pixel, the entry and the layer.
+    pub fn layer_under(
         &mut self,
         frame: f64,
         pixel: (f64, f64),
         choice: LayerChoice,
-    ) -> Result<Placement, PlaceError> {
+    ) -> Result<LayerUnder, PlaceError> {
         let (patch, uv) = self.point_under(frame, pixel)?;
         let shot = &self.shot;
         let name = &shot.library.patches[patch].name;
@@ -161,8 +176,7 @@ impl RenderJob {
             )));
         }
         let state = shot.at(frame);
-        let expr = &state.highlights[drawn];
-        let layers = expr.layers();
+        let layers = state.highlights[drawn].layers();
         let layer = match choice.layer {
             Some(k) if k < layers.len() => k,
             Some(k) => {
@@ -176,6 +190,32 @@ impl RenderJob {
                 .position(|l| l.placing_translation().is_some())
                 .unwrap_or(0),
         };
+        Ok(LayerUnder {
+            patch,
+            uv,
+            highlight: drawn,
+            layer,
+        })
+    }
+
+    /// [`RenderJob::place`] without the residuals (`residuals` is empty): the translation alone,
+    /// for a highlight that follows a pointer.
+    pub fn place_centre(
+        &mut self,
+        frame: f64,
+        pixel: (f64, f64),
+        choice: LayerChoice,
+    ) -> Result<Placement, PlaceError> {
+        let LayerUnder {
+            patch,
+            uv,
+            highlight: drawn,
+            layer,
+        } = self.layer_under(frame, pixel, choice)?;
+        let shot = &self.shot;
+        let name = &shot.library.patches[patch].name;
+        let state = shot.at(frame);
+        let layers = state.highlights[drawn].layers();
         if shot.pinned_patch(drawn, layer).is_some() {
             let pinned = &shot.library.patches[shot.pinned_patch(drawn, layer).unwrap_or(patch)];
             return Err(PlaceError::Layer(format!(
