@@ -27,8 +27,8 @@
 //! the moved teapot's patches, rasterize, fill the G-buffer and find its lines again.
 //!
 //! Run with `cargo bench --bench motion`; it prints each variant's frame time by stage, the
-//! grids, triangles, texels and intersection pairs the first moving frames made again and
-//! kept, then the ratio moving / still.
+//! grids, triangles, texels, intersection pairs and silhouettes the first moving frames made
+//! again and kept, then the ratio moving / still.
 
 // Variant::render is for benchmarks that render one scene again and again.
 #[allow(dead_code)]
@@ -131,14 +131,16 @@ fn main() {
         let s = renderer.render(&scene, &settings).unwrap().stats;
         println!(
             "moving frame {frame}: {} grids evaluated, {} kept; {} of {} triangles rasterized; \
-             {} G-buffer texels kept; intersections: {} patch pairs kept, {} tested",
+             {} G-buffer texels kept; intersections: {} patch pairs kept, {} tested; \
+             silhouettes of {} patches kept",
             s.grids_evaluated,
             s.grids_kept,
             s.triangles_rasterized,
             s.triangles,
             s.texels_kept,
             s.intersection_pairs_kept,
-            s.intersection_pairs_tested
+            s.intersection_pairs_tested,
+            s.silhouettes_kept
         );
     }
     measured.print_ratios("moving / still", &[("moving", "still")]);

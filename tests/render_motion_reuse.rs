@@ -1,5 +1,5 @@
-//! A frame where one instance moved rigidly evaluates that instance's grids and intersection
-//! lines again and keeps the others': two teapots, one driving and turning, the other still.
+//! A frame where one instance moved rigidly evaluates that instance's grids, intersection
+//! lines and silhouettes again and keeps the others': two teapots, one driving and turning, the other still.
 //! Whatever is kept, the frames are a fresh renderer's bytes.
 
 use std::sync::Arc;
@@ -99,6 +99,8 @@ fn only_the_moving_teapot_s_grids_and_intersections_are_made_again() {
         );
         // The driving teapot's spout and handle still pass through its body.
         assert!(s.intersection_pairs_tested > 0, "frame {frame}");
+        // The still teapot's silhouettes are kept under the camera that holds.
+        assert_eq!(s.silhouettes_kept, TEAPOT_PATCHES, "frame {frame}");
         let fresh = render(
             &mut Renderer::new(Arc::clone(&shot.library)),
             &shot,
@@ -194,6 +196,13 @@ fn a_frame_where_one_teapot_moved_rasterizes_it_alone_and_gives_a_fresh_renderer
         if let Some(still) = still_texels {
             assert!(s.texels_kept <= still, "frame {frame}");
         }
+        // The still teapot's silhouettes are kept from the frame before, except where the
+        // camera moved or nothing was found before.
+        let silhouettes_kept = match frame {
+            1 | 6 => 0,
+            _ => TEAPOT_PATCHES,
+        };
+        assert_eq!(s.silhouettes_kept, silhouettes_kept, "frame {frame}");
         let fresh = render(
             &mut Renderer::new(Arc::clone(&shot.library)),
             &shot,

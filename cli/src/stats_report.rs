@@ -56,6 +56,12 @@ pub(crate) fn stats_report(frame: i64, s: &RenderStats) -> String {
             s.intersection_pairs_kept, s.intersection_pairs_tested
         ));
     }
+    if s.silhouettes_kept > 0 {
+        out.push_str(&format!(
+            "\n  silhouettes: {} patches' kept from the previous frame",
+            s.silhouettes_kept
+        ));
+    }
     out.push_str(&format!(
         "\n  exact frames {}, highlighted samples {}, X-Toon samples {}",
         s.exact_frames, s.highlight_pixels, s.xtoon_pixels

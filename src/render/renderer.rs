@@ -15,7 +15,9 @@ use super::edges::one_sample::OneSampleEdges;
 use super::edges::trim_edge::{composite, find_trim_edges};
 use super::gbuffer::{Earlier, GBuffer, PIXELS_PER_JOB};
 use super::line_style::{LineKind, LineStyle};
-use super::lines::{self, draw_lines, IntersectionsFound, LineImage, LineInput, MeshLines};
+use super::lines::{
+    self, draw_lines, IntersectionsFound, KeptSilhouettes, LineImage, LineInput, MeshLines,
+};
 use super::plan::{Plan, Surfaces};
 use super::raster::{Cut, RasterOptions, RasterStats, Rasterizer, Viewport, VisibilityBuffer};
 use super::scene::{Outlines, Scene};
@@ -86,6 +88,8 @@ struct StageBuffers {
     shading: ShadeBuffers,
     /// What the lines found on the mesh and keep while it stays.
     mesh_lines: MeshLines,
+    /// The last frame's silhouettes, patch by patch, kept for the patches the next sees alike.
+    silhouettes: KeptSilhouettes,
     /// The last frame's lines and what they were drawn with.
     kept_lines: Option<KeptLines>,
 }
@@ -118,6 +122,7 @@ impl Renderer {
                 gbuffer: GBuffer::default(),
                 shading: ShadeBuffers::default(),
                 mesh_lines: MeshLines::default(),
+                silhouettes: KeptSilhouettes::default(),
                 kept_lines: None,
             },
             library,
@@ -322,6 +327,7 @@ impl StageBuffers {
             gbuffer,
             shading,
             mesh_lines,
+            silhouettes,
             kept_lines,
         } = self;
 
@@ -412,7 +418,7 @@ impl StageBuffers {
             (&plan, scene, styles),
             (library, mesh, generation),
             (visibility, &grid, settings),
-            (mesh_lines, kept_lines),
+            (mesh_lines, silhouettes, kept_lines),
             &mut stats,
         );
         let lines = kept_lines.as_ref().map(|kept| &kept.image);
@@ -736,7 +742,11 @@ fn outline(
     (plan, scene, styles): (&Plan, &Scene, Vec<LineStyle>),
     (library, mesh, generation): (&PatchLibrary, &Mesh, u64),
     (visibility, grid, settings): (&VisibilityBuffer, &SampleGrid, &Settings),
-    (mesh_lines, kept_lines): (&mut MeshLines, &mut Option<KeptLines>),
+    (mesh_lines, silhouettes, kept_lines): (
+        &mut MeshLines,
+        &mut KeptSilhouettes,
+        &mut Option<KeptLines>,
+    ),
     stats: &mut RenderStats,
 ) {
     match (plan.runs(Stage::Outline), &scene.outlines) {
@@ -764,7 +774,9 @@ fn outline(
                 styles: &styles,
             };
             let recycled = kept_lines.take().map(|kept| kept.image);
-            let (image, drawn) = timed(|| draw_lines(&input, outlines, recycled));
+            let (image, drawn) =
+                timed(|| draw_lines(&input, outlines, (recycled, &mut *silhouettes)));
+            stats.silhouettes_kept = silhouettes.kept();
             stats.record(Stage::Outline, image.inked, drawn);
             stats.add_seconds(Stage::Outline, seconds);
             *kept_lines = Some(KeptLines {

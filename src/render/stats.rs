@@ -44,6 +44,10 @@ pub struct RenderStats {
     /// changed grid whose bounds overlap and which share no vertex position (0 unless this
     /// frame found the intersections again).
     pub intersection_pairs_tested: usize,
+    /// Patches whose silhouette pieces were kept from the frame before rather than found again:
+    /// the camera and the patch, its grid bit for bit, are as they were (0 when the lines were
+    /// not found again).
+    pub silhouettes_kept: usize,
     pub triangles: usize,
     /// Triangles drawn into the visibility buffer (or the kept visibility of the patches that
     /// did not move) for this frame: fewer than [`RenderStats::triangles`] when the triangles
@@ -79,6 +83,7 @@ impl RenderStats {
             grids_evaluated: 0,
             grids_kept: 0,
             intersection_pairs_kept: 0,
+            silhouettes_kept: 0,
             intersection_pairs_tested: 0,
             triangles: 0,
             triangles_rasterized: 0,
@@ -147,7 +152,7 @@ impl Serialize for RenderStats {
             }
         }
         let reused: Vec<&str> = self.plan.reused_stages().map(Stage::name).collect();
-        let mut s = serializer.serialize_struct("RenderStats", 14)?;
+        let mut s = serializer.serialize_struct("RenderStats", 15)?;
         s.serialize_field("stages", &Stages(self))?;
         s.serialize_field("reused", &reused)?;
         s.serialize_field("tessellation_rebuilt", &self.tessellation_rebuilt)?;
@@ -155,6 +160,7 @@ impl Serialize for RenderStats {
         s.serialize_field("grids_kept", &self.grids_kept)?;
         s.serialize_field("intersection_pairs_kept", &self.intersection_pairs_kept)?;
         s.serialize_field("intersection_pairs_tested", &self.intersection_pairs_tested)?;
+        s.serialize_field("silhouettes_kept", &self.silhouettes_kept)?;
         s.serialize_field("triangles", &self.triangles)?;
         s.serialize_field("triangles_rasterized", &self.triangles_rasterized)?;
         s.serialize_field("texels_kept", &self.texels_kept)?;

@@ -120,50 +120,49 @@ struct OnPatch<'a> {
 /// longer than [`LONGEST_PIECE_PIXELS`] on the `size` image is cut at the point of the
 /// silhouette on the line from the triangle's lone corner through its middle (in (u, v)).
 /// On a trimmed patch, a piece is cut where a trim loop crosses it and only what the trim keeps
-/// is drawn. Only the patches `drawn` picks are searched.
+/// is drawn. Patch by patch: None for the patches `searched` does not pick.
 #[must_use]
 pub(crate) fn silhouettes(
-    drawn: impl Fn(u32) -> bool + Sync,
+    searched: impl Fn(u32) -> bool + Sync,
     mesh: &Mesh,
     library: &PatchLibrary,
     camera: &Camera,
     view_projection: Mat4,
     size: (u32, u32),
-) -> Vec<Piece> {
+) -> Vec<Option<Vec<Piece>>> {
     let side = EyeSide::of(camera);
-    let g = grazing_as_zero(mesh, side);
     mesh.grids
         .par_iter()
         .zip(&library.patches)
         .enumerate()
-        .filter(|&(k, _)| drawn(k as u32))
-        .flat_map_iter(|(k, (grid, patch))| {
-            let on = OnPatch {
-                mesh,
-                patch: k as u32,
-                surface: &patch.surface,
-                trim: patch.trim.as_deref(),
-                side,
-                view_projection,
-                size,
-            };
-            on.silhouettes(grid, &g)
+        .map(|(k, (grid, patch))| {
+            searched(k as u32).then(|| {
+                let on = OnPatch {
+                    mesh,
+                    patch: k as u32,
+                    surface: &patch.surface,
+                    trim: patch.trim.as_deref(),
+                    side,
+                    view_projection,
+                    size,
+                };
+                on.silhouettes(grid, &grazing_as_zero(mesh, grid, side))
+            })
         })
         .collect()
 }
 
-/// `g` at every vertex of `mesh`, 0 where the line of sight grazes the surface
-/// ([`EyeSide::grazes`]). There `g` is rounding alone, of either sign: along a seam the
-/// silhouette runs on (an orthographic view square to a body of revolution), the two sides'
-/// copies of a vertex, each with its own patch's normal, would take opposite signs, and the
-/// silhouette would slip between the two sides' triangles, each seeing no sign change; along
-/// the seam itself, vertices of random signs would leave it in scraps. At 0, every such vertex
-/// is on the front, and the triangles behind find the seam once.
+/// `g` at every vertex of `grid` in `mesh`, in the grid's order, 0 where the line of sight
+/// grazes the surface ([`EyeSide::grazes`]). There `g` is rounding alone, of either sign: along
+/// a seam the silhouette runs on (an orthographic view square to a body of revolution), the two
+/// sides' copies of a vertex, each with its own patch's normal, would take opposite signs, and
+/// the silhouette would slip between the two sides' triangles, each seeing no sign change;
+/// along the seam itself, vertices of random signs would leave it in scraps. At 0, every such
+/// vertex is on the front, and the triangles behind find the seam once.
 #[must_use]
-fn grazing_as_zero(mesh: &Mesh, side: EyeSide) -> Vec<f64> {
-    (0..mesh.positions.len() as u32)
-        .into_par_iter()
-        .with_min_len(4096)
+fn grazing_as_zero(mesh: &Mesh, grid: &PatchGrid, side: EyeSide) -> Vec<f64> {
+    let first = grid.first;
+    (first..first + grid.nu * grid.nv)
         .map(|v| {
             let g = side.at_vertex(mesh, v);
             if side.grazes(mesh.positions[v as usize].as_dvec3(), g) {
@@ -176,11 +175,11 @@ fn grazing_as_zero(mesh: &Mesh, side: EyeSide) -> Vec<f64> {
 }
 
 impl OnPatch<'_> {
-    /// The silhouette pieces of the patch whose vertices are `grid`, `g` given at every
-    /// vertex of the mesh.
+    /// The silhouette pieces of the patch whose vertices are `grid`, `g` given at each of
+    /// them in the grid's order.
     fn silhouettes(&self, grid: &PatchGrid, g: &[f64]) -> Vec<Piece> {
         let (nu, nv) = (grid.nu, grid.nv);
-        let value = |v: u32| g[v as usize];
+        let value = |v: u32| g[(v - grid.first) as usize];
         let front = |v: u32| value(v) >= 0.0;
         let mut pieces = Vec::new();
         // Each crossed edge is met by the two triangles beside it: found once.

@@ -18,7 +18,9 @@
 mod border;
 mod chain;
 mod contour;
+mod grid_shape;
 mod intersection;
+mod kept_silhouettes;
 mod piece;
 mod screen;
 mod stroke;
@@ -33,14 +35,16 @@ use super::colour::{premultiplied, straight};
 use super::line_style::{LineKind, LineStyle};
 use super::raster::VisibilityBuffer;
 use super::scene::Outlines;
-use super::tessellate::{Mesh, PatchGrid};
+use super::tessellate::Mesh;
 use crate::geom::PatchLibrary;
+use grid_shape::GridShape;
 use piece::Piece;
 use stroke::Capsule;
 use visible::DepthTest;
 
 pub(super) use intersection::Meeting;
 use intersection::PairMeetings;
+pub(super) use kept_silhouettes::KeptSilhouettes;
 
 /// The lines of a frame: per output pixel their coverage and colour.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -130,61 +134,6 @@ pub(super) struct MeshLines {
     pairs: Vec<PairMeetings>,
     /// The meetings of every pair, in pair order.
     intersections: Vec<Meeting>,
-}
-
-/// One patch's grid as the intersections saw it: its vertices' positions and (u, v), row by
-/// row. A patch whose grid is bit for bit the same meets every other unchanged patch where it
-/// did.
-#[derive(Debug, Default, PartialEq)]
-struct GridShape {
-    nu: u32,
-    nv: u32,
-    positions: Vec<Vec3>,
-    uvs: Vec<glam::Vec2>,
-}
-
-impl GridShape {
-    /// Whether patch `patch`'s grid in `mesh` is this one, bit for bit.
-    #[must_use]
-    fn is_in(&self, mesh: &Mesh, patch: usize) -> bool {
-        let grid = &mesh.grids[patch];
-        let range = grid_range(grid);
-        let bits = |a: &[Vec3], b: &[Vec3]| {
-            a.len() == b.len()
-                && a.iter()
-                    .zip(b)
-                    .all(|(p, q)| p.to_array().map(f32::to_bits) == q.to_array().map(f32::to_bits))
-        };
-        let uv_bits = |a: &[glam::Vec2], b: &[glam::Vec2]| {
-            a.len() == b.len()
-                && a.iter()
-                    .zip(b)
-                    .all(|(p, q)| p.to_array().map(f32::to_bits) == q.to_array().map(f32::to_bits))
-        };
-        (self.nu, self.nv) == (grid.nu, grid.nv)
-            && bits(&self.positions, &mesh.positions[range.clone()])
-            && uv_bits(&self.uvs, &mesh.uvs[range])
-    }
-
-    /// Patch `patch`'s grid in `mesh`.
-    #[must_use]
-    fn of(mesh: &Mesh, patch: usize) -> Self {
-        let grid = &mesh.grids[patch];
-        let range = grid_range(grid);
-        Self {
-            nu: grid.nu,
-            nv: grid.nv,
-            positions: mesh.positions[range.clone()].to_vec(),
-            uvs: mesh.uvs[range].to_vec(),
-        }
-    }
-}
-
-/// The vertices of `grid` in its mesh: `first .. first + nu nv`.
-#[must_use]
-fn grid_range(grid: &PatchGrid) -> std::ops::Range<usize> {
-    let first = grid.first as usize;
-    first..first + grid.nu as usize * grid.nv as usize
 }
 
 /// How the intersections of a frame's mesh were had: found again on a new mesh, keeping the
@@ -282,22 +231,21 @@ fn style_of(piece: &Piece, styles: &[LineStyle]) -> Option<u32> {
 }
 
 /// The lines `outlines` and the patches' styles ask for, over an image of `input.size` pixels,
-/// drawn into the buffers of `recycled` (an earlier frame's lines, if any) rather than new ones.
+/// drawn into the buffers of `recycled` (an earlier frame's lines, if any) rather than new ones;
+/// the silhouettes of the patches `silhouettes` holds as they are now are kept from it.
 #[must_use]
 pub(super) fn draw_lines(
     input: &LineInput,
     outlines: &Outlines,
-    recycled: Option<LineImage>,
+    (recycled, silhouettes): (Option<LineImage>, &mut KeptSilhouettes),
 ) -> LineImage {
     let styles = input.styles;
     let draws_silhouettes = |patch: u32| styles[patch as usize].draws(LineKind::Silhouette);
-    let mut pieces: Vec<Piece> = contour::silhouettes(
+    let mut pieces: Vec<Piece> = silhouettes.silhouettes(
         draws_silhouettes,
         input.mesh,
         input.library,
-        input.camera,
-        input.view_projection,
-        input.size,
+        (input.camera, input.view_projection, input.size),
     );
     pieces.extend(border::borders_and_creases(
         input.mesh,
