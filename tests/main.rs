@@ -14,6 +14,7 @@ mod cli_probe;
 mod cli_render;
 mod cli_watch;
 mod farm_verify;
+mod fingerprint_edits;
 mod fuzz_replay;
 mod geometry_derivatives;
 mod geometry_sphere;

@@ -58,34 +58,54 @@ fn frame_model(hash: &mut Sha256, library: &PatchLibrary) {
     hash.update(text.as_bytes());
 }
 
+/// A [`std::fmt::Write`] that feeds what is written into a hash, so that a `Debug` print of a
+/// frame's whole input is hashed without being held as text.
+struct HashWriter<'a>(&'a mut Sha256);
+
+impl std::fmt::Write for HashWriter<'_> {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        self.0.update(s.as_bytes());
+        Ok(())
+    }
+}
+
 impl RenderJob {
     /// The fingerprint of frame `frame`: what the whole job shares (glint's version, the
     /// settings but the thread count, the AOVs, the model as placed when nothing moves, the
-    /// bytes of every patch file and texture) and every value the shot has at that frame
-    /// ([`crate::shot::Shot::at`]), with, when the shot moves, the model posed there.
-    /// `None` when an asset cannot be read. Two frames share it only when they would be
-    /// rendered from the same values, so an edit of one key (of a highlight, the camera or a
-    /// transform) changes the fingerprints of exactly the frames it changes.
+    /// bytes of every patch file and texture) and the frame's [`Scene`] — what the renderer is
+    /// handed: every patch's look (tone, prepared highlight, line style), the camera, the light,
+    /// the outlines and the AOVs — with, when the shot moves, the model posed there. Each is
+    /// hashed through its `Debug` print, which names every field (an `f64` prints as the
+    /// shortest text that reads back to the same bits; a texture or a smoothed shape as its
+    /// size and a digest of its values), so a field added to what a frame is rendered from is
+    /// in the fingerprint without being listed here. `None` when an asset cannot be read or the
+    /// frame has no scene (it would not render). Two frames share it only when they would be
+    /// rendered from the same input, so an edit changes the fingerprints of exactly the frames
+    /// whose input it changes.
+    ///
+    /// [`Scene`]: crate::render::Scene
     #[must_use]
     pub fn fingerprint(&self, frame: i64) -> Option<Fingerprint> {
         let mut hash = self.digest.get_or_init(|| job_digest(self)).clone()?;
         let state = self.shot().at(frame as f64);
-        let mut text = String::new();
+        let scene = state.scene(self.shot()).ok()?;
+        // Every field, so that a new one must be placed here: the model is the job's when
+        // nothing moves, hashed once.
+        let crate::render::Scene {
+            library,
+            looks,
+            camera,
+            light,
+            outlines,
+            aovs,
+        } = &scene;
         let _ = write!(
-            text,
+            HashWriter(&mut hash),
             "{:?}",
-            (
-                state.camera,
-                state.light,
-                state.materials,
-                state.highlights,
-                state.outlines,
-                state.lines
-            )
+            (looks, camera, light, outlines, aovs)
         );
-        hash.update(text.as_bytes());
         if self.shot().moves() {
-            frame_model(&mut hash, &state.library);
+            frame_model(&mut hash, library);
         }
         let digest = hash.finalize();
         Some(Fingerprint(

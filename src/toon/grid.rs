@@ -6,8 +6,9 @@ use glam::{Vec3, Vec3A};
 use crate::math::LANES;
 
 /// `rows × columns` vectors, read at continuous coordinates `(row, column)` with the samples at
-/// whole numbers.
-#[derive(Clone, Debug, PartialEq)]
+/// whole numbers. Its `Debug` prints its size and a digest of its values, not the values: what
+/// a frame's fingerprint reads of a texture or a smoothed shape, in a line, however large.
+#[derive(Clone, PartialEq)]
 pub(super) struct Grid {
     /// Row by row, each row ending in a copy of its last value, and a copy of the last row so
     /// extended at the bottom: the four values around a point are then always at `k`, `k + 1`,
@@ -19,6 +20,44 @@ pub(super) struct Grid {
     /// The last row's and the last column's coordinate.
     last_row: f32,
     last_column: f32,
+    /// SHA-256 of the values' bits, in order: equal for equal grids, and for two grids that
+    /// differ by a bit, different but with negligible chance.
+    digest: [u8; 16],
+}
+
+impl std::fmt::Debug for Grid {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Grid")
+            .field("rows", &self.rows)
+            .field("columns", &self.columns())
+            .field("digest", &Digest(&self.digest))
+            .finish()
+    }
+}
+
+/// A digest printed as hex digits.
+struct Digest<'a>(&'a [u8]);
+
+impl std::fmt::Debug for Digest<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.iter().try_for_each(|b| write!(f, "{b:02x}"))
+    }
+}
+
+/// The first 16 bytes of the SHA-256 of `values`' bits, in order.
+#[must_use]
+fn digest_of(values: &[Vec3A]) -> [u8; 16] {
+    use sha2::Digest as _;
+    let mut hash = sha2::Sha256::new();
+    for v in values {
+        for x in v.to_array() {
+            hash.update(x.to_bits().to_le_bytes());
+        }
+    }
+    let full = hash.finalize();
+    let mut digest = [0; 16];
+    digest.copy_from_slice(&full[..16]);
+    digest
 }
 
 impl Grid {
@@ -43,10 +82,12 @@ impl Grid {
         let padded_rows = values
             .chunks(columns)
             .chain(values.rchunks(columns).take(1));
+        let values: Vec<Vec3A> = padded_rows
+            .flat_map(|row| row.iter().chain(row.last()).map(|&v| Vec3A::from(v)))
+            .collect();
         Self {
-            values: padded_rows
-                .flat_map(|row| row.iter().chain(row.last()).map(|&v| Vec3A::from(v)))
-                .collect(),
+            digest: digest_of(&values),
+            values,
             stride: columns + 1,
             rows,
             last_row: (rows - 1) as f32,
