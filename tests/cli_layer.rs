@@ -263,4 +263,11 @@ fn the_help_and_documented_examples_run_in_turn() {
     run_examples(&String::from_utf8(help.stdout).unwrap());
     let doc = std::fs::read_to_string(repo_file("docs/shot-format.md")).unwrap();
     run_examples(&doc[doc.find("## Editing from the command line").unwrap()..]);
+    let doc = std::fs::read_to_string(repo_file("docs/highlights.md")).unwrap();
+    let drawing = &doc[doc.find("### Drawing an outline").unwrap()..];
+    run_examples(
+        &drawing[..drawing[4..]
+            .find("\n#")
+            .map_or(drawing.len(), |end| end + 4)],
+    );
 }
