@@ -493,6 +493,7 @@ fn triangle_fit(shot: &Path, frame: f64, corners: &[(f64, f64); 3]) -> ([f64; 3]
 #[test]
 fn a_drawn_triangle_is_written_as_an_outline_whose_matte_has_its_corners() {
     let served = Served::new();
+    let before = served.text();
     let corners = [(90.0, 50.0), (105.0, 76.0), (75.0, 76.0)];
     let points: Vec<[f64; 2]> = corners.iter().map(|&(x, y)| [x, y]).collect();
     let reply = served.post(
@@ -538,6 +539,11 @@ fn a_drawn_triangle_is_written_as_an_outline_whose_matte_has_its_corners() {
     let layer = &state["highlights"][0]["layers"][0];
     assert_eq!(layer["shape"], "keyed outline");
     assert_eq!(layer["shape_keys"], json!([30.0, 50.0]));
+
+    // The disc again: the file as it was.
+    let disc = json!({"changes": [{"kind": "disc", "highlight": 0, "layer": 0}]});
+    assert_status(&served.post("/api/commit", &disc), 200);
+    assert_eq!(served.text(), before);
 }
 
 #[test]
@@ -560,6 +566,7 @@ fn a_drawn_point_off_the_highlight_s_patch_or_a_key_of_another_count_writes_noth
             json!([[90, 50], [105, 76], [75, 76], [105, 50]]),
             "crosses itself",
         ),
+        (json!(vec![[90, 50]; 2000]), "at most 1024"),
     ] {
         let reply = draw(1, points.clone(), false);
         assert_status(&reply, 400);
