@@ -1,6 +1,6 @@
 //! `glint layer` end to end: each structural edit of a layer written into its file with the
-//! rest of the file as it was, undone by its inverse byte for byte, and refusals with one line
-//! and exit code 2 that write nothing.
+//! rest of the file as it was, undone by its inverse byte for byte, drawn outlines read back as
+//! written, and refusals with one line and exit code 2 that write nothing.
 
 use std::path::Path;
 
@@ -112,6 +112,135 @@ fn layer_edits_that_cannot_be_made_exit_2_and_write_nothing() {
     assert!(stderr(&out).contains("no highlight 7"), "{}", stderr(&out));
 }
 
+/// The corners of layer 0 of highlight 0's outline as the shot reads at `frame`; empty for
+/// the disc.
+fn outline_at(shot: &str, frame: f64) -> Vec<[f32; 2]> {
+    use glint::highlight::{Segment, Shape};
+    let shot = glint::shot::load_shot(Path::new(shot)).unwrap();
+    let state = shot.at(frame);
+    match &state.highlights[0].layers()[0].shape {
+        Shape::Disc => Vec::new(),
+        Shape::Outline(o) => o
+            .segments
+            .iter()
+            .map(|s| match s {
+                Segment::Corner(p) => *p,
+                Segment::Bezier(_) => panic!("a Bezier where corners were drawn"),
+            })
+            .collect(),
+    }
+}
+
+fn near(got: &[[f32; 2]], want: &[[f32; 2]], tolerance: f32) -> bool {
+    got.len() == want.len()
+        && got
+            .iter()
+            .zip(want)
+            .all(|(g, w)| (g[0] - w[0]).abs() <= tolerance && (g[1] - w[1]).abs() <= tolerance)
+}
+
+#[test]
+fn outlines_drawn_and_keyed_read_back_as_written_and_the_disc_gives_the_file_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = sphere_ops(dir.path());
+    let original = std::fs::read_to_string(&shot).unwrap();
+    let triangle = [[0.0, 0.3], [0.259_81, -0.15], [-0.259_81, -0.15]];
+    let out = layer(
+        &shot,
+        &[
+            "--outline",
+            "(0.0, 0.3), (0.25981, -0.15), (-0.25981, -0.15)",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("drew an outline of 3 points"));
+    // Written to 4 places: within half a unit of the last.
+    assert!(near(&outline_at(&shot, 1.0), &triangle, 0.5e-4));
+    assert!(near(&outline_at(&shot, 60.0), &triangle, 0.5e-4));
+    let written = std::fs::read_to_string(&shot).unwrap();
+    assert!(written.contains("(0.2598, -0.15)"), "{written}");
+
+    // Keyed at 10 and 30: halfway between, every coordinate is halfway.
+    let small = [[0.0, 0.2], [0.2, -0.1], [-0.2, -0.1]];
+    let big = [[0.0, 0.4], [0.4, -0.2], [-0.4, -0.2]];
+    for (points, frame) in [
+        ("(0.0, 0.2), (0.2, -0.1), (-0.2, -0.1)", "10"),
+        ("(0.0, 0.4), (0.4, -0.2), (-0.4, -0.2)", "30"),
+    ] {
+        let out = layer(&shot, &["--outline", points, "--key-at", frame]);
+        assert!(out.status.success(), "{}", stderr(&out));
+    }
+    assert!(near(&outline_at(&shot, 1.0), &small, 1e-6));
+    assert!(near(&outline_at(&shot, 30.0), &big, 1e-6));
+    let mid: Vec<[f32; 2]> = small
+        .iter()
+        .zip(&big)
+        .map(|(a, b)| [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0])
+        .collect();
+    assert!(near(&outline_at(&shot, 20.0), &mid, 1e-6));
+
+    // Back to the disc: the file as it was.
+    let out = layer(&shot, &["--disc"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(outline_at(&shot, 1.0).is_empty());
+    assert_eq!(std::fs::read_to_string(&shot).unwrap(), original);
+}
+
+#[test]
+fn outlines_that_cannot_be_drawn_exit_2_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = sphere_ops(dir.path());
+    let out = layer(
+        &shot,
+        &[
+            "--outline",
+            "(0.0, 0.2), (0.2, -0.1), (-0.2, -0.1)",
+            "--key-at",
+            "12",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let keyed = std::fs::read_to_string(&shot).unwrap();
+    for (edit, says) in [
+        (
+            vec![
+                "--outline",
+                "(0, 0), (0.1, 0), (0.1, 0.1), (0, 0.1)",
+                "--key-at",
+                "24",
+            ],
+            "the outline key at frame 24 would have 4 points but the key at frame 12 has 3",
+        ),
+        (
+            vec!["--outline", "(0, 0), (0.2, 0.2), (0.2, 0), (0, 0.2)"],
+            "crosses itself",
+        ),
+        (
+            vec!["--outline", "(0, 0), (0.995, 0), (0, 0.1)"],
+            "outside the allowed",
+        ),
+        (vec!["--outline", "(0, 0), (0.1, 0)"], "at least 3"),
+        (vec!["--outline", "(0, 0), (0.1"], "not a list of corners"),
+        (
+            vec!["--outline", "(0, 0), (0.1, 0), (0, 0.1)", "--key-at", "inf"],
+            "finite",
+        ),
+    ] {
+        let out = layer(&shot, &edit);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{edit:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{edit:?}: {err}");
+        assert!(err.contains(says), "{edit:?}: {err}");
+        assert_eq!(std::fs::read_to_string(&shot).unwrap(), keyed, "{edit:?}");
+    }
+    assert!(layer(&shot, &["--disc"]).status.success());
+    let plain = std::fs::read_to_string(&shot).unwrap();
+    let out = layer(&shot, &["--disc"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("disc already"), "{}", stderr(&out));
+    assert_eq!(std::fs::read_to_string(&shot).unwrap(), plain);
+}
+
 /// Runs every `glint layer` line of `text`, in order, in a fresh copy of the shots.
 fn run_examples(text: &str) {
     let examples: Vec<&str> = text
@@ -134,4 +263,11 @@ fn the_help_and_documented_examples_run_in_turn() {
     run_examples(&String::from_utf8(help.stdout).unwrap());
     let doc = std::fs::read_to_string(repo_file("docs/shot-format.md")).unwrap();
     run_examples(&doc[doc.find("## Editing from the command line").unwrap()..]);
+    let doc = std::fs::read_to_string(repo_file("docs/highlights.md")).unwrap();
+    let drawing = &doc[doc.find("### Drawing an outline").unwrap()..];
+    run_examples(
+        &drawing[..drawing[4..]
+            .find("\n#")
+            .map_or(drawing.len(), |end| end + 4)],
+    );
 }

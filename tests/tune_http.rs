@@ -121,6 +121,12 @@ fn every_endpoint() -> Vec<(&'static str, &'static str, Value)> {
             json!({"frame": 1, "x": 90, "y": 70, "highlight": 0, "layer": 0}),
         ),
         ("POST", "/api/commit", key),
+        (
+            "POST",
+            "/api/draw",
+            json!({"frame": 1, "highlight": 0, "layer": 0,
+                   "points": [[90, 52], [103, 75], [77, 75]]}),
+        ),
         ("POST", "/api/undo", Value::Null),
         ("POST", "/api/redo", Value::Null),
         ("GET", "/api/wait?version=0", Value::Null),
@@ -449,6 +455,139 @@ fn a_drag_places_the_highlight_and_its_commit_keys_it_at_the_frame() {
 
 /// Drags layer 0 of highlight 0 to `drop` at `frame`, commits what the drag showed, and checks
 /// that the highlight's centroid lands there; returns the changes.
+/// How well the matte of `shot` rendered at `frame` fits the triangle `corners` (pixels): for
+/// each corner, the distance from it of the covered pixel (matte ≥ ½) that lies farthest
+/// toward it from the matte's centroid — a triangle's extreme toward a corner is that corner —
+/// and the matte's area over the triangle's.
+fn triangle_fit(shot: &Path, frame: f64, corners: &[(f64, f64); 3]) -> ([f64; 3], f64) {
+    let overrides = Overrides {
+        size: Some((SIZE, SIZE)),
+        aovs: Some(vec![Aov::Matte]),
+        ..Overrides::default()
+    };
+    let mut job = RenderJob::load(shot, &overrides).unwrap();
+    let matte = job.render_frame(frame).unwrap().aovs.matte.unwrap();
+    let ((cx, cy), area) = crate::common::matte_centroid_of(&matte, SIZE);
+    let covered: Vec<(f64, f64)> = matte
+        .iter()
+        .enumerate()
+        .filter(|(_, &m)| m >= 0.5)
+        .map(|(i, _)| (f64::from(i as u32 % SIZE), f64::from(i as u32 / SIZE)))
+        .collect();
+    let misses = corners.map(|(x, y)| {
+        let (dx, dy) = (x - cx, y - cy);
+        let extreme = covered
+            .iter()
+            .max_by(|a, b| {
+                let along = |p: &&(f64, f64)| (p.0 - cx) * dx + (p.1 - cy) * dy;
+                along(a).total_cmp(&along(b))
+            })
+            .expect("the matte covers pixels");
+        (extreme.0 - x).hypot(extreme.1 - y)
+    });
+    let [a, b, c] = corners;
+    let triangle = ((b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1)).abs() / 2.0;
+    (misses, area / triangle)
+}
+
+#[test]
+fn a_drawn_triangle_is_written_as_an_outline_whose_matte_has_its_corners() {
+    let served = Served::new();
+    let before = served.text();
+    let corners = [(90.0, 50.0), (105.0, 76.0), (75.0, 76.0)];
+    let points: Vec<[f64; 2]> = corners.iter().map(|&(x, y)| [x, y]).collect();
+    let reply = served.post(
+        "/api/draw",
+        &json!({"frame": 1, "highlight": 0, "layer": 0, "points": points}),
+    );
+    assert_status(&reply, 200);
+    let change = &reply.json()["changes"][0];
+    assert_eq!(change["kind"], "outline");
+    assert!(change["key"].is_null(), "{change}");
+    let text = served.text();
+    let shot = glint::shot::load_shot(&served.shot).unwrap();
+    let drawn = &shot.highlight_layers(0)[0].shape;
+    let glint::highlight::Shape::Outline(outline) = drawn else {
+        panic!("{text}")
+    };
+    assert_eq!(outline.segments.len(), 3, "{text}");
+    assert!(text.contains("shape: Outline(["), "{text}");
+    let (misses, ratio) = triangle_fit(&served.shot, 1.0, &corners);
+    assert!(
+        misses.iter().all(|&m| m <= 2.0),
+        "corners {misses:?} px from the drawn ones"
+    );
+    assert!(
+        (ratio - 1.0).abs() < 0.1,
+        "the matte is {ratio} of the triangle"
+    );
+
+    // Keyed at frame 30 by asking, and at frame 50 because the outline is keyed now.
+    let moved: Vec<[f64; 2]> = corners.iter().map(|&(x, y)| [x - 6.0, y + 4.0]).collect();
+    for (frame, key) in [(30, true), (50, false)] {
+        let reply = served.post(
+            "/api/draw",
+            &json!({"frame": frame, "highlight": 0, "layer": 0, "points": moved, "key": key}),
+        );
+        assert_status(&reply, 200);
+        assert_eq!(
+            reply.json()["changes"][0]["key"].as_f64(),
+            Some(f64::from(frame))
+        );
+    }
+    let state = served.get("/api/state?frame=30").json();
+    let layer = &state["highlights"][0]["layers"][0];
+    assert_eq!(layer["shape"], "keyed outline");
+    assert_eq!(layer["shape_keys"], json!([30.0, 50.0]));
+
+    // The disc again: the file as it was.
+    let disc = json!({"changes": [{"kind": "disc", "highlight": 0, "layer": 0}]});
+    assert_status(&served.post("/api/commit", &disc), 200);
+    assert_eq!(served.text(), before);
+}
+
+#[test]
+fn a_drawn_point_off_the_highlight_s_patch_or_a_key_of_another_count_writes_nothing() {
+    let served = Served::new();
+    let before = served.text();
+    let draw = |frame: u32, points: Value, key: bool| {
+        served.post(
+            "/api/draw",
+            &json!({"frame": frame, "highlight": 0, "layer": 0, "points": points, "key": key}),
+        )
+    };
+    for (points, says) in [
+        (json!([[90, 50], [105, 76], [2, 2]]), "shows no patch"),
+        (json!([[90, 50], [105, 76], [200, 76]]), "outside the"),
+        (json!([[90, 50], [105, 76]]), "at least 3"),
+        // The last point on the first is the same point: two are left.
+        (json!([[90, 50], [105, 76], [90, 50]]), "at least 3"),
+        (
+            json!([[90, 50], [105, 76], [75, 76], [105, 50]]),
+            "crosses itself",
+        ),
+        (json!(vec![[90, 50]; 2000]), "at most 1024"),
+    ] {
+        let reply = draw(1, points.clone(), false);
+        assert_status(&reply, 400);
+        let error = error_of(&reply);
+        assert!(error.contains(says), "{points}: {error}");
+        assert_eq!(served.text(), before, "{points}");
+    }
+    assert_status(&draw(1, json!([[90, 50], [105, 76], [75, 76]]), true), 200);
+    let keyed = served.text();
+    let reply = draw(12, json!([[90, 50], [105, 76], [90, 80], [75, 76]]), true);
+    assert_status(&reply, 400);
+    let error = error_of(&reply);
+    assert!(
+        error.contains(
+            "the outline key at frame 12 would have 4 points but the key at frame 1 has 3"
+        ),
+        "{error}"
+    );
+    assert_eq!(served.text(), keyed);
+}
+
 fn drag_and_commit(served: &Served, frame: f64, drop: (f64, f64)) -> Vec<Value> {
     let drag = json!({"frame": frame, "x": drop.0, "y": drop.1, "highlight": 0, "layer": 0});
     let reply = served.post("/api/drag", &drag);

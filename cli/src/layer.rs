@@ -1,5 +1,6 @@
 //! `glint layer`: a structural edit of one highlight layer — an operation inserted, removed or
-//! moved, a mask added or removed, a pin removed — written into the file the layer is in.
+//! moved, a mask added or removed, a pin removed, an outline drawn or keyed, the disc again —
+//! written into the file the layer is in.
 
 use std::path::PathBuf;
 
@@ -12,7 +13,8 @@ use glint::highlight::Op;
 use glint::shot::{edit_layer, load_shot, op_text, rounded_number_text, LayerEdit};
 
 /// Change the structure of one highlight layer in its file: insert, remove or move an
-/// operation of its stack, add or remove its mask, or remove its pin.
+/// operation of its stack, add or remove its mask, remove its pin, or give it a drawn outline
+/// (or the disc back).
 ///
 /// The layer is layer --layer (left to right through the expression's Booleans, from 0) of
 /// highlight entry --highlight (from 0, includes first); the edit is written into the file the
@@ -20,16 +22,30 @@ use glint::shot::{edit_layer, load_shot, op_text, rounded_number_text, LayerEdit
 /// and the file is read back to check that nothing else changed. An inserted operation's
 /// numbers are constants (key them with `glint key`); a new mask covers the whole patch
 /// (`u: (0, 1), v: (0, 1)`), to narrow with `glint key … --at '…mask.u[0]'`. To add or move a
-/// pin, use `glint place --pin`. Exit code 2 for an index out of range, an operation that is not
-/// valid, a mask or pin that is not there or already is.
+/// pin, use `glint place --pin`.
+///
+/// --outline gives the layer a drawn outline of corners in the coordinates
+/// t' = ((H', du), (H', dv)) (docs/highlights.md, "Drawn outlines"), written to 4 decimals:
+/// `shape: Outline([…])`; with --key-at FRAME it is the outline's key at that frame in
+/// `shape: OutlineKeys([…])`, replacing a key there or added in frame order, with as many points
+/// as the other keys. The disc or a plain outline keyed becomes the one key at FRAME (as a
+/// constant keyed with `glint key` does). --disc takes the shape out: the ε-disc again.
+///
+/// Exit code 2 for an index out of range, an operation that is not valid, a mask or pin that is
+/// not there or already is, an outline that is not a simple closed curve within |t'| ≤ 0.99,
+/// a key with another number of points than the other keys.
 #[derive(Debug, Args)]
-#[command(group(ArgGroup::new("edit").required(true).args(["insert_op", "remove_op", "move_op", "add_mask", "remove_mask", "unpin"])))]
+#[command(group(ArgGroup::new("edit").required(true).args(["insert_op", "remove_op", "move_op", "add_mask", "remove_mask", "unpin", "outline", "disc"])))]
 #[command(after_help = "Examples:
   glint layer shots/sphere_ops.ron --highlight 0 --insert-op 'Scale(delta: 0.5, axis: V)'
   glint layer shots/sphere_ops.ron --highlight 0 --insert-op 'Rotate(degrees: 20.0)' --at 0
   glint layer shots/sphere_ops.ron --highlight 0 --move-op 2 --to 0
   glint layer shots/sphere_ops.ron --highlight 0 --remove-op 1
-  glint layer shots/crescent.ron --highlight 0 --layer 1 --add-mask")]
+  glint layer shots/crescent.ron --highlight 0 --layer 1 --add-mask
+  glint layer shots/sphere_ops.ron --highlight 0 --outline '(0.0, 0.3), (0.26, -0.15), (-0.26, -0.15)'
+  glint layer shots/sphere_ops.ron --highlight 0 --outline '(0.0, 0.2), (0.17, -0.1), (-0.17, -0.1)' --key-at 24
+  glint layer shots/sphere_ops.ron --highlight 0 --outline '(0.0, 0.4), (0.35, -0.2), (-0.35, -0.2)' --key-at 48
+  glint layer shots/sphere_ops.ron --highlight 0 --disc")]
 pub struct LayerArgs {
     /// The shot file (RON)
     shot: PathBuf,
@@ -63,6 +79,27 @@ pub struct LayerArgs {
     /// Remove the layer's pin: its translation is used as written again
     #[arg(long)]
     unpin: bool,
+    /// Give the layer this drawn outline of corners (x, y) in t', e.g.
+    /// '(0.0, 0.3), (0.26, -0.15), (-0.26, -0.15)'
+    #[arg(long, value_name = "POINTS")]
+    outline: Option<String>,
+    /// Write --outline as the outline's key at this frame
+    #[arg(long, value_name = "FRAME", requires = "outline")]
+    key_at: Option<f64>,
+    /// Take the layer's shape out: the ε-disc again
+    #[arg(long)]
+    disc: bool,
+}
+
+/// `(x, y), (x, y), …` read as the corners of an outline.
+fn outline_points(written: &str) -> Result<Vec<[f32; 2]>, anyhow::Error> {
+    let corners: Vec<(f32, f32)> = ron::from_str(&format!("[{written}]")).map_err(|e| {
+        anyhow!(
+            "--outline '{written}' is not a list of corners (x, y), (x, y), …: {}",
+            e.code
+        )
+    })?;
+    Ok(corners.into_iter().map(|(x, y)| [x, y]).collect())
 }
 
 pub fn run(args: &LayerArgs) -> Result<(), CliError> {
@@ -116,6 +153,25 @@ pub fn run(args: &LayerArgs) -> Result<(), CliError> {
         )
     } else if args.remove_mask {
         (LayerEdit::RemoveMask, "removed the mask".into())
+    } else if let Some(written) = &args.outline {
+        let points = outline_points(written).map_err(bad)?;
+        let done = match args.key_at {
+            Some(frame) => format!(
+                "keyed the outline at frame {} ({} points)",
+                glint::shot::frame_text(frame),
+                points.len()
+            ),
+            None => format!("drew an outline of {} points", points.len()),
+        };
+        (
+            LayerEdit::Outline {
+                key: args.key_at,
+                points,
+            },
+            done,
+        )
+    } else if args.disc {
+        (LayerEdit::Disc, "made the shape the disc again".into())
     } else {
         (LayerEdit::Unpin, "removed the pin".into())
     };

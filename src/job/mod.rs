@@ -25,6 +25,7 @@ mod frame_list;
 mod memory;
 mod pixel_of;
 mod place;
+mod shape_point;
 mod write;
 
 use std::path::{Path, PathBuf};
@@ -39,6 +40,7 @@ pub use frame_list::{frame_spec, parse_frames};
 pub use memory::{bytes_text, default_memory_ceiling, estimate_peak_bytes, parse_memory_size};
 pub use pixel_of::{PointInImage, VISIBLE_DEPTH_TOLERANCE};
 pub use place::{LayerChoice, LayerUnder, PlaceError, Placement, Residual};
+pub use shape_point::{ShapePoint, ShapePointError};
 
 use crate::formats::atomic::{Durability, WriteError};
 use crate::render::{RenderError, RenderedFrame, Renderer, Settings};

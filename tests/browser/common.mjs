@@ -11,7 +11,8 @@ import { inflateSync } from "node:zlib";
 import { chromium } from "playwright-core";
 
 export const root = resolve(dirname(fileURLToPath(import.meta.url)), "../..");
-export const glint = join(root, "target/release/glint");
+// The release build, as .ci/run makes it; GLINT_BINARY names another (a debug build, say).
+export const glint = process.env.GLINT_BINARY || join(root, "target/release/glint");
 export const artefacts = join(root, "target/page-tests");
 
 // The flags this machine's Chromium needs to start headless without reaching out.

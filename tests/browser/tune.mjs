@@ -1,10 +1,13 @@
 // The tuning page end to end in headless Chromium: a copy of shots/sphere_ops.ron is opened
 // with `glint tune`, the highlight dragged on the sphere and released, a slider moved, the
 // timeline scrubbed, a change undone and the file edited from outside — each checked in the
-// shot file on disk and on the page. Screenshots go to target/page-tests/.
+// shot file on disk and on the page; then draw.mjs, drawing an outline, runs in a process of its
+// own. Screenshots go to target/page-tests/.
 
+import { execFileSync } from "node:child_process";
 import { readFileSync, rmSync, writeFileSync } from "node:fs";
-import { join } from "node:path";
+import { dirname, join } from "node:path";
+import { fileURLToPath } from "node:url";
 import { artefacts, check, copyShot, launchBrowser, readPng, runGlint, startTune, until } from "./common.mjs";
 
 const SIZE = 240;
@@ -150,5 +153,13 @@ try {
   await browser.close();
   tune.child.kill();
   rmSync(folder, { recursive: true, force: true });
+}
+if (!failed) {
+  // Drawing an outline, on a fresh copy of the shot and a server of its own.
+  try {
+    execFileSync(process.execPath, [join(dirname(fileURLToPath(import.meta.url)), "draw.mjs")], { stdio: "inherit" });
+  } catch (_) {
+    failed = true;
+  }
 }
 process.exit(failed ? 1 : 0);

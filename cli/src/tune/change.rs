@@ -22,6 +22,8 @@ use glint::shot::{
 /// {"kind": "add_mask", "highlight": 0, "layer": 0}
 /// {"kind": "remove_mask", "highlight": 0, "layer": 0}
 /// {"kind": "pin_to", "highlight": 0, "layer": 0, "patch": "teapot/5"}
+/// {"kind": "outline", "highlight": 0, "layer": 0, "key": 12, "points": [[0.0, 0.2], [0.17, -0.1], [-0.17, -0.1]]}
+/// {"kind": "disc", "highlight": 0, "layer": 0}
 /// ```
 ///
 /// Paths are parameter paths of the shot file (docs/shot-format.md); `highlight` is the index
@@ -69,6 +71,17 @@ pub enum Change {
         layer: usize,
         patch: String,
     },
+    /// Give the layer the drawn outline of the corners `points` in t′, keyed at `key` when it
+    /// is given ([`LayerEdit::Outline`]).
+    Outline {
+        highlight: usize,
+        layer: usize,
+        #[serde(default)]
+        key: Option<f64>,
+        points: Vec<[f32; 2]>,
+    },
+    /// Make the layer's shape the disc again.
+    Disc { highlight: usize, layer: usize },
 }
 
 /// An operation's kind, as the page offers it to insert.
@@ -205,6 +218,23 @@ impl Change {
                     patch: patch.clone(),
                 },
             ),
+            Change::Outline {
+                highlight,
+                layer,
+                key,
+                points,
+            } => edit_layer(
+                text,
+                *highlight,
+                *layer,
+                &LayerEdit::Outline {
+                    key: *key,
+                    points: points.clone(),
+                },
+            ),
+            Change::Disc { highlight, layer } => {
+                edit_layer(text, *highlight, *layer, &LayerEdit::Disc)
+            }
         }
     }
 }

@@ -25,8 +25,10 @@ use crate::CliError;
 /// on the surface and the highlight's centre follows the pointer (its translation solved as
 /// `glint place` solves it, or its pin moved); releasing keys it at the current frame. The
 /// panel has a slider per parameter within its legal range, a key button for each, and buttons
-/// to add, remove and reorder operations and to add a mask. Overlays show patch seams, the
-/// highlight matte and pins.
+/// to add, remove and reorder operations and to add a mask. "draw outline" (D) draws the
+/// layer's outline: click its corners on the surface, drag or Shift+click them to edit, Enter
+/// writes it (keyed at the current frame when the outline is keyed or you ask). Overlays show
+/// patch seams, the highlight matte and pins.
 ///
 /// Every accepted change is written to the shot file at once, through the same editor as
 /// `glint key` (comments and formatting kept), so the file is always the truth; undo and redo

@@ -18,5 +18,7 @@ pub use change::{apply_changes, Change, OpKind};
 pub use error::TuneError;
 pub use guard::{Guard, Refusal};
 pub use server::{ServerOptions, TuneServer};
-pub use session::{DragRequest, FrameImage, FrameRequest, Overlays, Pick, Quality, Session};
+pub use session::{
+    DragRequest, DrawRequest, FrameImage, FrameRequest, Overlays, Pick, Quality, Session,
+};
 pub use view::StateView;

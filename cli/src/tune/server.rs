@@ -8,6 +8,7 @@
 //! | `POST /api/frame?format=png\|raw` | [`FrameRequest`] | the frame's pixels |
 //! | `POST /api/pick` | `{frame, x, y}` | [`Pick`](super::Pick) |
 //! | `POST /api/drag?format=…` | [`DragRequest`] | the frame with the layer placed; the changes in `X-Glint-Changes` |
+//! | `POST /api/draw` | [`DrawRequest`] | `{version, changes}` once the drawn outline is written |
 //! | `POST /api/commit` | `{changes: [Change]}` | `{version}` once written |
 //! | `POST /api/undo`, `/api/redo` | | `{version}` |
 //! | `GET /api/wait?version=V` | | `{version}` when it is no longer V, or after 20 s |
@@ -37,7 +38,7 @@ use tokio::sync::{oneshot, watch};
 use super::change::Change;
 use super::error::TuneError;
 use super::guard::{new_token, Guard, Refusal};
-use super::session::{DragRequest, FrameImage, FrameRequest, Session};
+use super::session::{DragRequest, DrawRequest, FrameImage, FrameRequest, Session};
 
 /// Where the server listens and which names it answers to.
 #[derive(Clone, Debug)]
@@ -214,6 +215,7 @@ fn router(shared: Arc<Shared>) -> Router {
         .route("/api/frame", post(frame))
         .route("/api/pick", post(pick))
         .route("/api/drag", post(drag))
+        .route("/api/draw", post(draw))
         .route("/api/commit", post(commit))
         .route("/api/undo", post(undo))
         .route("/api/redo", post(redo))
@@ -537,6 +539,39 @@ async fn commit(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
         Err(e) => return e.into_response(),
     };
     changed(&shared, move |s| s.commit(&request.changes)).await
+}
+
+#[derive(Serialize)]
+struct Drawn {
+    version: u64,
+    changes: Vec<Change>,
+}
+
+/// Maps a drawn outline's pixels to the layer's t′ and writes it: the new version, published
+/// to every page waiting, and the change written. Nothing is written when a point cannot be
+/// mapped or the outline is not one a layer can have.
+async fn draw(State(shared): State<Arc<Shared>>, body: Bytes) -> Response {
+    let request: DrawRequest = match json_body(&body) {
+        Ok(request) => request,
+        Err(e) => return e.into_response(),
+    };
+    let result = with_session(&shared, move |s| {
+        let changes = s.draw_changes(&request)?;
+        let version = s.commit(&changes)?;
+        Ok(Drawn { version, changes })
+    })
+    .await;
+    match result {
+        Ok(drawn) => {
+            shared.publish(drawn.version);
+            axum::Json(drawn).into_response()
+        }
+        Err(e) => {
+            let version = shared.session().version();
+            shared.publish(version);
+            e.into_response()
+        }
+    }
 }
 
 async fn undo(State(shared): State<Arc<Shared>>) -> Response {

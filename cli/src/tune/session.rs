@@ -11,11 +11,11 @@ use serde::{Deserialize, Serialize};
 use super::change::{apply_changes, Change, OpKind};
 use super::error::TuneError;
 use super::history::History;
-use super::view::{highlight_views, pin_at, StateView};
+use super::view::{highlight_views, pin_at, shape_view, StateView};
 use glint::formats::image_encoding::colour_rgba8;
 use glint::formats::replace_text::replace_text;
-use glint::highlight::Op;
-use glint::job::{JobError, LayerChoice, Overrides, PlaceError, RenderJob};
+use glint::highlight::{Op, MAX_OUTLINE_SEGMENTS};
+use glint::job::{JobError, LayerChoice, Overrides, PlaceError, RenderJob, ShapePointError};
 use glint::picture::overlay::{draw_matte, draw_pin, draw_seams};
 use glint::render::{Stage, SurfacePoint};
 use glint::shot::{load_shot_text, Aov, HighlightRef, LayerParam, OpParam, ParamPath, Preset};
@@ -94,6 +94,21 @@ pub struct DragRequest {
     pub quality: Quality,
     #[serde(default)]
     pub overlays: Overlays,
+}
+
+/// An outline drawn on the frame: its corners' image positions, sent when it is finished.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DrawRequest {
+    pub frame: f64,
+    /// The highlight entry (includes first) and its layer.
+    pub highlight: usize,
+    pub layer: usize,
+    /// The corners in order, image positions with pixel centres at integer values.
+    pub points: Vec<[f64; 2]>,
+    /// Key the outline at `frame` even where the layer's outline is not keyed yet.
+    #[serde(default)]
+    pub key: bool,
 }
 
 /// A job and the text its shot was loaded from.
@@ -409,6 +424,51 @@ impl Session {
             key(op(OpParam::Alpha), f64::from(placed.translation.x)),
             key(op(OpParam::Beta), f64::from(placed.translation.y)),
         ])
+    }
+
+    /// The change that gives the layer `request` names the outline drawn through its pixels:
+    /// each pixel mapped to the layer's t′ at the request's frame
+    /// ([`RenderJob::shape_point`](glint::job::RenderJob::shape_point)), every point on the
+    /// layer's highlight (and, for a layer acting in its patches' own frames, on the first
+    /// point's patch), within `|t′| ≤ 0.99`. It is keyed at the frame when the request asks,
+    /// or when the layer's outline is keyed already (as a slider keys a keyed track); otherwise
+    /// it is the plain outline.
+    pub fn draw_changes(&mut self, request: &DrawRequest) -> Result<Vec<Change>, TuneError> {
+        check_frame(request.frame)?;
+        if request.points.len() > MAX_OUTLINE_SEGMENTS {
+            return Err(TuneError::Bad(format!(
+                "{} points drawn; an outline has at most {MAX_OUTLINE_SEGMENTS}",
+                request.points.len()
+            )));
+        }
+        let text = self.text.clone();
+        sync(&mut self.preview, &self.path, &text)?;
+        let file_index = self.file_index(request.highlight)?;
+        let (entry, layer, frame) = (request.highlight, request.layer, request.frame);
+        let job = &mut self.preview.job;
+        let Some(written) = job.shot().highlight_layers(entry).get(layer).copied() else {
+            return Err(TuneError::Bad(format!(
+                "highlight {entry} has no layer {layer} (layers are numbered from 0)"
+            )));
+        };
+        let keyed = !shape_view(&written.shape).1.is_empty();
+        let pixels: Vec<(f64, f64)> = request.points.iter().map(|&[x, y]| (x, y)).collect();
+        let choice = LayerChoice {
+            highlight: Some(entry),
+            layer: Some(layer),
+        };
+        let points = job
+            .shape_points(frame, &pixels, choice)
+            .map_err(|e| match e {
+                ShapePointError::Place(e) => place_error(e),
+                other => TuneError::Bad(other.to_string()),
+            })?;
+        Ok(vec![Change::Outline {
+            highlight: file_index,
+            layer,
+            key: (request.key || keyed).then_some(frame),
+            points: points.iter().map(|p| p.t.to_array()).collect(),
+        }])
     }
 
     /// The index in the shot file's `highlights` of highlight entry `entry`; an entry written

@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use glint::anim::Track;
+use glint::highlight::{Outline, Shape};
 use glint::shot::{
     param_readings, HighlightRef, LayerParam, OpParam, ParamPath, ParamReading, Shot,
 };
@@ -60,6 +61,28 @@ pub struct LayerView {
     pub has_mask: bool,
     /// The patch the layer is pinned to, if pinned.
     pub pinned_to: Option<String>,
+    /// What H′ is tested against: `disc`, `outline` or `keyed outline`.
+    pub shape: &'static str,
+    /// The frames of a keyed outline's keys; empty otherwise.
+    pub shape_keys: Vec<f64>,
+}
+
+/// The name of a layer's shape for the page, and a keyed outline's key frames.
+#[must_use]
+pub fn shape_view(shape: &Shape<Track<f32>>) -> (&'static str, Vec<f64>) {
+    match shape {
+        Shape::Disc => ("disc", Vec::new()),
+        Shape::Outline(outline) => {
+            let mut keys: Option<Vec<f64>> = None;
+            let _visited: Outline<()> = outline.map(|t| {
+                keys.get_or_insert_with(|| t.key_frames().collect());
+            });
+            match keys.filter(|k| !k.is_empty()) {
+                Some(keys) => ("keyed outline", keys),
+                None => ("outline", Vec::new()),
+            }
+        }
+    }
 }
 
 /// One operation of a layer's stack.
@@ -209,8 +232,11 @@ pub fn highlight_views(
                 let params = params_of(&|p| {
                     !matches!(p, LayerParam::Op { .. } | LayerParam::Colour(Some(_)))
                 });
+                let (shape, shape_keys) = shape_view(&layer.shape);
                 LayerView {
                     index: k,
+                    shape,
+                    shape_keys,
                     ops,
                     params,
                     has_mask: layer.mask.is_some(),

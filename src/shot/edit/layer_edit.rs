@@ -1,16 +1,18 @@
 //! Editing a highlight layer's structure in a shot or look file's text: an operation inserted,
-//! removed or moved in its stack, its mask added or removed — each as splices of the text, every
-//! other byte kept, and the result read back and checked to differ in that alone.
+//! removed or moved in its stack, its mask added or removed, its pin set or removed, its shape
+//! drawn or made the disc again — each as splices of the text, every other byte kept, and the
+//! result read back and checked to differ in that alone.
 
 use super::error::EditError;
 use super::layer_text::{mask_text, op_text};
 use super::number_text::number_text;
+use super::outline_edit::{check_key, key_frames, key_splice, reshaped, rounded, shape_field_text};
 use super::read::read_file;
 use super::track_splice::{apply, insert_item, remove_item, Splice};
 use crate::anim::Track;
 use crate::formats::ron_paths::Step::Field;
 use crate::formats::ron_paths::{try_item_spans, try_span};
-use crate::highlight::{Layer, Mask, Op, Pin};
+use crate::highlight::{Layer, Mask, Op, Outline, Pin, Segment, Shape};
 
 /// A change to the structure of one highlight layer.
 #[derive(Clone, Debug, PartialEq)]
@@ -33,6 +35,19 @@ pub enum LayerEdit {
     Pin { patch: String, u: f32, v: f32 },
     /// The pin taken out: the layer's translation is used as written again.
     Unpin,
+    /// The shape made the drawn outline of the corners `points`, in the coordinates
+    /// `t′ = ((H′, du), (H′, dv))` (docs/highlights.md, "Drawn outlines"), each coordinate
+    /// written to 4 decimal places. With `key: None`, the plain `shape: Outline([…])` in place
+    /// of the disc or any outline. With `key: Some(frame)`, a key of `OutlineKeys`: a keyed
+    /// outline's key at that frame is replaced or the key inserted in frame order, and must
+    /// have as many points as the other keys; the disc or a plain outline keyed becomes
+    /// `OutlineKeys` of this one key (as a constant track keyed becomes its one key).
+    Outline {
+        key: Option<f64>,
+        points: Vec<[f32; 2]>,
+    },
+    /// The shape made the ε-disc again: the `shape` field taken out.
+    Disc,
 }
 
 impl LayerEdit {
@@ -73,6 +88,20 @@ impl LayerEdit {
                 });
             }
             LayerEdit::Unpin => layer.pin = None,
+            LayerEdit::Outline { key, points } => reshaped(&mut layer.shape, *key, points),
+            LayerEdit::Disc => layer.shape = Shape::Disc,
+        }
+    }
+
+    /// The edit as it reads back once written: a drawn outline's coordinates rounded as they
+    /// are written.
+    fn as_written(&self) -> LayerEdit {
+        match self {
+            LayerEdit::Outline { key, points } => LayerEdit::Outline {
+                key: *key,
+                points: rounded(points),
+            },
+            other => other.clone(),
         }
     }
 }
@@ -108,6 +137,7 @@ pub fn edit_layer(
     layer: usize,
     edit: &LayerEdit,
 ) -> Result<String, EditError> {
+    let edit = &edit.as_written();
     let mut expected = read_file(text)?;
     let named = format!("highlights[{entry}].layers[{layer}]");
     let bad = |reason: String| EditError::BadPath {
@@ -119,6 +149,7 @@ pub fn edit_layer(
         return Err(bad("the file has no such highlight layer".to_string()));
     };
     let count = parsed.stack.len();
+    let keyed_at = key_frames(&parsed.shape);
     let operation = |index: usize| {
         if index < count {
             Ok(())
@@ -159,11 +190,33 @@ pub fn edit_layer(
                 "a pin's (u, v) must be finite, not ({u}, {v})"
             )))
         }
+        LayerEdit::Outline { key, points } => {
+            if let Some(frame) = key.filter(|f| !f.is_finite()) {
+                return Err(bad(format!(
+                    "an outline key's frame must be a finite number, not {frame}"
+                )));
+            }
+            let drawn = Outline {
+                segments: points.iter().map(|&p| Segment::Corner(p)).collect(),
+            };
+            drawn
+                .validate()
+                .map_err(|e| bad(format!("the drawn outline: {e}")))?;
+            if let (Some(frame), Some(frames), Shape::Outline(outline)) =
+                (key, &keyed_at, &parsed.shape)
+            {
+                check_key(outline, frames, *frame, points).map_err(bad)?;
+            }
+        }
+        LayerEdit::Disc if parsed.shape.is_disc() => {
+            return Err(bad("the layer's shape is the disc already".to_string()))
+        }
         LayerEdit::AddMask
         | LayerEdit::RemoveMask
         | LayerEdit::PinTo { .. }
         | LayerEdit::Pin { .. }
-        | LayerEdit::Unpin => {}
+        | LayerEdit::Unpin
+        | LayerEdit::Disc => {}
     }
     edit.apply_to(parsed);
     let unchecked = |reason: &str| bad(format!("{reason}; the file is left as it is"));
@@ -257,6 +310,32 @@ pub fn edit_layer(
                 .ok_or_else(|| unchecked("the layer is not written as it reads"))?;
             let index = field_index(text, &fields, "pin")
                 .ok_or_else(|| unchecked("the pin is not written as it reads"))?;
+            vec![remove_item(text, &fields, index)]
+        }
+        LayerEdit::Outline { key, points } => match (key, &keyed_at) {
+            (Some(frame), Some(frames)) => {
+                vec![key_splice(text, &steps, frames, *frame, points)
+                    .ok_or_else(|| unchecked("the outline's keys are not written as they read"))?]
+            }
+            _ => {
+                let written = shape_field_text(*key, points);
+                let fields = try_item_spans(text, &steps)
+                    .ok_or_else(|| unchecked("the layer is not written as it reads"))?;
+                match field_index(text, &fields, "shape") {
+                    Some(index) => vec![Splice {
+                        span: fields[index].clone(),
+                        text: written,
+                    }],
+                    None => vec![insert_item(text, &fields, None, &written)
+                        .ok_or_else(|| unchecked("the layer is not written as it reads"))?],
+                }
+            }
+        },
+        LayerEdit::Disc => {
+            let fields = try_item_spans(text, &steps)
+                .ok_or_else(|| unchecked("the layer is not written as it reads"))?;
+            let index = field_index(text, &fields, "shape")
+                .ok_or_else(|| unchecked("the shape is not written as it reads"))?;
             vec![remove_item(text, &fields, index)]
         }
         LayerEdit::PinTo { patch } => {
@@ -468,6 +547,140 @@ mod tests {
         let e = edit_layer(&text, 0, 1, &LayerEdit::Unpin).unwrap_err();
         assert!(e.to_string().contains("no pin to remove"), "{e}");
         let e = edit_layer(&text, 0, 1, &pin(f32::NAN, 0.5)).unwrap_err();
+        assert!(e.to_string().contains("finite"), "{e}");
+    }
+
+    /// The outline of layer 1 as `text` reads: each key's frame (none for a plain outline) with
+    /// its points at that frame.
+    fn outline_of(text: &str) -> Vec<(Option<f64>, Vec<[f32; 2]>)> {
+        let mut parsed = read_file(text).unwrap();
+        let (layer, _) = parsed.layer_mut(0, 1).unwrap();
+        let Shape::Outline(outline) = &layer.shape else {
+            return Vec::new();
+        };
+        let points_at = |frame: f64| -> Vec<[f32; 2]> {
+            outline
+                .segments
+                .iter()
+                .map(|s| match s {
+                    Segment::Corner([x, y]) => [x.at(frame), y.at(frame)],
+                    Segment::Bezier(_) => panic!("a Bezier"),
+                })
+                .collect()
+        };
+        match key_frames(&layer.shape) {
+            None => vec![(None, points_at(0.0))],
+            Some(frames) => frames.iter().map(|&f| (Some(f), points_at(f))).collect(),
+        }
+    }
+
+    fn draw(key: Option<f64>, points: &[[f32; 2]]) -> LayerEdit {
+        LayerEdit::Outline {
+            key,
+            points: points.to_vec(),
+        }
+    }
+
+    const TRIANGLE: [[f32; 2]; 3] = [[0.0, 0.2], [0.173_205, -0.1], [-0.173_205_1, -0.1]];
+
+    #[test]
+    fn a_drawn_outline_is_written_to_four_places_and_the_disc_gives_the_file_back() {
+        let text = shot("[]", "");
+        let drawn = edit_layer(&text, 0, 1, &draw(None, &TRIANGLE)).unwrap();
+        assert!(
+            drawn.contains("shape: Outline([(0.0, 0.2), (0.1732, -0.1), (-0.1732, -0.1)]),"),
+            "{drawn}"
+        );
+        assert_eq!(
+            outline_of(&drawn),
+            vec![(None, vec![[0.0, 0.2], [0.1732, -0.1], [-0.1732, -0.1]])]
+        );
+        // Drawn again, the outline is replaced in place.
+        let square = [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]];
+        let again = edit_layer(&drawn, 0, 1, &draw(None, &square)).unwrap();
+        assert_eq!(
+            again,
+            drawn.replace(
+                "[(0.0, 0.2), (0.1732, -0.1), (-0.1732, -0.1)]",
+                "[(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)]"
+            )
+        );
+        let disc = edit_layer(&again, 0, 1, &LayerEdit::Disc).unwrap();
+        assert_eq!(disc, text);
+        let e = edit_layer(&disc, 0, 1, &LayerEdit::Disc).unwrap_err();
+        assert!(e.to_string().contains("disc already"), "{e}");
+    }
+
+    #[test]
+    fn keys_are_replaced_or_inserted_in_frame_order() {
+        let text = shot("[]", "");
+        let first = edit_layer(&text, 0, 1, &draw(Some(12.0), &TRIANGLE)).unwrap();
+        assert!(
+            first.contains(
+                "shape: OutlineKeys([(12, [(0.0, 0.2), (0.1732, -0.1), (-0.1732, -0.1)])]),"
+            ),
+            "{first}"
+        );
+        let wider = [[0.0, 0.3], [0.25, -0.15], [-0.25, -0.15]];
+        let before = edit_layer(&first, 0, 1, &draw(Some(1.0), &wider)).unwrap();
+        let after = edit_layer(&before, 0, 1, &draw(Some(24.5), &wider)).unwrap();
+        let frames: Vec<Option<f64>> = outline_of(&after).iter().map(|k| k.0).collect();
+        assert_eq!(frames, [Some(1.0), Some(12.0), Some(24.5)]);
+        assert!(after.contains("(24.5, [(0.0, 0.3), (0.25, -0.15), (-0.25, -0.15)])"));
+        // The key at 12 replaced: the others as they were.
+        let replaced = edit_layer(&after, 0, 1, &draw(Some(12.0), &wider)).unwrap();
+        assert_eq!(
+            replaced,
+            after.replace(
+                "(12, [(0.0, 0.2), (0.1732, -0.1), (-0.1732, -0.1)])",
+                "(12, [(0.0, 0.3), (0.25, -0.15), (-0.25, -0.15)])"
+            )
+        );
+        // A plain outline keyed becomes its one key.
+        let plain = edit_layer(&text, 0, 1, &draw(None, &wider)).unwrap();
+        let keyed = edit_layer(&plain, 0, 1, &draw(Some(6.0), &TRIANGLE)).unwrap();
+        assert_eq!(
+            outline_of(&keyed),
+            outline_of(&first)
+                .into_iter()
+                .map(|(_, p)| (Some(6.0), p))
+                .collect::<Vec<_>>()
+        );
+    }
+
+    #[test]
+    fn drawn_outlines_that_cannot_be_written_are_refused_and_write_nothing() {
+        let text = shot("[]", "");
+        let keyed = edit_layer(&text, 0, 1, &draw(Some(12.0), &TRIANGLE)).unwrap();
+        let square = [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]];
+        let e = edit_layer(&keyed, 0, 1, &draw(Some(30.0), &square)).unwrap_err();
+        assert!(
+            e.to_string().contains(
+                "the outline key at frame 30 would have 4 points but the key at frame 12 has 3"
+            ),
+            "{e}"
+        );
+        // Replacing the only key may change its count.
+        assert!(edit_layer(&keyed, 0, 1, &draw(Some(12.0), &square)).is_ok());
+        for (points, says) in [
+            (vec![[0.0, 0.0], [0.1, 0.0]], "at least 3"),
+            (
+                vec![[0.0, 0.0], [0.995, 0.0], [0.0, 0.1]],
+                "outside the allowed",
+            ),
+            (
+                vec![[0.0, 0.0], [0.2, 0.2], [0.2, 0.0], [0.0, 0.2]],
+                "crosses itself",
+            ),
+            (
+                vec![[0.0, f32::NAN], [0.2, 0.2], [0.2, 0.0]],
+                "not a finite",
+            ),
+        ] {
+            let e = edit_layer(&text, 0, 1, &draw(None, &points)).unwrap_err();
+            assert!(e.to_string().contains(says), "{points:?}: {e}");
+        }
+        let e = edit_layer(&text, 0, 1, &draw(Some(f64::NAN), &TRIANGLE)).unwrap_err();
         assert!(e.to_string().contains("finite"), "{e}");
     }
 

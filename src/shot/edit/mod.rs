@@ -6,6 +6,7 @@ mod error;
 mod layer_edit;
 mod layer_text;
 mod number_text;
+mod outline_edit;
 mod param_path;
 mod param_range;
 mod param_readings;

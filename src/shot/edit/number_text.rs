@@ -24,6 +24,28 @@ pub fn rounded_number_text(x: f32) -> String {
     with_point((rounded + 0.0).to_string())
 }
 
+/// `x` rounded to `places` decimal places, trailing zeros dropped, with `.0` on a whole number
+/// (`0.1235` for `0.12345678` to 4 places, `0.5` for `0.50001`, `2.0` for `1.99999`); `-0` is
+/// written `0.0`. What a drawn coordinate is written as: short, and read by people.
+#[must_use]
+pub fn decimal_text(x: f32, places: usize) -> String {
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    let fixed = format!("{:.places$}", f64::from(x));
+    let trimmed = if fixed.contains('.') {
+        fixed.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        &fixed
+    };
+    let written = if trimmed.trim_start_matches('-') == "0" {
+        "0"
+    } else {
+        trimmed
+    };
+    with_point(written.to_string())
+}
+
 /// A key's frame as the shortest decimal that reads back as the same `f64`, without `.0` on a
 /// whole frame: `17`, `10.5`, `-2`.
 #[must_use]
@@ -78,6 +100,16 @@ mod tests {
         assert_eq!(rounded_number_text(123456.78), "123457.0");
         assert_eq!(rounded_number_text(-2.5), "-2.5");
         assert_eq!(rounded_number_text(30.5), "30.5");
+    }
+
+    #[test]
+    fn decimals_are_rounded_to_their_places_without_trailing_zeros() {
+        assert_eq!(decimal_text(0.123_456_78, 4), "0.1235");
+        assert_eq!(decimal_text(0.500_01, 4), "0.5");
+        assert_eq!(decimal_text(1.999_99, 4), "2.0");
+        assert_eq!(decimal_text(-0.000_01, 4), "0.0");
+        assert_eq!(decimal_text(-0.25, 4), "-0.25");
+        assert_eq!(decimal_text(3.0, 0), "3.0");
     }
 
     #[test]

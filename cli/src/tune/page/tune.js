@@ -96,6 +96,13 @@ function fitCanvas() {
   const stage = $("stage").getBoundingClientRect();
   const scale = Math.min((stage.width - 20) / canvas.width, (stage.height - 60) / canvas.height);
   canvas.style.width = Math.max(1, Math.floor(canvas.width * scale)) + "px";
+  const layer = $("draw-layer");
+  if (layer.width !== canvas.width || layer.height !== canvas.height) {
+    layer.width = canvas.width;
+    layer.height = canvas.height;
+  }
+  layer.style.width = canvas.style.width;
+  drawOverlay();
 }
 window.addEventListener("resize", fitCanvas);
 
@@ -306,6 +313,9 @@ function renderPanel() {
   for (const p of layer.params) {
     box.append(p.name === "colour" ? colourRow(p, editable) : paramRow(p, editable));
   }
+  const shape = layer.shape === "keyed outline" ? `keyed outline (keys at ${layer.shape_keys.join(", ")})` : layer.shape;
+  box.append(element("div", { id: "shape" }, `shape: ${shape} `,
+    layer.shape === "disc" ? "" : element("button", { id: "to-disc", disabled: !editable, title: "Make the shape the disc again", onclick: () => structural({ kind: "disc" }) }, "disc")));
   box.append(element("div", {},
     layer.has_mask
       ? element("button", { id: "remove-mask", disabled: !editable, onclick: () => structural({ kind: "remove_mask" }) }, "remove mask")
@@ -385,6 +395,7 @@ function imagePosition(event) {
 }
 
 canvas.addEventListener("pointerdown", async (event) => {
+  if (drawing.on) return;
   const at = imagePosition(event);
   const press = { x: at.x, y: at.y, picked: null };
   pressed = press;
@@ -412,7 +423,7 @@ canvas.addEventListener("pointerdown", async (event) => {
 });
 
 canvas.addEventListener("pointermove", (event) => {
-  if (!pressed) return;
+  if (drawing.on || !pressed) return;
   const at = imagePosition(event);
   if (!dragging && Math.hypot(at.x - pressed.x, at.y - pressed.y) < 3) return;
   const h = currentHighlight();
@@ -440,6 +451,111 @@ async function release() {
 canvas.addEventListener("pointerup", release);
 canvas.addEventListener("pointercancel", release);
 
+// ---- drawing an outline ------------------------------------------------------------------
+
+// The corners drawn so far, in image pixels (pixel centres at integers); kept after "done" so
+// that they can be moved and sent again (keyed at another frame, say).
+const drawing = { on: false, points: [], held: null, sent: 0 };
+window.glintTune.drawing = drawing;
+
+// How near, in image pixels, a press must be to a corner to take it.
+function grabRadius() {
+  const rect = canvas.getBoundingClientRect();
+  return 8 * canvas.width / Math.max(1, rect.width);
+}
+
+function nearestCorner(at) {
+  let best = -1;
+  let distance = grabRadius();
+  drawing.points.forEach((p, i) => {
+    const d = Math.hypot(p.x - at.x, p.y - at.y);
+    if (d <= distance) { best = i; distance = d; }
+  });
+  return best;
+}
+
+function drawOverlay() {
+  const layer = $("draw-layer");
+  const g = layer.getContext("2d");
+  g.clearRect(0, 0, layer.width, layer.height);
+  if (!drawing.on || drawing.points.length === 0) return;
+  const scale = canvas.width / Math.max(1, canvas.getBoundingClientRect().width);
+  g.lineWidth = 1.5 * scale;
+  g.strokeStyle = "#ffd84a";
+  g.beginPath();
+  drawing.points.forEach((p, i) => (i === 0 ? g.moveTo(p.x + 0.5, p.y + 0.5) : g.lineTo(p.x + 0.5, p.y + 0.5)));
+  if (drawing.points.length > 2) g.closePath();
+  g.stroke();
+  g.fillStyle = "#ff5fd2";
+  for (const p of drawing.points) {
+    g.beginPath();
+    g.arc(p.x + 0.5, p.y + 0.5, 3 * scale, 0, 2 * Math.PI);
+    g.fill();
+  }
+}
+
+function setDrawing(on) {
+  drawing.on = on;
+  drawing.held = null;
+  $("draw").classList.toggle("on", on);
+  $("draw-bar").hidden = !on;
+  canvas.style.cursor = on ? "copy" : "";
+  drawOverlay();
+}
+
+async function finishDrawing() {
+  if (!drawing.on) return;
+  const h = currentHighlight();
+  const layer = currentLayer();
+  if (!h || !layer || h.file_index === null) {
+    showError("pick a highlight of the shot file to draw its outline");
+    return;
+  }
+  try {
+    const body = {
+      frame: page.frame, highlight: page.highlight, layer: layer.index,
+      points: drawing.points.map((p) => [p.x, p.y]), key: $("draw-key").checked,
+    };
+    await api("POST", "/api/draw", body);
+    drawing.sent += 1;
+    showError("");
+    await loadState();
+    showFrame();
+  } catch (error) {
+    // Nothing was written: the frame stays as it is, the error on the page.
+    showError(error.message);
+  }
+}
+
+canvas.addEventListener("pointerdown", (event) => {
+  if (!drawing.on) return;
+  const at = imagePosition(event);
+  const near = nearestCorner(at);
+  if (event.shiftKey || event.button === 2) {
+    if (near >= 0) drawing.points.splice(near, 1);
+  } else if (near >= 0) {
+    drawing.held = near;
+    canvas.setPointerCapture(event.pointerId);
+  } else {
+    drawing.points.push(at);
+  }
+  drawOverlay();
+});
+
+canvas.addEventListener("pointermove", (event) => {
+  if (!drawing.on || drawing.held === null) return;
+  drawing.points[drawing.held] = imagePosition(event);
+  drawOverlay();
+});
+
+canvas.addEventListener("pointerup", () => { drawing.held = null; });
+canvas.addEventListener("contextmenu", (event) => { if (drawing.on) event.preventDefault(); });
+
+$("draw").addEventListener("click", () => setDrawing(!drawing.on));
+$("draw-done").addEventListener("click", finishDrawing);
+$("draw-clear").addEventListener("click", () => { drawing.points = []; drawOverlay(); });
+$("draw-cancel").addEventListener("click", () => setDrawing(false));
+
 // ---- controls -----------------------------------------------------------------------------
 
 $("frame").addEventListener("input", () => goToFrame(Number($("frame").value)));
@@ -466,6 +582,10 @@ document.addEventListener("keydown", (event) => {
   if ((event.ctrlKey || event.metaKey) && z) { event.preventDefault(); history(event.shiftKey ? "redo" : "undo"); }
   else if ((event.ctrlKey || event.metaKey) && event.key === "y") { event.preventDefault(); history("redo"); }
   else if (event.key === " " && !(event.target instanceof HTMLInputElement)) { event.preventDefault(); play(); }
+  else if ((event.key === "d" || event.key === "D") && !event.ctrlKey && !event.metaKey && !(event.target instanceof HTMLInputElement)) setDrawing(!drawing.on);
+  else if (event.key === "Enter" && drawing.on) { event.preventDefault(); finishDrawing(); }
+  else if (event.key === "Escape" && drawing.on) setDrawing(false);
+  else if (event.key === "Backspace" && drawing.on && drawing.points.length > 0) { event.preventDefault(); drawing.points.pop(); drawOverlay(); }
 });
 
 // Changes made elsewhere (a text editor saving the file) arrive here.
