@@ -83,39 +83,108 @@ proptest! {
         u in parameter(),
         v in parameter(),
     ) {
-        let spread = weights.iter().copied().fold(0.0, f64::max)
-            / weights.iter().copied().fold(f64::INFINITY, f64::min);
-        let s = patch(net, weights, collapse, offset);
-        let f = s.frame(u, v);
-        prop_assert!(f.point.is_finite(), "{:?}", f);
-        prop_assert!(f.normal.is_finite() && f.du.is_finite() && f.dv.is_finite(), "{:?}", f);
-        for axis in [f.normal, f.du, f.dv] {
-            prop_assert!((axis.length() - 1.0).abs() < 1e-9, "{:?}", f);
-        }
-        prop_assert!(f.normal.dot(f.du).abs() < 1e-9, "{:?}", f);
-        prop_assert!((f.du.cross(f.dv) - f.normal).length() < 1e-9, "{:?}", f);
-        // Inside a collapsed edge, away from its ends (corners are checked below, on a patch
-        // whose weights do not make the limit there depend on the way in).
-        let interior = |t: f64| t > 0.01 && t < 0.99;
-        let on_collapsed_edge = (collapse[0] && v == 0.0 && interior(u))
-            || (collapse[1] && u == 1.0 && interior(v))
-            || (collapse[2] && v == 1.0 && interior(u))
-            || (collapse[3] && u == 0.0 && interior(v));
-        if f.degenerate && on_collapsed_edge {
-            // The limit from inside: the normal a small step toward the domain centre, where
-            // the frame is regular. (Extreme weights make a step in (u, v) a long way on the
-            // surface, so the steps start small.)
-            let inside: Vec<Frame> = (5..=11)
-                .map(|k| 10f64.powi(-k))
-                .map(|t| s.frame(u + t * (0.5 - u), v + t * (0.5 - v)))
-                .filter(|g| !g.degenerate)
-                .collect();
-            prop_assert!(
-                spread > 1e3 || inside.is_empty() || inside.iter().any(|g| g.normal.dot(f.normal) > 0.999),
-                "{:?} vs inside {:?}", f, inside
-            );
-        }
+        check_frame(net, weights, collapse, offset, u, v)?;
     }
+}
+
+/// The frame of [`patch`] at `(u, v)` is finite and orthonormal, and on a collapsed edge the
+/// limit of the frames just inside.
+fn check_frame(
+    net: Vec<[f64; 3]>,
+    weights: Vec<f64>,
+    collapse: [bool; 4],
+    offset: [f64; 3],
+    u: f64,
+    v: f64,
+) -> Result<(), TestCaseError> {
+    let spread = weights.iter().copied().fold(0.0, f64::max)
+        / weights.iter().copied().fold(f64::INFINITY, f64::min);
+    let s = patch(net, weights, collapse, offset);
+    let f = s.frame(u, v);
+    prop_assert!(f.point.is_finite(), "{:?}", f);
+    prop_assert!(
+        f.normal.is_finite() && f.du.is_finite() && f.dv.is_finite(),
+        "{:?}",
+        f
+    );
+    for axis in [f.normal, f.du, f.dv] {
+        prop_assert!((axis.length() - 1.0).abs() < 1e-9, "{:?}", f);
+    }
+    prop_assert!(f.normal.dot(f.du).abs() < 1e-9, "{:?}", f);
+    prop_assert!((f.du.cross(f.dv) - f.normal).length() < 1e-9, "{:?}", f);
+    // Inside a collapsed edge, away from its ends (corners are checked below, on a patch
+    // whose weights do not make the limit there depend on the way in).
+    let interior = |t: f64| t > 0.01 && t < 0.99;
+    let on_collapsed_edge = (collapse[0] && v == 0.0 && interior(u))
+        || (collapse[1] && u == 1.0 && interior(v))
+        || (collapse[2] && v == 1.0 && interior(u))
+        || (collapse[3] && u == 0.0 && interior(v));
+    if f.degenerate && on_collapsed_edge {
+        // The limit from inside: the normal a small step toward the domain centre, where
+        // the frame is regular. (Extreme weights make a step in (u, v) a long way on the
+        // surface, so the steps start small.)
+        let inside: Vec<Frame> = (5..=11)
+            .map(|k| 10f64.powi(-k))
+            .map(|t| s.frame(u + t * (0.5 - u), v + t * (0.5 - v)))
+            .filter(|g| !g.degenerate)
+            .collect();
+        prop_assert!(
+            spread > 1e3
+                || inside.is_empty()
+                || inside.iter().any(|g| g.normal.dot(f.normal) > 0.999),
+            "{:?} vs inside {:?}",
+            f,
+            inside
+        );
+    }
+    Ok(())
+}
+
+/// A case the search above once found, kept: the far end of a collapsed edge (v = 0,
+/// u = 1 − 10⁻¹²) among weights of 10⁻⁶ beside 10⁶, far from the origin.
+#[test]
+fn a_corner_between_extreme_weights_far_from_the_origin_has_a_unit_frame() {
+    let mut net = vec![[0.0; 3]; 16];
+    net[1] = [0.3003323721209653, 0.2233538149134751, 0.0619402152471059];
+    net[4] = [
+        -0.19918550427342063,
+        -0.007765387727157351,
+        0.4483672482503267,
+    ];
+    net[7] = [0.0, 0.23263595629390088, -0.18951765060787462];
+    net[9] = [
+        0.17006708549284485,
+        0.33832089018934464,
+        0.19681480663234432,
+    ];
+    net[13] = [0.4103694170593604, 0.4356865235863014, -0.3011307845124488];
+    net[14] = [
+        -0.1521573715895851,
+        -0.43314633585202406,
+        -0.29372457700730936,
+    ];
+    let weights = vec![
+        1e-6,
+        1e-6,
+        1e-6,
+        1e-6,
+        10.360611418564082,
+        1e-6,
+        1e-6,
+        1e-6,
+        1e6,
+        11.097906843566598,
+        1e-6,
+        0.05,
+        1e-6,
+        19.362586668344978,
+        0.05,
+        0.05,
+    ];
+    let collapse = [true, false, false, false];
+    // Found at 10⁶ from the origin, which a model may no longer reach: at the farthest it may.
+    let far = glint::geom::MAX_COORDINATE - 4.0;
+    check_frame(net, weights, collapse, [0.0, far, 0.0], 0.999999999999, 0.0).unwrap();
 }
 
 /// A smooth tilted bicubic patch (its normal nowhere near a world axis) with the chosen edges

@@ -548,17 +548,52 @@ fn the_documented_layer_reads_as_documented() {
     }
 }
 
+/// `read` is a library of patches whose control points are all finite, or a refusal of
+/// `text` (shown as `shown`) at a line and column inside it, in one line.
+fn read_or_refused_at_a_place(
+    read: Result<PatchLibrary, glint::formats::FormatError>,
+    text: &str,
+    shown: &str,
+) -> Result<(), TestCaseError> {
+    match read {
+        Ok(library) => {
+            prop_assert!(library.control_points().all(|p| p.is_finite()));
+        }
+        Err(glint::formats::FormatError::Usd {
+            path,
+            line,
+            col,
+            message,
+        }) => {
+            prop_assert_eq!(path, shown);
+            prop_assert!(
+                line >= 1 && line <= text.lines().count() + 1,
+                "line {}",
+                line
+            );
+            prop_assert!(col >= 1, "col {}", col);
+            prop_assert!(
+                !message.is_empty() && !message.contains('\n'),
+                "{:?}",
+                message
+            );
+        }
+        Err(other) => prop_assert!(false, "not a located refusal: {}", other),
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
-    /// Hostile text — the layer cut anywhere, or with any character replaced — is read or
-    /// refused, never a panic.
+    /// Hostile text — the layer cut anywhere, or with any character replaced — is read into
+    /// finite patches or refused at a place in it, in one line; never a panic.
     #[test]
     fn a_damaged_layer_is_refused_not_a_panic(cut in 0usize..2000, at in 0usize..2000, with in any::<char>()) {
         let text = hood("    double3 xformOp:translate = (1, 2, 3)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]", "");
         let cut = cut.min(text.len());
         let cut = (0..=cut).rev().find(|&k| text.is_char_boundary(k)).unwrap();
-        let _ = parse_usda(&text[..cut], "cut.usda");
+        read_or_refused_at_a_place(parse_usda(&text[..cut], "cut.usda"), &text[..cut], "cut.usda")?;
         let chars: Vec<char> = text.chars().collect();
         let at = at % chars.len();
         let changed: String = chars
@@ -566,7 +601,7 @@ proptest! {
             .enumerate()
             .map(|(k, &c)| if k == at { with } else { c })
             .collect();
-        let _ = parse_usda(&changed, "changed.usda");
+        read_or_refused_at_a_place(parse_usda(&changed, "changed.usda"), &changed, "changed.usda")?;
     }
 }
 
