@@ -602,9 +602,30 @@ fn direction_classes_counted(library: &PatchLibrary) -> (Vec<usize>, usize) {
 /// positions welded to one f32 value, and, when a patch is trimmed, where each triangle lies on
 /// its trim.
 fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
-    let mut mesh = Mesh::default();
     let trimmed = library.patches.iter().any(|p| p.trim.is_some());
-    let mut welded: HashMap<[i64; 3], Vec3> = HashMap::new();
+    // Every array at its final size from the start: the mesh is rebuilt whenever a patch
+    // moves, and growing it by doubling would copy it about twice over.
+    let vertices: usize = patch_frames.iter().map(|f| f.us.len() * f.vs.len()).sum();
+    let triangles: usize = patch_frames
+        .iter()
+        .map(|f| 2 * f.us.len().saturating_sub(1) * f.vs.len().saturating_sub(1))
+        .sum();
+    let mut mesh = Mesh {
+        positions: Vec::with_capacity(vertices),
+        normals: Vec::with_capacity(vertices),
+        tangents_u: Vec::with_capacity(vertices),
+        uvs: Vec::with_capacity(vertices),
+        triangles: Vec::with_capacity(triangles),
+        triangle_patch: Vec::with_capacity(triangles),
+        grids: Vec::with_capacity(patch_frames.len()),
+        triangle_region: Vec::with_capacity(if trimmed { triangles } else { 0 }),
+        ..Mesh::default()
+    };
+    let border_vertices: usize = patch_frames
+        .iter()
+        .map(|f| 2 * (f.us.len() + f.vs.len()))
+        .sum();
+    let mut welded: HashMap<[i64; 3], Vec3> = HashMap::with_capacity(border_vertices);
     let quantum = 1e-9 * model_scale(library);
     // The vertices welded and laid out in patch order.
     for (patch_index, (patch, evaluated)) in library.patches.iter().zip(patch_frames).enumerate() {
