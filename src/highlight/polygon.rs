@@ -91,20 +91,36 @@ impl PreparedOutline {
     /// `r/√(1 − r²)` per unit of t': so an outline that draws that circle has the disc's `s` to
     /// first order at the edge, and a feather or an edge width written in units of ε reads the
     /// same on a drawn shape as on the disc of its area. Below the tangent plane (`l_z ≤ 0`,
-    /// no t') it goes on falling: `c·(d(t̂) + l_z)` with t̂ the unit direction of t', which
-    /// meets the value above at `l_z = 0` (there `|t'| = 1`, outside every valid outline).
+    /// no t') it goes on falling ([`distance_at`](Self::distance_at)).
     #[inline]
     #[must_use]
     pub fn signed(&self, l: Vec3) -> f32 {
+        self.scale * self.distance_at(l)
+    }
+
+    /// The signed distance of the stack's unit output `l` (N is +z), unscaled: `d(t')` with
+    /// `t' = (l_x, l_y)` above the tangent plane; below it (`l_z ≤ 0`, no t'), `d(t̂) + l_z`
+    /// with t̂ the unit direction of t', which meets the value above at `l_z = 0` (there
+    /// `|t'| = 1`, outside every valid outline), and −1 + l_z where t' = 0.
+    #[inline]
+    #[must_use]
+    pub fn distance_at(&self, l: Vec3) -> f32 {
         let t = Vec2::new(l.x, l.y);
         if l.z > 0.0 {
-            return self.scale * self.distance(t);
+            return self.distance(t);
         }
         let away = match t.try_normalize() {
             Some(direction) => self.distance(direction),
             None => -1.0,
         };
-        self.scale * (away + l.z)
+        away + l.z
+    }
+
+    /// `c = r/√(1 − r²)`, the factor from t' distance to the units of a disc's `s`
+    /// ([`signed`](Self::signed)).
+    #[must_use]
+    pub fn scale(&self) -> f32 {
+        self.scale
     }
 }
 
