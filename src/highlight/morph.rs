@@ -68,6 +68,16 @@ impl Morph<f32> {
         }
     }
 
+    /// The frames of the two keys the position lies strictly between, and the fraction `s` of
+    /// the way from the first to the second; None on a key (or held at one).
+    #[must_use]
+    pub fn try_between_keys(&self) -> Option<(f64, f64, f32)> {
+        match self.span() {
+            Span::On(_) => None,
+            Span::Between(k, s) => Some((self.keys[k].0, self.keys[k + 1].0, s)),
+        }
+    }
+
     /// The outline of the keys' points moved linearly to the position: on a key, that key;
     /// between keys a and b at s, every coordinate `a + s (b − a)` (in f32, as a keyed number).
     #[must_use]
@@ -215,6 +225,8 @@ mod tests {
         assert_eq!(morph(0.0).span(), Span::On(0));
         assert_eq!(morph(1.0).span(), Span::On(1));
         assert_eq!(morph(1.25).span(), Span::Between(1, 0.25));
+        assert_eq!(morph(1.25).try_between_keys(), Some((5.0, 9.0, 0.25)));
+        assert_eq!(morph(1.0).try_between_keys(), None);
         assert_eq!(morph(2.0).span(), Span::On(2));
         assert_eq!(morph(7.0).span(), Span::On(2));
         assert_eq!(morph(f32::NAN).span(), Span::On(0));
