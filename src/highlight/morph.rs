@@ -7,6 +7,7 @@ use glam::{Vec2, Vec3};
 
 use super::outline::{Outline, OutlineError, Segment};
 use super::polygon::PreparedOutline;
+use crate::anim::{Key, Track};
 
 /// Outlines keyed at frames, morphing point by point between consecutive keys.
 ///
@@ -25,12 +26,39 @@ pub struct Morph<P = f32> {
 }
 
 impl<P> Morph<P> {
+    /// The frames of its keys, in order.
+    pub fn key_frames(&self) -> impl Iterator<Item = f64> + '_ {
+        self.keys.iter().map(|(frame, _)| *frame)
+    }
+
     /// The same keys with the position mapped through `f`.
     #[must_use]
     pub fn map<Q>(&self, f: impl FnOnce(&P) -> Q) -> Morph<Q> {
         Morph {
             keys: Arc::clone(&self.keys),
             position: f(&self.position),
+        }
+    }
+}
+
+impl Morph<Track<f32>> {
+    /// The morph of `keys` as a shot reads `OutlineKeys([…])`: its position keyed
+    /// `[(frame, index), …]` at every key's frame. The keys are taken as given: in increasing
+    /// frame order, with the same pieces, is the caller's to keep.
+    #[must_use]
+    pub fn from_keys(keys: Vec<(f64, Outline)>) -> Self {
+        let position = Track::Keys(
+            keys.iter()
+                .enumerate()
+                .map(|(k, (frame, _))| Key {
+                    frame: *frame,
+                    value: k as f32,
+                })
+                .collect(),
+        );
+        Morph {
+            keys: Arc::from(keys),
+            position,
         }
     }
 }
@@ -238,6 +266,21 @@ mod tests {
             (p[0] - 0.0).abs() < 1e-6 && (p[1] + 0.1).abs() < 1e-6,
             "{p:?}"
         );
+    }
+
+    #[test]
+    fn keys_given_read_as_the_same_keys_written() {
+        let text = "OutlineKeys([(2, [(0.0, 0.1), (0.1, 0.0), (0.0, -0.1)]), \
+                    (6, [(0.0, 0.3), (0.3, 0.0), (0.0, -0.1)])])";
+        let read: crate::highlight::Shape<Track<f32>> = ron::from_str(text).unwrap();
+        let crate::highlight::Shape::Morph(read) = read else {
+            panic!("{read:?}")
+        };
+        let made = Morph::from_keys(read.keys.to_vec());
+        assert_eq!(made, read);
+        assert_eq!(made.key_frames().collect::<Vec<_>>(), vec![2.0, 6.0]);
+        // A quarter of the way: position 0.25.
+        assert_eq!(made.map(|t| t.at(3.0)).position, 0.25);
     }
 
     #[test]
