@@ -271,6 +271,21 @@ mod tests {
     }
 
     #[test]
+    fn keys_given_read_as_the_same_keys_written() {
+        let text = "OutlineKeys([(2, [(0.0, 0.1), (0.1, 0.0), (0.0, -0.1)]), \
+                    (6, [(0.0, 0.3), (0.3, 0.0), (0.0, -0.1)])])";
+        let read: Shape<Track<f32>> = ron::from_str(text).unwrap();
+        let Shape::Morph(read) = read else {
+            panic!("{read:?}")
+        };
+        let made = Morph::from_keys(read.keys.to_vec());
+        assert_eq!(made, read);
+        assert_eq!(made.key_frames().collect::<Vec<_>>(), vec![2.0, 6.0]);
+        // A quarter of the way: position 0.25.
+        assert_eq!(made.map(|t| t.at(3.0)).position, 0.25);
+    }
+
+    #[test]
     fn keys_of_different_counts_or_kinds_are_refused_naming_both_frames() {
         let text = "OutlineKeys([(1, [(0.0, 0.1), (0.1, 0.0), (0.0, -0.1)]), \
                     (12, [(0.0, 0.3), (0.3, 0.0), (0.0, -0.1), (-0.1, 0.0)])])";
