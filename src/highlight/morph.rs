@@ -131,7 +131,7 @@ impl Morph<f32> {
     /// On a key, its outline made ready ([`Outline::prepare`]); between keys, the morph's
     /// three polygons ([`PreparedMorph`]). The values are checked, not whether an outline
     /// crosses itself.
-    pub fn prepare(&self) -> Result<Prepared, OutlineError> {
+    pub(super) fn prepare(&self) -> Result<Prepared, OutlineError> {
         match self.span() {
             Span::On(k) => Ok(Prepared::Key(self.keys[k].1.prepare()?)),
             Span::Between(k, s) => {
@@ -152,7 +152,7 @@ impl Morph<f32> {
 
 /// What [`Morph::prepare`] makes: a key's outline, or a frame strictly between two keys.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Prepared {
+pub(super) enum Prepared {
     /// On a key: that key's polygon.
     Key(PreparedOutline),
     /// Between two keys.
