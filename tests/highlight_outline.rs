@@ -119,15 +119,21 @@ fn ops(steps: &[Step]) -> Vec<Op> {
 /// The sphere's region: whether the image point (x, y) (pixels from the top left) sees the
 /// sphere, and if so whether it is in the highlight.
 struct Truth {
-    polygon: Vec<DVec2>,
+    /// The point is in the highlight where t' is inside every one of these.
+    polygons: Vec<Vec<DVec2>>,
     steps: Vec<Step>,
     light: DVec3,
 }
 
 impl Truth {
     fn new(pieces: &[Piece], steps: &[Step]) -> Self {
+        Self::of_all(&[pieces], steps)
+    }
+
+    /// The region inside every one of the outlines `all`.
+    fn of_all(all: &[&[Piece]], steps: &[Step]) -> Self {
         Self {
-            polygon: polygon(pieces),
+            polygons: all.iter().map(|pieces| polygon(pieces)).collect(),
             steps: steps.to_vec(),
             light: DVec3::new(0.35, -1.0, 0.45).normalize(),
         }
@@ -159,7 +165,7 @@ impl Truth {
                 }
             }
         }
-        hn > 0.0 && inside_polygon(&self.polygon, t)
+        hn > 0.0 && self.polygons.iter().all(|p| inside_polygon(p, t))
     }
 
     /// The fraction of each pixel in the highlight: where the four corners of a pixel and of its
@@ -398,6 +404,61 @@ fn a_morph_at_its_midpoint_is_the_outline_of_averaged_points_and_keeps_what_both
             "frame {frame}: {holes} pixels of both keys uncovered"
         );
     }
+}
+
+#[test]
+fn a_star_turned_between_keys_keeps_at_its_midpoint_every_pixel_both_keys_cover() {
+    // The star turned by 30° point by point: each point moves along a chord, so the lerped
+    // outline at the midpoint is the star turned by 15° and shrunk by cos 15°, and its tips
+    // fall short of where the two keys' tips overlap.
+    let a = star(0.4, 0.16, 0.0);
+    let b = star(0.4, 0.16, 30_f64.to_radians());
+    let mean: Vec<Piece> = a
+        .iter()
+        .zip(&b)
+        .map(|(p, q)| match (*p, *q) {
+            (Piece::Corner(x0, y0), Piece::Corner(x1, y1)) => {
+                Piece::Corner(0.5 * (x0 + x1), 0.5 * (y0 + y1))
+            }
+            _ => unreachable!("the stars are corners"),
+        })
+        .collect();
+    // Each key renders as its region, so "covered in the key's own render" is its truth.
+    for (name, key, frame) in [("first", &a, 1.0), ("last", &b, 9.0)] {
+        let score = soft_iou(
+            &rendered(keyed_at(&a, &b, frame)),
+            &Truth::new(key, &[]).matte(),
+        );
+        assert!(score >= 0.998, "the {name} key: soft IoU {score}");
+    }
+    // The pixels at least half inside both keys' regions at once.
+    let both = Truth::of_all(&[&a, &b], &[]).matte();
+    let shared: Vec<usize> = (0..both.len()).filter(|&i| both[i] >= 0.5).collect();
+    assert!(shared.len() > 1000, "{}", shared.len());
+    // A lerp of the points alone leaves some of them: the test can fail.
+    let lerp_only = Truth::new(&mean, &[]).matte();
+    let cut = shared.iter().filter(|&&i| lerp_only[i] < 0.5).count();
+    assert!(
+        cut > 20,
+        "the lerped star alone uncovers {cut} shared pixels"
+    );
+    let mid = rendered(keyed_at(&a, &b, 5.0));
+    let holes: Vec<usize> = shared.iter().copied().filter(|&i| mid[i] < 0.5).collect();
+    assert!(
+        holes.is_empty(),
+        "{} of {} pixels both keys cover are uncovered at the midpoint, e.g. pixel {:?}",
+        holes.len(),
+        shared.len(),
+        holes
+            .first()
+            .map(|&i| (i % SIZE as usize, i / SIZE as usize))
+    );
+    // And the midpoint still holds the lerped outline (away from its edge's half-covered
+    // pixels, where the rendered and computed coverage may fall either side of 1/2).
+    let lost = (0..lerp_only.len())
+        .filter(|&i| lerp_only[i] >= 0.6 && mid[i] < 0.5)
+        .count();
+    assert_eq!(lost, 0, "{lost} pixels of the lerped star uncovered");
 }
 
 #[test]

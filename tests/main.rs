@@ -35,6 +35,8 @@ mod motion_loop;
 mod motion_pin;
 mod motion_rigid;
 mod outline_errors;
+mod outline_inspect;
+mod outline_place;
 mod patch_files;
 mod pictures;
 mod raster_coverage;

@@ -8,9 +8,11 @@ use clap::Args;
 use glam::Vec3;
 
 use super::CliError;
-use glint::highlight::{Expr, Layer, Light};
+use glint::highlight::{Expr, Layer, Light, Outline, Segment, Shape};
 use glint::render::Projection;
-use glint::shot::{load_shot, mask_text, op_text, rounded_number_text, MaterialState, Shot};
+use glint::shot::{
+    frame_text, load_shot, mask_text, op_text, rounded_number_text, MaterialState, Shot,
+};
 use glint::toon::{Abstraction, DetailMap, HighlightFrame, ShapeDetail, XToon};
 
 /// Print the value of every track of a shot at one frame.
@@ -200,7 +202,7 @@ fn layer_fields(layer: &Layer) -> String {
         // At a frame a pin is already solved into the stack's translation.
         pin: _,
         frame: _,
-        shape: _,
+        shape,
     } = layer;
     let mut fields = format!(
         "epsilon: {}, colour: {}, opacity: {}",
@@ -214,7 +216,48 @@ fn layer_fields(layer: &Layer) -> String {
     if let Some(m) = mask {
         fields.push_str(&format!(", {}", mask_text(m, number)));
     }
+    if let Some(shape) = shape_text(shape) {
+        fields.push_str(&format!(", {shape}"));
+    }
     fields
+}
+
+/// A drawn shape at the frame as a shot writes it, `shape: Outline([(x, y), Bezier(…), …])`:
+/// keyed outlines as the outline of their points there, with the keys it lies between and how
+/// far. None for the disc.
+fn shape_text(shape: &Shape) -> Option<String> {
+    match shape {
+        Shape::Disc => None,
+        Shape::Outline(o) => Some(format!("shape: {}", outline_text(o))),
+        Shape::Morph(m) => {
+            let at = format!("shape: {}", outline_text(&m.lerped()));
+            Some(match m.try_between_keys() {
+                Some((a, b, s)) => format!(
+                    "{at} (morphing from the key at frame {} to the key at frame {}, {} of the way)",
+                    frame_text(a),
+                    frame_text(b),
+                    number(s)
+                ),
+                None => at,
+            })
+        }
+    }
+}
+
+/// `Outline([…])`: each corner `(x, y)`, each Bézier `Bezier((x1, y1), (x2, y2), (x, y))`.
+fn outline_text(outline: &Outline) -> String {
+    let pair = |p: &[f32; 2]| format!("({}, {})", number(p[0]), number(p[1]));
+    let pieces: Vec<String> = outline
+        .segments
+        .iter()
+        .map(|segment| match segment {
+            Segment::Corner(p) => pair(p),
+            Segment::Bezier([c1, c2, end]) => {
+                format!("Bezier({}, {}, {})", pair(c1), pair(c2), pair(end))
+            }
+        })
+        .collect();
+    format!("Outline([{}])", pieces.join(", "))
 }
 
 /// An X-Toon material without its texture, e.g.

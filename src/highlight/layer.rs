@@ -344,6 +344,7 @@ impl PreparedLayer {
         match &self.shape {
             PreparedShape::Disc => signed_inside(Vec3::Z, l, self.epsilon),
             PreparedShape::Outline(outline) => outline.signed(l),
+            PreparedShape::Morph(morph) => morph.signed(l),
         }
     }
 

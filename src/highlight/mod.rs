@@ -22,6 +22,7 @@ mod half_vector;
 mod inside;
 mod layer;
 mod layer_frame;
+mod morph;
 mod ops;
 mod outline;
 mod pin;
@@ -43,6 +44,7 @@ pub use inside::{coverage_from_signed, inside, signed_inside};
 pub(crate) use layer::LayerScratch;
 pub use layer::{Layer, Mask, Paint, PreparedLayer};
 pub use layer_frame::{LayerFrame, PreparedFrame, ALONG_TOLERANCE};
+pub use morph::{Morph, PreparedMorph};
 pub use ops::{Axis, Op, PreparedOp, SquareStyle};
 pub use outline::{
     Outline, OutlineError, Segment, MAX_FLATTENED_POINTS, MAX_OUTLINE_SEGMENTS, OUTLINE_BOUND,

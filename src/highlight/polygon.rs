@@ -2,19 +2,39 @@
 
 use glam::{DVec2, Vec2, Vec3};
 
-/// One edge of the polyline: its start, its direction `e = b − a` and `1 / |e|²`.
+/// Edges held side by side, so that a point's distance to [`EDGE_LANES`] of them is taken at
+/// once.
+const EDGE_LANES: usize = 8;
+
+/// [`EDGE_LANES`] edges of the polyline, one array per coordinate: each edge's start `a`, its
+/// direction `e = b − a` and `1 / |e|²` (0 for an edge of no length). Lanes past the last edge
+/// hold a point edge far outside (`a` at 10⁶, `e` = 0), nearer no point than a real edge and
+/// crossing no ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Edge {
-    a: Vec2,
-    e: Vec2,
-    inv_len2: f32,
+struct EdgeChunk {
+    ax: [f32; EDGE_LANES],
+    ay: [f32; EDGE_LANES],
+    ex: [f32; EDGE_LANES],
+    ey: [f32; EDGE_LANES],
+    inv_len2: [f32; EDGE_LANES],
+}
+
+impl EdgeChunk {
+    /// A chunk of edges standing for none.
+    const FAR: Self = Self {
+        ax: [1e6; EDGE_LANES],
+        ay: [1e6; EDGE_LANES],
+        ex: [0.0; EDGE_LANES],
+        ey: [0.0; EDGE_LANES],
+        inv_len2: [0.0; EDGE_LANES],
+    };
 }
 
 /// A closed, simple polyline in the tangent coordinates `t' = ((H', du), (H', dv))`, with the
 /// scale that puts its signed distance in the units of a disc's signed value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PreparedOutline {
-    edges: Vec<Edge>,
+    edges: Vec<EdgeChunk>,
     /// `c = r / √(1 − r²)`, r the radius of the disc of the polygon's area (see [`Self::signed`]).
     scale: f32,
 }
@@ -27,18 +47,18 @@ impl PreparedOutline {
     #[must_use]
     pub fn new(points: &[DVec2]) -> Self {
         let n = points.len();
-        let edges = (0..n)
-            .map(|k| {
-                let a = points[k].as_vec2();
-                let e = points[(k + 1) % n].as_vec2() - a;
-                let inverse = 1.0 / e.length_squared();
-                Edge {
-                    a,
-                    e,
-                    inv_len2: if inverse.is_finite() { inverse } else { 0.0 },
-                }
-            })
-            .collect();
+        let mut edges = vec![EdgeChunk::FAR; n.div_ceil(EDGE_LANES)];
+        for k in 0..n {
+            let a = points[k].as_vec2();
+            let e = points[(k + 1) % n].as_vec2() - a;
+            let inverse = 1.0 / e.length_squared();
+            let (chunk, lane) = (&mut edges[k / EDGE_LANES], k % EDGE_LANES);
+            chunk.ax[lane] = a.x;
+            chunk.ay[lane] = a.y;
+            chunk.ex[lane] = e.x;
+            chunk.ey[lane] = e.y;
+            chunk.inv_len2[lane] = if inverse.is_finite() { inverse } else { 0.0 };
+        }
         let area = polygon_area(points).abs();
         let r2 = (area / std::f64::consts::PI).clamp(1e-12, 0.999);
         Self {
@@ -57,23 +77,25 @@ impl PreparedOutline {
         if self.edges.is_empty() {
             return -1.0;
         }
-        let mut nearest = f32::INFINITY;
-        let mut winding = 0_i32;
-        for edge in &self.edges {
-            let w = p - edge.a;
-            let t = (w.dot(edge.e) * edge.inv_len2).clamp(0.0, 1.0);
-            nearest = nearest.min((w - edge.e * t).length_squared());
-            // Upward edges that p is left of count +1, downward ones it is right of −1.
-            let b_y = edge.a.y + edge.e.y;
-            let side = edge.e.perp_dot(w);
-            if edge.a.y <= p.y {
-                if b_y > p.y && side > 0.0 {
-                    winding += 1;
-                }
-            } else if b_y <= p.y && side < 0.0 {
-                winding -= 1;
+        // Per lane, over the edges it holds; lanes are independent, so they run side by side.
+        let mut nearest = [f32::INFINITY; EDGE_LANES];
+        let mut winding = [0_i32; EDGE_LANES];
+        for c in &self.edges {
+            for k in 0..EDGE_LANES {
+                let (wx, wy) = (p.x - c.ax[k], p.y - c.ay[k]);
+                let t = ((wx * c.ex[k] + wy * c.ey[k]) * c.inv_len2[k]).clamp(0.0, 1.0);
+                let (dx, dy) = (wx - c.ex[k] * t, wy - c.ey[k] * t);
+                nearest[k] = nearest[k].min(dx * dx + dy * dy);
+                // Upward edges that p is left of count +1, downward ones it is right of −1.
+                let b_y = c.ay[k] + c.ey[k];
+                let side = c.ex[k] * wy - c.ey[k] * wx;
+                let up = (c.ay[k] <= p.y) & (b_y > p.y) & (side > 0.0);
+                let down = (c.ay[k] > p.y) & (b_y <= p.y) & (side < 0.0);
+                winding[k] += i32::from(up) - i32::from(down);
             }
         }
+        let nearest = nearest.into_iter().fold(f32::INFINITY, f32::min);
+        let winding: i32 = winding.iter().sum();
         let d = nearest.sqrt();
         if winding != 0 {
             d
@@ -91,20 +113,36 @@ impl PreparedOutline {
     /// `r/√(1 − r²)` per unit of t': so an outline that draws that circle has the disc's `s` to
     /// first order at the edge, and a feather or an edge width written in units of ε reads the
     /// same on a drawn shape as on the disc of its area. Below the tangent plane (`l_z ≤ 0`,
-    /// no t') it goes on falling: `c·(d(t̂) + l_z)` with t̂ the unit direction of t', which
-    /// meets the value above at `l_z = 0` (there `|t'| = 1`, outside every valid outline).
+    /// no t') it goes on falling ([`distance_at`](Self::distance_at)).
     #[inline]
     #[must_use]
     pub fn signed(&self, l: Vec3) -> f32 {
+        self.scale * self.distance_at(l)
+    }
+
+    /// The signed distance of the stack's unit output `l` (N is +z), unscaled: `d(t')` with
+    /// `t' = (l_x, l_y)` above the tangent plane; below it (`l_z ≤ 0`, no t'), `d(t̂) + l_z`
+    /// with t̂ the unit direction of t', which meets the value above at `l_z = 0` (there
+    /// `|t'| = 1`, outside every valid outline), and −1 + l_z where t' = 0.
+    #[inline]
+    #[must_use]
+    pub fn distance_at(&self, l: Vec3) -> f32 {
         let t = Vec2::new(l.x, l.y);
         if l.z > 0.0 {
-            return self.scale * self.distance(t);
+            return self.distance(t);
         }
         let away = match t.try_normalize() {
             Some(direction) => self.distance(direction),
             None => -1.0,
         };
-        self.scale * (away + l.z)
+        away + l.z
+    }
+
+    /// `c = r/√(1 − r²)`, the factor from t' distance to the units of a disc's `s`
+    /// ([`signed`](Self::signed)).
+    #[must_use]
+    pub fn scale(&self) -> f32 {
+        self.scale
     }
 }
 

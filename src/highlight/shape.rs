@@ -1,7 +1,8 @@
-//! What a layer's highlight vector is tested against: the ε-disc around N, or a drawn outline
-//! (read from and written to RON in `shape_text`).
+//! What a layer's highlight vector is tested against: the ε-disc around N, a drawn outline, or
+//! keyed outlines morphing (read from and written to RON in `shape_text`).
 
 use super::error::HighlightError;
+use super::morph::{Morph, Prepared, PreparedMorph};
 use super::outline::Outline;
 use super::polygon::PreparedOutline;
 
@@ -9,14 +10,17 @@ use super::polygon::PreparedOutline;
 ///
 /// RON: `Disc` (the default), `Outline([(0.0, 0.12), (0.05, 0.0), Bezier((…), (…), (…)), …])`,
 /// or, in a shot, keyed whole outlines `OutlineKeys([(1, [ … ]), (24, [ … ])])`: every key with
-/// the same pieces (as many, corners and Béziers in the same places), morphing linearly point by
-/// point between keys and held before the first and after the last, as any track.
+/// the same pieces (as many, corners and Béziers in the same places), morphing point by point
+/// between keys ([`PreparedMorph`]) and held before the first and after the last, as any track.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape<P = f32> {
     /// `‖N − H'‖²/2 < ε`: the highlight of Anjyo & Hiramitsu 2003.
     Disc,
     /// `t' = ((H', du), (H', dv))` inside the outline, with `(H', N) > 0`.
     Outline(Outline<P>),
+    /// Keyed outlines ([`Morph`]): between two keys, inside the outline of their points moved
+    /// linearly and wherever both keys are ([`PreparedMorph`]).
+    Morph(Morph<P>),
 }
 
 // Written out: a derived `Default` would ask `P: Default` of every parameter type.
@@ -40,6 +44,7 @@ impl<P> Shape<P> {
         match self {
             Shape::Disc => Shape::Disc,
             Shape::Outline(o) => Shape::Outline(o.map(f)),
+            Shape::Morph(m) => Shape::Morph(m.map(f)),
         }
     }
 }
@@ -49,16 +54,20 @@ impl<P> Shape<P> {
 pub enum PreparedShape {
     /// The ε-disc: the layer's `s = ε − ‖N − H'‖²/2`.
     Disc,
-    /// A drawn outline's polygon.
+    /// A drawn outline's polygon, or keyed outlines on a key.
     Outline(PreparedOutline),
+    /// Keyed outlines strictly between two keys.
+    Morph(PreparedMorph),
 }
 
 impl Shape<f32> {
-    /// Checks the shape: the disc always passes, an outline as [`Outline::validate`] says.
+    /// Checks the shape: the disc always passes, an outline as [`Outline::validate`] says,
+    /// keyed outlines as [`Morph::validate`] (the keys at or around the position).
     pub fn validate(&self) -> Result<(), HighlightError> {
         match self {
             Shape::Disc => Ok(()),
             Shape::Outline(o) => Ok(o.validate()?),
+            Shape::Morph(m) => Ok(m.validate()?),
         }
     }
 
@@ -68,6 +77,10 @@ impl Shape<f32> {
         match self {
             Shape::Disc => Ok(PreparedShape::Disc),
             Shape::Outline(o) => Ok(PreparedShape::Outline(o.prepare()?)),
+            Shape::Morph(m) => Ok(match m.prepare()? {
+                Prepared::Key(o) => PreparedShape::Outline(o),
+                Prepared::Between(m) => PreparedShape::Morph(m),
+            }),
         }
     }
 }

@@ -1,11 +1,14 @@
 //! How a layer's shape is written in RON: `Disc`, `Outline([…])` of corners and Béziers, or
-//! keyed whole outlines `OutlineKeys([(frame, […]), …])` read into keyed coordinates.
+//! keyed whole outlines `OutlineKeys([(frame, […]), …])` read into a [`Morph`].
 
 use serde::de::value::SeqDeserializer;
 use serde::de::{self, Deserializer, IntoDeserializer};
 use serde::ser::{SerializeTupleVariant, Serializer};
 use serde::{Deserialize, Serialize};
 
+use std::sync::Arc;
+
+use super::morph::Morph;
 use super::outline::{Outline, Segment};
 use super::shape::Shape;
 
@@ -89,12 +92,10 @@ fn flat(segments: &[Segment<f64>]) -> Vec<f64> {
     numbers
 }
 
-/// The keyed outline `keys` with each coordinate a parameter keyed at every key's frame, read
-/// from that coordinate's keys `[(frame, value), …]` as any keyed number is, so that it morphs
-/// linearly between keys.
-fn keyed<'de, P: Deserialize<'de>>(
-    keys: &[(f64, Vec<Segment<f64>>)],
-) -> Result<Outline<P>, String> {
+/// The keyed outlines `keys` as a [`Morph`]: the keys as f32 outlines, and its position a
+/// parameter keyed `[(frame, index), …]` at every key's frame, read as any keyed number is, so
+/// that between keys k and k + 1 it reads `k + s`.
+fn keyed<'de, P: Deserialize<'de>>(keys: &[(f64, Vec<Segment<f64>>)]) -> Result<Morph<P>, String> {
     let Some(first) = keys.first() else {
         return Err(
             "OutlineKeys needs at least one (frame, outline) key; write Outline([…]) \
@@ -108,7 +109,7 @@ fn keyed<'de, P: Deserialize<'de>>(
                 "an outline key's frame is {frame}, but it must be finite"
             ));
         }
-        if let Some(v) = flat(segments).iter().find(|v| !v.is_finite()) {
+        if let Some(v) = flat(segments).iter().find(|v| !(**v as f32).is_finite()) {
             return Err(format!(
                 "the outline key at frame {frame} has the coordinate {v}, which is not a finite number"
             ));
@@ -125,36 +126,28 @@ fn keyed<'de, P: Deserialize<'de>>(
     for key in &keys[1..] {
         same_pieces((first.0, &first.1), (key.0, &key.1))?;
     }
-    let numbers: Vec<Vec<f64>> = keys.iter().map(|(_, segments)| flat(segments)).collect();
-    let mut parameters = Vec::new();
-    for c in 0..numbers[0].len() {
-        let track: Vec<Vec<f64>> = keys
-            .iter()
-            .zip(&numbers)
-            .map(|((frame, _), values)| vec![*frame, values[c]])
-            .collect();
-        let seq: SeqDeserializer<_, de::value::Error> = track.into_deserializer();
-        parameters.push(P::deserialize(seq).map_err(|e| {
-            format!("keyed outlines (OutlineKeys) are read in a shot, where parameters can be keyed: {e}")
-        })?);
-    }
-    // One parameter for each coordinate, in the order `map` visits them.
-    let mut parameters = parameters.into_iter();
-    let mut next = || {
-        parameters
-            .next()
-            .ok_or_else(|| "an outline key has fewer coordinates than its pieces".to_string())
-    };
-    let mut segments = Vec::with_capacity(first.1.len());
-    for segment in &first.1 {
-        segments.push(match segment {
-            Segment::Corner(_) => Segment::Corner([next()?, next()?]),
-            Segment::Bezier(_) => {
-                Segment::Bezier([[next()?, next()?], [next()?, next()?], [next()?, next()?]])
-            }
-        });
-    }
-    Ok(Outline { segments })
+    let track: Vec<Vec<f64>> = keys
+        .iter()
+        .enumerate()
+        .map(|(k, (frame, _))| vec![*frame, k as f64])
+        .collect();
+    let seq: SeqDeserializer<_, de::value::Error> = track.into_deserializer();
+    let position = P::deserialize(seq).map_err(|e| {
+        format!(
+            "keyed outlines (OutlineKeys) are read in a shot, where parameters can be keyed: {e}"
+        )
+    })?;
+    let outlines: Vec<(f64, Outline)> = keys
+        .iter()
+        .map(|(frame, segments)| {
+            let segments = segments.iter().map(|s| s.map(&mut |v| *v as f32)).collect();
+            (*frame, Outline { segments })
+        })
+        .collect();
+    Ok(Morph {
+        keys: Arc::from(outlines),
+        position,
+    })
 }
 
 impl<'de, P: Deserialize<'de> + From<f32>> Deserialize<'de> for Shape<P> {
@@ -175,7 +168,7 @@ impl<'de, P: Deserialize<'de> + From<f32>> Deserialize<'de> for Shape<P> {
                     .iter()
                     .map(|(f, pieces)| (*f, numbers(pieces)))
                     .collect();
-                keyed(&keys).map(Shape::Outline).map_err(de::Error::custom)
+                keyed(&keys).map(Shape::Morph).map_err(de::Error::custom)
             }
         }
     }
@@ -200,7 +193,8 @@ impl<P: Serialize> Serialize for SegmentOut<'_, P> {
     }
 }
 
-/// `Disc`, or `Outline([…])` with each coordinate as its parameter type writes itself.
+/// `Disc`, `Outline([…])` with each coordinate as its parameter type writes itself, or keyed
+/// outlines as `OutlineKeys([(frame, […]), …])` (their position follows from the frames).
 impl<P: Serialize> Serialize for Shape<P> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         match self {
@@ -208,6 +202,14 @@ impl<P: Serialize> Serialize for Shape<P> {
             Shape::Outline(o) => {
                 let pieces: Vec<SegmentOut<'_, P>> = o.segments.iter().map(SegmentOut).collect();
                 serializer.serialize_newtype_variant("Shape", 1, "Outline", &pieces)
+            }
+            Shape::Morph(m) => {
+                let keys: Vec<(f64, Vec<SegmentOut<'_, f32>>)> = m
+                    .keys
+                    .iter()
+                    .map(|(frame, o)| (*frame, o.segments.iter().map(SegmentOut).collect()))
+                    .collect();
+                serializer.serialize_newtype_variant("Shape", 2, "OutlineKeys", &keys)
             }
         }
     }
@@ -240,14 +242,16 @@ mod tests {
     }
 
     #[test]
-    fn keys_become_keyed_coordinates_that_morph_point_by_point() {
+    fn keys_become_a_position_between_them_and_write_back_as_keys() {
         let text = "OutlineKeys([(1, [(0.0, 0.1), (0.1, 0.0), (0.0, -0.1)]), \
                     (3, [(0.0, 0.3), (0.3, 0.0), (0.0, -0.1)])])";
         let shape: Shape<Track<f32>> = ron::from_str(text).unwrap();
         let at = |frame: f64| shape.map(|t| t.at(frame));
-        let Shape::Outline(mid) = at(2.0) else {
+        let Shape::Morph(morph) = at(2.0) else {
             panic!()
         };
+        assert_eq!(morph.position, 0.5);
+        let mid = morph.lerped();
         // Halfway between the keys, each coordinate is the mean of its two keys'.
         let want = [[0.0, 0.2], [0.2, 0.0], [0.0, -0.1]];
         for (segment, want) in mid.segments.iter().zip(want) {
@@ -256,9 +260,29 @@ mod tests {
             };
             assert!((p[0] - want[0]).abs() < 1e-6 && (p[1] - want[1]).abs() < 1e-6);
         }
+        // Written back as keys, read back the same.
+        let written = ron::to_string(&shape.map(|t| t.at(1.0))).unwrap();
+        assert!(written.starts_with("OutlineKeys("), "{written}");
+        let again: Shape<Track<f32>> = ron::from_str(&written).unwrap();
+        assert_eq!(again.map(|t| t.at(2.0)), at(2.0));
         // Alone, a layer has no keys to read.
         let e = ron::from_str::<Shape>(text).unwrap_err().to_string();
         assert!(e.contains("read in a shot"), "{e}");
+    }
+
+    #[test]
+    fn keys_given_read_as_the_same_keys_written() {
+        let text = "OutlineKeys([(2, [(0.0, 0.1), (0.1, 0.0), (0.0, -0.1)]), \
+                    (6, [(0.0, 0.3), (0.3, 0.0), (0.0, -0.1)])])";
+        let read: Shape<Track<f32>> = ron::from_str(text).unwrap();
+        let Shape::Morph(read) = read else {
+            panic!("{read:?}")
+        };
+        let made = Morph::from_keys(read.keys.to_vec());
+        assert_eq!(made, read);
+        assert_eq!(made.key_frames().collect::<Vec<_>>(), vec![2.0, 6.0]);
+        // A quarter of the way: position 0.25.
+        assert_eq!(made.map(|t| t.at(3.0)).position, 0.25);
     }
 
     #[test]

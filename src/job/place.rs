@@ -5,7 +5,7 @@ use glam::Vec2;
 use thiserror::Error;
 
 use super::{JobError, RenderJob};
-use crate::highlight::{HighlightError, Layer};
+use crate::highlight::{HighlightError, Layer, Shape};
 use crate::render::{Aovs, RenderedFrame, SurfacePoint};
 use crate::shot::{rounded_number_text, FrameState, Shot};
 
@@ -49,11 +49,12 @@ pub struct Residual {
     /// The patch (index into the shot's library).
     pub patch: usize,
     /// The least `‖N − H'‖² / 2` found on the patch: 0 at a centre, below ε inside the
-    /// highlight.
+    /// highlight of the disc (for a drawn shape too, where the outline's point (0, 0) lands).
     pub nearest: f32,
     /// Where on the patch it was found.
     pub uv: (f64, f64),
-    /// Whether the highlight shows on the patch at all (`nearest < ε`).
+    /// Whether the highlight shows on the patch at all: `nearest < ε` for the disc; for a drawn
+    /// shape, whether it covers the point nearest its centre.
     pub covered: bool,
 }
 
@@ -335,6 +336,14 @@ fn residuals(
     let prepared = layer
         .prepare()
         .map_err(|e| PlaceError::Layer(e.to_string()))?;
+    // The centre is where H' = N whatever the shape: a drawn layer's is measured as its disc's,
+    // `‖N − H'‖²/2 = ε − s_disc`, and it shows where its own s is positive.
+    let disc = Layer {
+        shape: Shape::Disc,
+        ..layer.clone()
+    }
+    .prepare()
+    .map_err(|e| PlaceError::Layer(e.to_string()))?;
     let (camera, light) = (&state.camera, &state.light);
     let mut residuals = Vec::new();
     for (patch, named) in state.library.patches.iter().enumerate() {
@@ -342,9 +351,10 @@ fn residuals(
             continue;
         }
         let domain = named.surface.domain();
+        let point = |uv: (f64, f64)| SurfacePoint::new(&named.surface, uv, camera, light);
         let distance = |uv: (f64, f64)| {
-            let point = SurfacePoint::new(&named.surface, uv, camera, light);
-            layer.epsilon - prepared.signed(&point.frame, point.half_vector)
+            let point = point(uv);
+            layer.epsilon - disc.signed(&point.frame, point.half_vector)
         };
         let last = (RESIDUAL_GRID - 1) as f64;
         let mut best = (f32::INFINITY, domain.center());
@@ -384,7 +394,12 @@ fn residuals(
             patch,
             nearest: best.0.max(0.0),
             uv: best.1,
-            covered: best.0 < layer.epsilon,
+            covered: if layer.shape.is_disc() {
+                best.0 < layer.epsilon
+            } else {
+                let nearest = point(best.1);
+                prepared.signed(&nearest.frame, nearest.half_vector) > 0.0
+            },
         });
     }
     Ok(residuals)
