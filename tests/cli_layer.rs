@@ -118,16 +118,19 @@ fn outline_at(shot: &str, frame: f64) -> Vec<[f32; 2]> {
     use glint::highlight::{Segment, Shape};
     let shot = glint::shot::load_shot(Path::new(shot)).unwrap();
     let state = shot.at(frame);
-    match &state.highlights[0].layers()[0].shape {
-        Shape::Disc => Vec::new(),
-        Shape::Outline(o) => o
-            .segments
+    let corners = |o: &glint::highlight::Outline| -> Vec<[f32; 2]> {
+        o.segments
             .iter()
             .map(|s| match s {
                 Segment::Corner(p) => *p,
                 Segment::Bezier(_) => panic!("a Bezier where corners were drawn"),
             })
-            .collect(),
+            .collect()
+    };
+    match &state.highlights[0].layers()[0].shape {
+        Shape::Disc => Vec::new(),
+        Shape::Outline(o) => corners(o),
+        Shape::Morph(m) => corners(&m.lerped()),
     }
 }
 

@@ -128,7 +128,8 @@ try {
   // A corner off the sphere: refused on the page, nothing written.
   await clickPixel(page, [4, 4]);
   await page.keyboard.press("Enter");
-  await until(page, () => /shows no patch/.test(document.getElementById("status").textContent), undefined, "the refusal on the page");
+  // The error line shows the refusal until the next frame is painted: what it showed is kept.
+  await until(page, () => /shows no patch/.test(window.glintTune.lastError), undefined, "the refusal on the page");
   await new Promise((r) => setTimeout(r, 300));
   check(readFileSync(shot, "utf8") === written, "a refused outline changed the file");
   await page.screenshot({ path: join(artefacts, "13-refused.png") });

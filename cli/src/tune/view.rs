@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 use glint::anim::Track;
-use glint::highlight::{Outline, Shape};
+use glint::highlight::Shape;
 use glint::shot::{
     param_readings, HighlightRef, LayerParam, OpParam, ParamPath, ParamReading, Shot,
 };
@@ -72,16 +72,8 @@ pub struct LayerView {
 pub fn shape_view(shape: &Shape<Track<f32>>) -> (&'static str, Vec<f64>) {
     match shape {
         Shape::Disc => ("disc", Vec::new()),
-        Shape::Outline(outline) => {
-            let mut keys: Option<Vec<f64>> = None;
-            let _visited: Outline<()> = outline.map(|t| {
-                keys.get_or_insert_with(|| t.key_frames().collect());
-            });
-            match keys.filter(|k| !k.is_empty()) {
-                Some(keys) => ("keyed outline", keys),
-                None => ("outline", Vec::new()),
-            }
-        }
+        Shape::Outline(_) => ("outline", Vec::new()),
+        Shape::Morph(morph) => ("keyed outline", morph.key_frames().collect()),
     }
 }
 

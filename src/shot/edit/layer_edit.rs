@@ -202,10 +202,8 @@ pub fn edit_layer(
             drawn
                 .validate()
                 .map_err(|e| bad(format!("the drawn outline: {e}")))?;
-            if let (Some(frame), Some(frames), Shape::Outline(outline)) =
-                (key, &keyed_at, &parsed.shape)
-            {
-                check_key(outline, frames, *frame, points).map_err(bad)?;
+            if let (Some(frame), Shape::Morph(morph)) = (key, &parsed.shape) {
+                check_key(morph, *frame, points).map_err(bad)?;
             }
         }
         LayerEdit::Disc if parsed.shape.is_disc() => {
@@ -555,22 +553,26 @@ mod tests {
     fn outline_of(text: &str) -> Vec<(Option<f64>, Vec<[f32; 2]>)> {
         let mut parsed = read_file(text).unwrap();
         let (layer, _) = parsed.layer_mut(0, 1).unwrap();
-        let Shape::Outline(outline) = &layer.shape else {
-            return Vec::new();
-        };
-        let points_at = |frame: f64| -> Vec<[f32; 2]> {
-            outline
-                .segments
+        let corners = |segments: &[Segment<f32>]| -> Vec<[f32; 2]> {
+            segments
                 .iter()
                 .map(|s| match s {
-                    Segment::Corner([x, y]) => [x.at(frame), y.at(frame)],
+                    Segment::Corner(p) => *p,
                     Segment::Bezier(_) => panic!("a Bezier"),
                 })
                 .collect()
         };
-        match key_frames(&layer.shape) {
-            None => vec![(None, points_at(0.0))],
-            Some(frames) => frames.iter().map(|&f| (Some(f), points_at(f))).collect(),
+        match &layer.shape {
+            Shape::Disc => Vec::new(),
+            Shape::Outline(outline) => {
+                let at_rest = outline.map(|t| t.at(0.0));
+                vec![(None, corners(&at_rest.segments))]
+            }
+            Shape::Morph(morph) => morph
+                .keys
+                .iter()
+                .map(|(frame, outline)| (Some(*frame), corners(&outline.segments)))
+                .collect(),
         }
     }
 

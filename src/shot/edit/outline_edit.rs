@@ -6,10 +6,10 @@ use std::ops::Range;
 
 use super::number_text::{decimal_text, frame_text};
 use super::track_splice::{insert_item, Splice};
-use crate::anim::{Key, Track};
+use crate::anim::Track;
 use crate::formats::ron_paths::try_item_spans;
 use crate::formats::ron_paths::Step::{self, Field, Index};
-use crate::highlight::{Outline, Segment, Shape};
+use crate::highlight::{Morph, Outline, Segment, Shape};
 
 /// The decimal places an outline's coordinates are written with: t′ is the tangent part of a
 /// unit vector, so 10⁻⁴ is a hundredth of a pixel across a highlight a hundred pixels wide.
@@ -52,32 +52,24 @@ pub(super) fn shape_field_text(key: Option<f64>, points: &[[f32; 2]]) -> String 
     }
 }
 
-/// The frames of a keyed outline's keys (every coordinate of one written as `OutlineKeys` is
-/// keyed at each of them); `None` for the disc and a plain outline.
+/// The frames of a keyed outline's keys; `None` for the disc and a plain outline.
 #[must_use]
 pub(super) fn key_frames(shape: &Shape<Track<f32>>) -> Option<Vec<f64>> {
-    let Shape::Outline(outline) = shape else {
-        return None;
-    };
-    let mut first = None;
-    let _visited: Outline<()> = outline.map(|t| {
-        if first.is_none() {
-            first = Some(t.key_frames().collect::<Vec<_>>());
-        }
-    });
-    first.filter(|frames| !frames.is_empty())
+    match shape {
+        Shape::Morph(morph) => Some(morph.key_frames().collect()),
+        Shape::Disc | Shape::Outline(_) => None,
+    }
 }
 
-/// Why the corners `points` cannot become the key at `frame` of the keyed outline `outline`
-/// (keyed at `frames`): keys morph point by point, so every key needs as many points, each of
-/// the same kind. The message names the key at `frame` and another key.
+/// Why the corners `points` cannot become the key at `frame` of the keyed outline `morph`:
+/// keys morph point by point, so every key needs as many points, each of the same kind. The
+/// message names the key at `frame` and another key.
 pub(super) fn check_key(
-    outline: &Outline<Track<f32>>,
-    frames: &[f64],
+    morph: &Morph<Track<f32>>,
     frame: f64,
     points: &[[f32; 2]],
 ) -> Result<(), String> {
-    let Some(&other) = frames.iter().find(|&&f| f != frame) else {
+    let Some((other, outline)) = morph.keys.iter().find(|(f, _)| *f != frame) else {
         // The only key is the one replaced.
         return Ok(());
     };
@@ -88,7 +80,7 @@ pub(super) fn check_key(
              has {had}; keys morph point by point, so every key needs the same number of \
              points",
             frame_text(frame),
-            frame_text(other)
+            frame_text(*other)
         ));
     }
     if let Some(k) = outline
@@ -101,7 +93,7 @@ pub(super) fn check_key(
              at frame {}; keys morph point by point, so each point must be of the same kind in \
              every key",
             k + 1,
-            frame_text(other),
+            frame_text(*other),
             frame_text(frame)
         ));
     }
@@ -109,44 +101,27 @@ pub(super) fn check_key(
 }
 
 /// The shape `shape` becomes with the corners `points`: the plain outline of them without
-/// `key`; with `key`, a keyed outline's coordinates keyed there (a key at that frame replaced,
-/// or the key inserted in frame order; `points` as many as its pieces, [`check_key`]), and the
-/// disc, a plain outline or an outline keyed at that frame alone made the one key there, as a
-/// constant track keyed becomes its one key.
+/// `key`; with `key`, a keyed outline's key there (a key at that frame replaced, or the key
+/// inserted in frame order; `points` as many as its pieces, [`check_key`]), and the disc or a
+/// plain outline made the one key there, as a constant track keyed becomes its one key.
 pub(super) fn reshaped(shape: &mut Shape<Track<f32>>, key: Option<f64>, points: &[[f32; 2]]) {
-    let corners = |track: &dyn Fn(f32) -> Track<f32>| Outline {
-        segments: points
-            .iter()
-            .map(|&[x, y]| Segment::Corner([track(x), track(y)]))
-            .collect(),
+    let drawn = Outline {
+        segments: points.iter().map(|&p| Segment::Corner(p)).collect(),
     };
     let Some(frame) = key else {
-        *shape = Shape::Outline(corners(&Track::Constant));
+        *shape = Shape::Outline(drawn.map(|&x| Track::Constant(x)));
         return;
     };
-    let only = |value: f32| Track::Keys(vec![Key { frame, value }]);
-    // Replacing the only key, the outline may change its pieces.
-    let others = key_frames(shape).is_some_and(|frames| frames.iter().any(|&f| f != frame));
-    let Some(Shape::Outline(outline)) = others.then_some(&*shape) else {
-        *shape = Shape::Outline(corners(&only));
-        return;
+    let mut keys: Vec<(f64, Outline)> = match shape {
+        Shape::Morph(morph) => morph.keys.to_vec(),
+        Shape::Disc | Shape::Outline(_) => Vec::new(),
     };
-    let values: Vec<f32> = points.iter().flat_map(|p| p.iter().copied()).collect();
-    let mut next = values.into_iter();
-    let keyed = outline.map(|track| {
-        let value = next.next().unwrap_or_default();
-        let Track::Keys(keys) = track else {
-            return only(value);
-        };
-        let mut keys = keys.clone();
-        let at = keys.partition_point(|k| k.frame < frame);
-        match keys.get_mut(at) {
-            Some(k) if k.frame == frame => k.value = value,
-            _ => keys.insert(at, Key { frame, value }),
-        }
-        Track::Keys(keys)
-    });
-    *shape = Shape::Outline(keyed);
+    let at = keys.partition_point(|(f, _)| *f < frame);
+    match keys.get_mut(at) {
+        Some((f, outline)) if *f == frame => *outline = drawn,
+        _ => keys.insert(at, (frame, drawn)),
+    }
+    *shape = Shape::Morph(Morph::from_keys(keys));
 }
 
 /// The splice that writes `points` as the key at `frame` of the `OutlineKeys` list of the

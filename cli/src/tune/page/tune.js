@@ -20,7 +20,7 @@ const page = {
 };
 
 // What tests and the latency benchmark read: every painted frame, with its times.
-window.glintTune = { paints: 0, latencies: [], last: null, errors: 0 };
+window.glintTune = { paints: 0, latencies: [], last: null, errors: 0, lastError: "" };
 
 function overlays() {
   return { seams: $("overlay-seams").checked, matte: $("overlay-matte").checked, pins: $("overlay-pins").checked };
@@ -28,7 +28,10 @@ function overlays() {
 
 function showError(message) {
   $("status").textContent = message || "";
-  if (message) window.glintTune.errors += 1;
+  if (message) {
+    window.glintTune.errors += 1;
+    window.glintTune.lastError = message;
+  }
 }
 
 async function api(method, url, body) {
@@ -77,7 +80,8 @@ async function pump() {
     const total = performance.now() - job.asked;
     const quality = (job.body && job.body.quality) || "preview";
     window.glintTune.paints += 1;
-    window.glintTune.last = { quality, renderMs, totalMs: total, at: performance.now() };
+    const frame = job.body && job.body.frame;
+    window.glintTune.last = { quality, frame, renderMs, totalMs: total, at: performance.now() };
     if (quality === "preview") window.glintTune.latencies.push(total);
     $("frame-time").textContent = `${quality} ${width}×${height}: render ${renderMs.toFixed(1)} ms (${stages}), on screen ${total.toFixed(1)} ms`;
     showError("");
