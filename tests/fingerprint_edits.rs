@@ -354,18 +354,25 @@ fn frames_where(
         .collect()
 }
 
+/// The frames whose render and whose fingerprint `edit` changes, applied to a fresh fixture.
+fn changed_frames(edit: &Edit) -> (Vec<i64>, Vec<i64>) {
+    let fixture = Fixture::new();
+    edit.apply(&fixture);
+    let after = fixture.frames();
+    let before = unedited();
+    (
+        frames_where(before, &after, |b, a| b.1 != a.1),
+        frames_where(before, &after, |b, a| b.0 != a.0),
+    )
+}
+
 /// Checks that `edit` changes the fingerprint of every frame whose render it changes — no
 /// stale frame is ever taken as current — and, when it can change nothing, of none.
 /// (An edit may change a frame's input without changing a pixel of it — a highlight moved on a
 /// patch out of sight — and then its fingerprint: exactly which frames each kind of edit
 /// changes is checked by `every_kind_of_edit_changes_the_frames_it_reaches`.)
 fn check(edit: &Edit) -> Result<(), TestCaseError> {
-    let fixture = Fixture::new();
-    edit.apply(&fixture);
-    let after = fixture.frames();
-    let before = unedited();
-    let rendered = frames_where(before, &after, |b, a| b.1 != a.1);
-    let fingerprinted = frames_where(before, &after, |b, a| b.0 != a.0);
+    let (rendered, fingerprinted) = changed_frames(edit);
     prop_assert!(
         rendered.iter().all(|f| fingerprinted.contains(f)),
         "{:?}: renders changed at {:?}, fingerprints only at {:?}",
@@ -424,12 +431,7 @@ fn every_kind_of_edit_changes_the_frames_it_reaches() {
         (Edit::Comment, vec![]),
     ];
     for (edit, expected) in cases {
-        let fixture = Fixture::new();
-        edit.apply(&fixture);
-        let after = fixture.frames();
-        let before = unedited();
-        let rendered = frames_where(before, &after, |b, a| b.1 != a.1);
-        let fingerprinted = frames_where(before, &after, |b, a| b.0 != a.0);
+        let (rendered, fingerprinted) = changed_frames(&edit);
         assert_eq!(rendered, expected, "{edit:?}: renders changed");
         assert_eq!(fingerprinted, expected, "{edit:?}: fingerprints changed");
     }

@@ -223,16 +223,8 @@ impl PreparedMorph {
 
 #[cfg(test)]
 mod tests {
+    use super::super::outline::corners;
     use super::*;
-
-    fn corners(points: &[(f32, f32)]) -> Outline {
-        Outline {
-            segments: points
-                .iter()
-                .map(|&(x, y)| Segment::Corner([x, y]))
-                .collect(),
-        }
-    }
 
     fn morph(position: f32) -> Morph {
         // A square, then the same square moved right by 0.2, then grown.

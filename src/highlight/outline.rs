@@ -293,18 +293,21 @@ impl Outline<f32> {
     }
 }
 
+/// The outline of straight pieces through `points`: what tests draw.
+#[cfg(test)]
+#[must_use]
+pub(crate) fn corners(points: &[(f32, f32)]) -> Outline {
+    Outline {
+        segments: points
+            .iter()
+            .map(|&(x, y)| Segment::Corner([x, y]))
+            .collect(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn corners(points: &[(f32, f32)]) -> Outline {
-        Outline {
-            segments: points
-                .iter()
-                .map(|&(x, y)| Segment::Corner([x, y]))
-                .collect(),
-        }
-    }
 
     #[test]
     fn a_square_flattens_to_its_corners() {
