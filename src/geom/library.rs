@@ -17,6 +17,17 @@ pub struct NamedPatch {
 }
 
 impl NamedPatch {
+    /// Whether `other` has this patch's trim: both none, or the same loops (the one shared
+    /// copy, or an equal one).
+    #[must_use]
+    pub fn same_trim(&self, other: &Self) -> bool {
+        match (&self.trim, &other.trim) {
+            (None, None) => true,
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b) || a == b,
+            _ => false,
+        }
+    }
+
     /// The untrimmed patch `surface` named `name`.
     #[must_use]
     pub fn new(name: impl Into<String>, surface: NurbsSurface) -> Self {
@@ -65,12 +76,7 @@ impl PatchLibrary {
             .iter()
             .zip(&pose.patches)
             .map(|(a, b)| {
-                let same_trim = match (&a.trim, &b.trim) {
-                    (None, None) => true,
-                    (Some(x), Some(y)) => Arc::ptr_eq(x, y) || x == y,
-                    _ => false,
-                };
-                (a.name == b.name && same_trim && a.surface.same_but_points(&b.surface))
+                (a.name == b.name && a.same_trim(b) && a.surface.same_but_points(&b.surface))
                     .then(|| a.surface != b.surface)
             })
             .collect()

@@ -1,8 +1,6 @@
 //! The silhouette pieces of each patch from the last frame that found them, kept for a frame
 //! that sees the patch as that one did.
 
-use std::sync::Arc;
-
 use glam::Mat4;
 
 use super::super::camera::Camera;
@@ -10,7 +8,7 @@ use super::super::tessellate::Mesh;
 use super::contour;
 use super::grid_shape::GridShape;
 use super::piece::Piece;
-use crate::geom::{NurbsSurface, PatchLibrary, Trim};
+use crate::geom::{NamedPatch, PatchLibrary};
 
 /// What a patch's silhouette pieces are a function of besides the patch: the camera, the
 /// transform to the image and the image's size.
@@ -21,12 +19,11 @@ struct View {
     size: (u32, u32),
 }
 
-/// One patch's silhouette pieces with what they were found from: its surface, its trim and its
-/// grid on the mesh.
+/// One patch's silhouette pieces with what they were found from: the patch (its surface and
+/// trim) and its grid on the mesh.
 #[derive(Debug)]
 struct PatchSilhouettes {
-    surface: NurbsSurface,
-    trim: Option<Arc<Trim>>,
+    patch: NamedPatch,
     grid: GridShape,
     pieces: Vec<Piece>,
 }
@@ -39,12 +36,9 @@ impl PatchSilhouettes {
     #[must_use]
     fn hold_for(&self, mesh: &Mesh, library: &PatchLibrary, patch: usize) -> bool {
         let now = &library.patches[patch];
-        let same_trim = match (&self.trim, &now.trim) {
-            (None, None) => true,
-            (Some(a), Some(b)) => Arc::ptr_eq(a, b) || a == b,
-            _ => false,
-        };
-        same_trim && self.surface == now.surface && self.grid.is_in(mesh, patch)
+        self.patch.same_trim(now)
+            && self.patch.surface == now.surface
+            && self.grid.is_in(mesh, patch)
     }
 }
 
@@ -112,8 +106,7 @@ impl KeptSilhouettes {
                 (Some(found), _) => {
                     pieces.extend_from_slice(&found);
                     self.patches[p] = Some(PatchSilhouettes {
-                        surface: library.patches[p].surface.clone(),
-                        trim: library.patches[p].trim.clone(),
+                        patch: library.patches[p].clone(),
                         grid: GridShape::of(mesh, p),
                         pieces: found,
                     });
