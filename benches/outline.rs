@@ -73,6 +73,7 @@ fn scene<'a>(library: &'a PatchLibrary, shape: Shape, turned: bool) -> Scene<'a>
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                designed_light: None,
                 lines: None,
                 tone: Tone::Cel(tone.clone()),
                 highlight: Some(expr.clone()),

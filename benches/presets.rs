@@ -44,6 +44,7 @@ fn teapot_scene<'a>(library: &'a PatchLibrary, highlight: &PreparedExpr, lines: 
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                designed_light: None,
                 lines: None,
                 tone: Tone::Cel(tone.clone()),
                 highlight: Some(highlight.clone()),

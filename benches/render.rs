@@ -62,6 +62,7 @@ fn scene<'a>(
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                designed_light: None,
                 lines: None,
                 tone: Tone::Cel(tone.clone()),
                 highlight: highlights.then(|| expr.clone()),

@@ -33,6 +33,7 @@ fn scene(library: &PatchLibrary, tone: Tone) -> Scene<'_> {
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                designed_light: None,
                 lines: None,
                 tone: tone.clone(),
                 highlight: None,

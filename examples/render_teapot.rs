@@ -54,6 +54,7 @@ fn main() -> anyhow::Result<()> {
     .prepare()?;
     let looks = (0..library.patches.len())
         .map(|i| PatchLook {
+            designed_light: None,
             lines: None,
             tone: Tone::Cel(CelRamp::two_tone(
                 Vec3::new(0.16, 0.25, 0.55),

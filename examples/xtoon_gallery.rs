@@ -77,6 +77,7 @@ fn render(model: &Model, texture: &Arc<ToonTexture>, panel: &Panel) -> anyhow::R
         library: &model.library,
         looks: (0..model.library.patches.len())
             .map(|_| PatchLook {
+                designed_light: None,
                 lines: None,
                 tone: Tone::XToon(tone.clone()),
                 highlight: None,

@@ -104,6 +104,7 @@ fn scene<'a>(library: &'a PatchLibrary, highlight: &Layer) -> Scene<'a> {
             .patches
             .iter()
             .map(|_| PatchLook {
+                designed_light: None,
                 tone: Tone::Cel(CelRamp::two_tone(
                     Vec3::new(0.2, 0.3, 0.5),
                     Vec3::new(0.5, 0.6, 0.9),

@@ -174,6 +174,7 @@ fn every_shipped_model_renders() {
                 .patches
                 .iter()
                 .map(|_| PatchLook {
+                    designed_light: None,
                     lines: None,
                     tone: Tone::Cel(CelRamp::two_tone(
                         glam::Vec3::splat(0.2),

@@ -19,6 +19,7 @@ use crate::common::{teapot, teapot_camera};
 /// A two-tone blue cel look with no highlight and the outlines' lines.
 fn blue() -> PatchLook {
     PatchLook {
+        designed_light: None,
         lines: None,
         tone: Tone::Cel(CelRamp::two_tone(
             Vec3::new(0.2, 0.25, 0.5),
@@ -47,6 +48,7 @@ fn teapot_scene(library: &PatchLibrary, outlines: bool) -> Scene<'_> {
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                designed_light: None,
                 highlight: Some(highlight.clone()),
                 ..blue()
             })
@@ -277,6 +279,7 @@ fn a_band_edge_straight_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
     let scene = |bands: bool| Scene {
         library: &library,
         looks: vec![PatchLook {
+            designed_light: None,
             lines: None,
             tone: Tone::Cel(CelRamp::two_tone(
                 Vec3::ZERO,

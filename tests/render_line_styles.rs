@@ -48,6 +48,7 @@ fn lines(library: &Arc<PatchLibrary>, styles: &[Option<LineStyle>]) -> Vec<Vec4>
         looks: styles
             .iter()
             .map(|&lines| PatchLook {
+                designed_light: None,
                 tone: Tone::Cel(CelRamp::two_tone(
                     Vec3::new(0.2, 0.3, 0.5),
                     Vec3::new(0.5, 0.6, 0.9),

@@ -65,6 +65,7 @@ fn lines(
     let scene = Scene {
         library,
         looks: vec![PatchLook {
+            designed_light: None,
             lines: None,
             tone: Tone::Cel(CelRamp::two_tone(
                 Vec3::new(0.2, 0.3, 0.5),

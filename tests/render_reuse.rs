@@ -66,6 +66,7 @@ fn scene<'a>(
         library,
         looks: (0..library.patches.len())
             .map(|_| PatchLook {
+                designed_light: None,
                 lines: None,
                 tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.7), 0.0)),
                 highlight: prepared.clone(),

@@ -131,6 +131,7 @@ fn scene<'a>(library: &'a PatchLibrary, camera: Camera, outlines: Option<Outline
         library,
         looks: vec![
             PatchLook {
+                designed_light: None,
                 lines: None,
                 tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.6), 0.0)),
                 highlight: None,

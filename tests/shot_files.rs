@@ -24,7 +24,7 @@ enum Shows {
 fn purpose(name: &str) -> Shows {
     match name {
         "sphere_ops" | "crescent" | "drawn_shapes" => Shows::AnimatedHighlight,
-        "teapot_light_orbit" => Shows::MovingLight,
+        "teapot_light_orbit" | "shade_design" => Shows::MovingLight,
         "teapot_turntable"
         | "teapot_rising_camera"
         | "xtoon_abstraction"

@@ -91,6 +91,7 @@ fn xtoon_looks(library: &PatchLibrary, shape: Option<ShapeDetail>) -> Vec<PatchL
     .unwrap();
     (0..library.patches.len())
         .map(|_| PatchLook {
+            designed_light: None,
             lines: None,
             tone: Tone::XToon(tone.clone()),
             highlight: Some(highlight()),
@@ -101,6 +102,7 @@ fn xtoon_looks(library: &PatchLibrary, shape: Option<ShapeDetail>) -> Vec<PatchL
 fn cel_looks(library: &PatchLibrary) -> Vec<PatchLook> {
     (0..library.patches.len())
         .map(|_| PatchLook {
+            designed_light: None,
             lines: None,
             tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.7), 0.0)),
             highlight: Some(highlight()),
@@ -143,6 +145,7 @@ fn xtoon_on_the_exact_sphere_matches_the_analytic_sphere() {
     let scene = Scene {
         library: &library,
         looks: vec![PatchLook {
+            designed_light: None,
             lines: None,
             tone: Tone::XToon(tone),
             highlight: None,

@@ -80,6 +80,7 @@ impl AnalyticSphere {
         Scene {
             library,
             looks: vec![PatchLook {
+                designed_light: None,
                 lines: None,
                 tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.6), 0.0)),
                 highlight: Some(highlight.clone()),

@@ -106,6 +106,7 @@ fn scene(library: &PatchLibrary) -> Scene<'_> {
             .patches
             .iter()
             .map(|_| PatchLook {
+                designed_light: None,
                 lines: None,
                 tone: Tone::Cel(CelRamp::two_tone(Vec3::splat(0.2), Vec3::splat(0.7), 0.0)),
                 highlight: Some(highlight.clone()),

@@ -166,11 +166,7 @@ impl<P> Layer<P> {
             colour: [f(&self.colour[0]), f(&self.colour[1]), f(&self.colour[2])],
             opacity: f(&self.opacity),
             feather: self.feather.as_ref().map(&mut f),
-            mask: self.mask.as_ref().map(|m| Mask {
-                u: (f(&m.u.0), f(&m.u.1)),
-                v: (f(&m.v.0), f(&m.v.1)),
-                feather: f(&m.feather),
-            }),
+            mask: self.mask.as_ref().map(|m| m.map(&mut f)),
             pin: self.pin.as_ref().map(|p| p.map(&mut f)),
             frame: self.frame.map(&mut f),
             shape: self.shape.map(&mut f),
@@ -178,8 +174,21 @@ impl<P> Layer<P> {
     }
 }
 
+impl<P> Mask<P> {
+    /// The same mask with every numeric parameter mapped through `f`.
+    #[must_use]
+    pub fn map<Q>(&self, mut f: impl FnMut(&P) -> Q) -> Mask<Q> {
+        Mask {
+            u: (f(&self.u.0), f(&self.u.1)),
+            v: (f(&self.v.0), f(&self.v.1)),
+            feather: f(&self.feather),
+        }
+    }
+}
+
 impl Mask<f32> {
-    fn validate(&self) -> Result<(), HighlightError> {
+    /// Checks the bounds finite and ordered and the feather not negative.
+    pub(super) fn validate(&self) -> Result<(), HighlightError> {
         for (axis, (min, max)) in [("u", self.u), ("v", self.v)] {
             check("mask bound", min, Range::Finite, "")?;
             check("mask bound", max, Range::Finite, "")?;
@@ -198,7 +207,8 @@ impl Mask<f32> {
 
     /// The mask factor at `uv`, in [0, 1].
     #[inline]
-    fn factor(&self, uv: Vec2) -> f32 {
+    #[must_use]
+    pub(super) fn factor(&self, uv: Vec2) -> f32 {
         let d = (uv.x - self.u.0)
             .min(self.u.1 - uv.x)
             .min(uv.y - self.v.0)

@@ -13,6 +13,7 @@
 
 mod centre;
 mod crossing;
+mod designed_light;
 mod error;
 mod expr;
 mod flatten;
@@ -33,6 +34,7 @@ mod shape_text;
 mod stack;
 
 pub use crate::math::box_coverage;
+pub use designed_light::{DesignedLight, PreparedShadeStack, ShadeStack};
 pub use error::HighlightError;
 pub(crate) use expr::ChunkScratch;
 pub use expr::{Boolean, Expr, PreparedExpr, Shade};

@@ -149,6 +149,7 @@ pub fn render_patch_map(
     let mut settings = *settings;
     settings.antialias = Antialias::None;
     let plain = PatchLook {
+        designed_light: None,
         lines: None,
         tone: Tone::Cel(CelRamp {
             base: Vec3::splat(0.5),

@@ -53,6 +53,23 @@ pub(super) fn light_lanes(scene: &Scene, texels: &[Texel], out: &mut Lanes) {
     }
 }
 
+/// The unit vectors each of up to [`LANES`] `texels` of one patch reads its tone from, into
+/// `out`: the light vectors ([`light_lanes`]), each then designed by the patch's designed light
+/// where it has one ([`DesignedLight::light`](crate::highlight::DesignedLight::light)).
+#[inline]
+pub(super) fn tone_light_lanes(scene: &Scene, texels: &[Texel], out: &mut Lanes) {
+    light_lanes(scene, texels, out);
+    let Some(first) = texels.first() else {
+        return;
+    };
+    if let Some(designed) = &scene.looks[first.patch as usize].designed_light {
+        for (k, t) in texels.iter().enumerate() {
+            debug_assert_eq!(t.patch, first.patch, "texels of one patch");
+            out.set(k, designed.light(&t.frame, t.uv, out.get(k)));
+        }
+    }
+}
+
 /// The vector from each of `texels` to the point `to`, into `out`.
 #[inline]
 fn towards(to: Vec3, texels: &[Texel], out: &mut Lanes) {

@@ -46,7 +46,7 @@ impl Plan {
     /// - tessellation, rasterization and shading always run;
     /// - the G-buffer is built unless the only effect is the cel tone over interpolated frames
     ///   (with or without lines, which are found on the mesh) with hard band edges: highlights
-    ///   need the frame's tangents and (u, v), AOVs read stored texels, X-Toon reads each
+    ///   need the frame's tangents and (u, v), and so does a designed light, AOVs read stored texels, X-Toon reads each
     ///   texel's position and frame, analytic band edges the normals around each texel, and
     ///   exact or refined frames are evaluated per texel;
     /// - the X-Toon detail runs as a stage of its own only when some patch's designed highlight
@@ -82,7 +82,9 @@ impl Plan {
             Antialias::None | Antialias::Supersample(_) => false,
         };
         let analytic_bands = analytic && bands;
-        let tone_only = !(highlights || texel_aovs || xtoon || analytic_bands);
+        // A designed light reads each texel's frame and (u, v), which the visibility buffer has not.
+        let designed = scene.has_designed_light();
+        let tone_only = !(highlights || texel_aovs || xtoon || analytic_bands || designed);
         let surfaces = if tone_only && settings.frames == FrameMode::Interpolated {
             Surfaces::Visibility
         } else {
@@ -308,6 +310,7 @@ mod tests {
         let with_tone = |bands: Vec<(f32, Vec3)>| {
             let mut scene = empty_scene(&library, Aovs::default());
             scene.looks.push(PatchLook {
+                designed_light: None,
                 tone: Tone::Cel(CelRamp {
                     base: Vec3::ZERO,
                     bands,

@@ -1,22 +1,41 @@
 //! What is rendered: the model, how each patch looks, the camera and the light.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::camera::Camera;
 use super::line_style::LineStyle;
 use crate::geom::PatchLibrary;
-use crate::highlight::{Light, PreparedExpr};
+use crate::highlight::{DesignedLight, Light, PreparedExpr, TangentFrame};
 use crate::toon::{CelRamp, PreparedXToon};
 
-/// How one patch is drawn: its tone, optionally its designed highlight, and how its lines are
-/// drawn when the scene has [`Outlines`].
-#[derive(Clone, Debug, PartialEq)]
+/// How one patch is drawn: its tone, optionally the light its tone reads designed, optionally
+/// its designed highlight, and how its lines are drawn when the scene has [`Outlines`].
+#[derive(Clone, PartialEq)]
 pub struct PatchLook {
     pub tone: Tone,
+    /// The light the tone reads, `L'` of the shade stacks on the patch; None: the scene's light.
+    /// The highlight reads the scene's light either way.
+    pub designed_light: Option<DesignedLight>,
     pub highlight: Option<PreparedExpr>,
     /// The patch's own line style; None draws its lines in the outlines' own
     /// ([`Outlines::style`]).
     pub lines: Option<LineStyle>,
+}
+
+/// Every field, as `#[derive(Debug)]` prints them, but the designed light only when there is
+/// one: a look without it prints as looks did before they had it, so that what a frame's
+/// fingerprint hashes of a shot without designed shade stays the same.
+impl std::fmt::Debug for PatchLook {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut look = f.debug_struct("PatchLook");
+        look.field("tone", &self.tone);
+        if let Some(light) = &self.designed_light {
+            look.field("designed_light", light);
+        }
+        look.field("highlight", &self.highlight)
+            .field("lines", &self.lines)
+            .finish()
+    }
 }
 
 /// The tone of a patch.
@@ -94,6 +113,36 @@ impl Scene<'_> {
     #[must_use]
     pub fn has_highlights(&self) -> bool {
         self.looks.iter().any(|look| look.highlight.is_some())
+    }
+
+    /// Whether some patch's tone reads a designed light.
+    #[must_use]
+    pub fn has_designed_light(&self) -> bool {
+        self.looks.iter().any(|look| look.designed_light.is_some())
+    }
+
+    /// The unit light direction the tone of `patch` reads at a point with surface frame `frame`
+    /// (its normal `frame.n`), patch parameters `uv` and world position `position`: `L'` of the
+    /// patch's designed light ([`DesignedLight::light`]), or the scene's light L.
+    #[inline]
+    #[must_use]
+    pub fn tone_light(&self, patch: u32, frame: &TangentFrame, uv: Vec2, position: Vec3) -> Vec3 {
+        let l = self.light.direction(position, frame.n);
+        match &self.looks[patch as usize].designed_light {
+            Some(designed) => designed.light(frame, uv, l),
+            None => l,
+        }
+    }
+
+    /// `N·L'` (or `N·L`) at that point: what the patch's tone reads ([`tone_light`](Self::tone_light)).
+    #[inline]
+    #[must_use]
+    pub fn tone_n_dot_l(&self, patch: u32, frame: &TangentFrame, uv: Vec2, position: Vec3) -> f32 {
+        let l = self.light.direction(position, frame.n);
+        match &self.looks[patch as usize].designed_light {
+            Some(designed) => designed.n_dot_l(frame, uv, l),
+            None => frame.n.dot(l),
+        }
     }
 
     /// Whether some patch's tone is a cel ramp with band edges (more than one colour).

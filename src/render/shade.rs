@@ -142,8 +142,9 @@ impl Edges<'_> {
     }
 }
 
-/// The cel tone `ramp(N·L)` at a point of `patch` with unit normal `n` (black on an X-Toon
-/// patch, whose tone comes from [`XToonTones`]).
+/// The cel tone `ramp(N·L)` of the scene's light L at a point of `patch` with unit normal `n`
+/// (black on an X-Toon patch, whose tone comes from [`XToonTones`]): the tone of a scene with no
+/// designed light ([`Scene::has_designed_light`]), which needs no surface frame.
 #[inline]
 pub(super) fn cel_tone(scene: &Scene, patch: u32, position: Vec3, n: Vec3) -> Vec3 {
     match &scene.looks[patch as usize].tone {
@@ -152,7 +153,17 @@ pub(super) fn cel_tone(scene: &Scene, patch: u32, position: Vec3, n: Vec3) -> Ve
     }
 }
 
-/// The cel tone of texel `t` over its pixel's box: [`cel_tone`], or where a band edge crosses
+/// The cel tone of texel `t`: `ramp(N·L')` of the light its patch's tone reads
+/// ([`Scene::tone_n_dot_l`]), black on an X-Toon patch.
+#[inline]
+fn texel_cel_tone(scene: &Scene, t: &Texel) -> Vec3 {
+    match &scene.looks[t.patch as usize].tone {
+        Tone::Cel(ramp) => ramp.shade(scene.tone_n_dot_l(t.patch, &t.frame, t.uv, t.position)),
+        Tone::XToon(_) => Vec3::ZERO,
+    }
+}
+
+/// The cel tone of texel `t` over its pixel's box: [`texel_cel_tone`], or where a band edge crosses
 /// the box straight, the box's mean colour about the edge's `n·l` at the centre ([`CelRamp::shade_over_box`](crate::toon::CelRamp::shade_over_box)).
 #[inline]
 fn cel_tone_over_box(scene: &Scene, t: &Texel, edge: BandEdge) -> Vec3 {
@@ -161,7 +172,7 @@ fn cel_tone_over_box(scene: &Scene, t: &Texel, edge: BandEdge) -> Vec3 {
             ramp.shade_over_box(n_dot_l, footprint.x, footprint.y)
         }
         (_, BandEdge::Clear | BandEdge::Hard | BandEdge::Straight { .. }) => {
-            cel_tone(scene, t.patch, t.position, t.frame.n)
+            texel_cel_tone(scene, t)
         }
     }
 }

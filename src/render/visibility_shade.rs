@@ -239,6 +239,7 @@ mod tests {
                 library: &library,
                 looks: (0..library.patches.len())
                     .map(|patch| PatchLook {
+                        designed_light: None,
                         lines: None,
                         tone: Tone::Cel(if last && patch % 2 == 0 {
                             flat.clone()

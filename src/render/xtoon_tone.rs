@@ -5,7 +5,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::directions::{light_lanes, view_lanes};
+use super::directions::{tone_light_lanes, view_lanes};
 use super::facing::facing_frame;
 use super::gbuffer::{GBuffer, Texel, PIXELS_PER_JOB};
 use super::scene::{Scene, Tone};
@@ -113,7 +113,8 @@ pub(super) struct ToneScratch {
 
 /// The X-Toon tones of up to [`LANES`] `texels` of one patch, whose tone is `view`, into
 /// `colour`: seen along their view vectors `views` (read only when the tone
-/// [uses them](ViewXToon::uses_view)) and lit by the scene's light. Returns their shading
+/// [uses them](ViewXToon::uses_view)) and lit by the light their tone reads (the scene's, or
+/// their patch's designed light: [`tone_light_lanes`]). Returns their shading
 /// normals.
 #[inline(always)]
 pub(super) fn shade_texels<'a>(
@@ -129,7 +130,7 @@ pub(super) fn shade_texels<'a>(
     for (k, t) in texels.iter().enumerate() {
         points.set(k, t.position, t.frame.n, t.uv);
     }
-    light_lanes(scene, texels, &mut scratch.light);
+    tone_light_lanes(scene, texels, &mut scratch.light);
     view.shade_run(
         &scratch.points,
         views,

@@ -9,7 +9,7 @@ use serde::Deserialize;
 use super::orbit::OrbitSpec;
 use crate::anim::{Direction, Track};
 use crate::formats::parts::GroupsSpec;
-use crate::highlight::Expr;
+use crate::highlight::{Expr, Mask, Op, ShadeStack};
 use crate::render::tessellate::Density;
 use crate::render::{Antialias, FrameMode, LineKind};
 use crate::toon::{DetailMap, ShapeDetail};
@@ -41,6 +41,10 @@ pub struct ShotFile {
     /// earlier one on the patches both pick.
     #[serde(default)]
     pub highlights: Vec<HighlightSpec>,
+    /// Designed shade: shade stacks, each on the patches its selector picks; the stacks of the
+    /// entries that pick a patch act on its light one after the other, in the order written.
+    #[serde(default)]
+    pub shade: Vec<ShadeSpec>,
     /// Line styles, each on the patches its selector or material picks; a later entry
     /// overrides, on the patches both pick, the fields it sets.
     #[serde(default)]
@@ -49,7 +53,7 @@ pub struct ShotFile {
     pub render: RenderSpec,
 }
 
-/// A look library: materials and highlights shared between shots.
+/// A look library: materials, highlights and shade shared between shots.
 #[derive(Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, rename = "Looks")]
 pub struct LooksFile {
@@ -59,6 +63,8 @@ pub struct LooksFile {
     pub materials: BTreeMap<String, MaterialSpec>,
     #[serde(default)]
     pub highlights: Vec<HighlightSpec>,
+    #[serde(default)]
+    pub shade: Vec<ShadeSpec>,
 }
 
 /// One placement of a patch file: its patches are named `NAME/PATCH`.
@@ -223,6 +229,41 @@ pub enum LightSpec {
 pub struct HighlightSpec {
     pub patches: Selector,
     pub expr: Expr<Track<f32>>,
+}
+
+/// A shade stack on the patches a selector picks: the highlight operations applied to the
+/// light its tone reads ([`ShadeStack`](crate::highlight::ShadeStack)), every number a track.
+#[derive(Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShadeSpec {
+    pub patches: Selector,
+    pub stack: Vec<Op<Track<f32>>>,
+    #[serde(default)]
+    pub mask: Option<Mask<Track<f32>>>,
+}
+
+impl ShadeSpec {
+    /// The entry's stack and mask, every number a track.
+    #[must_use]
+    pub fn stack(&self) -> ShadeStack<Track<f32>> {
+        ShadeStack {
+            stack: self.stack.clone(),
+            mask: self.mask.clone(),
+        }
+    }
+
+    /// The entry's stack and mask read at `frame`.
+    #[must_use]
+    pub fn at(&self, frame: f64) -> ShadeStack {
+        ShadeStack {
+            stack: self
+                .stack
+                .iter()
+                .map(|op| op.map(|t| t.at(frame)))
+                .collect(),
+            mask: self.mask.as_ref().map(|m| m.map(|t| t.at(frame))),
+        }
+    }
 }
 
 /// Patch names (`INSTANCE/PATCH`) as one glob pattern or a list of them: `*` any run of

@@ -11,7 +11,7 @@ use super::orbit::OrbitSpec;
 use super::validated::{Material, MaterialState, Shot};
 use super::ShotError;
 use crate::geom::PatchLibrary;
-use crate::highlight::{Expr, Light, PreparedExpr};
+use crate::highlight::{DesignedLight, Expr, Light, PreparedExpr, ShadeStack};
 use crate::render::{Camera, LineStyle, Outlines, PatchLook, Projection, Scene, Tone};
 use crate::toon::CelRamp;
 
@@ -33,6 +33,8 @@ pub struct FrameState {
     ///
     /// [`Layer::centred_at`]: crate::highlight::Layer::centred_at
     pub highlights: Vec<Expr>,
+    /// Each shade entry's stack and mask, in the order they are written (includes first).
+    pub shade: Vec<ShadeStack>,
     /// The outlines, and the style of a patch no `lines` entry restyles; None without lines.
     pub outlines: Option<(Outlines, LineStyle)>,
     /// What each `lines` entry sets, in the order written.
@@ -51,6 +53,7 @@ impl Shot {
             light: self.light_at(frame),
             materials: self.materials.iter().map(|(_, m)| m.at(frame)).collect(),
             highlights: Vec::new(),
+            shade: self.shade.iter().map(|s| s.at(frame)).collect(),
             outlines: self.outlines.as_ref().map(|o| o.at(frame)),
             lines: self.lines.iter().map(|l| l.at(frame)).collect(),
         };
@@ -193,10 +196,22 @@ impl FrameState {
         let highlights = (0..shot.library.patches.len())
             .map(&mut highlight_of)
             .collect::<Result<Vec<_>, _>>()?;
+        let shade = self
+            .shade
+            .iter()
+            .map(ShadeStack::prepare)
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| invalid(format!("shade: {e}")))?;
         let looks = (0..shot.library.patches.len())
             .zip(highlights)
             .map(|(patch, highlight)| PatchLook {
                 tone: tones[shot.material_of(patch)].clone(),
+                designed_light: match shot.shade_of(patch) {
+                    [] => None,
+                    entries => Some(DesignedLight::new(
+                        entries.iter().map(|&e| shade[e as usize].clone()).collect(),
+                    )),
+                },
                 highlight,
                 lines: self.outlines.map(|(_, style)| {
                     shot.patch_lines[patch].iter().fold(style, |style, &entry| {

@@ -8,7 +8,8 @@ use std::sync::Arc;
 
 use super::every_frame::check_every_frame;
 use super::file::{
-    CameraSpec, HighlightSpec, InstanceSpec, LooksFile, MaterialSpec, RenderSpec, ShotFile,
+    CameraSpec, HighlightSpec, InstanceSpec, LooksFile, MaterialSpec, RenderSpec, ShadeSpec,
+    ShotFile,
 };
 use super::glob;
 use super::line_styles::select_lines;
@@ -63,7 +64,12 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
     for (index, include) in file.includes.iter().enumerate() {
         reader.read_include(0, index, include, &mut chain)?;
     }
-    reader.add_looks(0, file.materials.into_iter().collect(), file.highlights)?;
+    reader.add_looks(
+        0,
+        file.materials.into_iter().collect(),
+        file.highlights,
+        file.shade,
+    )?;
     let Reader {
         sources,
         included: _,
@@ -83,6 +89,7 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
     )?;
     let patch_highlight = select_highlights(&looks.highlights, &placed.library, &sources)?;
     let pins = resolve_pins(&looks.highlights, &placed.library, &sources)?;
+    let patch_shade = select_shade(&looks.shade, &placed.library, &sources)?;
     let (accuracy, settings) = render_settings(&file.render, file.resolution, shot_source)?;
     if file.render.outlines.is_none() && !file.lines.is_empty() {
         return Err(shot_source.error_at(
@@ -112,6 +119,11 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
         shot_source,
     )?;
     let (highlights, highlights_written): (Vec<_>, Vec<_>) = looks.highlights.into_iter().unzip();
+    let (shade, shade_written): (Vec<_>, Vec<_>) = looks.shade.into_iter().unzip();
+    let shade_written_in = shade_written
+        .iter()
+        .map(|w: &Written| (sources[w.source].path.clone(), w.index))
+        .collect();
     let written_in = highlights_written
         .iter()
         .map(|w: &Written| (sources[w.source].path.clone(), w.index))
@@ -143,8 +155,17 @@ fn load_source(source: Source) -> Result<Shot, ShotError> {
         patch_highlight,
         pins,
         highlights_written: written_in,
+        shade,
+        patch_shade,
+        shade_written: shade_written_in,
     };
-    check_every_frame(&shot, &sources, &material_sources, &highlights_written)?;
+    check_every_frame(
+        &shot,
+        &sources,
+        &material_sources,
+        &highlights_written,
+        &shade_written,
+    )?;
     Ok(shot)
 }
 
@@ -155,6 +176,7 @@ struct Looks {
     /// Where each material name is in `materials`.
     material_index: HashMap<String, usize>,
     highlights: Vec<(HighlightSpec, Written)>,
+    shade: Vec<(ShadeSpec, Written)>,
 }
 
 /// The files read so far, and the looks they define.
@@ -221,16 +243,18 @@ impl Reader {
             source,
             file.materials.into_iter().collect(),
             file.highlights,
+            file.shade,
         )
     }
 
-    /// Adds the materials and highlights of `sources[source]`; a material name defined twice
+    /// Adds the materials, highlights and shade entries of `sources[source]`; a material name defined twice
     /// is an error at its second definition.
     fn add_looks(
         &mut self,
         source: usize,
         materials: Vec<(String, MaterialSpec)>,
         highlights: Vec<HighlightSpec>,
+        shade: Vec<ShadeSpec>,
     ) -> Result<(), ShotError> {
         for (name, spec) in materials {
             if let Some(&first) = self.looks.material_index.get(&name) {
@@ -251,6 +275,12 @@ impl Reader {
         let written = |index| Written { source, index };
         self.looks.highlights.extend(
             highlights
+                .into_iter()
+                .enumerate()
+                .map(|(index, h)| (h, written(index))),
+        );
+        self.looks.shade.extend(
+            shade
                 .into_iter()
                 .enumerate()
                 .map(|(index, h)| (h, written(index))),
@@ -511,6 +541,40 @@ fn select_highlights(
         }
     }
     Ok(patch_highlight)
+}
+
+/// The shade entries of each patch, in the order written: every pattern picks at least one
+/// patch.
+fn select_shade(
+    shade: &[(ShadeSpec, Written)],
+    library: &PatchLibrary,
+    sources: &[Source],
+) -> Result<Vec<Vec<u32>>, ShotError> {
+    let mut patch_shade: Vec<Vec<u32>> = vec![Vec::new(); library.patches.len()];
+    for (entry, (spec, written)) in shade.iter().enumerate() {
+        let entry = entry as u32;
+        for (index, pattern) in spec.patches.patterns().iter().enumerate() {
+            let any = glob::pick_each(pattern, library, |patch| {
+                // Two patterns of one entry may pick the same patch: its stack acts once.
+                if patch_shade[patch].last() != Some(&entry) {
+                    patch_shade[patch].push(entry);
+                }
+            });
+            if !any {
+                let message = no_match_message(pattern, library);
+                return Err(sources[written.source].error_at(
+                    &[
+                        Field("shade"),
+                        Index(written.index),
+                        Field("patches"),
+                        Index(index),
+                    ],
+                    message,
+                ));
+            }
+        }
+    }
+    Ok(patch_shade)
 }
 
 /// The accuracy the shot asks for, its settings at `resolution`, and its outlines.

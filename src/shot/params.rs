@@ -7,7 +7,7 @@ use crate::anim::Keyed;
 
 impl Shot {
     /// Calls `f` with every track of the shot: the camera's, the light's, each material's,
-    /// each highlight's, the outlines' and each `lines` entry's, in that order.
+    /// each highlight's, each shade entry's, the outlines' and each `lines` entry's, in that order.
     pub fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
         self.camera.for_each_param(f);
         self.light.for_each_param(f);
@@ -16,6 +16,9 @@ impl Shot {
         }
         for highlight in &self.highlights {
             highlight.expr.for_each_param(|track| f(track));
+        }
+        for shade in &self.shade {
+            shade.stack().for_each_param(|track| f(track));
         }
         if let Some(outlines) = &self.outlines {
             outlines.for_each_param(f);

@@ -6,7 +6,9 @@ use std::sync::Arc;
 
 use glam::Vec3;
 
-use super::file::{Aov, CameraSpec, HighlightSpec, LightSpec, LineSpec, OutlinesSpec, Preset};
+use super::file::{
+    Aov, CameraSpec, HighlightSpec, LightSpec, LineSpec, OutlinesSpec, Preset, ShadeSpec,
+};
 use super::output::frame_path;
 use crate::anim::Track;
 use crate::geom::PatchLibrary;
@@ -58,6 +60,12 @@ pub struct Shot {
     /// Per highlight entry: the file it is written in and its index in that file's
     /// `highlights` list.
     pub(super) highlights_written: Vec<(PathBuf, usize)>,
+    /// The shade entries, includes first, in the order written.
+    pub(super) shade: Vec<ShadeSpec>,
+    /// Per patch of `library`, the shade entries that pick it, in order.
+    pub(super) patch_shade: Vec<Vec<u32>>,
+    /// Per shade entry: the file it is written in and its index in that file's `shade` list.
+    pub(super) shade_written: Vec<(PathBuf, usize)>,
 }
 
 /// The accuracy a shot asks for: a preset and the settings it overrides.
@@ -176,6 +184,38 @@ impl Shot {
     #[must_use]
     pub fn has_lines(&self) -> bool {
         self.outlines.is_some()
+    }
+
+    /// How many shade entries the shot has (includes first).
+    #[must_use]
+    pub fn shade_count(&self) -> usize {
+        self.shade.len()
+    }
+
+    /// The shade entries that pick patch `patch`, in the order their stacks act.
+    #[must_use]
+    pub fn shade_of(&self, patch: usize) -> &[u32] {
+        &self.patch_shade[patch]
+    }
+
+    /// The selector of each shade entry as written, in the order of `FrameState::shade`.
+    pub fn shade_selectors(&self) -> impl Iterator<Item = &[String]> {
+        self.shade.iter().map(|s| s.patches.patterns())
+    }
+
+    /// Shade entry `entry` as written: its stack and mask, every number a track.
+    #[must_use]
+    pub fn shade_stack(&self, entry: usize) -> Option<crate::highlight::ShadeStack<Track<f32>>> {
+        self.shade.get(entry).map(ShadeSpec::stack)
+    }
+
+    /// Where shade entry `entry` is written: the file (the shot or an include) and its index in
+    /// that file's `shade` list, as a parameter path counts it.
+    #[must_use]
+    pub fn shade_written(&self, entry: usize) -> Option<(&std::path::Path, usize)> {
+        self.shade_written
+            .get(entry)
+            .map(|(path, index)| (path.as_path(), *index))
     }
 
     /// The highlight entry of patch `patch`, if it has one.

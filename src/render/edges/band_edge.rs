@@ -66,10 +66,7 @@ pub(in crate::render) fn band_edges(
         .par_iter()
         .with_min_len(PIXELS_PER_JOB)
         .map(|t| match &scene.looks[t.patch as usize].tone {
-            Tone::Cel(_) => {
-                let n = t.frame.n;
-                n.dot(scene.light.direction(t.position, n))
-            }
+            Tone::Cel(_) => scene.tone_n_dot_l(t.patch, &t.frame, t.uv, t.position),
             Tone::XToon(_) => 0.0,
         })
         .collect();
@@ -99,8 +96,7 @@ pub(in crate::render) fn settle_straight_edges(
 ) {
     for (slot, t) in settled.iter() {
         if let BandEdge::Straight { n_dot_l, .. } = &mut edges[slot] {
-            let n = t.frame.n;
-            *n_dot_l = n.dot(scene.light.direction(t.position, n));
+            *n_dot_l = scene.tone_n_dot_l(t.patch, &t.frame, t.uv, t.position);
         }
     }
 }

@@ -890,8 +890,7 @@ impl Surface<'_> {
         let n_dot_l = std::array::from_fn(|y| {
             std::array::from_fn(|x| {
                 let t = self.at(3 * y + x);
-                let n = t.frame.n;
-                n.dot(scene.light.direction(t.position, n))
+                scene.tone_n_dot_l(t.patch, &t.frame, t.uv, t.position)
             })
         });
         let layers = &self.signed.layers[t.patch as usize];

@@ -10,10 +10,11 @@ use super::ShotError;
 use crate::anim::Keyed;
 use crate::formats::ron_paths::Step::{self, Entry, Field, Index};
 use crate::geom::MAX_COORDINATE;
-use crate::highlight::{Expr, HighlightError, Light, Shape};
+use crate::highlight::{Expr, HighlightError, Light, Mask, ShadeStack, Shape};
 use crate::render::LineStyle;
 
-/// Checks the camera, light, materials, highlights and line styles at every frame they can
+/// Checks the camera, light, materials, highlights, shade stacks and line styles at every frame
+/// they can
 /// take.
 ///
 /// Between keys every value moves linearly, and the ranges of materials and highlights are
@@ -25,14 +26,22 @@ use crate::render::LineStyle;
 /// fine — so it and the light are checked at every frame of the range and at their keys.
 ///
 /// `sources[0]` is the shot file; `material_sources` names the file each material is written
-/// in, `highlights_written` where each highlight entry is.
+/// in, `highlights_written` where each highlight entry is, `shade_written` each shade entry.
 pub(super) fn check_every_frame(
     shot: &Shot,
     sources: &[Source],
     material_sources: &[usize],
     highlights_written: &[Written],
+    shade_written: &[Written],
 ) -> Result<(), ShotError> {
-    check_every_frame_counted(shot, sources, material_sources, highlights_written).map(|_| ())
+    check_every_frame_counted(
+        shot,
+        sources,
+        material_sources,
+        highlights_written,
+        shade_written,
+    )
+    .map(|_| ())
 }
 
 /// [`check_every_frame`], and how many checks it made (of a camera, a light, a material, a
@@ -42,6 +51,7 @@ fn check_every_frame_counted(
     sources: &[Source],
     material_sources: &[usize],
     highlights_written: &[Written],
+    shade_written: &[Written],
 ) -> Result<usize, ShotError> {
     let first = shot.frames.0 as f64;
     let mut checks = 0;
@@ -164,6 +174,47 @@ fn check_every_frame_counted(
                     })
                 })?;
             }
+        }
+    }
+    for (spec, written) in shot.shade.iter().zip(shade_written) {
+        let source = &sources[written.source];
+        let pattern = &spec.patches.patterns()[0];
+        let entry = [Field("shade"), Index(written.index)];
+        for (i, op) in spec.stack.iter().enumerate() {
+            let frames = key_frames(first, |add| op.for_each_param(|t| add(t)));
+            check_at(&frames, shot.frames, &mut checks, |frame| {
+                let at_frame = op.map(|t| t.at(frame));
+                at_frame.validate().map_err(|e| {
+                    let mut path = entry.to_vec();
+                    path.extend([Field("stack"), Index(i)]);
+                    source.error_at(
+                        &path,
+                        format!(
+                            "the shade on \"{pattern}\" at frame {frame}: {}",
+                            e.at(format!("op {} ({})", i + 1, at_frame.name()))
+                        ),
+                    )
+                })
+            })?;
+        }
+        if let Some(mask) = &spec.mask {
+            let frames = key_frames(first, |add| {
+                let _visited: Mask<()> = mask.map(|t| add(t));
+            });
+            check_at(&frames, shot.frames, &mut checks, |frame| {
+                let at_frame = ShadeStack {
+                    stack: Vec::new(),
+                    mask: Some(mask.map(|t| t.at(frame))),
+                };
+                at_frame.validate().map_err(|e| {
+                    let mut path = entry.to_vec();
+                    path.push(Field("mask"));
+                    source.error_at(
+                        &path,
+                        format!("the shade on \"{pattern}\" at frame {frame}: {e}"),
+                    )
+                })
+            })?;
         }
     }
     if let Some(outlines) = &shot.outlines {

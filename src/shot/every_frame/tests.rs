@@ -33,7 +33,7 @@ fn checks(frames: i64, ops: usize) -> usize {
         source: 0,
         index: 0,
     }];
-    check_every_frame_counted(&shot, &sources, &[0], &written).unwrap()
+    check_every_frame_counted(&shot, &sources, &[0], &written, &[]).unwrap()
 }
 
 #[test]
