@@ -451,6 +451,38 @@ const CASES: &[Case] = &[
         at: "Circle",
         says: &["Circle", "Sphere", "Cylinder"],
     },
+    Case {
+        name: "shade selector matching nothing",
+        from: "    render: (preset: Preview),",
+        to: "    shade: [(patches: \"bal/*\", stack: [Translate(alpha: 0.2, beta: 0.0)])],\n    render: (preset: Preview),",
+        file: "shot.ron",
+        at: "\"bal/*\"",
+        says: &["bal/*", "ball/"],
+    },
+    Case {
+        name: "shade operation out of range at a key",
+        from: "    render: (preset: Preview),",
+        to: "    shade: [(patches: \"ball/*\", stack: [Translate(alpha: 0.2, beta: 0.0), Scale(delta: [(1, 0.2), (10, 1.5)])])],\n    render: (preset: Preview),",
+        file: "shot.ron",
+        at: "Scale(delta: [(1, 0.2)",
+        says: &["shade on \"ball/*\" at frame 7", "op 2 (Scale)", "outside the allowed range"],
+    },
+    Case {
+        name: "shade mask unordered",
+        from: "    render: (preset: Preview),",
+        to: "    shade: [(patches: \"ball/*\", stack: [Rotate(degrees: 10.0)], mask: Some((u: (0.6, 0.2), v: (0.0, 1.0), feather: 0.0)))],\n    render: (preset: Preview),",
+        file: "shot.ron",
+        at: "Some((u: (0.6",
+        says: &["shade on \"ball/*\" at frame 1", "mask"],
+    },
+    Case {
+        name: "misspelt shade field",
+        from: "    render: (preset: Preview),",
+        to: "    shade: [(patches: \"ball/*\", stakc: [])],\n    render: (preset: Preview),",
+        file: "shot.ron",
+        at: "stakc",
+        says: &["unknown field `stakc`", "did you mean `stack`?"],
+    },
 ];
 
 /// The 1-based line and column of the first `needle` in `text`.
