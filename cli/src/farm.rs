@@ -236,6 +236,8 @@ fn array_script(s: &ArrayScript) -> String {
     out.push_str(&format!("#SBATCH --cpus-per-task={}\n", s.cpus));
     out.push_str(&format!("#SBATCH --mem={}\n", s.mem));
     out.push_str("#SBATCH --requeue\n");
+    // A requeued task writes to the same log: keep what its earlier tries wrote.
+    out.push_str("#SBATCH --open-mode=append\n");
     out.push_str(&format!(
         "#SBATCH --output={}/glint-%A_%a.log\n",
         s.logs.display()
