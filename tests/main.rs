@@ -63,6 +63,7 @@ mod toon_render;
 mod toon_serde;
 mod toon_shape;
 mod toon_texture;
+mod tune_api;
 mod tune_http;
 mod tutorial;
 mod usd_import;

@@ -293,11 +293,18 @@ fn frames_arrive_raw_or_as_png_with_unsaved_changes_shown_but_not_written() {
     let again = served.post("/api/frame", &json!({"frame": 1}));
     let stages = again
         .header("x-glint-stages")
-        .unwrap_or_default()
+        .expect("every frame says which stages ran")
         .to_string();
     assert!(
-        !stages.contains("tessellate") && !stages.contains("gbuffer"),
+        stages.contains("shade") && !stages.contains("tessellate") && !stages.contains("gbuffer"),
         "{stages}"
+    );
+    let first = raw
+        .header("x-glint-stages")
+        .expect("every frame says which stages ran");
+    assert!(
+        first.contains("tessellate") && first.contains("gbuffer"),
+        "the first frame builds its surfaces: {first}"
     );
 
     let wider = json!({"frame": 1, "changes": [{"kind": "set", "path": EPSILON, "value": [0.2]}]});
@@ -306,7 +313,7 @@ fn frames_arrive_raw_or_as_png_with_unsaved_changes_shown_but_not_written() {
     assert_eq!(served.text(), before, "a frame with changes writes nothing");
     let stages = changed
         .header("x-glint-stages")
-        .unwrap_or_default()
+        .expect("every frame says which stages ran")
         .to_string();
     assert!(
         !stages.contains("tessellate"),

@@ -1,0 +1,437 @@
+//! `glint tune`'s answers checked against what they claim, by other means than the server's own:
+//! a pick against `glint probe` and the rendered matte, a final-quality frame against the final
+//! preset's render, the overlays against the matte and patch ids they draw from, and `--bind` /
+//! `--allow-host` against the requests they should let in and keep out.
+
+use std::net::SocketAddr;
+use std::path::{Path, PathBuf};
+
+use glint::formats::image_encoding::colour_rgba8;
+use glint::job::{Overrides, RenderJob};
+use glint::shot::{Aov, Preset};
+use glint_cli::tune::{ServerOptions, Session, TuneServer};
+use serde_json::{json, Value};
+
+use crate::common::http::{request, Reply};
+use crate::common::{glint, repo_file, stderr};
+
+const WIDTH: u32 = 192;
+const HEIGHT: u32 = 108;
+
+/// A copy of `shots/teapot_turntable.ron` with the files it reads, served at WIDTH × HEIGHT.
+struct Served {
+    _dir: tempfile::TempDir,
+    shot: PathBuf,
+    server: TuneServer,
+}
+
+fn copy_turntable(dir: &Path) -> PathBuf {
+    for folder in ["shots/looks", "patches"] {
+        std::fs::create_dir_all(dir.join(folder)).unwrap();
+    }
+    for file in [
+        "shots/teapot_turntable.ron",
+        "shots/looks/studio.ron",
+        "patches/teapot.bpt",
+        "patches/teapot.parts.ron",
+    ] {
+        std::fs::copy(repo_file(file), dir.join(file)).unwrap();
+    }
+    dir.join("shots/teapot_turntable.ron")
+}
+
+impl Served {
+    fn new() -> Self {
+        let dir = tempfile::tempdir().unwrap();
+        let shot = copy_turntable(dir.path());
+        let session = Session::open(&shot, Some((WIDTH, HEIGHT))).expect("the shot opens");
+        let server =
+            TuneServer::start(session, &ServerOptions::default()).expect("the server starts");
+        Self {
+            _dir: dir,
+            shot,
+            server,
+        }
+    }
+
+    fn post(&self, target: &str, body: &Value) -> Reply {
+        let token = self.server.token().to_string();
+        let body = serde_json::to_vec(body).unwrap();
+        request(
+            self.server.address(),
+            "POST",
+            target,
+            &[
+                ("X-Glint-Token", &token),
+                ("Content-Type", "application/json"),
+            ],
+            &body,
+        )
+    }
+
+    /// The frame's RGBA8 pixels as the server sends them raw.
+    fn raw_frame(&self, body: &Value) -> Vec<u8> {
+        let reply = self.post("/api/frame?format=raw", body);
+        assert_eq!(reply.status, 200, "{}", reply.text());
+        assert_eq!(reply.body.len(), (WIDTH * HEIGHT * 4) as usize);
+        reply.body.clone()
+    }
+}
+
+/// What a local render of `shot` at `frame` under `preset` gives: its colour as the server
+/// encodes colour, its matte and its patch ids.
+struct Local {
+    rgba: Vec<u8>,
+    matte: Vec<f32>,
+    ids: Vec<u32>,
+}
+
+fn render_locally(shot: &Path, frame: f64, preset: Preset) -> Local {
+    let overrides = Overrides {
+        size: Some((WIDTH, HEIGHT)),
+        preset: Some(preset),
+        aovs: Some(vec![Aov::Matte, Aov::PatchId]),
+        ..Overrides::default()
+    };
+    let mut job = RenderJob::load(shot, &overrides).unwrap();
+    let image = job.render_frame(frame).unwrap();
+    Local {
+        rgba: colour_rgba8(&image.colour),
+        matte: image.aovs.matte.unwrap(),
+        ids: image.aovs.patch_id.unwrap(),
+    }
+}
+
+/// `glint probe`'s image position of (u, v) on `patch` at `frame`, at the served size, and
+/// whether it says the frame shows the point (under the final preset, whose fine mesh puts the
+/// depth of what it draws close to the surface's).
+fn probed_pixel(shot: &Path, patch: &str, uv: [f64; 2], frame: f64) -> ((f64, f64), bool) {
+    let out = glint()
+        .args([
+            "probe",
+            shot.to_str().unwrap(),
+            "--patch",
+            patch,
+            "--uv",
+            &format!("{},{}", uv[0], uv[1]),
+            "--frame",
+            &frame.to_string(),
+            "--size",
+            &format!("{WIDTH}x{HEIGHT}"),
+            "--preset",
+            "final",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let probed: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let image = &probed[0]["image"];
+    let pixel = (
+        image["pixel"][0].as_f64().unwrap(),
+        image["pixel"][1].as_f64().unwrap(),
+    );
+    (pixel, image["visible"].as_bool().unwrap())
+}
+
+/// Whether pixel `(x, y)` and its eight neighbours all satisfy `test`.
+fn all_around(x: u32, y: u32, test: impl Fn(usize) -> bool) -> bool {
+    (-1i64..=1).all(|dy| {
+        (-1i64..=1).all(|dx| {
+            let (px, py) = (i64::from(x) + dx, i64::from(y) + dy);
+            px >= 0
+                && py >= 0
+                && px < i64::from(WIDTH)
+                && py < i64::from(HEIGHT)
+                && test((py as u32 * WIDTH + px as u32) as usize)
+        })
+    })
+}
+
+#[test]
+fn a_pick_is_where_probe_puts_its_point_with_the_parts_and_the_layers_the_matte_shows() {
+    let served = Served::new();
+    let frame = 1.0;
+    let local = render_locally(&served.shot, frame, Preset::Preview);
+    let (mut picked, mut covered, mut uncovered, mut parts_seen) = (0, 0, 0, Vec::new());
+    for y in (6..HEIGHT - 6).step_by(9) {
+        for x in (6..WIDTH - 6).step_by(11) {
+            let id = local.ids[(y * WIDTH + x) as usize];
+            // Well inside one patch: a pick there names it.
+            if id == u32::MAX || !all_around(x, y, |k| local.ids[k] == id) {
+                continue;
+            }
+            let reply = served.post("/api/pick", &json!({"frame": frame, "x": x, "y": y}));
+            assert_eq!(reply.status, 200, "({x}, {y}): {}", reply.text());
+            let pick = reply.json();
+            let patch = pick["patch"].as_str().unwrap().to_string();
+            assert_eq!(patch, format!("teapot/{id}"), "({x}, {y})");
+            let uv = [
+                pick["uv"][0].as_f64().unwrap(),
+                pick["uv"][1].as_f64().unwrap(),
+            ];
+            let ((px, py), visible) = probed_pixel(&served.shot, &patch, uv, frame);
+            assert!(
+                visible,
+                "({x}, {y}): probe says {patch} at {uv:?} is hidden"
+            );
+            let off = (px - f64::from(x)).hypot(py - f64::from(y));
+            assert!(off < 0.25, "({x}, {y}): probe puts {uv:?} at ({px}, {py})");
+            // The parts file: teapot.parts.ron groups patches by eights and fours.
+            let expected_part = match id {
+                0..=3 => "teapot/rim",
+                4..=11 => "teapot/body",
+                12..=15 => "teapot/handle",
+                16..=19 => "teapot/spout",
+                20..=23 => "teapot/knob",
+                24..=27 => "teapot/lid",
+                _ => "teapot/bottom",
+            };
+            let parts: Vec<&str> = pick["parts"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter_map(Value::as_str)
+                .collect();
+            assert_eq!(parts, [expected_part], "({x}, {y})");
+            if !parts_seen.contains(&expected_part) {
+                parts_seen.push(expected_part);
+            }
+            // The layers it names cover the point: where the matte is whole all around the
+            // pixel, the one layer of its entry covers; where it is empty all around, none.
+            let covering = pick["covering"].as_array().unwrap().len();
+            if all_around(x, y, |k| local.matte[k] >= 0.999) {
+                assert_eq!(covering, 1, "({x}, {y}): under the matte");
+                covered += 1;
+            } else if all_around(x, y, |k| local.matte[k] <= 0.001) {
+                assert_eq!(covering, 0, "({x}, {y}): off the matte");
+                uncovered += 1;
+            }
+            picked += 1;
+        }
+    }
+    assert!(picked >= 30, "{picked} pixels picked");
+    assert!(parts_seen.len() >= 3, "parts seen: {parts_seen:?}");
+    assert!(uncovered >= 10, "{uncovered} pixels off the matte");
+    let _ = covered;
+    // Under the body's broad highlight, some pixels well inside the matte.
+    let mut under = 0;
+    for y in 1..HEIGHT - 1 {
+        for x in 1..WIDTH - 1 {
+            if all_around(x, y, |k| local.matte[k] >= 0.999) && under < 5 {
+                let reply = served.post("/api/pick", &json!({"frame": frame, "x": x, "y": y}));
+                assert_eq!(reply.json()["covering"], json!([0]), "({x}, {y})");
+                under += 1;
+            }
+        }
+    }
+    assert!(under > 0, "the body's highlight shows at frame 1");
+}
+
+#[test]
+fn a_final_quality_frame_is_the_final_preset_s_render() {
+    let served = Served::new();
+    for frame in [1.0, 30.5] {
+        let served_final = served.raw_frame(&json!({"frame": frame, "quality": "final"}));
+        let local = render_locally(&served.shot, frame, Preset::Final);
+        assert!(
+            served_final == local.rgba,
+            "frame {frame}: the final frame differs from the final preset's render"
+        );
+        let preview = served.raw_frame(&json!({"frame": frame}));
+        assert!(
+            preview != served_final,
+            "frame {frame}: preview and final should differ"
+        );
+        assert_eq!(
+            preview,
+            render_locally(&served.shot, frame, Preset::Preview).rgba
+        );
+    }
+}
+
+#[test]
+fn the_overlays_mark_the_matte_s_pixels_and_the_seams_between_patch_ids() {
+    let served = Served::new();
+    let frame = 1.0;
+    let plain = served.raw_frame(&json!({"frame": frame}));
+    let local = render_locally(&served.shot, frame, Preset::Preview);
+    assert_eq!(plain, local.rgba);
+    let (w, h) = (WIDTH as usize, HEIGHT as usize);
+    let at = |k: usize| &plain[4 * k..4 * k + 4];
+
+    // The matte: its edge (coverage crossing ½ to the right or below) drawn solid magenta,
+    // the rest of it tinted, every other pixel as rendered.
+    let matte = served.raw_frame(&json!({"frame": frame, "overlays": {"matte": true}}));
+    let (mut edges, mut tinted) = (0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let k = y * w + x;
+            let m = local.matte[k];
+            let inside = m >= 0.5;
+            let edge = [(x + 1 < w).then(|| k + 1), (y + 1 < h).then(|| k + w)]
+                .into_iter()
+                .flatten()
+                .any(|n| (local.matte[n] >= 0.5) != inside);
+            let drawn = &matte[4 * k..4 * k + 4];
+            if edge {
+                assert_eq!(&drawn[..3], [255, 0, 200], "({x}, {y}): the matte's edge");
+                edges += 1;
+            } else if m > 0.0 {
+                assert_ne!(drawn, at(k), "({x}, {y}): inside the matte, untinted");
+                // Tinted toward magenta: green falls, or stays where there was none.
+                assert!(drawn[1] <= at(k)[1], "({x}, {y})");
+                tinted += 1;
+            } else {
+                assert_eq!(drawn, at(k), "({x}, {y}): off the matte, changed");
+            }
+        }
+    }
+    assert!(edges > 20 && tinted > 20, "{edges} edge, {tinted} tinted");
+
+    // The seams: darkened exactly where the patch id changes to the right or below.
+    let seams = served.raw_frame(&json!({"frame": frame, "overlays": {"seams": true}}));
+    let mut seam_pixels = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let k = y * w + x;
+            let id = local.ids[k];
+            let seam = [(x + 1 < w).then(|| k + 1), (y + 1 < h).then(|| k + w)]
+                .into_iter()
+                .flatten()
+                .any(|n| local.ids[n] != id);
+            let drawn = &seams[4 * k..4 * k + 4];
+            if seam {
+                let before: u32 = at(k)[..3].iter().map(|&c| u32::from(c)).sum();
+                let after: u32 = drawn[..3].iter().map(|&c| u32::from(c)).sum();
+                assert!(
+                    after < before || after <= 3 * 60,
+                    "({x}, {y}): a seam not darkened"
+                );
+                seam_pixels += 1;
+            } else {
+                assert_eq!(drawn, at(k), "({x}, {y}): no seam, changed");
+            }
+        }
+    }
+    assert!(seam_pixels > 100, "{seam_pixels} seam pixels");
+}
+
+/// Starts `glint tune` on `shot` with `extra` options; its address and token.
+fn start_tune(shot: &Path, extra: &[&str]) -> (std::process::Child, SocketAddr, String) {
+    let mut child = glint()
+        .args([
+            "tune",
+            shot.to_str().unwrap(),
+            "--no-open",
+            "--size",
+            "64x36",
+        ])
+        .args(extra)
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    let mut stdout = std::io::BufReader::new(child.stdout.take().unwrap());
+    std::io::BufRead::read_line(&mut stdout, &mut line).unwrap();
+    let url = line
+        .trim()
+        .strip_prefix("glint tune: ")
+        .unwrap_or_default()
+        .to_string();
+    let (address, token) = url
+        .trim_start_matches("http://")
+        .split_once("/?token=")
+        .unwrap_or_else(|| panic!("no address in {line:?}"));
+    let port: u16 = address.rsplit(':').next().unwrap().parse().unwrap();
+    (
+        child,
+        SocketAddr::from(([127, 0, 0, 2], port)),
+        token.to_string(),
+    )
+}
+
+#[test]
+fn bind_and_allow_host_let_in_the_names_they_give_and_keep_out_the_rest() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = copy_turntable(dir.path());
+    // 127.0.0.2 is another address of the loopback network: a stand-in for a machine's address
+    // on its network that this test can reach.
+    let (mut child, address, token) = start_tune(
+        &shot,
+        &["--bind", "127.0.0.2", "--allow-host", "studio-ws-12"],
+    );
+    let port = address.port();
+    let get = |host: &str, origin: Option<&str>| {
+        let mut headers = vec![("X-Glint-Token", token.as_str()), ("Host", host)];
+        if let Some(origin) = origin {
+            headers.push(("Origin", origin));
+        }
+        request(address, "GET", "/api/state?frame=1", &headers, b"")
+    };
+    let named = |name: &str| format!("{name}:{port}");
+    let origin = |name: &str| format!("http://{name}:{port}");
+    let outcomes = [
+        (named("127.0.0.2"), None, 200),
+        (named("studio-ws-12"), None, 200),
+        (named("studio-ws-12"), Some(origin("studio-ws-12")), 200),
+        (named("localhost"), None, 200),
+        (named("studio-ws-13"), None, 403),
+        (named("evil.example"), None, 403),
+        (named("studio-ws-12"), Some(origin("evil.example")), 403),
+    ];
+    let replies: Vec<(String, Option<String>, u16, Reply)> = outcomes
+        .into_iter()
+        .map(|(host, origin, status)| {
+            let reply = get(&host, origin.as_deref());
+            (host, origin, status, reply)
+        })
+        .collect();
+    // Nothing listens on 127.0.0.1 at that port.
+    let loopback = std::net::TcpStream::connect(SocketAddr::from(([127, 0, 0, 1], port)));
+    child.kill().unwrap();
+    child.wait().unwrap();
+    for (host, origin, status, reply) in replies {
+        assert_eq!(
+            reply.status,
+            status,
+            "Host {host}, Origin {origin:?}: {}",
+            reply.text()
+        );
+    }
+    assert!(
+        loopback.is_err(),
+        "bound to 127.0.0.2, 127.0.0.1 answers too"
+    );
+
+    // An address this machine does not have is refused at once, in one line.
+    let out = glint()
+        .args([
+            "tune",
+            shot.to_str().unwrap(),
+            "--no-open",
+            "--bind",
+            "192.0.2.1",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert_eq!(stderr(&out).lines().count(), 1, "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("cannot listen on 192.0.2.1"),
+        "{}",
+        stderr(&out)
+    );
+    // A bind that is not an address is refused by the options, naming it.
+    let out = glint()
+        .args([
+            "tune",
+            shot.to_str().unwrap(),
+            "--no-open",
+            "--bind",
+            "studio",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("studio"), "{}", stderr(&out));
+}
