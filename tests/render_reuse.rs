@@ -108,6 +108,7 @@ fn a_highlight_change_reuses_the_surfaces_and_gives_a_fresh_renderers_bytes() {
         normal: true,
         uv: true,
         n_dot_h: true,
+        n_dot_l: true,
         outline: true,
     };
     let settings = [

@@ -86,7 +86,8 @@ pub(super) struct Target {
     #[arg(long, value_enum)]
     preset: Option<PresetArg>,
     /// Extra images instead of the shot's list, comma-separated: matte, patch_id, depth,
-    /// normal, uv, n_dot_h, outline (the lines alone, with alpha) (or none). Written as PNGs
+    /// normal, uv, n_dot_h, n_dot_l (the N·L' each patch's tone reads), outline (the lines alone,
+    /// with alpha) (or none). Written as PNGs
     /// beside the frame and as layers of one EXR
     #[arg(long, value_name = "LIST", value_parser = parse_aov_list)]
     aov: Option<AovList>,

@@ -15,8 +15,8 @@ use super::png::{write_png_tagged, PngLayout};
 use crate::render::RenderedFrame;
 
 /// The names the AOV files beside a frame add to it ([`beside`]), every one there is.
-pub const AOV_FILE_NAMES: [&str; 8] = [
-    "matte", "patch_id", "patches", "depth", "normal", "uv", "n_dot_h", "outline",
+pub const AOV_FILE_NAMES: [&str; 9] = [
+    "matte", "patch_id", "patches", "depth", "normal", "uv", "n_dot_h", "n_dot_l", "outline",
 ];
 
 /// The file beside the frame file `path` that holds its AOV `name`: `shot.0001.png` gives
@@ -32,7 +32,8 @@ pub fn beside(path: &Path, name: &str) -> PathBuf {
 /// Writes the colour to `path` (PNG) and each AOV the frame holds beside it, named after it:
 /// `shot.0001.png` gives `shot.0001.matte.png`, `.patch_id.png` (16-bit indices),
 /// `.patches.png` (flat colours, the view of Figure 9 in Anjyo & Hiramitsu 2003), `.depth.png`
-/// (16-bit), `.normal.png`, `.uv.png`, `.n_dot_h.png` (heat map) and `.outline.png` (the lines
+/// (16-bit), `.normal.png`, `.uv.png`, `.n_dot_h.png` (heat map), `.n_dot_l.png` (heat map
+/// over [−1, 1]) and `.outline.png` (the lines
 /// alone, sRGB with alpha). The colour is written last, so once it exists the whole frame does.
 /// Returns the paths written.
 pub fn write_pngs(frame: &RenderedFrame, path: &Path) -> Result<Vec<PathBuf>, WriteError> {
@@ -87,6 +88,15 @@ pub fn write_pngs_tagged(
             heat_rgba8(nh, &alpha, HEAT_RANGE),
         ));
     }
+    if let Some(nl) = &a.n_dot_l {
+        let alpha: Vec<f32> = frame.colour.iter().map(|c| c.w).collect();
+        // The whole range of N·L': the heat map's [1 − 2·1, 1].
+        images.push((
+            aov_file("n_dot_l"),
+            PngLayout::Rgba8,
+            heat_rgba8(nl, &alpha, 1.0),
+        ));
+    }
     if let Some(lines) = &a.outline {
         images.push((aov_file("outline"), PngLayout::Rgba8, colour_rgba8(lines)));
     }
@@ -105,7 +115,7 @@ pub fn write_pngs_tagged(
 
 /// Writes the frame as one EXR: linear `R G B A` and the AOVs as `matte.Y`, `patch_id.Y`
 /// (−1 on the background), `depth.Z` (NDC, +∞ on the background), `normal.X/Y/Z`, `uv.U/V`,
-/// `n_dot_h.Y` and `outline.R/G/B/A` (linear, straight alpha); a text attribute in its header for each `(name, text)` of `text`.
+/// `n_dot_h.Y`, `n_dot_l.Y` and `outline.R/G/B/A` (linear, straight alpha); a text attribute in its header for each `(name, text)` of `text`.
 pub fn write_frame_exr(
     frame: &RenderedFrame,
     path: &Path,
@@ -143,6 +153,9 @@ pub fn write_frame_exr(
     }
     if let Some(nh) = &a.n_dot_h {
         channels.push(("n_dot_h.Y".into(), nh.clone()));
+    }
+    if let Some(nl) = &a.n_dot_l {
+        channels.push(("n_dot_l.Y".into(), nl.clone()));
     }
     if let Some(lines) = &a.outline {
         for (channel, name) in ["R", "G", "B", "A"].into_iter().enumerate() {

@@ -63,6 +63,7 @@ pub fn aov_file_names(aov: Aov) -> &'static [&'static str] {
         Aov::Normal => &["normal"],
         Aov::Uv => &["uv"],
         Aov::NDotH => &["n_dot_h"],
+        Aov::NDotL => &["n_dot_l"],
         Aov::Outline => &["outline"],
     }
 }

@@ -39,7 +39,7 @@ const TILE_BYTES_PER_SAMPLE_SIDE: u64 = 1 << 20;
 /// 955 MB (115 B).
 fn aov_bytes_per_pixel(aov: Aov) -> u64 {
     match aov {
-        Aov::Normal | Aov::Uv | Aov::Depth | Aov::NDotH => 36,
+        Aov::Normal | Aov::Uv | Aov::Depth | Aov::NDotH | Aov::NDotL => 36,
         Aov::Matte | Aov::PatchId | Aov::Outline => 24,
     }
 }

@@ -22,6 +22,8 @@ pub struct AovImages {
     pub uv: Option<Vec<Vec2>>,
     /// `N·H` of the initial half vector, 0 on the background.
     pub n_dot_h: Option<Vec<f32>>,
+    /// `N·L'` the tone reads, 0 on the background.
+    pub n_dot_l: Option<Vec<f32>>,
     /// The lines alone: linear RGB, straight alpha their coverage.
     pub outline: Option<Vec<Vec4>>,
 }
@@ -37,6 +39,7 @@ impl AovImages {
             self.normal.is_some(),
             self.uv.is_some(),
             self.n_dot_h.is_some(),
+            self.n_dot_l.is_some(),
             self.outline.is_some(),
         ]
         .iter()
@@ -65,6 +68,10 @@ pub(super) fn collect_aovs(
             .map(|samples| box_filter(&samples, width, height, k)),
         n_dot_h: shaded
             .n_dot_h
+            .take()
+            .map(|samples| box_filter(&samples, width, height, k)),
+        n_dot_l: shaded
+            .n_dot_l
             .take()
             .map(|samples| box_filter(&samples, width, height, k)),
         patch_id: a.patch_id.then(|| {

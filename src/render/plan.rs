@@ -148,8 +148,9 @@ impl Plan {
             normal,
             uv,
             n_dot_h,
+            n_dot_l,
         } = scene.aovs;
-        let frames_read = depth || normal || uv || n_dot_h;
+        let frames_read = depth || normal || uv || n_dot_h || n_dot_l;
         let cel = scene
             .looks
             .iter()
@@ -279,6 +280,7 @@ mod tests {
             with(|a| a.uv = true),
             with(|a| a.depth = true),
             with(|a| a.n_dot_h = true),
+            with(|a| a.n_dot_l = true),
         ] {
             let reading = empty_scene(&library, aovs);
             assert_eq!(

@@ -601,6 +601,7 @@ fn shade_from_visibility(
         colour,
         matte: None,
         n_dot_h: None,
+        n_dot_l: None,
         shaded: covered,
         highlighted: 0,
         xtoon: 0,

@@ -91,6 +91,9 @@ pub struct Aovs {
     /// `N·H` of the initial half vector per pixel, on every patch: where the undesigned Blinn
     /// highlight would be (a debug view for animators).
     pub n_dot_h: bool,
+    /// `N·L'` per pixel: the light its tone reads ([`Scene::tone_n_dot_l`]), on every patch
+    /// (a view of where the cel bands' edges lie, and a light pass for compositing).
+    pub n_dot_l: bool,
     /// The lines alone, with their coverage as alpha (transparent where none are drawn).
     pub outline: bool,
 }

@@ -24,6 +24,8 @@ pub(super) struct Shaded {
     pub matte: Option<Vec<f32>>,
     /// `N·H` of the initial half vector per pixel (0 on the background), when asked for.
     pub n_dot_h: Option<Vec<f32>>,
+    /// `N·L'` the tone reads per pixel (0 on the background), when asked for.
+    pub n_dot_l: Option<Vec<f32>>,
     /// Pixels shaded.
     pub shaded: u64,
     /// Pixels on highlighted patches: the only ones a half vector was built for.
@@ -103,6 +105,15 @@ pub(super) fn shade(
             .collect();
         gbuffer.gather(&values, 0.0)
     });
+    let n_dot_l = scene.aovs.n_dot_l.then(|| {
+        let values: Vec<f32> = gbuffer
+            .texels
+            .par_iter()
+            .with_min_len(PIXELS_PER_JOB)
+            .map(|t| scene.tone_n_dot_l(t.patch, &t.frame, t.uv, t.position))
+            .collect();
+        gbuffer.gather(&values, 0.0)
+    });
     Shaded {
         colour: gbuffer.gather(&buffers.colour, Vec4::ZERO),
         matte: scene
@@ -110,6 +121,7 @@ pub(super) fn shade(
             .matte
             .then(|| gbuffer.gather(&buffers.coverage, 0.0)),
         n_dot_h,
+        n_dot_l,
         shaded: texels as u64,
         highlighted: counts.highlighted,
         xtoon: counts.xtoon,

@@ -418,24 +418,27 @@ pub enum Aov {
     Uv,
     /// `N·H` heat map of the undesigned Blinn highlight.
     NDotH,
+    /// `N·L'` the tone reads (of the designed light where shade stacks design it).
+    NDotL,
     /// The lines alone, with alpha.
     Outline,
 }
 
 impl Aov {
     /// Every AOV, in the order the command line and the docs list them.
-    pub const ALL: [Aov; 7] = [
+    pub const ALL: [Aov; 8] = [
         Aov::Matte,
         Aov::PatchId,
         Aov::Depth,
         Aov::Normal,
         Aov::Uv,
         Aov::NDotH,
+        Aov::NDotL,
         Aov::Outline,
     ];
 
     /// The name on the command line: `matte`, `patch_id`, `depth`, `normal`, `uv`, `n_dot_h`,
-    /// `outline`.
+    /// `n_dot_l`, `outline`.
     pub fn name(self) -> &'static str {
         match self {
             Aov::Matte => "matte",
@@ -444,6 +447,7 @@ impl Aov {
             Aov::Normal => "normal",
             Aov::Uv => "uv",
             Aov::NDotH => "n_dot_h",
+            Aov::NDotL => "n_dot_l",
             Aov::Outline => "outline",
         }
     }

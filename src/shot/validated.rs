@@ -246,6 +246,7 @@ impl Shot {
             normal: on(Aov::Normal),
             uv: on(Aov::Uv),
             n_dot_h: on(Aov::NDotH),
+            n_dot_l: on(Aov::NDotL),
             outline: on(Aov::Outline),
         }
     }

@@ -127,7 +127,9 @@ pub(in crate::render) fn supersample(input: &SupersampleInput, shaded: &mut Shad
         w,
         h,
     );
-    if let (Some(lines), None, None) = (input.lines, &shaded.matte, &shaded.n_dot_h) {
+    if let (Some(lines), None, None, None) =
+        (input.lines, &shaded.matte, &shaded.n_dot_h, &shaded.n_dot_l)
+    {
         for (p, m) in marked.iter_mut().enumerate().filter(|(_, m)| **m) {
             *m = !lines.hides(p);
         }
@@ -187,6 +189,9 @@ pub(in crate::render) fn supersample(input: &SupersampleInput, shaded: &mut Shad
         }
         if let Some(n_dot_h) = shaded.n_dot_h.as_mut() {
             n_dot_h[p] = r.n_dot_h;
+        }
+        if let Some(n_dot_l) = shaded.n_dot_l.as_mut() {
+            n_dot_l[p] = r.n_dot_l;
         }
     }
     Done { pixels, frames }

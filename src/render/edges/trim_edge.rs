@@ -961,5 +961,8 @@ pub(in crate::render) fn composite(
         if let (Some(n_dot_h), Some(n)) = (shaded.n_dot_h.as_mut(), two.n_dot_h.as_ref()) {
             n_dot_h[p] = n[a] * c + n[b] * (1.0 - c);
         }
+        if let (Some(n_dot_l), Some(n)) = (shaded.n_dot_l.as_mut(), two.n_dot_l.as_ref()) {
+            n_dot_l[p] = n[a] * c + n[b] * (1.0 - c);
+        }
     }
 }
