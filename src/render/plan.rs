@@ -148,9 +148,10 @@ impl Plan {
             normal,
             uv,
             n_dot_h,
-            n_dot_l,
+            // What the tone read at each texel, in the frames the tone was shaded with.
+            n_dot_l: _,
         } = scene.aovs;
-        let frames_read = depth || normal || uv || n_dot_h || n_dot_l;
+        let frames_read = depth || normal || uv || n_dot_h;
         let cel = scene
             .looks
             .iter()
@@ -280,7 +281,6 @@ mod tests {
             with(|a| a.uv = true),
             with(|a| a.depth = true),
             with(|a| a.n_dot_h = true),
-            with(|a| a.n_dot_l = true),
         ] {
             let reading = empty_scene(&library, aovs);
             assert_eq!(
