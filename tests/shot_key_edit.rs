@@ -79,6 +79,7 @@ fn shape(path: &ParamPath) -> Shape {
             | LayerParam::PinV
             | LayerParam::Op { .. } => Shape::Number,
         },
+        ParamPath::Shade { .. } => Shape::Number,
     }
 }
 

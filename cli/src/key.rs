@@ -19,7 +19,10 @@ use glint::shot::{
 /// edited file is read back and checked to differ in that track alone, and a shot is checked
 /// as `glint render` checks it, before the file is replaced (atomically). The track's new text
 /// is printed on one line. Parameter paths are described in docs/shot-format.md ("Parameter
-/// paths"); `--list` prints every one of a file.
+/// paths"); `--list` prints every one of a file. A shade entry's numbers are
+/// `shade[N].stack[J].alpha` (and every number of an operation, as a highlight layer's), and
+/// `shade[N].mask.u[I]`, `….mask.v[I]`, `….mask.feather`, N counting the file's own `shade`
+/// entries from 0.
 #[derive(Debug, Args)]
 #[command(
     group(ArgGroup::new("change").args(["value", "delete", "list"]).required(true)),
@@ -28,12 +31,14 @@ use glint::shot::{
   glint key shots/sphere_ops.ron --at 'highlights[0].layers[0].epsilon' --frame 60 --value 0.04
   glint key shots/sphere_ops.ron --at 'highlights[\"ball/*\"].layers[0].colour' --value '(1.0, 0.9, 0.8)'
   glint key shots/sphere_ops.ron --at 'highlights[0].layers[0].stack[0].alpha' --frame 12 --delete
+  glint key shots/shade_design.ron --at 'shade[0].stack[0].alpha' --frame 24 --value 0.3
   glint key shots/looks/studio.ron --at 'materials{\"clay\"}.bands[0].threshold' --value 0.1 --dry-run"
 )]
 pub struct KeyArgs {
     /// The shot or look file (RON); paths name the tracks of this file, not of its includes
     file: PathBuf,
-    /// The track, e.g. 'highlights[0].layers[0].stack[1].delta' or 'camera.eye'
+    /// The track, e.g. 'highlights[0].layers[0].stack[1].delta', 'shade[0].stack[0].alpha' or
+    /// 'camera.eye'
     #[arg(long, value_name = "PATH", required_unless_present = "list")]
     at: Option<String>,
     /// The frame to key, or whose key to delete (fractional frames allowed). Without it,

@@ -26,8 +26,9 @@ pub const DEFAULT_TILE_WIDTH: u32 = 320;
 /// With --frames, one tile per frame, captioned `frame N`. With --vary PATH=V1,V2,…
 /// (repeatable), one tile per combination of the values of every --vary (the last one changing
 /// fastest), each showing --frame with those values set, captioned with them
-/// (`alpha=0.2 beta=0.1`). Values are written as in the shot file; a tuple such as
-/// `(1.0, 0.9, 0.8)` is one value. A sheet holds at most 64 tiles.
+/// (`alpha=0.2 beta=0.1`). Every parameter path `glint key` takes can be varied, a shade
+/// entry's (`shade[0].stack[0].alpha`) as a highlight layer's. Values are written as in the
+/// shot file; a tuple such as `(1.0, 0.9, 0.8)` is one value. A sheet holds at most 64 tiles.
 ///
 /// Each tile is the frame exactly as `glint render --size WxH --preset P` renders it (the
 /// background transparent), with its caption in a strip beneath. With --crop X,Y,W,H each tile
@@ -47,6 +48,8 @@ pub const DEFAULT_TILE_WIDTH: u32 = 320;
   glint sheet shots/crescent.ron --frame 36 \\
       --vary 'highlights[0].layers[1].stack[1].alpha=0.1,0.3,0.5' \\
       --vary 'highlights[0].layers[0].colour=(1, 1, 1),(1, 0.8, 0.6)' --out out/crescent.png
+  glint sheet shots/shade_design.ron --frame 48 \\
+      --vary 'shade[0].stack[0].alpha=0.0,0.3,0.6' --out out/shade_design.sheet.png
 
 Frame lists: 12 | 1-48 | 1-48x2 (every second frame) | 1,5,9-12.")]
 pub struct SheetArgs {

@@ -1,6 +1,7 @@
 //! The name of one animatable parameter of a shot or look file, as written on the command line:
 //! `camera.eye`, `materials{"porcelain"}.bands[0].threshold`,
-//! `highlights[1].layers[0].stack[0].alpha` (docs/shot-format.md, "Parameter paths").
+//! `highlights[1].layers[0].stack[0].alpha`, `shade[0].stack[0].alpha` (docs/shot-format.md,
+//! "Parameter paths").
 
 use std::fmt;
 use std::str::FromStr;
@@ -8,7 +9,8 @@ use std::str::FromStr;
 use thiserror::Error;
 
 /// One animatable parameter of a shot or look file, named as in docs/shot-format.md: the
-/// camera's and light's tracks, a material's, or one of a highlight layer's.
+/// camera's and light's tracks, a material's, one of a highlight layer's, or one of a shade
+/// entry's.
 ///
 /// A path is always relative to the file it is used on: the materials and highlights of an
 /// include are named in the include.
@@ -27,6 +29,8 @@ pub enum ParamPath {
         layer: usize,
         param: LayerParam,
     },
+    /// `shade[N].…`: a number of the N-th entry (from 0) of the file's `shade` list.
+    Shade { entry: usize, param: ShadeParam },
 }
 
 /// A track of the camera.
@@ -121,6 +125,19 @@ pub enum LayerParam {
     PinU,
     /// `pin.v`.
     PinV,
+    /// `stack[J].…`: a number of the J-th operation of the stack, from 0.
+    Op { index: usize, param: OpParam },
+}
+
+/// A track of a shade entry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ShadeParam {
+    /// `mask.u[I]`.
+    MaskU(usize),
+    /// `mask.v[I]`.
+    MaskV(usize),
+    /// `mask.feather`.
+    MaskFeather,
     /// `stack[J].…`: a number of the J-th operation of the stack, from 0.
     Op { index: usize, param: OpParam },
 }
@@ -400,7 +417,7 @@ impl FromStr for ParamPath {
 
 fn read_path(r: &mut Reader) -> Result<ParamPath, String> {
     Ok(
-        match r.name(&["camera", "light", "materials", "highlights"])? {
+        match r.name(&["camera", "light", "materials", "highlights", "shade"])? {
             "camera" => ParamPath::Camera(
                 match r.name(&["eye", "orbit", "target", "up", "projection"])? {
                     "eye" => CameraParam::Eye,
@@ -437,6 +454,13 @@ fn read_path(r: &mut Reader) -> Result<ParamPath, String> {
                 ParamPath::Material {
                     name,
                     param: read_material(r)?,
+                }
+            }
+            "shade" => {
+                let entry = r.index()?;
+                ParamPath::Shade {
+                    entry,
+                    param: read_shade(r)?,
                 }
             }
             _ => {
@@ -510,6 +534,21 @@ fn read_layer(r: &mut Reader) -> Result<LayerParam, String> {
     })
 }
 
+fn read_shade(r: &mut Reader) -> Result<ShadeParam, String> {
+    Ok(match r.name(&["stack", "mask"])? {
+        "stack" => {
+            let index = r.index()?;
+            let param = r.choose(&OpParam::ALL, OpParam::name)?;
+            ShadeParam::Op { index, param }
+        }
+        _ => match r.name(&["u", "v", "feather"])? {
+            "u" => ShadeParam::MaskU(bound(r)?),
+            "v" => ShadeParam::MaskV(bound(r)?),
+            _ => ShadeParam::MaskFeather,
+        },
+    })
+}
+
 /// The `[0]` or `[1]` of a mask's bounds.
 fn bound(r: &mut Reader) -> Result<usize, String> {
     match r.index()? {
@@ -558,7 +597,8 @@ impl ParamPath {
             ParamPath::Camera(_)
             | ParamPath::Light(_)
             | ParamPath::Material { .. }
-            | ParamPath::Highlight { .. } => None,
+            | ParamPath::Highlight { .. }
+            | ParamPath::Shade { .. } => None,
         }
     }
 }
@@ -625,6 +665,17 @@ impl fmt::Display for ParamPath {
                     }
                 }
             }
+            ParamPath::Shade { entry, param } => {
+                write!(f, "shade[{entry}].")?;
+                match param {
+                    ShadeParam::MaskU(i) => write!(f, "mask.u[{i}]"),
+                    ShadeParam::MaskV(i) => write!(f, "mask.v[{i}]"),
+                    ShadeParam::MaskFeather => f.write_str("mask.feather"),
+                    ShadeParam::Op { index, param } => {
+                        write!(f, "stack[{index}].{}", param.name())
+                    }
+                }
+            }
         }
     }
 }
@@ -660,6 +711,12 @@ mod tests {
             "highlights[0].layers[0].mask.v[1]",
             "highlights[0].layers[0].mask.feather",
             "highlights[\"teapot/body\"].layers[0].stack[3].gamma_v",
+            "shade[0].stack[0].alpha",
+            "shade[2].stack[1].axis",
+            "shade[1].stack[3].n",
+            "shade[0].mask.u[1]",
+            "shade[0].mask.v[0]",
+            "shade[0].mask.feather",
         ] {
             let path: ParamPath = written.parse().unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(path.to_string(), written);
@@ -676,6 +733,18 @@ mod tests {
                 }
             }
         );
+        let shade: ParamPath = "shade[3].stack[1].sigma".parse().unwrap();
+        assert_eq!(
+            shade,
+            ParamPath::Shade {
+                entry: 3,
+                param: ShadeParam::Op {
+                    index: 1,
+                    param: OpParam::Sigma
+                }
+            }
+        );
+        assert_eq!(shade.try_with_component(0), None);
         let colour: ParamPath = "highlights[0].layers[1].colour".parse().unwrap();
         let green = colour.try_with_component(1).unwrap();
         assert_eq!(green.to_string(), "highlights[0].layers[1].colour[1]");
@@ -704,5 +773,11 @@ mod tests {
         assert!(reason("materials{\"clay").contains("not closed"));
         assert!(reason("camera..eye").contains("expected a name"));
         assert!(reason("highlights[0].layers[0].stack[0].alpha2").contains("unknown `alpha2`"));
+        assert!(reason("shade.stack[0].alpha").contains("an index such as `[0]`"));
+        assert!(reason("shade[\"teapot/*\"].stack[0].alpha").contains("an index"));
+        assert!(reason("shade[0].layers[0].epsilon").contains("`stack`, `mask`"));
+        assert!(reason("shade[0].stack[0].epsilon").contains("unknown `epsilon`"));
+        assert!(reason("shade[0].mask.u[2]").contains("[0]` and `[1]`"));
+        assert!(reason("shade[0].mask").contains("expected one of `u`"));
     }
 }

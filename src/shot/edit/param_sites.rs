@@ -8,14 +8,15 @@ use glam::Vec3;
 
 use super::param_path::{
     CameraParam, DetailParam, HighlightRef, LayerParam, LightParam, MaterialParam, OpParam,
-    ParamPath,
+    ParamPath, ShadeParam,
 };
 use crate::anim::{Direction, Track};
 use crate::formats::ron_paths::top_level_name;
 use crate::formats::ron_paths::Step::{self, Entry, Field, Index};
-use crate::highlight::{Axis, Expr, Layer, Op};
+use crate::highlight::{Axis, Expr, Layer, Mask, Op};
 use crate::shot::file::{
-    CameraSpec, HighlightSpec, LightSpec, LooksFile, MaterialSpec, ProjectionSpec, ShotFile,
+    CameraSpec, HighlightSpec, LightSpec, LooksFile, MaterialSpec, ProjectionSpec, ShadeSpec,
+    ShotFile,
 };
 use crate::shot::orbit::OrbitSpec;
 use crate::shot::source::Source;
@@ -90,6 +91,14 @@ impl ParsedFile {
         }
     }
 
+    /// The file's own shade entries, in order.
+    pub fn shade(&self) -> &[ShadeSpec] {
+        match self {
+            ParsedFile::Shot(shot) => &shot.shade,
+            ParsedFile::Looks(looks) => &looks.shade,
+        }
+    }
+
     /// The indices of the highlight entries whose `patches` is `pattern` or a list holding it.
     pub fn entries_selected_by(&self, pattern: &str) -> Vec<usize> {
         (self.highlights().iter().enumerate())
@@ -158,20 +167,27 @@ impl ParsedFile {
     }
 
     /// Calls `f` with every track of the file: the camera's, the light's, each material's (by
-    /// name) and each highlight layer's, in that order.
+    /// name), each highlight layer's and each shade entry's, in that order.
     pub fn for_each_site<'a>(&'a mut self, f: &mut dyn FnMut(Site<'a>)) {
-        let (materials, highlights) = match self {
+        let (materials, highlights, shade) = match self {
             ParsedFile::Shot(shot) => {
                 camera_sites(&mut shot.camera, f);
                 light_sites(&mut shot.light, f);
-                (&mut shot.materials, &mut shot.highlights)
+                (&mut shot.materials, &mut shot.highlights, &mut shot.shade)
             }
-            ParsedFile::Looks(looks) => (&mut looks.materials, &mut looks.highlights),
+            ParsedFile::Looks(looks) => (
+                &mut looks.materials,
+                &mut looks.highlights,
+                &mut looks.shade,
+            ),
         };
         material_sites(materials, f);
         for (entry, highlight) in highlights.iter_mut().enumerate() {
             let steps = vec![Field("highlights"), Index(entry), Field("expr")];
             expr_sites(&mut highlight.expr, steps, entry, &mut 0, f);
+        }
+        for (entry, spec) in shade.iter_mut().enumerate() {
+            shade_sites(spec, entry, f);
         }
     }
 }
@@ -421,15 +437,96 @@ fn layer_sites<'a>(
         // Nor has a drawn outline's points.
         shape: _,
     } = l;
+    op_sites(stack, &mut |index, param, steps, track| {
+        site(LayerParam::Op { index, param }, &steps, track);
+    });
+    site(
+        LayerParam::Epsilon,
+        &[Field("epsilon")],
+        TrackMut::Scalar(epsilon),
+    );
+    site(
+        LayerParam::Colour(None),
+        &[Field("colour")],
+        TrackMut::Triple(colour),
+    );
+    site(
+        LayerParam::Opacity,
+        &[Field("opacity")],
+        TrackMut::Scalar(opacity),
+    );
+    site(
+        LayerParam::Feather,
+        &[Field("feather")],
+        TrackMut::Optional(feather),
+    );
+    if let Some(mask) = mask {
+        mask_sites(mask, &mut |number, steps, track| {
+            let param = match number {
+                MaskNumber::U(i) => LayerParam::MaskU(i),
+                MaskNumber::V(i) => LayerParam::MaskV(i),
+                MaskNumber::Feather => LayerParam::MaskFeather,
+            };
+            site(param, &steps, track);
+        });
+    }
+    if let Some(pin) = pin {
+        site(
+            LayerParam::PinU,
+            &[Field("pin"), Field("u")],
+            TrackMut::Scalar(&mut pin.u),
+        );
+        site(
+            LayerParam::PinV,
+            &[Field("pin"), Field("v")],
+            TrackMut::Scalar(&mut pin.v),
+        );
+    }
+}
+
+/// The tracks of shade entry `entry` of the file: its operations' numbers, then its mask's.
+fn shade_sites<'a>(spec: &'a mut ShadeSpec, entry: usize, f: &mut dyn FnMut(Site<'a>)) {
+    let ShadeSpec {
+        patches: _,
+        stack,
+        mask,
+    } = spec;
+    let mut site = |param, steps: Vec<Step<'a>>, track| {
+        let mut path = vec![Field("shade"), Index(entry)];
+        path.extend(steps);
+        f(Site {
+            path: ParamPath::Shade { entry, param },
+            steps: path,
+            track,
+        });
+    };
+    op_sites(stack, &mut |index, param, steps, track| {
+        site(ShadeParam::Op { index, param }, steps, track);
+    });
+    if let Some(mask) = mask {
+        mask_sites(mask, &mut |number, steps, track| {
+            let param = match number {
+                MaskNumber::U(i) => ShadeParam::MaskU(i),
+                MaskNumber::V(i) => ShadeParam::MaskV(i),
+                MaskNumber::Feather => ShadeParam::MaskFeather,
+            };
+            site(param, steps, track);
+        });
+    }
+}
+
+/// Calls `f` with each number of the operations of `stack`: the operation's index, the number,
+/// the steps to it from the stack's owner (`stack[J].NAME`, `[0]` after `axis` for `Angle(φ)`)
+/// and its track.
+fn op_sites<'a>(
+    stack: &'a mut [Op<Track<f32>>],
+    f: &mut dyn FnMut(usize, OpParam, Vec<Step<'a>>, TrackMut<'a>),
+) {
     for (index, op) in stack.iter_mut().enumerate() {
         let mut number = |param, track, more: &[Step<'a>]| {
             let mut steps = vec![Field("stack"), Index(index), Field(OpParam::name(param))];
             steps.extend_from_slice(more);
-            site(
-                LayerParam::Op { index, param },
-                &steps,
-                TrackMut::Scalar(track),
-            );
+            f(index, param, steps, TrackMut::Scalar(track));
         };
         match op {
             Op::Translate { alpha, beta } => {
@@ -454,56 +551,39 @@ fn layer_sites<'a>(
             }
         }
     }
-    site(
-        LayerParam::Epsilon,
-        &[Field("epsilon")],
-        TrackMut::Scalar(epsilon),
-    );
-    site(
-        LayerParam::Colour(None),
-        &[Field("colour")],
-        TrackMut::Triple(colour),
-    );
-    site(
-        LayerParam::Opacity,
-        &[Field("opacity")],
-        TrackMut::Scalar(opacity),
-    );
-    site(
-        LayerParam::Feather,
-        &[Field("feather")],
-        TrackMut::Optional(feather),
-    );
-    if let Some(mask) = mask {
-        let bounds = [
-            (LayerParam::MaskU(0), "u", 0, &mut mask.u.0),
-            (LayerParam::MaskU(1), "u", 1, &mut mask.u.1),
-            (LayerParam::MaskV(0), "v", 0, &mut mask.v.0),
-            (LayerParam::MaskV(1), "v", 1, &mut mask.v.1),
-        ];
-        for (param, field, index, track) in bounds {
-            site(
-                param,
-                &[Field("mask"), Field(field), Index(index)],
-                TrackMut::Scalar(track),
-            );
-        }
-        site(
-            LayerParam::MaskFeather,
-            &[Field("mask"), Field("feather")],
-            TrackMut::Scalar(&mut mask.feather),
+}
+
+/// A number of a mask: a bound `u[I]`, `v[I]`, or its feather.
+#[derive(Clone, Copy)]
+enum MaskNumber {
+    U(usize),
+    V(usize),
+    Feather,
+}
+
+/// Calls `f` with each number of `mask`, the steps to it from the mask's owner
+/// (`mask.u[I]`, `mask.v[I]`, `mask.feather`) and its track.
+fn mask_sites<'a>(
+    mask: &'a mut Mask<Track<f32>>,
+    f: &mut dyn FnMut(MaskNumber, Vec<Step<'a>>, TrackMut<'a>),
+) {
+    let Mask { u, v, feather } = mask;
+    let bounds = [
+        (MaskNumber::U(0), "u", 0, &mut u.0),
+        (MaskNumber::U(1), "u", 1, &mut u.1),
+        (MaskNumber::V(0), "v", 0, &mut v.0),
+        (MaskNumber::V(1), "v", 1, &mut v.1),
+    ];
+    for (number, field, index, track) in bounds {
+        f(
+            number,
+            vec![Field("mask"), Field(field), Index(index)],
+            TrackMut::Scalar(track),
         );
     }
-    if let Some(pin) = pin {
-        site(
-            LayerParam::PinU,
-            &[Field("pin"), Field("u")],
-            TrackMut::Scalar(&mut pin.u),
-        );
-        site(
-            LayerParam::PinV,
-            &[Field("pin"), Field("v")],
-            TrackMut::Scalar(&mut pin.v),
-        );
-    }
+    f(
+        MaskNumber::Feather,
+        vec![Field("mask"), Field("feather")],
+        TrackMut::Scalar(feather),
+    );
 }

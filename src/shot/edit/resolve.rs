@@ -2,7 +2,7 @@
 //! names none.
 
 use super::error::EditError;
-use super::param_path::{HighlightRef, ParamPath};
+use super::param_path::{HighlightRef, OpParam, ParamPath, ShadeParam};
 use super::param_sites::ParsedFile;
 use super::read::read_file;
 
@@ -51,7 +51,8 @@ pub(super) fn resolve(file: &mut ParsedFile, path: &ParamPath) -> Result<ParamPa
         ParamPath::Highlight { .. }
         | ParamPath::Camera(_)
         | ParamPath::Light(_)
-        | ParamPath::Material { .. } => path.clone(),
+        | ParamPath::Material { .. }
+        | ParamPath::Shade { .. } => path.clone(),
     };
     if file.site(&resolved).is_none() {
         return Err(unknown_path(file, path));
@@ -73,12 +74,48 @@ fn unknown_path(file: &mut ParsedFile, path: &ParamPath) -> EditError {
                 )
             }
         }
+        ParamPath::Shade { entry, param } => missing_shade(file, *entry, *param),
         ParamPath::Camera(_)
         | ParamPath::Light(_)
         | ParamPath::Material { .. }
         | ParamPath::Highlight { .. } => "this file has no such track".to_string(),
     };
     bad_path(file, &path.to_string(), reason)
+}
+
+/// Why `shade[entry].…param` names no track of `file`: no such entry, no such operation, an
+/// operation without that number, or no mask.
+fn missing_shade(file: &ParsedFile, entry: usize, param: ShadeParam) -> String {
+    let shade = file.shade();
+    let Some(spec) = shade.get(entry) else {
+        return match shade.len() {
+            0 => format!("this file has no shade entry, so no shade[{entry}]"),
+            1 => format!("this file has one shade entry, shade[0], so no shade[{entry}]"),
+            n => format!(
+                "this file has {n} shade entries, shade[0] to shade[{}], so no shade[{entry}]",
+                n - 1
+            ),
+        };
+    };
+    match param {
+        ShadeParam::Op { index, param } => match spec.stack.get(index) {
+            None => format!(
+                "shade[{entry}]'s stack has {} operation(s), numbered from 0, so no stack[{index}]",
+                spec.stack.len()
+            ),
+            Some(crate::highlight::Op::Scale { .. }) if param == OpParam::Axis => format!(
+                "shade[{entry}].stack[{index}]'s axis is `U` or `V`, which has no number; `Angle(φ)` has one"
+            ),
+            Some(op) => format!(
+                "shade[{entry}].stack[{index}] is a {}, which has no `{}`",
+                op.name(),
+                param.name()
+            ),
+        },
+        ShadeParam::MaskU(_) | ShadeParam::MaskV(_) | ShadeParam::MaskFeather => {
+            format!("shade[{entry}] has no mask")
+        }
+    }
 }
 
 #[must_use]
@@ -123,11 +160,13 @@ fn bad_path(file: &mut ParsedFile, written: &str, reason: String) -> EditError {
             ParamPath::Highlight { .. }
             | ParamPath::Camera(_)
             | ParamPath::Light(_)
-            | ParamPath::Material { .. } => None,
+            | ParamPath::Material { .. }
+            | ParamPath::Shade { .. } => None,
         })
         .collect();
     candidates.extend(by_pattern);
-    // Paths under the same first name (`camera`, `light`, `materials`, `highlights`) first.
+    // Paths under the same first name (`camera`, `light`, `materials`, `highlights`, `shade`)
+    // first.
     let root = |path: &str| {
         path.split(['.', '[', '{'])
             .next()
