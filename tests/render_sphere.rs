@@ -1,23 +1,33 @@
 //! The renderer against the analytic sphere: the highlight matte of an orthographic and a
 //! perspective render of the exact NURBS sphere, compared per pixel with the region found by
-//! ray-casting the analytic sphere and running the same operations on its analytic frame
-//! (`glint::accuracy::AnalyticSphere`, shared with `glint bench accuracy`).
+//! ray-casting the analytic sphere and evaluating the same highlight description in closed form
+//! on its analytic frame (`glint::accuracy::AnalyticSphere` with `ClosedForm`, shared with
+//! `glint bench accuracy`), which shares no code with the renderer's highlight evaluation.
 
 use std::sync::Arc;
 
 use glam::DVec3;
+use glint::accuracy::sphere_point::sphere_parameters;
 use glint::accuracy::sweep::Stack;
-use glint::accuracy::{metrics, AnalyticSphere};
-use glint::highlight::{Expr, Layer, Op, PreparedExpr};
+use glint::accuracy::{metrics, AnalyticSphere, ClosedForm};
+use glint::highlight::{Axis, Expr, Layer, Mask, Op, PreparedExpr, SquareStyle};
 use glint::render::tessellate::Density;
 use glint::render::{Antialias, Aovs, FrameMode, Projection, Renderer, Settings};
 
 const SIZE: u32 = 512;
 
-fn expression(stack: Vec<Op>) -> PreparedExpr {
+fn expression(stack: Vec<Op>) -> Expr {
     Expr::Layer(Layer::new(stack, 0.04, [1.0, 1.0, 1.0]))
-        .prepare()
-        .unwrap()
+}
+
+/// The highlight as the renderer takes it.
+fn prepared(expr: &Expr) -> PreparedExpr {
+    expr.prepare().unwrap()
+}
+
+/// The highlight as the reference evaluates it, in closed form.
+fn closed(expr: &Expr) -> ClosedForm {
+    ClosedForm::try_new(expr).unwrap()
 }
 
 /// The renderer's highlight matte with `settings`.
@@ -65,9 +75,9 @@ fn iou(a: &[f32], b: &[f32]) -> f64 {
     metrics::iou(a, b).unwrap()
 }
 
-/// Asserts that the renderer's matte matches the analytic one (pixel centres) with at least
-/// `minimum` IoU, in an orthographic and a perspective view.
-fn assert_matches_analytic(expr: &PreparedExpr, minimum: f64) {
+/// Asserts that the renderer's matte of `render` matches the closed-form region of `truth`
+/// (pixel centres) with at least `minimum` IoU, in an orthographic and a perspective view.
+fn assert_matches_closed_form(render: &PreparedExpr, truth: &ClosedForm, minimum: f64) {
     for projection in [
         Projection::Orthographic { height: 2.4 },
         Projection::Perspective {
@@ -75,10 +85,19 @@ fn assert_matches_analytic(expr: &PreparedExpr, minimum: f64) {
         },
     ] {
         let sphere = AnalyticSphere::new(projection);
-        let analytic = sphere.coverage(expr, SIZE, 1);
-        let score = iou(&rendered(expr, &sphere), &analytic);
-        assert!(score >= minimum, "{expr:?}, {projection:?}: IoU {score}");
+        let analytic = sphere.coverage(truth, SIZE, 1);
+        let score = iou(&rendered(render, &sphere), &analytic);
+        assert!(
+            score >= minimum,
+            "{:?}, {projection:?}: IoU {score}",
+            truth.expr()
+        );
     }
+}
+
+/// [`assert_matches_closed_form`] of one description.
+fn assert_matches_analytic(expr: &Expr, minimum: f64) {
+    assert_matches_closed_form(&prepared(expr), &closed(expr), minimum);
 }
 
 #[test]
@@ -88,9 +107,87 @@ fn identity_highlight_matches_the_analytic_region_orthographic_and_perspective()
 
 #[test]
 fn operated_highlights_match_the_same_operations_on_the_analytic_frame() {
-    // The accuracy ladder's stacks: translation + scaling, split and squaring, ε = 0.04.
-    for stack in [Stack::TranslateScale, Stack::Split, Stack::Square] {
-        assert_matches_analytic(&stack.expression(), 0.99);
+    // The accuracy ladder's stacks: translation + scaling, split, squaring and the crescent,
+    // ε = 0.04; the renderer reads the keyed translation from its track, the reference from
+    // the keys by hand.
+    for stack in [
+        Stack::TranslateScale,
+        Stack::Split,
+        Stack::Square,
+        Stack::Crescent,
+        Stack::Keyed { frame: 6.25 },
+    ] {
+        assert_matches_closed_form(&stack.expression(), &stack.reference_expression(), 0.99);
+    }
+}
+
+#[test]
+fn every_operation_renders_its_closed_form_region() {
+    // Each operation at intermediate strength and a stack of several, ε = 0.04.
+    let scale = |delta: f32, axis: Axis| Op::Scale { delta, axis };
+    let square = |sigma: f32, n: f32, style: SquareStyle| Op::Square { sigma, n, style };
+    for stack in [
+        vec![Op::Rotate { degrees: 30.0 }, scale(0.6, Axis::U)],
+        vec![scale(0.5, Axis::V)],
+        vec![scale(0.7, Axis::Angle(-40.0))],
+        vec![Op::Split {
+            gamma_u: 0.0,
+            gamma_v: 0.08,
+        }],
+        vec![Op::Split {
+            gamma_u: 0.07,
+            gamma_v: 0.07,
+        }],
+        vec![square(0.5, 1.5, SquareStyle::Tangent)],
+        vec![square(1.0, 1.0, SquareStyle::PerAxis)],
+        vec![
+            Op::Translate {
+                alpha: 0.05,
+                beta: 0.1,
+            },
+            Op::Rotate { degrees: -25.0 },
+            scale(0.5, Axis::U),
+            Op::Split {
+                gamma_u: 0.04,
+                gamma_v: 0.0,
+            },
+            square(0.2, 2.0, SquareStyle::Tangent),
+        ],
+    ] {
+        assert_matches_analytic(&expression(stack), 0.985);
+    }
+}
+
+#[test]
+fn feather_mask_and_booleans_render_their_closed_form_regions() {
+    // The feather's half level is the hard edge; the mask keeps the side of the highlight's
+    // centre of smaller u on the NURBS sphere, found from the closed form's (u, v) of the
+    // sphere at the point where H = N in the orthographic view.
+    let light = glam::DVec3::new(0.35, -1.0, 0.45).normalize();
+    let centre = sphere_parameters((light + glam::DVec3::NEG_Y).normalize());
+    let layer = |stack: Vec<Op>, epsilon: f32| Layer::new(stack, epsilon, [1.0, 1.0, 1.0]);
+    let feathered = Expr::Layer(Layer {
+        feather: Some(0.02),
+        ..layer(vec![], 0.05)
+    });
+    let masked = Expr::Layer(Layer {
+        mask: Some(Mask {
+            u: (0.0, centre.x as f32),
+            v: (0.0, 1.0),
+            feather: 0.0,
+        }),
+        ..layer(vec![], 0.06)
+    });
+    let moved = |alpha: f32, beta: f32| {
+        Box::new(Expr::Layer(layer(
+            vec![Op::Translate { alpha, beta }],
+            0.04,
+        )))
+    };
+    let union = Expr::Union(moved(-0.15, 0.0), moved(0.15, 0.05));
+    let intersect = Expr::Intersect(moved(-0.08, 0.0), moved(0.08, 0.05));
+    for expr in [feathered, masked, union, intersect] {
+        assert_matches_analytic(&expr, 0.985);
     }
 }
 
@@ -98,11 +195,12 @@ fn operated_highlights_match_the_same_operations_on_the_analytic_frame() {
 fn anti_aliasing_brings_the_matte_closer_to_the_true_pixel_coverage() {
     let size = 96;
     let sphere = AnalyticSphere::new(Projection::Orthographic { height: 2.4 });
-    let expr = expression(vec![Op::Scale {
+    let description = expression(vec![Op::Scale {
         delta: 0.5,
         axis: Default::default(),
     }]);
-    let truth = sphere.coverage(&expr, size, 8);
+    let expr = prepared(&description);
+    let truth = sphere.coverage(&closed(&description), size, 8);
     let error = |antialias: Antialias| -> f32 {
         let settings = Settings {
             density: Density::PerSpan { u: 16, v: 16 },
@@ -183,7 +281,8 @@ fn the_reference_and_the_render_match_the_closed_form_cap() {
         } else {
             vec![Op::Translate { alpha, beta }]
         };
-        let expr = expression(stack);
+        let description = expression(stack);
+        let expr = prepared(&description);
         for projection in [
             Projection::Orthographic { height: 2.4 },
             Projection::Perspective {
@@ -199,7 +298,7 @@ fn the_reference_and_the_render_match_the_closed_form_cap() {
             let inside = truth.iter().filter(|t| **t == Some(true)).count();
             assert!(inside > 500, "{projection:?}: {inside} pixels");
             let sphere = AnalyticSphere::new(projection);
-            let reference = sphere.coverage(&expr, SIZE, 1);
+            let reference = sphere.coverage(&closed(&description), SIZE, 1);
             let wrong = truth
                 .iter()
                 .zip(&reference)

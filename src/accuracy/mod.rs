@@ -7,12 +7,19 @@
 //! tables and writes the CSV files and the plot.
 
 pub mod case;
+pub mod closed_form;
+pub mod closed_form_ops;
 pub mod geometry;
 pub mod metrics;
 pub mod reference;
+mod renderer_highlight;
 pub mod scaling;
+pub mod sphere_highlight;
+pub mod sphere_point;
 pub mod stack;
 pub mod sweep;
 pub mod timing;
 
+pub use closed_form::ClosedForm;
 pub use reference::AnalyticSphere;
+pub use sphere_highlight::SphereHighlight;

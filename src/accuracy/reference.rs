@@ -1,14 +1,17 @@
 //! The analytic reference: the unit sphere about the origin, ray-cast through each pixel, with
-//! the highlight operations run on its analytic frame (east, north, outward). The NURBS sphere
-//! renders of the same view are measured against it.
+//! the highlight evaluated in closed form on its analytic frame (east, north, outward;
+//! [`ClosedForm`](super::closed_form::ClosedForm)), independently of the renderer's highlight
+//! code. The NURBS sphere renders of the same view are measured against it.
 
 use std::sync::Arc;
 
 use glam::{DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 
+use super::sphere_highlight::SphereHighlight;
+use super::sphere_point::SpherePoint;
 use crate::geom::{shapes, NamedPatch, PatchLibrary};
-use crate::highlight::{half_vector, Footprint, Light, PreparedExpr, TangentFrame};
+use crate::highlight::{Light, PreparedExpr};
 use crate::render::{Aovs, Camera, PatchLook, Projection, Scene, Tone};
 use crate::toon::CelRamp;
 
@@ -108,28 +111,44 @@ impl AnalyticSphere {
         (disc >= 0.0).then(|| near + (-b - disc.sqrt()) * d)
     }
 
-    /// Whether the sphere point `p` lies inside `highlight`, evaluated on the analytic frame
-    /// `N = p`, `du = (−N.y, N.x, 0)/|…|` (east), `dv = N × du` (north), with the half vector of
-    /// this view's light and the eye. Masks see `(u, v) = (0, 0)`.
-    pub fn inside(&self, highlight: &PreparedExpr, p: DVec3) -> bool {
-        let n = p.normalize();
-        let east = DVec3::new(-n.y, n.x, 0.0)
+    /// The unit vector from the sphere point `p` toward the eye, in f64: `normalize(eye − p)`
+    /// under perspective, `normalize(eye − target)` under orthographic projection.
+    #[must_use]
+    pub fn toward_eye(&self, p: DVec3) -> DVec3 {
+        let along_sight = (self.camera.eye - self.camera.target)
+            .as_dvec3()
+            .normalize();
+        match self.camera.projection {
+            Projection::Perspective { .. } => (self.camera.eye.as_dvec3() - p)
+                .try_normalize()
+                .unwrap_or(along_sight),
+            Projection::Orthographic { .. } => along_sight,
+        }
+    }
+
+    /// Blinn's half vector at the sphere point `p`, in f64: `H = normalize(L + V)` for this
+    /// view's light L and [`toward_eye`](Self::toward_eye) V; where `L = −V`, a unit vector
+    /// perpendicular to V (docs/highlights.md).
+    #[must_use]
+    pub fn half_vector_at(&self, p: DVec3) -> DVec3 {
+        let v = self.toward_eye(p);
+        let l = self.light.as_dvec3().normalize();
+        (l + v)
             .try_normalize()
-            .unwrap_or(DVec3::NEG_X);
-        let north = n.cross(east);
-        let frame = TangentFrame::new(east.as_vec3(), north.as_vec3(), n.as_vec3());
-        let v = self.camera.toward_eye(p.as_vec3());
-        let h = half_vector(self.light, v);
-        highlight
-            .eval(&frame, Vec2::ZERO, h, Footprint::HARD)
-            .coverage
-            > 0.5
+            .unwrap_or_else(|| v.any_orthonormal_vector())
+    }
+
+    /// Whether the sphere point `p` lies inside `highlight` (coverage above ½), evaluated at its
+    /// [`SpherePoint`] (the analytic frame east, north, outward and the NURBS sphere's (u, v))
+    /// with [`half_vector_at`](Self::half_vector_at).
+    pub fn inside(&self, highlight: &impl SphereHighlight, p: DVec3) -> bool {
+        highlight.coverage_at(&SpherePoint::at(p), self.half_vector_at(p)) > 0.5
     }
 
     /// The fraction of `k × k` sub-pixel samples (at `((i + ½)/k, (j + ½)/k)` within the pixel)
     /// inside the highlight, per pixel of a `size × size` image, rows from the top. With `k = 1`
     /// it is the pixel-centre classification; with large `k` the true area coverage.
-    pub fn coverage(&self, highlight: &PreparedExpr, size: u32, k: u32) -> Vec<f32> {
+    pub fn coverage(&self, highlight: &impl SphereHighlight, size: u32, k: u32) -> Vec<f32> {
         let samples = k.max(1) * k.max(1);
         (0..size * size)
             .into_par_iter()
@@ -139,7 +158,13 @@ impl AnalyticSphere {
 
     /// Of the `k × k` samples of pixel `i` (at `((i + ½)/k, (j + ½)/k)` within it) of a
     /// `size × size` image: how many hit the sphere, and how many of those lie in `highlight`.
-    fn sample_counts(&self, highlight: &PreparedExpr, size: u32, i: u32, k: u32) -> (u32, u32) {
+    fn sample_counts(
+        &self,
+        highlight: &impl SphereHighlight,
+        size: u32,
+        i: u32,
+        k: u32,
+    ) -> (u32, u32) {
         let k = k.max(1);
         let (px, py) = ((i % size) as f32, (i / size) as f32);
         (0..k * k).fold((0, 0), |(sphere, inside), s| {
@@ -157,7 +182,13 @@ impl AnalyticSphere {
     /// (as [`Self::coverage`]); a pixel partly covered by either, or whose counts differ from a
     /// neighbour's, is sampled again `refined × refined` times, so that the boundary pixels,
     /// where the measures are decided, carry the finer estimate.
-    pub fn mattes(&self, highlight: &PreparedExpr, size: u32, k: u32, refined: u32) -> Mattes {
+    pub fn mattes(
+        &self,
+        highlight: &impl SphereHighlight,
+        size: u32,
+        k: u32,
+        refined: u32,
+    ) -> Mattes {
         let count = |i: u32, k: u32| self.sample_counts(highlight, size, i, k);
         let coarse: Vec<(u32, u32)> = (0..size * size)
             .into_par_iter()
@@ -271,12 +302,9 @@ mod tests {
         let sphere = AnalyticSphere::new(Projection::Orthographic { height: 2.4 });
         let size = 64;
         let radius = f64::from(size) / 2.4;
-        let expr = crate::highlight::Expr::Layer(crate::highlight::Layer::new(
-            vec![],
-            0.04,
-            [1.0, 1.0, 1.0],
+        let expr = super::super::closed_form::ClosedForm::try_new(&crate::highlight::Expr::Layer(
+            crate::highlight::Layer::new(vec![], 0.04, [1.0, 1.0, 1.0]),
         ))
-        .prepare()
         .unwrap();
         let mattes = sphere.mattes(&expr, size, 4, 32);
         let area: f64 = mattes.silhouette.iter().map(|&c| f64::from(c)).sum();

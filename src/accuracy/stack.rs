@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use super::closed_form::ClosedForm;
 use crate::anim::{Key, Track};
 use crate::highlight::{Expr, Layer, Op, PreparedExpr, SquareStyle};
 
@@ -45,22 +46,25 @@ impl Stack {
     /// frame.
     pub fn expression(self) -> PreparedExpr {
         self.with_keyed(keyed_by_track)
+            .prepare()
+            .expect("the sweep's highlight parameters are in range")
     }
 
     /// The highlight as the analytic reference gets it: a keyed value is interpolated between
     /// the keys around the frame, `α = α_k + (f − f_k)(α_{k+1} − α_k)/(f_{k+1} − f_k)`,
-    /// independently of [`Track::at`].
-    pub fn reference_expression(self) -> PreparedExpr {
-        self.with_keyed(keyed_by_hand)
+    /// independently of [`Track::at`], evaluated in closed form ([`ClosedForm`]).
+    pub fn reference_expression(self) -> ClosedForm {
+        ClosedForm::try_new(&self.with_keyed(keyed_by_hand))
+            .expect("the sweep's highlights are ε-discs without pins")
     }
 
     /// The expression, ε = 0.04 unless said otherwise, with `keyed` giving the keyed
     /// translation at a frame.
-    fn with_keyed(self, keyed: impl Fn(f32) -> f32) -> PreparedExpr {
+    fn with_keyed(self, keyed: impl Fn(f32) -> f32) -> Expr {
         let layer = |stack: Vec<Op>, epsilon: f32| {
             Box::new(Expr::Layer(Layer::new(stack, epsilon, [1.0, 1.0, 1.0])))
         };
-        let expr = match self {
+        match self {
             Stack::Identity => *layer(vec![], 0.04),
             Stack::TranslateScale => *layer(
                 vec![
@@ -126,9 +130,7 @@ impl Stack {
                 }],
                 0.04,
             ),
-        };
-        expr.prepare()
-            .expect("the sweep's highlight parameters are in range")
+        }
     }
 }
 
