@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use glam::{Vec3, Vec4};
-use glint::accuracy::AnalyticSphere;
+use glint::accuracy::{AnalyticSphere, ClosedForm};
 use glint::geom::PatchLibrary;
 use glint::highlight::{Expr, Layer, Light, Op};
 use glint::render::{
@@ -363,7 +363,7 @@ fn a_highlight_edge_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
         fov_y_degrees: 26.0,
     });
     let layer = |stack, epsilon| Box::new(Expr::Layer(Layer::new(stack, epsilon, [1.0; 3])));
-    let crescent = Expr::Subtract(
+    let described = Expr::Subtract(
         layer(vec![], 0.12),
         layer(
             vec![Op::Translate {
@@ -372,16 +372,16 @@ fn a_highlight_edge_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
             }],
             0.06,
         ),
-    )
-    .prepare()
-    .unwrap();
+    );
+    let crescent = described.prepare().unwrap();
     let aovs = Aovs {
         matte: true,
         ..Aovs::default()
     };
     let scene = view.scene(&library, &crescent, aovs);
     let render = |scene: &Scene, antialias| final_with(&library, scene, size, antialias);
-    let truth = view.coverage(&crescent, size, 16);
+    // The truth from the closed form, not from the renderer's own highlight code.
+    let truth = view.coverage(&ClosedForm::try_new(&described).unwrap(), size, 16);
     // The pixels wholly on the sphere (its four corners are: the disc is convex) that an edge
     // of the crescent crosses.
     let on_sphere = |i: u32| {

@@ -1,5 +1,6 @@
 //! Marks drawn over a rendered frame for the person tuning it: patch seams, the highlight
-//! matte, and pin points — each on an sRGB RGBA8 image, rows from the top.
+//! matte, the cel bands' edges, and pin points — each on an sRGB RGBA8 image, rows from the
+//! top.
 
 /// Darkens the pixels where the patch changes to the right or below (a seam between patches,
 /// or the silhouette against the background): `ids` holds a patch index per pixel, `u32::MAX`
@@ -44,6 +45,57 @@ pub fn draw_matte(rgba: &mut [u8], matte: &[f32], width: u32, height: u32) {
                 blend(&mut rgba[at..at + 4], MAGENTA, 1.0);
             } else if m > 0.0 {
                 blend(&mut rgba[at..at + 4], MAGENTA, 0.45 * m);
+            }
+        }
+    }
+}
+
+/// Draws the edges of the cel bands — the terminator and every other band's edge — in cyan:
+/// where the band of `N·L'` (`n_dot_l`, per pixel) changes to the right or below between two
+/// pixels of patches toned alike. `tone` gives, per patch index (`ids`, `u32::MAX` on the
+/// background), its tone's number and its band thresholds in increasing order (`None`: no cel
+/// bands), so that an edge is drawn only between pixels whose bands are counted the same way.
+pub fn draw_band_edges(
+    rgba: &mut [u8],
+    n_dot_l: &[f32],
+    ids: &[u32],
+    (width, height): (u32, u32),
+    tone: impl Fn(u32) -> Option<(usize, Vec<f32>)>,
+) {
+    const CYAN: [u8; 3] = [0, 230, 255];
+    let (w, h) = (width as usize, height as usize);
+    // Each patch's tone, asked once.
+    let patches = ids
+        .iter()
+        .filter(|&&id| id != u32::MAX)
+        .max()
+        .map_or(0, |&m| m as usize + 1);
+    let tones: Vec<Option<(usize, Vec<f32>)>> = (0..patches as u32).map(&tone).collect();
+    // Per pixel: its tone's number and its band (how many thresholds N·L' reaches).
+    let bands: Vec<Option<(usize, usize)>> = (0..w * h)
+        .map(|p| {
+            let (k, thresholds) = tones.get(ids[p] as usize)?.as_ref()?;
+            Some((
+                *k,
+                thresholds.iter().take_while(|&&t| n_dot_l[p] >= t).count(),
+            ))
+        })
+        .collect();
+    for y in 0..h {
+        for x in 0..w {
+            let Some((tone, band)) = bands[y * w + x] else {
+                continue;
+            };
+            let edge = [
+                (x + 1 < w).then(|| y * w + x + 1),
+                (y + 1 < h).then(|| (y + 1) * w + x),
+            ]
+            .into_iter()
+            .flatten()
+            .any(|n| matches!(bands[n], Some((t, b)) if t == tone && b != band));
+            if edge {
+                let at = (y * w + x) * 4;
+                blend(&mut rgba[at..at + 4], CYAN, 1.0);
             }
         }
     }
@@ -112,6 +164,23 @@ mod tests {
         assert_eq!(&rgba[4..8], &[255, 0, 200, 255], "the edge, solid");
         assert!(rgba[0] > 0 && rgba[0] < 255, "inside, tinted");
         assert_eq!(&rgba[8..12], &[0, 0, 0, 255], "outside, untouched");
+    }
+
+    #[test]
+    fn band_edges_are_drawn_where_the_band_changes_between_pixels_toned_alike() {
+        // One row: patches 0 and 1 share a tone with its threshold at 0.3, patch 2 has another
+        // at 0.5; the background after.
+        let n_dot_l = [0.1, 0.2, 0.4, 0.45, 0.35, 0.6, 0.0];
+        let ids = [0, 0, 0, 1, 2, 2, u32::MAX];
+        let mut rgba = [0u8, 0, 0, 255].repeat(7);
+        draw_band_edges(&mut rgba, &n_dot_l, &ids, (7, 1), |id| match id {
+            0 | 1 => Some((0, vec![0.3])),
+            _ => Some((1, vec![0.5])),
+        });
+        let cyan: Vec<bool> = rgba.chunks(4).map(|p| p[..3] == [0, 230, 255]).collect();
+        // 0.2 → 0.4 crosses 0.3 (drawn); 0.45 → 0.35 on another tone (not); 0.35 → 0.6 crosses
+        // 0.5 (drawn); nothing against the background.
+        assert_eq!(cyan, [false, true, false, false, true, false, false]);
     }
 
     #[test]

@@ -29,7 +29,8 @@ pub use edit::{
     apply_edits, edit_layer, edit_text, frame_text, mask_text, number_text, op_text, param_paths,
     param_readings, parse_param_path, rounded_number_text, track_span, track_text, track_texts,
     value_text, CameraParam, DetailParam, EditError, HighlightRef, LayerEdit, LayerParam,
-    LightParam, MaterialParam, OpParam, ParamPath, ParamPathError, ParamReading, TrackEdit,
+    LightParam, MaterialParam, OpParam, ParamPath, ParamPathError, ParamReading, ShadeParam,
+    TrackEdit,
 };
 pub use file::{Aov, Preset, Selector};
 pub use frame_state::FrameState;

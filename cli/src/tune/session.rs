@@ -11,14 +11,16 @@ use serde::{Deserialize, Serialize};
 use super::change::{apply_changes, Change, OpKind};
 use super::error::TuneError;
 use super::history::History;
-use super::view::{highlight_views, pin_at, shape_view, StateView};
+use super::view::{highlight_views, pin_at, shade_views, shape_view, StateView};
 use glint::formats::image_encoding::colour_rgba8;
 use glint::formats::replace_text::replace_text;
 use glint::highlight::{Op, MAX_OUTLINE_SEGMENTS};
 use glint::job::{JobError, LayerChoice, Overrides, PlaceError, RenderJob, ShapePointError};
-use glint::picture::overlay::{draw_matte, draw_pin, draw_seams};
+use glint::picture::overlay::{draw_band_edges, draw_matte, draw_pin, draw_seams};
 use glint::render::{Stage, SurfacePoint};
-use glint::shot::{load_shot_text, Aov, HighlightRef, LayerParam, OpParam, ParamPath, Preset};
+use glint::shot::{
+    load_shot_text, Aov, HighlightRef, LayerParam, MaterialState, OpParam, ParamPath, Preset,
+};
 
 /// The quality a frame is rendered at.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -41,6 +43,8 @@ pub struct Overlays {
     pub matte: bool,
     /// Every pin of the shot file's layers.
     pub pins: bool,
+    /// The cel bands' edges: the terminator and every band's, where `N·L'` crosses them.
+    pub terminator: bool,
 }
 
 /// A frame asked for: at a frame, a quality, with overlays, and with changes made to the text
@@ -77,6 +81,10 @@ pub struct Pick {
     pub highlight: Option<usize>,
     /// Its layers that cover the point at this frame.
     pub covering: Vec<usize>,
+    /// The shade entries whose stacks act on its light (includes first), in order.
+    pub shade: Vec<usize>,
+    /// `N·L'` there: what its tone reads (the designed light's, with shade entries).
+    pub n_dot_l: f32,
 }
 
 /// A pointer dragging a highlight layer at a frame: its centre goes where the pointer is.
@@ -146,7 +154,7 @@ fn check_changes(changes: &[Change]) -> Result<(), TuneError> {
 
 /// The AOVs every frame of a session is rendered with: the patch under each pixel for picking
 /// and seams, the matte for its overlay.
-const SESSION_AOVS: [Aov; 2] = [Aov::PatchId, Aov::Matte];
+const SESSION_AOVS: [Aov; 3] = [Aov::PatchId, Aov::Matte, Aov::NDotL];
 
 fn bad(e: impl std::fmt::Display) -> TuneError {
     TuneError::Bad(e.to_string())
@@ -240,6 +248,7 @@ impl Session {
             redo,
             disk_error: self.disk_error.clone(),
             highlights: highlight_views(shot, &text, frame)?,
+            shade: shade_views(shot, &text, frame)?,
             op_kinds: OpKind::ALL.map(OpKind::name),
         })
     }
@@ -293,12 +302,29 @@ impl Session {
             }
             None => Vec::new(),
         };
+        let point = SurfacePoint::new(
+            &library.patches[patch].surface,
+            uv,
+            &state.camera,
+            &state.light,
+        );
+        let scene = state
+            .scene(shot)
+            .map_err(|e| TuneError::Bad(e.to_string()))?;
+        let n_dot_l = scene.tone_n_dot_l(
+            patch as u32,
+            &point.frame,
+            glam::Vec2::new(uv.0 as f32, uv.1 as f32),
+            point.position,
+        );
         Ok(Pick {
             patch: library.patches[patch].name.clone(),
             parts: library.groups_of(patch).map(|g| g.name.clone()).collect(),
             uv: [uv.0, uv.1],
             highlight,
             covering,
+            shade: shot.shade_of(patch).iter().map(|&e| e as usize).collect(),
+            n_dot_l,
         })
     }
 
@@ -628,6 +654,22 @@ fn draw(job: &mut RenderJob, frame: f64, overlays: Overlays) -> Result<FrameImag
     if overlays.matte {
         if let Some(matte) = &image.aovs.matte {
             draw_matte(&mut rgba, matte, width, height);
+        }
+    }
+    if overlays.terminator {
+        if let (Some(n_dot_l), Some(ids)) = (&image.aovs.n_dot_l, &image.aovs.patch_id) {
+            let shot = job.shot();
+            let state = shot.at(frame);
+            draw_band_edges(&mut rgba, n_dot_l, ids, (width, height), |patch| {
+                let material = shot.material_of(patch as usize);
+                match &state.materials[material] {
+                    MaterialState::Cel(ramp) => Some((
+                        material,
+                        ramp.bands.iter().map(|(threshold, _)| *threshold).collect(),
+                    )),
+                    MaterialState::XToon(_) => None,
+                }
+            });
         }
     }
     if overlays.seams {

@@ -1,13 +1,14 @@
-//! What the page is told about the shot: its frames and size, and for each highlight layer of
-//! the shot file its operations and parameters, each with its value at the frame, its keys, the
-//! range it must lie in and the span its slider covers.
+//! What the page is told about the shot: its frames and size, and for each highlight layer and
+//! each shade entry of the shot file its operations and parameters, each with its value at the
+//! frame, its keys, the range it must lie in and the span its slider covers.
 
 use serde::Serialize;
 
 use glint::anim::Track;
 use glint::highlight::Shape;
+use glint::param::Bounds;
 use glint::shot::{
-    param_readings, HighlightRef, LayerParam, OpParam, ParamPath, ParamReading, Shot,
+    param_readings, HighlightRef, LayerParam, OpParam, ParamPath, ParamReading, ShadeParam, Shot,
 };
 
 use super::error::TuneError;
@@ -32,6 +33,8 @@ pub struct StateView {
     /// state now (the page keeps the last good state and shows this).
     pub disk_error: Option<String>,
     pub highlights: Vec<HighlightView>,
+    /// The shade entries, includes first.
+    pub shade: Vec<ShadeView>,
     /// The operation kinds a layer can be given.
     pub op_kinds: [&'static str; 5],
 }
@@ -49,6 +52,24 @@ pub struct HighlightView {
     /// Its patch selectors.
     pub patches: Vec<String>,
     pub layers: Vec<LayerView>,
+}
+
+/// One shade entry of the shot: the operations it applies to its patches' light.
+#[derive(Clone, Debug, Serialize)]
+pub struct ShadeView {
+    /// Its index among the shot's entries (includes first), as `pick` names it.
+    pub entry: usize,
+    /// Its index in the shot file's own `shade`; `None` for an entry written in an include.
+    pub file_index: Option<usize>,
+    /// The file it is written in.
+    pub written_in: String,
+    /// Its patch selectors.
+    pub patches: Vec<String>,
+    pub ops: Vec<OpView>,
+    /// The mask's numbers, where it has one.
+    pub params: Vec<ParamView>,
+    /// The index of its placing translation (its last `Translate`), which a drag solves.
+    pub translation: Option<usize>,
 }
 
 /// One layer of a highlight entry.
@@ -106,6 +127,18 @@ pub struct ParamView {
     pub slider: [f32; 2],
 }
 
+/// The span of an operation parameter's slider (see [`slider_span`]).
+#[must_use]
+pub fn op_slider_span(param: OpParam) -> [f32; 2] {
+    match param {
+        OpParam::Alpha | OpParam::Beta => [-1.0, 1.0],
+        OpParam::Degrees | OpParam::Axis => [-180.0, 180.0],
+        OpParam::Delta | OpParam::Sigma => [0.0, 1.0],
+        OpParam::GammaU | OpParam::GammaV => [0.0, 1.0],
+        OpParam::N => [0.25, 8.0],
+    }
+}
+
 /// The span of a parameter's slider: where its useful values lie. Translations past ±1 make H
 /// nearly tangent; a split past 1 pushes the pieces off a sphere; ε past 0.5 covers a quarter of
 /// it.
@@ -119,13 +152,27 @@ pub fn slider_span(param: LayerParam) -> [f32; 2] {
             [0.0, 1.0]
         }
         LayerParam::MaskFeather => [0.0, 0.5],
-        LayerParam::Op { param, .. } => match param {
-            OpParam::Alpha | OpParam::Beta => [-1.0, 1.0],
-            OpParam::Degrees | OpParam::Axis => [-180.0, 180.0],
-            OpParam::Delta | OpParam::Sigma => [0.0, 1.0],
-            OpParam::GammaU | OpParam::GammaV => [0.0, 1.0],
-            OpParam::N => [0.25, 8.0],
-        },
+        LayerParam::Op { param, .. } => op_slider_span(param),
+    }
+}
+
+/// The span of a shade entry parameter's slider, as a layer's of the same kind.
+#[must_use]
+pub fn shade_slider_span(param: ShadeParam) -> [f32; 2] {
+    match param {
+        ShadeParam::MaskU(_) | ShadeParam::MaskV(_) => [0.0, 1.0],
+        ShadeParam::MaskFeather => [0.0, 0.5],
+        ShadeParam::Op { param, .. } => op_slider_span(param),
+    }
+}
+
+/// The name a shade entry parameter is written with inside its entry or operation.
+fn shade_param_name(param: ShadeParam) -> String {
+    match param {
+        ShadeParam::MaskU(i) => format!("mask.u[{i}]"),
+        ShadeParam::MaskV(i) => format!("mask.v[{i}]"),
+        ShadeParam::MaskFeather => "mask.feather".to_string(),
+        ShadeParam::Op { param, .. } => param.name().to_string(),
     }
 }
 
@@ -147,14 +194,24 @@ fn param_name(param: LayerParam) -> String {
 }
 
 fn param_view(param: LayerParam, reading: &ParamReading) -> ParamView {
-    let bounds = param.bounds();
-    let mut slider = slider_span(param);
+    view_of(
+        reading,
+        param_name(param),
+        param.bounds(),
+        slider_span(param),
+    )
+}
+
+/// A parameter read at a frame, with its name, bounds and slider span, for the page: the span
+/// widened to hold its value now.
+fn view_of(reading: &ParamReading, name: String, bounds: Bounds, span: [f32; 2]) -> ParamView {
+    let mut slider = span;
     for &v in &reading.value {
         slider = [slider[0].min(v), slider[1].max(v)];
     }
     ParamView {
         path: reading.path.to_string(),
-        name: param_name(param),
+        name,
         value: reading.value.clone(),
         keys: reading.keys.clone(),
         min: bounds.min.is_finite().then_some(bounds.min),
@@ -244,6 +301,68 @@ pub fn highlight_views(
             written_in,
             patches: selectors.get(entry).map(|s| s.to_vec()).unwrap_or_default(),
             layers,
+        });
+    }
+    Ok(views)
+}
+
+/// Every shade entry of `shot`, whose file's text is `text`, at `frame`.
+pub fn shade_views(shot: &Shot, text: &str, frame: f64) -> Result<Vec<ShadeView>, TuneError> {
+    let readings = param_readings(text, frame)
+        .map_err(|e| TuneError::Bad(e.in_file(&shot.path).to_string()))?;
+    let own = std::fs::canonicalize(&shot.path).unwrap_or_else(|_| shot.path.clone());
+    let selectors: Vec<&[String]> = shot.shade_selectors().collect();
+    let mut views = Vec::new();
+    for entry in 0..shot.shade_count() {
+        let (written_in, file_index) = match shot.shade_written(entry) {
+            Some((file, index)) => {
+                let same = std::fs::canonicalize(file).is_ok_and(|f| f == own);
+                (file.display().to_string(), same.then_some(index))
+            }
+            None => (shot.path.display().to_string(), None),
+        };
+        let params_of = |keep: &dyn Fn(ShadeParam) -> bool| -> Vec<ParamView> {
+            readings
+                .iter()
+                .filter_map(|r| match r.path {
+                    ParamPath::Shade { entry: i, param }
+                        if Some(i) == file_index && keep(param) =>
+                    {
+                        Some(view_of(
+                            r,
+                            shade_param_name(param),
+                            param.bounds(),
+                            shade_slider_span(param),
+                        ))
+                    }
+                    _ => None,
+                })
+                .collect()
+        };
+        let Some(stack) = shot.shade_stack(entry) else {
+            continue;
+        };
+        let ops = stack
+            .stack
+            .iter()
+            .enumerate()
+            .map(|(j, op)| OpView {
+                index: j,
+                name: op.name(),
+                params: params_of(&|p| matches!(p, ShadeParam::Op { index, .. } if index == j)),
+            })
+            .collect();
+        views.push(ShadeView {
+            entry,
+            file_index,
+            written_in,
+            patches: selectors.get(entry).map(|s| s.to_vec()).unwrap_or_default(),
+            ops,
+            params: params_of(&|p| !matches!(p, ShadeParam::Op { .. })),
+            translation: stack
+                .stack
+                .iter()
+                .rposition(|op| matches!(op, glint::highlight::Op::Translate { .. })),
         });
     }
     Ok(views)

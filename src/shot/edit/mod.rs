@@ -25,7 +25,7 @@ pub use layer_text::{mask_text, op_text};
 pub use number_text::{frame_text, number_text, rounded_number_text, value_text};
 pub use param_path::{
     CameraParam, DetailParam, HighlightRef, LayerParam, LightParam, MaterialParam, OpParam,
-    ParamPath, ParamPathError,
+    ParamPath, ParamPathError, ShadeParam,
 };
 pub use param_readings::{param_readings, ParamReading};
 pub use query::{param_paths, track_span, track_text, track_texts};
