@@ -53,6 +53,7 @@ mod render_teapot;
 mod render_tessellate;
 mod render_trim;
 mod shade_key;
+mod shade_place;
 mod shot_errors;
 mod shot_files;
 mod shot_key_edit;
