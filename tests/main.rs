@@ -53,6 +53,7 @@ mod render_teapot;
 mod render_tessellate;
 mod render_trim;
 mod shade_key;
+mod shade_place;
 mod shade_plan;
 mod shade_sphere;
 mod shot_errors;

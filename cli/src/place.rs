@@ -1,5 +1,5 @@
-//! `glint place`: the translation that puts a highlight's centre on the surface point under a
-//! pixel.
+//! `glint place`: the translation that puts a highlight's centre, or with --shade a cel band's
+//! edge, on the surface point under a pixel.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -11,6 +11,7 @@ use serde::Serialize;
 use super::key::write_in_place;
 use super::render::{parse_size, PresetArg};
 use super::{write_stdout, CliError};
+use glint::job::shade_place::{ShadeChoice, ShadePlacement};
 use glint::job::{LayerChoice, LayerUnder, Overrides, PlaceError, Placement, RenderJob};
 use glint::shot::{
     apply_edits, edit_layer, frame_text, parse_param_path, rounded_number_text, LayerEdit, Preset,
@@ -36,18 +37,31 @@ use glint::shot::{
 /// (--write writes the pin; a pinned layer is moved this way). A layer without a translation
 /// gets one when it is drawn.
 ///
+/// With --shade a cel band's edge is placed instead (docs/highlights.md, "Placing the
+/// shadow"): the translation solved is the last Translate of a shade entry picking the patch
+/// (--entry, default the last one), moved along the tangential direction of the light at the
+/// point until band K's edge (--band; default, of the bands a translation can move there, the
+/// one whose edge is nearest the point now) — N·L' equal to its threshold — passes through the
+/// point, with the patch's whole designed light at that frame (every entry, the other
+/// operations, the mask). Every operation keeps the sign of N·L, so an edge at threshold 0, or
+/// one on the other side of the terminator from the point, cannot be moved there: a band edge
+/// is placed above 0, on the light's side. --write keys α and β at the frame where they are
+/// keyed, and sets the constant where they are not.
+///
 /// Pixels are counted from the top left, in the shot's resolution (or --size); a pixel's
 /// centre is at its integer coordinates, and fractions are allowed. Exit code 2 for a pixel
 /// off the model or outside the image, a patch without a highlight, a layer without a
 /// translation or one that is pinned (its translation is solved on every frame: move its pin
-/// with --pin instead).
+/// with --pin instead); with --shade, for a patch without a shade entry or a cel band, an entry
+/// without a translation, or an edge no translation in range puts on the point.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:
   glint place shots/sphere_ops.ron --frame 1 --pixel 320,180
   glint place shots/crescent.ron --frame 12 --pixel 330,170 --layer 1
   glint place shots/sphere_ops.ron --frame 30 --pixel 200,150 --size 240x240 --json
   glint place shots/sphere_ops.ron --frame 12 --pixel 300,200 --write
-  glint place shots/teapot_lid_opens.ron --frame 24 --pixel 322,118 --pin --write")]
+  glint place shots/teapot_lid_opens.ron --frame 24 --pixel 322,118 --pin --write
+  glint place shots/shade_design.ron --frame 48 --pixel 300,200 --shade --band 0 --write")]
 pub struct PlaceArgs {
     /// The shot file (RON)
     shot: PathBuf,
@@ -58,12 +72,23 @@ pub struct PlaceArgs {
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
     pixel: (f64, f64),
     /// The highlight entry, from 0, includes first [default: the one drawn on the patch]
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", conflicts_with = "shade")]
     highlight: Option<usize>,
     /// The layer of the highlight's expression, left to right from 0 [default: the first
     /// with a translation]
-    #[arg(long, value_name = "K")]
+    #[arg(long, value_name = "K", conflicts_with = "shade")]
     layer: Option<usize>,
+    /// Place a cel band's edge by a shade entry's translation instead of a highlight
+    #[arg(long, conflicts_with = "pin")]
+    shade: bool,
+    /// With --shade: the shade entry, from 0, includes first [default: the last that picks the
+    /// patch]
+    #[arg(long, value_name = "N", requires = "shade")]
+    entry: Option<usize>,
+    /// With --shade: the band of the patch's cel material whose edge to place, from 0
+    /// [default: the one whose edge is nearest the point]
+    #[arg(long, value_name = "K", requires = "shade")]
+    band: Option<usize>,
     /// Image size the pixel refers to, instead of the shot's resolution
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     size: Option<(u32, u32)>,
@@ -143,6 +168,9 @@ pub fn run(args: &PlaceArgs) -> Result<(), CliError> {
     };
     if args.pin {
         return pin(args, &mut job, frame, choice);
+    }
+    if args.shade {
+        return shade(args, &mut job, frame);
     }
     let placement = job.place(frame, args.pixel, choice).map_err(|e| {
         let bad = e.is_bad_input();
@@ -389,4 +417,176 @@ fn pin(
         }
         Ok(())
     })
+}
+
+/// A shade placement as printed with --shade --json.
+#[derive(Serialize)]
+struct ShadeReport<'a> {
+    frame: f64,
+    pixel: [f64; 2],
+    patch: &'a str,
+    parts: Vec<&'a str>,
+    u: f64,
+    v: f64,
+    entry: usize,
+    file: String,
+    path: String,
+    band: usize,
+    threshold: f32,
+    n_dot_l_before: f32,
+    alpha: f32,
+    beta: f32,
+    alpha_keyed: bool,
+    beta_keyed: bool,
+}
+
+/// `glint place --shade`: the translation of a shade entry that puts a band edge on the point
+/// under the pixel.
+fn shade(args: &PlaceArgs, job: &mut RenderJob, frame: f64) -> Result<(), CliError> {
+    let shown = args.shot.display();
+    let choice = ShadeChoice {
+        entry: args.entry,
+        band: args.band,
+    };
+    let p = job.place_shade(frame, args.pixel, choice).map_err(|e| {
+        let bad = e.is_bad_input();
+        let e = anyhow!("{shown}: {e}");
+        if bad {
+            CliError::BadInput(e)
+        } else {
+            CliError::Failed(e)
+        }
+    })?;
+    let report = shade_report(job, &p);
+    if args.write {
+        write_shade(&report, &p)?;
+    }
+    write_stdout("the placement", |out| {
+        if args.json {
+            serde_json::to_writer_pretty(&mut *out, &report)?;
+            writeln!(out)?;
+        } else {
+            write_shade_report(out, &report)?;
+            if args.write {
+                writeln!(out, "wrote alpha and beta into {}", report.file)?;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// The shade placement with names, the parameter path of its translation and whether each of
+/// α and β is keyed.
+fn shade_report<'a>(job: &'a RenderJob, p: &ShadePlacement) -> ShadeReport<'a> {
+    let shot = job.shot();
+    let library = &shot.library;
+    let (file, index) = shot
+        .shade_written(p.entry)
+        .map_or((shot.path.as_path(), p.entry), |(f, i)| (f, i));
+    let keyed = |track: &glint::anim::Track<f32>| matches!(track, glint::anim::Track::Keys(_));
+    let (alpha_keyed, beta_keyed) = match shot
+        .shade_stack(p.entry)
+        .and_then(|s| s.stack.get(p.op).cloned())
+    {
+        Some(glint::highlight::Op::Translate { alpha, beta }) => (keyed(&alpha), keyed(&beta)),
+        _ => (false, false),
+    };
+    ShadeReport {
+        frame: p.frame,
+        pixel: [p.pixel.0, p.pixel.1],
+        patch: &library.patches[p.patch].name,
+        parts: library
+            .groups_of(p.patch)
+            .map(|g| g.name.as_str())
+            .collect(),
+        u: p.uv.0,
+        v: p.uv.1,
+        entry: p.entry,
+        file: file.display().to_string(),
+        path: format!("shade[{index}].stack[{}]", p.op),
+        band: p.band,
+        threshold: p.threshold,
+        n_dot_l_before: p.n_dot_l_before,
+        alpha: p.translation.x,
+        beta: p.translation.y,
+        alpha_keyed,
+        beta_keyed,
+    }
+}
+
+/// What --write does to one of α and β: its key at the frame where the track is keyed, its
+/// constant where it is not.
+fn shade_edit(keyed: bool, frame: f64, value: f32) -> TrackEdit {
+    let value = rounded_number_text(value);
+    if keyed {
+        TrackEdit::Key { frame, value }
+    } else {
+        TrackEdit::Set(value)
+    }
+}
+
+/// Writes the placed translation's α and β ([`shade_edit`]) into the file the shade entry is
+/// written in ([`apply_edits`]: only those two tracks change), in place.
+fn write_shade(r: &ShadeReport, p: &ShadePlacement) -> Result<(), CliError> {
+    let file = Path::new(&r.file);
+    let text = std::fs::read_to_string(file)
+        .map_err(|e| CliError::Failed(anyhow!("{}: cannot read the file: {e}", file.display())))?;
+    let bad = |e: glint::shot::EditError| CliError::BadInput(e.in_file(file).into());
+    let mut edits = Vec::with_capacity(2);
+    for (name, value, keyed) in [
+        ("alpha", r.alpha, r.alpha_keyed),
+        ("beta", r.beta, r.beta_keyed),
+    ] {
+        let path = parse_param_path(&text, &format!("{}.{name}", r.path)).map_err(bad)?;
+        edits.push((path, shade_edit(keyed, p.frame, value)));
+    }
+    let edited = apply_edits(&text, &edits).map_err(bad)?;
+    write_in_place(file, &edited).map_err(CliError::Failed)
+}
+
+fn write_shade_report(out: &mut dyn Write, r: &ShadeReport) -> std::io::Result<()> {
+    let parts = if r.parts.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", r.parts.join(", "))
+    };
+    writeln!(
+        out,
+        "pixel ({}, {}) at frame {}: {}{parts}, u = {}, v = {}",
+        r.pixel[0],
+        r.pixel[1],
+        frame_text(r.frame),
+        r.patch,
+        number(r.u),
+        number(r.v)
+    )?;
+    writeln!(
+        out,
+        "{} in {}: Translate(alpha: {}, beta: {})",
+        r.path,
+        r.file,
+        number(f64::from(r.alpha)),
+        number(f64::from(r.beta))
+    )?;
+    writeln!(
+        out,
+        "band {}'s edge (N·L' = {}) through the point, where N·L' was {}",
+        r.band,
+        number(f64::from(r.threshold)),
+        number(f64::from(r.n_dot_l_before))
+    )?;
+    let frame = frame_text(r.frame);
+    let written = |name: &str, value: f32, keyed: bool| {
+        if keyed {
+            format!("{name}: key ({frame}, {})", number(f64::from(value)))
+        } else {
+            format!("{name}: constant {}", number(f64::from(value)))
+        }
+    };
+    writeln!(
+        out,
+        "writes {}, {}",
+        written("alpha", r.alpha, r.alpha_keyed),
+        written("beta", r.beta, r.beta_keyed)
+    )
 }

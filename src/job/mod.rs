@@ -25,6 +25,7 @@ mod frame_list;
 mod memory;
 mod pixel_of;
 mod place;
+pub mod shade_place;
 mod shape_point;
 mod write;
 

@@ -95,6 +95,11 @@ pub enum PlaceError {
     /// domain.
     #[error("{0}")]
     NoPoint(String),
+    /// A band edge cannot be placed by a shade entry: the patch has none (or not the one asked
+    /// for), the entry has no translation, the patch's tone has no such band, or no translation
+    /// reaches the point.
+    #[error("{0}")]
+    Shade(String),
     /// The frame could not be read or rendered.
     #[error(transparent)]
     Job(#[from] JobError),
@@ -109,7 +114,8 @@ impl PlaceError {
             | PlaceError::OffModel { .. }
             | PlaceError::NoHighlight(_)
             | PlaceError::Layer(_)
-            | PlaceError::NoPoint(_) => true,
+            | PlaceError::NoPoint(_)
+            | PlaceError::Shade(_) => true,
             PlaceError::Job(e) => e.is_bad_input(),
         }
     }
