@@ -435,3 +435,119 @@ fn bind_and_allow_host_let_in_the_names_they_give_and_keep_out_the_rest() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(stderr(&out).contains("studio"), "{}", stderr(&out));
 }
+
+/// A copy of `shots/shade_design.ron` with the files it reads, served at WIDTH × HEIGHT.
+fn serve_shade_design() -> Served {
+    let dir = tempfile::tempdir().unwrap();
+    copy_turntable(dir.path());
+    let shot = dir.path().join("shots/shade_design.ron");
+    std::fs::copy(repo_file("shots/shade_design.ron"), &shot).unwrap();
+    let session = Session::open(&shot, Some((WIDTH, HEIGHT))).expect("the shot opens");
+    let server = TuneServer::start(session, &ServerOptions::default()).expect("the server starts");
+    Served {
+        _dir: dir,
+        shot,
+        server,
+    }
+}
+
+#[test]
+fn a_shade_drag_keys_the_translation_that_puts_the_band_edge_under_the_pointer() {
+    let served = serve_shade_design();
+    let before = std::fs::read_to_string(&served.shot).unwrap();
+    let frame = 1.0;
+    let local = render_locally(&served.shot, frame, Preset::Preview);
+    // Body pixels (patches 4 to 11) lit above the glaze's shadow edge (band 0, at 0.3), whose
+    // N·L′ a translation can bring down to the edge.
+    let pick = |x: u32, y: u32| {
+        let reply = served.post("/api/pick", &json!({"frame": frame, "x": x, "y": y}));
+        assert_eq!(reply.status, 200, "{}", reply.text());
+        reply.json()
+    };
+    let mut candidates = Vec::new();
+    for y in (10..HEIGHT - 10).step_by(4) {
+        for x in (10..WIDTH - 10).step_by(9) {
+            let id = local.ids[(y * WIDTH + x) as usize];
+            if candidates.len() >= 3
+                || !(4..=11).contains(&id)
+                || !all_around(x, y, |k| local.ids[k] == id)
+            {
+                continue;
+            }
+            let picked = pick(x, y);
+            assert_eq!(picked["shade"], json!([0]), "({x}, {y}): the body's entry");
+            let n_dot_l = picked["n_dot_l"].as_f64().unwrap();
+            if (0.32..0.84).contains(&n_dot_l) {
+                candidates.push((x, y, n_dot_l));
+            }
+        }
+    }
+    assert_eq!(candidates.len(), 3, "three points to drag to");
+    // Each drag from the shot as written: committed, checked, and undone.
+    for &(x, y, n_dot_l) in &candidates {
+        let reply = served.post(
+            "/api/shade_drag?format=raw",
+            &json!({"frame": frame, "x": x, "y": y, "band": 0}),
+        );
+        assert_eq!(reply.status, 200, "({x}, {y}): {}", reply.text());
+        let changes: Value =
+            serde_json::from_str(reply.header("x-glint-changes").unwrap()).unwrap();
+        let paths: Vec<&str> = changes
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["path"].as_str().unwrap())
+            .collect();
+        assert_eq!(paths, ["shade[0].stack[0].alpha", "shade[0].stack[0].beta"]);
+        assert!(changes
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|c| c["frame"] == 1.0));
+        assert_eq!(
+            std::fs::read_to_string(&served.shot).unwrap(),
+            before,
+            "a drag writes nothing until it is committed"
+        );
+        // Committed, the band edge passes through the point: N·L′ there is the threshold.
+        let reply = served.post("/api/commit", &json!({ "changes": changes }));
+        assert_eq!(reply.status, 200, "{}", reply.text());
+        assert_ne!(std::fs::read_to_string(&served.shot).unwrap(), before);
+        let placed = pick(x, y)["n_dot_l"].as_f64().unwrap();
+        assert!(
+            (placed - 0.3).abs() < 1e-3,
+            "({x}, {y}): N·L′ {placed} after the drag, {n_dot_l} before"
+        );
+        let reply = served.post("/api/undo", &Value::Null);
+        assert_eq!(reply.status, 200, "{}", reply.text());
+        assert_eq!(std::fs::read_to_string(&served.shot).unwrap(), before);
+    }
+    let written = before.clone();
+
+    // Refused in one line: a patch no shade entry picks (the spout), and an entry without a
+    // translation (the lid's split).
+    let mut refused = Vec::new();
+    for y in (4..HEIGHT - 4).step_by(3) {
+        for x in (4..WIDTH - 4).step_by(3) {
+            let id = local.ids[(y * WIDTH + x) as usize];
+            let kind = match id {
+                16..=19 => "no shade entry",
+                24..=27 => "Translate",
+                _ => continue,
+            };
+            if refused.contains(&kind) || !all_around(x, y, |k| local.ids[k] == id) {
+                continue;
+            }
+            let reply = served.post("/api/shade_drag", &json!({"frame": frame, "x": x, "y": y}));
+            assert_eq!(reply.status, 400, "({x}, {y}): {}", reply.text());
+            let error = reply.json()["error"].as_str().unwrap().to_string();
+            assert!(
+                !error.contains('\n') && error.contains(kind),
+                "({x}, {y}): {error}"
+            );
+            refused.push(kind);
+        }
+    }
+    assert_eq!(refused.len(), 2, "{refused:?}");
+    assert_eq!(std::fs::read_to_string(&served.shot).unwrap(), written);
+}

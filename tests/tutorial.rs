@@ -84,6 +84,7 @@ fn the_tutorial_designs_a_growing_lid_highlight_and_a_crescent_with_commands_alo
     let file = dir.path().join("work/lid.ron");
     std::fs::write(&file, &shot).unwrap();
     let (before_1, before_48) = (matte(&file, 1.0), matte(&file, 48.0));
+    let before_light = n_dot_l(&file, 1.0);
     for command in &commands {
         run(dir.path(), command);
     }
@@ -126,4 +127,39 @@ fn the_tutorial_designs_a_growing_lid_highlight_and_a_crescent_with_commands_alo
     let away = (2.0 * first.0 - second.0, 2.0 * first.1 - second.1);
     let crescent = covered_near(&after_1, away, 20.0);
     assert!(crescent > 50.0, "no crescent beside the cut: {crescent}");
+
+    // The body's lighter band (its edge at N·L′ = 0.55) now passes within a pixel of the point
+    // pointed at, where the whole neighbourhood was inside it before.
+    let pointed = (340, 220);
+    let straddles = |n_dot_l: &(Vec<f32>, usize)| {
+        let (values, width) = n_dot_l;
+        let around: Vec<f32> = (pointed.1 - 1..=pointed.1 + 1)
+            .flat_map(|y| (pointed.0 - 1..=pointed.0 + 1).map(move |x| values[y * width + x]))
+            .collect();
+        (
+            around.iter().any(|&v| v >= 0.55),
+            around.iter().any(|&v| v < 0.55),
+        )
+    };
+    assert_eq!(
+        straddles(&before_light),
+        (true, false),
+        "inside the band before"
+    );
+    assert_eq!(
+        straddles(&n_dot_l(&file, 1.0)),
+        (true, true),
+        "the band's edge through the point after"
+    );
+}
+
+/// The `N·L′` each pixel's tone reads at `frame`, and the image's width.
+fn n_dot_l(shot: &Path, frame: f64) -> (Vec<f32>, usize) {
+    let overrides = Overrides {
+        aovs: Some(vec![Aov::NDotL]),
+        ..Overrides::default()
+    };
+    let mut job = RenderJob::load(shot, &overrides).unwrap();
+    let image = job.render_frame(frame).unwrap();
+    (image.aovs.n_dot_l.unwrap(), image.width as usize)
 }

@@ -41,6 +41,7 @@ pub use frame_list::{frame_spec, parse_frames};
 pub use memory::{bytes_text, default_memory_ceiling, estimate_peak_bytes, parse_memory_size};
 pub use pixel_of::{PointInImage, VISIBLE_DEPTH_TOLERANCE};
 pub use place::{LayerChoice, LayerUnder, PlaceError, Placement, Residual};
+pub use shade_place::{ShadeChoice, ShadePlacement};
 pub use shape_point::{ShapePoint, ShapePointError};
 
 use crate::formats::atomic::{Durability, WriteError};

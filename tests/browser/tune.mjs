@@ -1,8 +1,8 @@
 // The tuning page end to end in headless Chromium: a copy of shots/sphere_ops.ron is opened
 // with `glint tune`, the highlight dragged on the sphere and released, a slider moved, the
 // timeline scrubbed, a change undone and the file edited from outside — each checked in the
-// shot file on disk and on the page; then draw.mjs, drawing an outline, runs in a process of its
-// own. Screenshots go to target/page-tests/.
+// shot file on disk and on the page; then draw.mjs, drawing an outline, and shade.mjs, dragging
+// a shadow's edge, each run in a process of its own. Screenshots go to target/page-tests/.
 
 import { execFileSync } from "node:child_process";
 import { readFileSync, rmSync, writeFileSync } from "node:fs";
@@ -164,10 +164,12 @@ try {
   tune.child.kill();
   rmSync(folder, { recursive: true, force: true });
 }
-if (!failed) {
-  // Drawing an outline, on a fresh copy of the shot and a server of its own.
+// Drawing an outline, and dragging a shadow's edge: each on a fresh copy of its shot and a
+// server of its own.
+for (const script of ["draw.mjs", "shade.mjs"]) {
+  if (failed) break;
   try {
-    execFileSync(process.execPath, [join(dirname(fileURLToPath(import.meta.url)), "draw.mjs")], { stdio: "inherit" });
+    execFileSync(process.execPath, [join(dirname(fileURLToPath(import.meta.url)), script)], { stdio: "inherit" });
   } catch (_) {
     failed = true;
   }

@@ -20,5 +20,6 @@ pub use guard::{Guard, Refusal};
 pub use server::{ServerOptions, TuneServer};
 pub use session::{
     DragRequest, DrawRequest, FrameImage, FrameRequest, Overlays, Pick, Quality, Session,
+    ShadeDragRequest,
 };
 pub use view::StateView;

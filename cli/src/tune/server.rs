@@ -8,6 +8,7 @@
 //! | `POST /api/frame?format=png\|raw` | [`FrameRequest`] | the frame's pixels |
 //! | `POST /api/pick` | `{frame, x, y}` | [`Pick`](super::Pick) |
 //! | `POST /api/drag?format=…` | [`DragRequest`] | the frame with the layer placed; the changes in `X-Glint-Changes` |
+//! | `POST /api/shade_drag?format=…` | [`ShadeDragRequest`] | the frame with the shadow's edge placed; the changes in `X-Glint-Changes` |
 //! | `POST /api/draw` | [`DrawRequest`] | `{version, changes}` once the drawn outline is written |
 //! | `POST /api/commit` | `{changes: [Change]}` | `{version}` once written |
 //! | `POST /api/undo`, `/api/redo` | | `{version}` |
@@ -38,7 +39,9 @@ use tokio::sync::{oneshot, watch};
 use super::change::Change;
 use super::error::TuneError;
 use super::guard::{new_token, Guard, Refusal};
-use super::session::{DragRequest, DrawRequest, FrameImage, FrameRequest, Session};
+use super::session::{
+    DragRequest, DrawRequest, FrameImage, FrameRequest, Session, ShadeDragRequest,
+};
 
 /// Where the server listens and which names it answers to.
 #[derive(Clone, Debug)]
@@ -215,6 +218,7 @@ fn router(shared: Arc<Shared>) -> Router {
         .route("/api/frame", post(frame))
         .route("/api/pick", post(pick))
         .route("/api/drag", post(drag))
+        .route("/api/shade_drag", post(shade_drag))
         .route("/api/draw", post(draw))
         .route("/api/commit", post(commit))
         .route("/api/undo", post(undo))
@@ -486,6 +490,33 @@ async fn drag(
         let request: DragRequest = json_body(&body)?;
         let (image, changes) = with_session(&shared, move |s| {
             let changes = s.drag_changes(&request)?;
+            let frame = FrameRequest {
+                frame: request.frame,
+                quality: request.quality,
+                overlays: request.overlays,
+                changes: changes.clone(),
+            };
+            Ok((s.render(&frame)?, changes))
+        })
+        .await?;
+        let changes =
+            serde_json::to_string(&changes).map_err(|e| TuneError::Failed(e.to_string()))?;
+        image_response(&image, format, Some(("x-glint-changes", changes)))
+    }
+    .await;
+    result.unwrap_or_else(IntoResponse::into_response)
+}
+
+async fn shade_drag(
+    State(shared): State<Arc<Shared>>,
+    query: Result<Query<FormatQuery>, axum::extract::rejection::QueryRejection>,
+    body: Bytes,
+) -> Response {
+    let result = async {
+        let format = format_of(query)?;
+        let request: ShadeDragRequest = json_body(&body)?;
+        let (image, changes) = with_session(&shared, move |s| {
+            let changes = s.shade_drag_changes(&request)?;
             let frame = FrameRequest {
                 frame: request.frame,
                 quality: request.quality,

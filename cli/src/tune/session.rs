@@ -15,11 +15,14 @@ use super::view::{highlight_views, pin_at, shade_views, shape_view, StateView};
 use glint::formats::image_encoding::colour_rgba8;
 use glint::formats::replace_text::replace_text;
 use glint::highlight::{Op, MAX_OUTLINE_SEGMENTS};
-use glint::job::{JobError, LayerChoice, Overrides, PlaceError, RenderJob, ShapePointError};
+use glint::job::{
+    JobError, LayerChoice, Overrides, PlaceError, RenderJob, ShadeChoice, ShapePointError,
+};
 use glint::picture::overlay::{draw_band_edges, draw_matte, draw_pin, draw_seams};
 use glint::render::{Stage, SurfacePoint};
 use glint::shot::{
     load_shot_text, Aov, HighlightRef, LayerParam, MaterialState, OpParam, ParamPath, Preset,
+    ShadeParam,
 };
 
 /// The quality a frame is rendered at.
@@ -104,6 +107,27 @@ pub struct DragRequest {
     pub overlays: Overlays,
 }
 
+/// A pointer dragging the edge of a patch's cel shadow at a frame: a band's edge goes where the
+/// pointer is, by the placing translation of a shade entry ([`RenderJob::place_shade`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShadeDragRequest {
+    pub frame: f64,
+    /// The image position, pixel centres at integer values.
+    pub x: f64,
+    pub y: f64,
+    /// The shade entry (includes first); default: the last that picks the patch there.
+    #[serde(default)]
+    pub entry: Option<usize>,
+    /// The band whose edge moves, from 0; default: the one whose edge is nearest.
+    #[serde(default)]
+    pub band: Option<usize>,
+    #[serde(default)]
+    pub quality: Quality,
+    #[serde(default)]
+    pub overlays: Overlays,
+}
+
 /// An outline drawn on the frame: its corners' image positions, sent when it is finished.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -166,6 +190,14 @@ fn job_error(e: JobError) -> TuneError {
     } else {
         TuneError::Failed(e.to_string())
     }
+}
+
+/// Whether `a` and `b` name the same file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    std::fs::canonicalize(a)
+        .ok()
+        .zip(std::fs::canonicalize(b).ok())
+        .is_some_and(|(a, b)| a == b)
 }
 
 fn place_error(e: PlaceError) -> TuneError {
@@ -497,6 +529,58 @@ impl Session {
         }])
     }
 
+    /// The changes a shade drag makes: its entry's placing translation keyed at the frame to
+    /// the `(α, β)` that puts the band's edge under the pointer ([`RenderJob::place_shade`]).
+    pub fn shade_drag_changes(
+        &mut self,
+        request: &ShadeDragRequest,
+    ) -> Result<Vec<Change>, TuneError> {
+        check_frame(request.frame)?;
+        let text = self.text.clone();
+        sync(&mut self.preview, &self.path, &text)?;
+        let choice = ShadeChoice {
+            entry: request.entry,
+            band: request.band,
+        };
+        let placed = self
+            .preview
+            .job
+            .place_shade(request.frame, (request.x, request.y), choice)
+            .map_err(place_error)?;
+        let shot = self.preview.job.shot();
+        let Some((file, index)) = shot.shade_written(placed.entry) else {
+            return Err(TuneError::Failed(format!(
+                "shade entry {} is not in the shot",
+                placed.entry
+            )));
+        };
+        if !same_file(file, &self.path) {
+            return Err(TuneError::Bad(format!(
+                "shade entry {} is written in {}; tune changes only the shot file {}: edit the \
+                 include with `glint key`",
+                placed.entry,
+                file.display(),
+                self.path.display()
+            )));
+        }
+        let key = |param, value: f32| Change::Key {
+            path: ParamPath::Shade {
+                entry: index,
+                param: ShadeParam::Op {
+                    index: placed.op,
+                    param,
+                },
+            }
+            .to_string(),
+            frame: request.frame,
+            value: vec![value],
+        };
+        Ok(vec![
+            key(OpParam::Alpha, placed.translation.x),
+            key(OpParam::Beta, placed.translation.y),
+        ])
+    }
+
     /// The index in the shot file's `highlights` of highlight entry `entry`; an entry written
     /// in an include is refused: the session writes no file but the shot.
     fn file_index(&self, entry: usize) -> Result<usize, TuneError> {
@@ -507,13 +591,7 @@ impl Session {
                 shot.highlight_count()
             )));
         };
-        let same = |a: &Path, b: &Path| {
-            std::fs::canonicalize(a)
-                .ok()
-                .zip(std::fs::canonicalize(b).ok())
-                .is_some_and(|(a, b)| a == b)
-        };
-        if !same(file, &self.path) {
+        if !same_file(file, &self.path) {
             return Err(TuneError::Bad(format!(
                 "highlight {entry} is written in {}; tune changes only the shot file {}: edit \
                  the include with `glint key`",

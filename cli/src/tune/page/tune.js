@@ -17,13 +17,18 @@ const page = {
   format: new URLSearchParams(location.search).get("format") === "raw" ? "raw" : "png",
   playing: false,
   finalTimer: null,
+  shadeMode: false, // drags move the cel shadow's edge; the panel shows a shade entry
+  shadeEntry: null, // a shot shade entry index (includes first)
 };
 
 // What tests and the latency benchmark read: every painted frame, with its times.
 window.glintTune = { paints: 0, latencies: [], last: null, errors: 0, lastError: "" };
 
 function overlays() {
-  return { seams: $("overlay-seams").checked, matte: $("overlay-matte").checked, pins: $("overlay-pins").checked };
+  return {
+    seams: $("overlay-seams").checked, matte: $("overlay-matte").checked, pins: $("overlay-pins").checked,
+    terminator: $("overlay-terminator").checked,
+  };
 }
 
 function showError(message) {
@@ -162,6 +167,10 @@ async function loadState() {
     const editable = s.highlights.find((h) => h.file_index !== null);
     page.highlight = (editable || s.highlights[0]).entry;
   }
+  if (page.shadeEntry === null && s.shade.length > 0) {
+    const editable = s.shade.find((e) => e.file_index !== null);
+    page.shadeEntry = (editable || s.shade[0]).entry;
+  }
   renderPanel();
   renderKeys();
 }
@@ -175,13 +184,18 @@ function currentLayer() {
   return h && h.layers[Math.min(page.layer, h.layers.length - 1)];
 }
 
+function currentShade() {
+  return page.state && page.state.shade.find((e) => e.entry === page.shadeEntry);
+}
+
+// A layer's or a shade entry's parameters: its operations' and its own.
 function allParams(layer) {
   if (!layer) return [];
   return layer.ops.flatMap((op) => op.params).concat(layer.params);
 }
 
 function findParam(path) {
-  return allParams(currentLayer()).find((p) => p.path === path);
+  return allParams(page.shadeMode ? currentShade() : currentLayer()).find((p) => p.path === path);
 }
 
 // A change to a parameter's value at the current frame: a key where the track is keyed, the
@@ -284,9 +298,38 @@ function colourRow(param, editable) {
     element("label", {}, "colour"), picker, element("span"), key, element("span"));
 }
 
+// In shade mode: the shade entry's operations, keyed and set as a layer's are.
+function renderShadePanel(box) {
+  const entry = currentShade();
+  if (!entry) {
+    box.append(element("p", { id: "no-shade" }, "the shot has no shade entries: add one to `shade` in the shot file (docs/shot-format.md)"));
+    return;
+  }
+  const editable = entry.file_index !== null;
+  const pickEntry = element("select", { id: "shade-choice", onchange: (e) => { page.shadeEntry = Number(e.target.value); page.param = null; renderPanel(); renderKeys(); } },
+    ...page.state.shade.map((x) => element("option", { value: x.entry, selected: x.entry === entry.entry }, `shade ${x.entry}: ${x.patches.join(", ")}`)));
+  box.append(element("h3", {}, "shade"), pickEntry);
+  if (!editable) box.append(element("p", {}, `written in ${entry.written_in}: edit it there (tune changes only the shot file)`));
+  if (entry.translation === null) box.append(element("p", {}, "no Translate in this stack: add one in the shot file to drag the shadow's edge"));
+  box.append(element("h3", {}, "operations on the light"));
+  entry.ops.forEach((op, i) => {
+    box.append(element("div", { class: "op" },
+      element("div", { class: "op-head" }, element("span", { class: "name" }, `${i}. ${op.name}`)),
+      ...op.params.map((p) => paramRow(p, editable))));
+  });
+  if (entry.params.length > 0) {
+    box.append(element("h3", {}, "mask"));
+    for (const p of entry.params) box.append(paramRow(p, editable));
+  }
+}
+
 function renderPanel() {
   const box = $("layer");
   box.replaceChildren();
+  if (page.shadeMode) {
+    renderShadePanel(box);
+    return;
+  }
   const h = currentHighlight();
   if (!h) return;
   const editable = h.file_index !== null;
@@ -411,6 +454,18 @@ canvas.addEventListener("pointerdown", async (event) => {
     press.picked = pick;
     const parts = pick.parts.length ? ` (${pick.parts.join(", ")})` : "";
     const where = `${pick.patch}${parts} at u ${pick.uv[0].toFixed(3)}, v ${pick.uv[1].toFixed(3)}`;
+    if (page.shadeMode) {
+      const light = `N·L′ ${pick.n_dot_l.toFixed(3)}`;
+      if (pick.shade.length === 0) {
+        $("selection").textContent = `${where}, ${light}: no shade entry`;
+        return;
+      }
+      if (!pick.shade.includes(page.shadeEntry)) page.shadeEntry = pick.shade[pick.shade.length - 1];
+      $("selection").textContent = `${where}, ${light}: shade ${page.shadeEntry}`;
+      renderPanel();
+      renderKeys();
+      return;
+    }
     if (pick.highlight === null) {
       $("selection").textContent = `${where}: no highlight`;
       return;
@@ -430,6 +485,17 @@ canvas.addEventListener("pointermove", (event) => {
   if (drawing.on || !pressed) return;
   const at = imagePosition(event);
   if (!dragging && Math.hypot(at.x - pressed.x, at.y - pressed.y) < 3) return;
+  if (page.shadeMode) {
+    const entry = currentShade();
+    if (!entry || entry.file_index === null || !pressed.picked || !pressed.picked.shade.includes(page.shadeEntry)) return;
+    dragging = true;
+    clearTimeout(page.finalTimer);
+    requestImage("shade_drag", {
+      frame: page.frame, x: at.x, y: at.y, entry: page.shadeEntry,
+      quality: "preview", overlays: overlays(),
+    }, (changes) => { dragChanges = changes; });
+    return;
+  }
   const h = currentHighlight();
   if (!h || h.file_index === null || !pressed.picked || pressed.picked.highlight !== page.highlight) return;
   dragging = true;
@@ -499,6 +565,7 @@ function drawOverlay() {
 }
 
 function setDrawing(on) {
+  if (on && page.shadeMode) setShadeMode(false);
   drawing.on = on;
   drawing.held = null;
   $("draw").classList.toggle("on", on);
@@ -567,7 +634,20 @@ $("frame-number").addEventListener("change", () => goToFrame(Number($("frame-num
 $("prev-key").addEventListener("click", () => jumpKey(-1));
 $("next-key").addEventListener("click", () => jumpKey(1));
 $("play").addEventListener("click", play);
-for (const id of ["overlay-seams", "overlay-matte", "overlay-pins"]) $(id).addEventListener("change", () => showFrame());
+for (const id of ["overlay-seams", "overlay-matte", "overlay-pins", "overlay-terminator"]) $(id).addEventListener("change", () => showFrame());
+
+function setShadeMode(on) {
+  if (on && drawing.on) setDrawing(false);
+  page.shadeMode = on;
+  page.param = null;
+  $("shade-mode").classList.toggle("on", on);
+  // The shadow's edge is what a shade drag moves: show it.
+  if (on) $("overlay-terminator").checked = true;
+  renderPanel();
+  renderKeys();
+  showFrame();
+}
+$("shade-mode").addEventListener("click", () => setShadeMode(!page.shadeMode));
 
 async function history(which) {
   try {
@@ -587,6 +667,7 @@ document.addEventListener("keydown", (event) => {
   else if ((event.ctrlKey || event.metaKey) && event.key === "y") { event.preventDefault(); history("redo"); }
   else if (event.key === " " && !(event.target instanceof HTMLInputElement)) { event.preventDefault(); play(); }
   else if ((event.key === "d" || event.key === "D") && !event.ctrlKey && !event.metaKey && !(event.target instanceof HTMLInputElement)) setDrawing(!drawing.on);
+  else if ((event.key === "s" || event.key === "S") && !event.ctrlKey && !event.metaKey && !(event.target instanceof HTMLInputElement)) setShadeMode(!page.shadeMode);
   else if (event.key === "Enter" && drawing.on) { event.preventDefault(); finishDrawing(); }
   else if (event.key === "Escape" && drawing.on) setDrawing(false);
   else if (event.key === "Backspace" && drawing.on && drawing.points.length > 0) { event.preventDefault(); drawing.points.pop(); drawOverlay(); }
