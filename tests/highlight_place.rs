@@ -630,3 +630,74 @@ fn place_pin_writes_a_pin_on_the_point_under_the_pixel_and_moves_it() {
         assert!(pinned.render_frame(30.0).is_ok());
     }
 }
+
+/// `shot` with a shade entry translating the light of the body's tone, and its highlight
+/// reading the light `reads` (`Plain` or `Designed`).
+fn with_designed_light(shot: &Path, reads: &str) -> PathBuf {
+    let text = std::fs::read_to_string(shot).unwrap();
+    let tail = "))],\n    render:";
+    assert!(text.contains(tail), "{text}");
+    let designed = text.replace(
+        tail,
+        &format!(
+            "), light: {reads})],\n    shade: [(patches: \"m/body\", stack: \
+             [Translate(alpha: 0.3, beta: 0.15)])],\n    render:"
+        ),
+    );
+    let path = shot.with_file_name(format!("designed_{reads}.ron"));
+    std::fs::write(&path, designed).unwrap();
+    path
+}
+
+#[test]
+fn a_pinned_highlight_reading_the_designed_light_stays_on_its_point() {
+    // The pin is solved on the half vector from L' where the highlight reads the designed
+    // light: its matte stays on the point. The translation solved on the plain light, drawn
+    // with the designed one, leaves it, so a pin solved on the wrong light would be seen.
+    let dir = tempfile::tempdir().unwrap();
+    let uv = (0.63, 0.39);
+    let pin = format!("stack: [], pin: (patch: \"m/4\", u: {}, v: {})", uv.0, uv.1);
+    let base = pinned_turntable(dir.path(), "pinned", &pin);
+    let mut designed = job(&with_designed_light(&base, "Designed"));
+    let plain = job(&with_designed_light(&base, "Plain"));
+    let (mut checked, mut drift) = (0, 0.0_f64);
+    for frame in (1..=96).step_by(5) {
+        let frame = f64::from(frame);
+        let at = projected(&designed, 4, uv, frame).unwrap();
+        let image = designed.render_frame(frame).unwrap();
+        let (w, h) = (image.width, image.height);
+        let pixel = (at.0.round() as u32).min(w - 1) + (at.1.round() as u32).min(h - 1) * w;
+        if image.aovs.patch_id.as_ref().unwrap()[pixel as usize] != 4 {
+            continue;
+        }
+        let what = format!("frame {frame}, pinned point at {at:?}");
+        let miss = centroid_miss(image.aovs.matte.as_ref().unwrap(), (w, h), at, 30.0, &what);
+        assert!(miss < 1.0, "{what}: the centroid is {miss} px off");
+        checked += 1;
+
+        // The plain light's pin translation, drawn with the designed light.
+        let solved = plain.shot().at(frame).highlights[0].layers()[0].stack[0].clone();
+        let glint::highlight::Op::Translate { alpha, beta } = solved else {
+            panic!("the pin puts a translation first: {solved:?}");
+        };
+        let fixed = format!("stack: [Translate(alpha: {alpha}, beta: {beta})]");
+        let fixed = pinned_turntable(dir.path(), "fixed", &fixed);
+        let mut wrong = job(&with_designed_light(&fixed, "Designed"));
+        let image = wrong.render_frame(frame).unwrap();
+        let matte = image.aovs.matte.as_ref().unwrap();
+        drift = drift.max(
+            matte_centroid(matte, (w, h), at, 30.0).map_or(f64::INFINITY, |(c, _)| {
+                ((c.0 - at.0).powi(2) + (c.1 - at.1).powi(2)).sqrt()
+            }),
+        );
+    }
+    assert!(
+        checked >= 15,
+        "the point was visible on {checked} of 20 frames"
+    );
+    assert!(
+        drift > 5.0,
+        "the plain light's pin is only {drift} px off under the designed light: the test could \
+         not tell"
+    );
+}

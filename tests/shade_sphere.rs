@@ -23,7 +23,9 @@ use glam::{DVec2, DVec3, Vec3, Vec4};
 use glint::accuracy::AnalyticSphere;
 use glint::formats::load_patches;
 use glint::geom::NurbsSurface;
-use glint::highlight::{Axis, DesignedLight, Light, Op, ShadeStack, SquareStyle};
+use glint::highlight::{
+    Axis, DesignedLight, Expr, HighlightLight, Layer, Light, Op, ShadeStack, SquareStyle,
+};
 use glint::render::{Aovs, Camera, PatchLook, Projection, Renderer, Scene, Settings, Tone};
 use glint::shot::load_shot_text;
 use glint::toon::CelRamp;
@@ -227,6 +229,14 @@ struct Truth {
 /// Per pixel of the `SIZE × SIZE` image of `view`, rows from the top: the fractions of its
 /// `SUB × SUB` samples on the sphere, and on the sphere where it is lit after `ops`.
 fn closed_form(view: &View, ops: &[HandOp]) -> Vec<Truth> {
+    sampled(view, |p, _| lit(ops, view.light, p))
+}
+
+/// Per pixel of the `SIZE × SIZE` image of `view`, rows from the top: the fractions of its
+/// `SUB × SUB` samples on the sphere, and of those where `inside(n, d)` holds, `n` the unit
+/// normal at the sample's hit and `d` its ray's unit direction.
+fn sampled(view: &View, inside: impl Fn(DVec3, DVec3) -> bool + Sync) -> Vec<Truth> {
+    let inside = &inside;
     let mut out = vec![Truth::default(); (SIZE * SIZE) as usize];
     let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
     let rows_each = (SIZE as usize).div_ceil(threads);
@@ -243,7 +253,7 @@ fn closed_form(view: &View, ops: &[HandOp]) -> Vec<Truth> {
                         let (o, d) = ray(&view.camera, x, y);
                         if let Some(p) = hit(o, d) {
                             sphere += 1;
-                            lit_samples += u32::from(lit(ops, view.light, p.normalize()));
+                            lit_samples += u32::from(inside(p.normalize(), d));
                         }
                     }
                     let samples = f64::from(SUB * SUB);
@@ -595,6 +605,111 @@ fn a_keyed_translation_read_between_its_keys_matches_the_closed_form() {
         let score = lit_iou(&render, &truth);
         if score < MINIMUM_IOU {
             failures.push(format!("{}: soft IoU {score:.5}", view.name));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join(", "));
+}
+
+/// The highlight's ε in the tests of which light it reads.
+const EPSILON: f64 = 0.05;
+
+/// Whether the sphere point with unit normal `n`, seen along the ray direction `d`, is inside
+/// the ε-disc of an identity layer whose highlight vector starts from the light designed by
+/// `ops` (the scene's light when `ops` is empty): `H = normalize(L' + V)` with `V = −d` (toward
+/// the eye under both projections), inside where `‖N − H‖²/2 < ε`.
+fn in_highlight(ops: &[HandOp], light: DVec3, n: DVec3, d: DVec3) -> bool {
+    let (du, dv, n) = frame(n);
+    let local = DVec3::new(light.dot(du), light.dot(dv), light.dot(n));
+    let designed = ops.iter().fold(local, |l, op| op.apply(l));
+    let l = designed.x * du + designed.y * dv + designed.z * n;
+    let h = (l - d).normalize();
+    (n - h).length_squared() / 2.0 < EPSILON
+}
+
+/// The sphere of `view` with `stack` designing its light and an identity layer of ε
+/// [`EPSILON`] reading the light `reads`, rendered with the `final` preset at `SIZE × SIZE`:
+/// per pixel its alpha and its highlight matte.
+fn rendered_matte(view: &View, stack: &[Op], reads: HighlightLight) -> Vec<(f64, f64)> {
+    let library = AnalyticSphere::library();
+    let designed = ShadeStack {
+        stack: stack.to_vec(),
+        mask: None,
+    }
+    .prepare()
+    .unwrap();
+    let highlight = Expr::Layer(Layer::new(vec![], EPSILON as f32, [1.0, 1.0, 1.0]))
+        .prepare()
+        .unwrap();
+    let scene = Scene {
+        library: &library,
+        looks: vec![PatchLook {
+            tone: Tone::Cel(ramp()),
+            designed_light: Some(DesignedLight::new(vec![designed]).read_by_highlight(reads)),
+            highlight: Some(highlight),
+            lines: None,
+        }],
+        camera: view.camera,
+        light: Light::Directional {
+            towards: view.light.as_vec3(),
+        },
+        outlines: None,
+        aovs: Aovs {
+            matte: true,
+            ..Aovs::default()
+        },
+    };
+    let frame = Renderer::new(Arc::clone(&library))
+        .render(&scene, &Settings::final_quality(SIZE, SIZE))
+        .unwrap();
+    let matte = frame.aovs.matte.expect("the matte AOV");
+    frame
+        .colour
+        .iter()
+        .zip(matte)
+        .map(|(c, m)| {
+            assert!(m.is_finite(), "a matte of {m}");
+            (f64::from(c.w), f64::from(m))
+        })
+        .collect()
+}
+
+#[test]
+fn a_highlight_reads_the_plain_light_unless_its_entry_asks_for_the_designed_one() {
+    // The light translated along du and dv: the plain highlight stays where the closed form
+    // from L puts it, the one reading the designed light moves to where the closed form from L'
+    // puts it, and the two closed forms are clearly apart.
+    let stack = [Op::Translate {
+        alpha: 0.35,
+        beta: -0.2,
+    }];
+    let ops = [HandOp::Translate(0.35, -0.2)];
+    let mut failures = Vec::new();
+    for view in views() {
+        let plain = sampled(&view, |n, d| in_highlight(&[], view.light, n, d));
+        let designed = sampled(&view, |n, d| in_highlight(&ops, view.light, n, d));
+        let apart = change(&plain, &designed);
+        for (reads, truth) in [
+            (HighlightLight::Plain, &plain),
+            (HighlightLight::Designed, &designed),
+        ] {
+            let area: f64 = truth.iter().map(|t| t.lit).sum();
+            let score = lit_iou(&rendered_matte(&view, &stack, reads), truth);
+            eprintln!(
+                "{reads:?}, {}: soft IoU {score:.5}, {area:.0} pixels, apart {apart:.3}",
+                view.name
+            );
+            if area < 200.0 {
+                failures.push(format!("{reads:?}, {}: only {area} pixels", view.name));
+            }
+            if score < 0.99 {
+                failures.push(format!("{reads:?}, {}: soft IoU {score:.5}", view.name));
+            }
+        }
+        if apart < 0.3 {
+            failures.push(format!(
+                "{}: the two highlights overlap, {apart}",
+                view.name
+            ));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join(", "));

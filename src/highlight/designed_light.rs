@@ -116,19 +116,61 @@ impl PreparedShadeStack {
     }
 }
 
+/// Which light a patch's highlight reads: the scene's light L, as Anjyo & Hiramitsu's
+/// highlights do, or the designed light `L'` its tone reads.
+///
+/// RON (on a highlight entry, beside `patches` and `expr`): `light: Designed`. With `Designed`
+/// the highlight vector starts from `H = normalize(L' + V)`, so that a highlight moves with a
+/// shadow pushed by the patch's shade stacks; on a patch no shade entry picks, `L' = L`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum HighlightLight {
+    /// The scene's light: designed shade leaves the highlight where it is (the default).
+    #[default]
+    Plain,
+    /// The patch's designed light `L'`, the one its tone reads.
+    Designed,
+}
+
 /// The designed light of one patch: the shade stacks of the entries that pick it, in the order
 /// they are written (includes first). Each acts on what the one before it made:
-/// `L' = s_k(… s_2(s_1(L)))`.
+/// `L' = s_k(… s_2(s_1(L)))`. The tone reads it; the highlight reads it too where its entry
+/// asks ([`HighlightLight::Designed`]).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct DesignedLight {
     stacks: Vec<PreparedShadeStack>,
+    highlight: HighlightLight,
 }
 
 impl DesignedLight {
-    /// The light designed by `stacks`, applied in order.
+    /// The light designed by `stacks`, applied in order, which the highlight does not read.
     #[must_use]
     pub fn new(stacks: Vec<PreparedShadeStack>) -> Self {
-        Self { stacks }
+        Self {
+            stacks,
+            highlight: HighlightLight::Plain,
+        }
+    }
+
+    /// The same light, read by the patch's highlight as `highlight` says.
+    #[must_use]
+    pub fn read_by_highlight(self, highlight: HighlightLight) -> Self {
+        Self { highlight, ..self }
+    }
+
+    /// Which light the patch's highlight reads.
+    #[must_use]
+    pub fn highlight_reads(&self) -> HighlightLight {
+        self.highlight
+    }
+
+    /// The unit light direction the patch's highlight reads at a point lit from `l`: `L'`
+    /// ([`light`](Self::light)) when it reads the designed light, else `l`.
+    #[must_use]
+    pub fn highlight_light(&self, frame: &TangentFrame, uv: Vec2, l: Vec3) -> Vec3 {
+        match self.highlight {
+            HighlightLight::Plain => l,
+            HighlightLight::Designed => self.light(frame, uv, l),
+        }
     }
 
     /// Whether no stack acts: `L' = L` everywhere.

@@ -34,7 +34,7 @@ mod shape_text;
 mod stack;
 
 pub use crate::math::box_coverage;
-pub use designed_light::{DesignedLight, PreparedShadeStack, ShadeStack};
+pub use designed_light::{DesignedLight, HighlightLight, PreparedShadeStack, ShadeStack};
 pub use error::HighlightError;
 pub(crate) use expr::ChunkScratch;
 pub use expr::{Boolean, Expr, PreparedExpr, Shade};

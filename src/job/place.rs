@@ -6,7 +6,7 @@ use thiserror::Error;
 
 use super::{JobError, RenderJob};
 use crate::highlight::{HighlightError, Layer, Shape};
-use crate::render::{Aovs, RenderedFrame, SurfacePoint};
+use crate::render::{Aovs, RenderedFrame};
 use crate::shot::{rounded_number_text, FrameState, Shot};
 
 /// Which highlight layer to place; `None` picks as [`RenderJob::place`] says.
@@ -236,8 +236,7 @@ impl RenderJob {
         let chosen: &Layer = layers[layer];
         // The surface as it is posed at this frame: a moving instance's patch is not where it
         // rests.
-        let surface = &state.library.patches[patch].surface;
-        let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
+        let point = shot.highlight_point(&state, patch, uv);
         let translation = shot
             .layer_on(chosen, patch, frame)
             .centring_translation_at(&point.frame, point.half_vector)
@@ -350,14 +349,13 @@ fn residuals(
     }
     .prepare()
     .map_err(|e| PlaceError::Layer(e.to_string()))?;
-    let (camera, light) = (&state.camera, &state.light);
     let mut residuals = Vec::new();
     for (patch, named) in state.library.patches.iter().enumerate() {
         if shot.highlight_of(patch) != Some(entry) {
             continue;
         }
         let domain = named.surface.domain();
-        let point = |uv: (f64, f64)| SurfacePoint::new(&named.surface, uv, camera, light);
+        let point = |uv: (f64, f64)| shot.highlight_point(state, patch, uv);
         let distance = |uv: (f64, f64)| {
             let point = point(uv);
             layer.epsilon - disc.signed(&point.frame, point.half_vector)

@@ -7,7 +7,6 @@ use thiserror::Error;
 use super::place::{LayerChoice, LayerUnder, PlaceError};
 use super::RenderJob;
 use crate::highlight::{Shape, OUTLINE_BOUND};
-use crate::render::SurfacePoint;
 
 /// Where a pixel lies in a layer's outline coordinates ([`RenderJob::shape_point`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -133,8 +132,7 @@ impl RenderJob {
                 "layer {layer} of highlight {highlight} at frame {frame}: {e}"
             ))
         })?;
-        let surface = &state.library.patches[patch].surface;
-        let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
+        let point = self.shot.highlight_point(&state, patch, uv);
         let own = prepared.frame_at(&point.frame);
         let local = own.to_local(prepared.highlight_vector(&point.frame, point.half_vector));
         let (x, y) = pixel;

@@ -10,11 +10,11 @@ use super::scene::Scene;
 use crate::highlight::{half_vector, Light};
 use crate::math::Lanes;
 
-/// Blinn's half vector `normalize(L + V)` at a texel: the highlight vector before any operation.
+/// Blinn's half vector `normalize(L + V)` at a texel: the highlight vector before any operation,
+/// L the light its patch's highlight reads ([`Scene::highlight_light`]).
 pub(super) fn initial_half_vector(scene: &Scene, t: &Texel) -> Vec3 {
-    let n = t.frame.n;
     half_vector(
-        scene.light.direction(t.position, n),
+        scene.highlight_light(t.patch, &t.frame, t.uv, t.position),
         scene.camera.toward_eye(t.position),
     )
 }
@@ -79,7 +79,8 @@ fn towards(to: Vec3, texels: &[Texel], out: &mut Lanes) {
 }
 
 /// [`initial_half_vector`] at each of up to [`LANES`] `texels` into `out`, given their view
-/// vectors `view`, side by side: the light vectors ([`light_lanes`]) and the normalized sums
+/// vectors `view`, side by side: the light vectors ([`light_lanes`], designed where a patch's
+/// highlight reads its designed light) and the normalized sums
 /// each in loops over one coordinate array at a time, with the same values as texel by texel.
 pub(super) fn initial_half_vectors(
     scene: &Scene,
@@ -90,6 +91,12 @@ pub(super) fn initial_half_vectors(
     let n = texels.len();
     let mut sum = Lanes::default();
     light_lanes(scene, texels, &mut sum);
+    // L' where a patch's highlight reads its designed light.
+    for (k, t) in texels.iter().enumerate() {
+        if let Some(designed) = &scene.looks[t.patch as usize].designed_light {
+            sum.set(k, designed.highlight_light(&t.frame, t.uv, sum.get(k)));
+        }
+    }
     // H = normalize(L + V).
     for k in 0..n {
         sum.set(k, sum.get(k) + view.get(k));
@@ -106,10 +113,11 @@ mod tests {
 
     use super::*;
     use crate::geom::PatchLibrary;
-    use crate::highlight::TangentFrame;
+    use crate::highlight::{DesignedLight, HighlightLight, Op, ShadeStack, TangentFrame};
     use crate::math::LANES;
     use crate::render::scene::Aovs;
-    use crate::render::Camera;
+    use crate::render::{Camera, PatchLook, Tone};
+    use crate::toon::CelRamp;
 
     /// Texels at scattered points, one of them on the eye and one on the point light.
     fn texels(eye: Vec3, light: Vec3) -> Vec<Texel> {
@@ -156,11 +164,36 @@ mod tests {
             Projection::Orthographic { height: 4.0 },
         ];
         let texels = texels(eye, light_at);
-        for light in lights {
+        // The patch's highlight reading the scene's light, and its designed light.
+        let designed = |reads| {
+            let stack = ShadeStack {
+                stack: vec![Op::Translate {
+                    alpha: 0.4,
+                    beta: -0.2,
+                }],
+                mask: None,
+            };
+            Some(DesignedLight::new(vec![stack.prepare().unwrap()]).read_by_highlight(reads))
+        };
+        let lights_read = [
+            None,
+            designed(HighlightLight::Plain),
+            designed(HighlightLight::Designed),
+        ];
+        for (light, designed_light) in lights
+            .into_iter()
+            .flat_map(|l| lights_read.iter().map(move |d| (l, d.clone())))
+        {
             for projection in projections {
+                let look = PatchLook {
+                    tone: Tone::Cel(CelRamp::two_tone(Vec3::ZERO, Vec3::ONE, 0.3)),
+                    designed_light: designed_light.clone(),
+                    highlight: None,
+                    lines: None,
+                };
                 let scene = Scene {
                     library: &library,
-                    looks: Vec::new(),
+                    looks: vec![look],
                     camera: Camera {
                         eye,
                         target: eye + Vec3::Y,
@@ -179,6 +212,17 @@ mod tests {
                 initial_half_vectors(&scene, &texels, &view, &mut side_by_side);
                 for (t, h) in texels.iter().zip(side_by_side) {
                     let one = initial_half_vector(&scene, t);
+                    let l = match &designed_light {
+                        Some(d) if d.highlight_reads() == HighlightLight::Designed => {
+                            d.light(&t.frame, t.uv, light.direction(t.position, t.frame.n))
+                        }
+                        _ => light.direction(t.position, t.frame.n),
+                    };
+                    let v = scene.camera.toward_eye(t.position);
+                    assert!(
+                        (l + v).length() < 1e-3 || (one - (l + v).normalize()).length() < 1e-5,
+                        "{light:?} {projection:?}: {one} is not normalize(L + V)"
+                    );
                     assert!(h.is_finite(), "{light:?} {projection:?}: {h}");
                     assert_eq!(
                         h.to_array().map(f32::to_bits),

@@ -14,7 +14,8 @@ use crate::toon::{CelRamp, PreparedXToon};
 pub struct PatchLook {
     pub tone: Tone,
     /// The light the tone reads, `L'` of the shade stacks on the patch; None: the scene's light.
-    /// The highlight reads the scene's light either way.
+    /// The highlight reads the scene's light unless the designed light says it reads `L'` too
+    /// ([`DesignedLight::highlight_reads`]).
     pub designed_light: Option<DesignedLight>,
     pub highlight: Option<PreparedExpr>,
     /// The patch's own line style; None draws its lines in the outlines' own
@@ -133,6 +134,25 @@ impl Scene<'_> {
         let l = self.light.direction(position, frame.n);
         match &self.looks[patch as usize].designed_light {
             Some(designed) => designed.light(frame, uv, l),
+            None => l,
+        }
+    }
+
+    /// The unit light direction the highlight of `patch` reads at that point: the scene's light
+    /// L, or `L'` where the patch's highlight reads its designed light
+    /// ([`DesignedLight::highlight_light`]).
+    #[inline]
+    #[must_use]
+    pub fn highlight_light(
+        &self,
+        patch: u32,
+        frame: &TangentFrame,
+        uv: Vec2,
+        position: Vec3,
+    ) -> Vec3 {
+        let l = self.light.direction(position, frame.n);
+        match &self.looks[patch as usize].designed_light {
+            Some(designed) => designed.highlight_light(frame, uv, l),
             None => l,
         }
     }

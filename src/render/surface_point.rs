@@ -6,7 +6,7 @@ use glam::Vec3;
 use super::camera::Camera;
 use super::facing::facing_patch_frame;
 use crate::geom::NurbsSurface;
-use crate::highlight::{blinn_half_vector, Light, TangentFrame};
+use crate::highlight::{blinn_half_vector, half_vector, Light, TangentFrame};
 
 /// A point of a patch seen by a camera under a light, with the values an exact frame
 /// ([`FrameMode::Exact`](super::FrameMode::Exact)) shades it with: the same facing frame and
@@ -36,6 +36,16 @@ impl SurfacePoint {
             position,
             frame,
             half_vector,
+        }
+    }
+
+    /// The same point with its half vector taken from the unit light direction `l` in place
+    /// of the light's own: `H = normalize(l + V)`, V toward `camera`'s eye.
+    #[must_use]
+    pub fn lit_from(self, l: Vec3, camera: &Camera) -> Self {
+        Self {
+            half_vector: half_vector(l, camera.view().direction(self.position)),
+            ..self
         }
     }
 

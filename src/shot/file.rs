@@ -9,7 +9,7 @@ use serde::Deserialize;
 use super::orbit::OrbitSpec;
 use crate::anim::{Direction, Track};
 use crate::formats::parts::GroupsSpec;
-use crate::highlight::{Expr, Mask, Op, ShadeStack};
+use crate::highlight::{Expr, HighlightLight, Mask, Op, ShadeStack};
 use crate::render::tessellate::Density;
 use crate::render::{Antialias, FrameMode, LineKind};
 use crate::toon::{DetailMap, ShapeDetail};
@@ -229,6 +229,10 @@ pub enum LightSpec {
 pub struct HighlightSpec {
     pub patches: Selector,
     pub expr: Expr<Track<f32>>,
+    /// The light the highlight reads: the scene's (the default), or the designed light of
+    /// the shade entries on its patches (`light: Designed`).
+    #[serde(default)]
+    pub light: HighlightLight,
 }
 
 /// A shade stack on the patches a selector picks: the highlight operations applied to the

@@ -208,9 +208,16 @@ impl FrameState {
                 tone: tones[shot.material_of(patch)].clone(),
                 designed_light: match shot.shade_of(patch) {
                     [] => None,
-                    entries => Some(DesignedLight::new(
-                        entries.iter().map(|&e| shade[e as usize].clone()).collect(),
-                    )),
+                    entries => Some(
+                        DesignedLight::new(
+                            entries.iter().map(|&e| shade[e as usize].clone()).collect(),
+                        )
+                        .read_by_highlight(
+                            shot.highlight_of(patch)
+                                .map(|h| shot.highlight_light(h))
+                                .unwrap_or_default(),
+                        ),
+                    ),
                 },
                 highlight,
                 lines: self.outlines.map(|(_, style)| {

@@ -9,6 +9,7 @@ mod file;
 pub(crate) mod fixtures;
 mod frame_state;
 mod glob;
+mod highlight_point;
 mod layer_axes;
 mod library_at;
 mod line_styles;

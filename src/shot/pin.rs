@@ -12,7 +12,6 @@ use crate::formats::ron_location::closest_name;
 use crate::formats::ron_paths::Step::{self, Field, Index};
 use crate::geom::PatchLibrary;
 use crate::highlight::{Expr, Pin};
-use crate::render::SurfacePoint;
 
 /// Where the pin of layer `layer` of highlight entry `written` is: `highlights[i].expr`, the
 /// Booleans' operands down to the layer, its parentheses, `pin`.
@@ -106,9 +105,8 @@ impl Shot {
             let (Some(pin), Some(patch)) = (&layer.pin, self.pinned_patch(entry, k)) else {
                 continue;
             };
-            let surface = &state.library.patches[patch].surface;
             let uv = (f64::from(pin.u), f64::from(pin.v));
-            let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
+            let point = self.highlight_point(state, patch, uv);
             // Centred in the layer's frame as the pinned patch draws it; the layer keeps its axis
             // in the model's coordinates.
             let drawn = self.layer_on(layer, patch, state.frame);

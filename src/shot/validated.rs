@@ -223,6 +223,16 @@ impl Shot {
         self.patch_highlight[patch]
     }
 
+    /// The light highlight entry `entry` reads (`light:`); the scene's for an entry that is
+    /// not there.
+    #[must_use]
+    pub fn highlight_light(&self, entry: usize) -> crate::highlight::HighlightLight {
+        self.highlights
+            .get(entry)
+            .map(|h| h.light)
+            .unwrap_or_default()
+    }
+
     /// The file frame `frame` is written to: the output pattern with its run of `#` replaced
     /// by the frame number, zero-padded to the run's length.
     pub fn frame_path(&self, frame: i64) -> PathBuf {

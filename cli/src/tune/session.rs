@@ -314,12 +314,7 @@ impl Session {
         let library = &state.library;
         let covering = match highlight {
             Some(entry) => {
-                let point = SurfacePoint::new(
-                    &library.patches[patch].surface,
-                    uv,
-                    &state.camera,
-                    &state.light,
-                );
+                let point = shot.highlight_point(&state, patch, uv);
                 state.highlights[entry]
                     .layers()
                     .iter()
@@ -444,8 +439,7 @@ impl Session {
                     shot.library.patches[patch].name
                 )));
             }
-            let surface = &state.library.patches[patch].surface;
-            let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
+            let point = shot.highlight_point(&state, patch, uv);
             let centred = shot
                 .layer_on(&chosen, patch, request.frame)
                 .centred_at(&point.frame, point.half_vector)
