@@ -121,7 +121,10 @@ try {
     written = readFileSync(shot, "utf8");
   }
   check(written !== original, "the drag wrote nothing");
-  const translate = written.match(/Translate\(alpha: (\[[^\]]*\]|[-0-9.e]+), beta: (\[[^\]]*\]|[-0-9.e]+)\)/);
+  // The body's shade entry: the first translation after the shot's `shade:` (the highlights
+  // before it have their own).
+  const shadeList = written.slice(written.indexOf("\n    shade: ["));
+  const translate = shadeList.match(/Translate\(alpha: (\[[^\]]*\]|[-0-9.e]+), beta: (\[[^\]]*\]|[-0-9.e]+)\)/);
   check(translate, `no translation in the written shot:\n${written}`);
   const alphaKey = translate[1].match(/\(1, (-?[0-9.e-]+)\)/);
   const betaKey = translate[2].match(/\(1, (-?[0-9.e-]+)\)/);

@@ -485,26 +485,16 @@ async fn drag(
     query: Result<Query<FormatQuery>, axum::extract::rejection::QueryRejection>,
     body: Bytes,
 ) -> Response {
-    let result = async {
-        let format = format_of(query)?;
-        let request: DragRequest = json_body(&body)?;
-        let (image, changes) = with_session(&shared, move |s| {
-            let changes = s.drag_changes(&request)?;
-            let frame = FrameRequest {
-                frame: request.frame,
-                quality: request.quality,
-                overlays: request.overlays,
-                changes: changes.clone(),
-            };
-            Ok((s.render(&frame)?, changes))
+    dragged(&shared, query, &body, |s, request: DragRequest| {
+        let changes = s.drag_changes(&request)?;
+        Ok(FrameRequest {
+            frame: request.frame,
+            quality: request.quality,
+            overlays: request.overlays,
+            changes,
         })
-        .await?;
-        let changes =
-            serde_json::to_string(&changes).map_err(|e| TuneError::Failed(e.to_string()))?;
-        image_response(&image, format, Some(("x-glint-changes", changes)))
-    }
-    .await;
-    result.unwrap_or_else(IntoResponse::into_response)
+    })
+    .await
 }
 
 async fn shade_drag(
@@ -512,18 +502,32 @@ async fn shade_drag(
     query: Result<Query<FormatQuery>, axum::extract::rejection::QueryRejection>,
     body: Bytes,
 ) -> Response {
+    dragged(&shared, query, &body, |s, request: ShadeDragRequest| {
+        let changes = s.shade_drag_changes(&request)?;
+        Ok(FrameRequest {
+            frame: request.frame,
+            quality: request.quality,
+            overlays: request.overlays,
+            changes,
+        })
+    })
+    .await
+}
+
+/// A drag's answer: the body read as a request `R`, the frame `placed` makes of it (with the
+/// changes the drag makes) rendered, and those changes in `X-Glint-Changes`.
+async fn dragged<R: DeserializeOwned + Send + 'static>(
+    shared: &Arc<Shared>,
+    query: Result<Query<FormatQuery>, axum::extract::rejection::QueryRejection>,
+    body: &Bytes,
+    placed: impl FnOnce(&mut Session, R) -> Result<FrameRequest, TuneError> + Send + 'static,
+) -> Response {
     let result = async {
         let format = format_of(query)?;
-        let request: ShadeDragRequest = json_body(&body)?;
-        let (image, changes) = with_session(&shared, move |s| {
-            let changes = s.shade_drag_changes(&request)?;
-            let frame = FrameRequest {
-                frame: request.frame,
-                quality: request.quality,
-                overlays: request.overlays,
-                changes: changes.clone(),
-            };
-            Ok((s.render(&frame)?, changes))
+        let request: R = json_body(body)?;
+        let (image, changes) = with_session(shared, move |s| {
+            let frame = placed(s, request)?;
+            Ok((s.render(&frame)?, frame.changes))
         })
         .await?;
         let changes =
