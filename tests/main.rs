@@ -71,6 +71,7 @@ mod tune_api;
 mod tune_http;
 mod tutorial;
 mod usd_import;
+mod usd_import_twins;
 mod usd_motion;
 
 /// `autotests = false` makes this file the only test crate: a test file it does not declare

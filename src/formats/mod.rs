@@ -40,7 +40,8 @@ pub use usd::{
 #[derive(Clone, Debug)]
 pub struct Model {
     pub library: PatchLibrary,
-    /// Some for a USD text layer whose time samples move a patch; None otherwise.
+    /// Some for a USD layer (text, or binary with `usd-binary`) whose time samples move a
+    /// patch; None otherwise.
     pub motion: Option<UsdMotion>,
 }
 
@@ -93,7 +94,8 @@ fn load_binary_usd(path: &Path, kind: Option<&str>, shown: String) -> Result<Mod
     #[cfg(feature = "usd-binary")]
     {
         let _ = convert;
-        usd::read_usdc(path, &shown).map(Model::still)
+        let (library, motion) = usd::read_usdc_motion(path, &shown)?;
+        Ok(Model { library, motion })
     }
     #[cfg(not(feature = "usd-binary"))]
     Err(FormatError::File {
@@ -111,8 +113,8 @@ pub fn load_patches(path: &Path) -> Result<PatchLibrary, FormatError> {
     Ok(load_model(path)?.library)
 }
 
-/// Loads a model like [`load_patches`], keeping a USD text layer's time samples: its motion
-/// is Some when they move a patch.
+/// Loads a model like [`load_patches`], keeping a USD layer's time samples: its motion is
+/// Some when they move a patch.
 pub fn load_model(path: &Path) -> Result<Model, FormatError> {
     let shown = path.display().to_string();
     let kind = path

@@ -1,11 +1,11 @@
 //! A binary USD layer (`.usdc`, or a binary `.usd`) read into a [`Layer`] through the `openusd`
-//! crate, refusing what the text reader refuses (composition, connected values) and time
-//! samples, which glint reads from text layers: `usdcat` converts a binary layer to text.
-//! A binary layer has no lines and columns; its errors name the prim.
+//! crate, as the text reader reads a text layer: its time samples and time codes, refusing
+//! what the text reader refuses (composition, connected values) and splines. A binary layer has
+//! no lines and columns; its errors name the prim.
 
 use openusd::sdf::{self, AbstractData, SpecType, Specifier};
 
-use super::layer::{Layer, Prim, Property, Value, NOWHERE};
+use super::layer::{Layer, LayerTimes, Prim, Property, Sample, Value, NOWHERE};
 
 /// Prim fields that compose other layers or variants into a prim.
 const COMPOSITION_FIELDS: [(&str, &str); 6] = [
@@ -36,11 +36,50 @@ pub(super) fn read(path: &std::path::Path) -> Result<Layer, String> {
     for name in children(&*data, &root, "primChildren") {
         prims.push(prim(&*data, "", &name, 0)?);
     }
+    let time = |name: &str| match field(&*data, &root, name) {
+        Some(v) => number(&v).map(|x| (x, NOWHERE)),
+        None => None,
+    };
     Ok(Layer {
         up_axis,
-        times: super::layer::LayerTimes::default(),
+        times: LayerTimes {
+            time_codes_per_second: time("timeCodesPerSecond"),
+            frames_per_second: time("framesPerSecond"),
+            start_time_code: time("startTimeCode"),
+            end_time_code: time("endTimeCode"),
+        },
         prims,
     })
+}
+
+/// A number field's value; None for a value of another kind.
+fn number(v: &sdf::Value) -> Option<f64> {
+    match value(v) {
+        Value::Number(x) => Some(x),
+        _ => None,
+    }
+}
+
+/// The time samples of the property at `path`, sorted by time, a time written twice read at
+/// its last value (as the text reader does); empty when it has none.
+fn samples(data: &dyn AbstractData, path: &sdf::Path) -> Vec<Sample> {
+    let Some(sdf::Value::TimeSamples(map)) = field(data, path, "timeSamples") else {
+        return Vec::new();
+    };
+    let mut out: Vec<Sample> = Vec::with_capacity(map.len());
+    for (time, v) in &map {
+        let sample = Sample {
+            time: *time,
+            value: value(v),
+            at: NOWHERE,
+        };
+        match out.iter_mut().find(|s| s.time.total_cmp(time).is_eq()) {
+            Some(same) => *same = sample,
+            None => out.push(sample),
+        }
+    }
+    out.sort_by(|a, b| a.time.total_cmp(&b.time));
+    out
 }
 
 fn field(data: &dyn AbstractData, path: &sdf::Path, name: &str) -> Option<sdf::Value> {
@@ -74,9 +113,12 @@ fn prim(data: &dyn AbstractData, parent: &str, name: &str, depth: usize) -> Resu
         return Err(format!("{shown}: prims nest more than {MAX_DEPTH} deep"));
     }
     let path = sdf::Path::from(shown.as_str());
-    if let Some(sdf::Value::Specifier(Specifier::Over | Specifier::Class)) =
-        field(data, &path, "specifier")
-    {
+    // A prim spec that writes no specifier is an `over`: that is the field's fallback in USD's
+    // schema, and what an empty `over` reads as.
+    if !matches!(
+        field(data, &path, "specifier"),
+        Some(sdf::Value::Specifier(Specifier::Def))
+    ) {
         return Err(format!("{shown}: `over` and `class` prims compose opinions from other prims or layers, which glint does not read; flatten the stage (usdcat --flatten) and export again"));
     }
     for (field_name, what) in COMPOSITION_FIELDS {
@@ -92,8 +134,8 @@ fn prim(data: &dyn AbstractData, parent: &str, name: &str, depth: usize) -> Resu
     let mut properties = Vec::new();
     for property_name in children(data, &path, "propertyChildren") {
         let property_path = sdf::Path::from(format!("{shown}.{property_name}").as_str());
-        if has(data, &property_path, "timeSamples") || has(data, &property_path, "spline") {
-            return Err(format!("{shown}: `{property_name}` is animated; glint reads time samples from text layers only — convert the layer to text with usdcat, from the usd-core Python package: usdcat --flatten in.usdc -o model.usda"));
+        if has(data, &property_path, "spline") {
+            return Err(format!("{shown}: `{property_name}` is animated by a spline; glint reads time samples, not splines (export the animation baked to time samples)"));
         }
         let relationship = data.spec_type(&property_path) == Some(SpecType::Relationship);
         let mut type_name = if relationship {
@@ -111,7 +153,7 @@ fn prim(data: &dyn AbstractData, parent: &str, name: &str, depth: usize) -> Resu
             name: property_name,
             type_name,
             default: field(data, &property_path, "default").map(|v| value(&v)),
-            samples: Vec::new(),
+            samples: samples(data, &property_path),
             at: NOWHERE,
         });
     }

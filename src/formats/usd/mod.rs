@@ -11,7 +11,8 @@
 //! `class`, references, payloads, inherits, specializes, variants, sublayers), splines, other
 //! attributes glint reads whose time samples differ, connected attributes glint reads, trim
 //! loops that are not closed or run the wrong way, and geometry glint does not draw (meshes,
-//! curves, points, implicit shapes).
+//! curves, points, implicit shapes). A binary layer (`.usdc`, with the `usd-binary` feature) is
+//! read into the same [`Layer`](layer::Layer) and from there the same way.
 
 #[cfg(feature = "usd-binary")]
 mod binary;
@@ -118,16 +119,20 @@ fn animates(prims: &[Prim]) -> bool {
         .any(|p| p.properties.iter().any(layer::Property::varies) || animates(&p.children))
 }
 
-/// Reads the binary USD layer at `path` (shown in errors as `shown`) as [`parse_usda`] reads a
-/// text one. Its errors name the prim, having no line and column.
+/// Reads the binary USD layer at `path` (shown in errors as `shown`) as [`parse_usda_motion`]
+/// reads a text one, with how its patches move: the same time samples and time codes give the
+/// same motion. Its errors name the prim, having no line and column.
 #[cfg(feature = "usd-binary")]
-pub fn read_usdc(path: &std::path::Path, shown: &str) -> Result<PatchLibrary, FormatError> {
+pub fn read_usdc_motion(
+    path: &std::path::Path,
+    shown: &str,
+) -> Result<(PatchLibrary, Option<UsdMotion>), FormatError> {
     let at = |_: usize, message: String| FormatError::File {
         path: shown.to_string(),
         message,
     };
     let layer = binary::read(path).map_err(|m| at(layer::NOWHERE, m))?;
-    Ok(library_of(&layer, &at)?.0)
+    library_of(&layer, &at)
 }
 
 /// The error `message` at byte `offset` of `text`, a file shown as `shown`.
