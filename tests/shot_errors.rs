@@ -452,6 +452,14 @@ const CASES: &[Case] = &[
         says: &["Circle", "Sphere", "Cylinder"],
     },
     Case {
+        name: "unknown light for a highlight",
+        from: "            )),\n        ),\n    ],",
+        to: "            )),\n            light: Designd,\n        ),\n    ],",
+        file: "shot.ron",
+        at: "Designd",
+        says: &["Designd", "Plain", "Designed"],
+    },
+    Case {
         name: "shade selector matching nothing",
         from: "    render: (preset: Preview),",
         to: "    shade: [(patches: \"bal/*\", stack: [Translate(alpha: 0.2, beta: 0.0)])],\n    render: (preset: Preview),",

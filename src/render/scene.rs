@@ -90,7 +90,8 @@ pub struct Aovs {
     /// Patch parameters (u, v) per pixel.
     pub uv: bool,
     /// `N·H` of the initial half vector per pixel, on every patch: where the undesigned Blinn
-    /// highlight would be (a debug view for animators).
+    /// highlight would be (a debug view for animators), H from the light the patch's highlight
+    /// reads ([`Scene::highlight_light`]).
     pub n_dot_h: bool,
     /// `N·L'` per pixel: the light its tone reads ([`Scene::tone_n_dot_l`]), on every patch
     /// (a view of where the cel bands' edges lie, and a light pass for compositing).
