@@ -1,6 +1,7 @@
 //! A frame's fingerprint changes when what the frame renders changes, and only then: edits of every
 //! kind of input a shot has — its instances' materials, transforms and parts, the parts file, an
-//! included look library, selectors, pins, masks, line styles, a texture, a patch file, the
+//! included look library, selectors, pins, masks, shade entries and the light a highlight
+//! reads, line styles, a texture, a patch file, the
 //! render settings, keys at and away from a frame, comments and spacing — drawn at random, each
 //! rendered at a small size before and after.
 
@@ -206,6 +207,11 @@ enum Edit {
     BandColour(f64),
     /// A key of the body highlight's translation at a frame between its keys.
     AlphaKey(i64, f64),
+    /// A shade entry added on the ring, its light translated by α.
+    Shade(f64),
+    /// A shade entry added on the lid, pushing its light far enough to move its band edge on
+    /// every frame, with the lid's pinned highlight reading the designed light.
+    DesignedHighlight,
     /// A key in the ring's hold, at its held value: no frame changes.
     KeyInHold(i64),
     /// A comment and spacing: no frame changes.
@@ -303,6 +309,25 @@ impl Edit {
                 "alpha: [(1, 0.0), (12, 0.3)]",
                 &format!("alpha: [(1, 0.0), ({frame}, {alpha:?}), (12, 0.3)]"),
             ),
+            Edit::Shade(alpha) => fixture.replace(
+                shot,
+                "    lines: [",
+                &format!(
+                    "    shade: [(patches: \"ring/*\", stack: [Translate(alpha: {alpha:?}, beta: 0.0)])],\n    lines: ["
+                ),
+            ),
+            Edit::DesignedHighlight => {
+                fixture.replace(
+                    shot,
+                    "    lines: [",
+                    "    shade: [(patches: \"teapot/lid\", stack: [Translate(alpha: 3.0, beta: 2.0)])],\n    lines: [",
+                );
+                fixture.replace(
+                    shot,
+                    "pin: (patch: \"teapot/25\", u: 0.3, v: 0.5),\n            )),",
+                    "pin: (patch: \"teapot/25\", u: 0.3, v: 0.5),\n            )),\n            light: Designed,",
+                );
+            }
             Edit::KeyInHold(frame) => fixture.replace(
                 shot,
                 "(6, (2.6, -1.4, 0.4))",
@@ -335,6 +360,8 @@ fn edits() -> impl Strategy<Value = Edit> {
         (0.2f64..0.5).prop_map(Edit::Light),
         (0.1f64..0.5).prop_map(Edit::BandColour),
         (2i64..=11, prop::sample::select(vec![-0.3, 0.6])).prop_map(|(f, a)| Edit::AlphaKey(f, a)),
+        (0.2f64..0.6).prop_map(Edit::Shade),
+        Just(Edit::DesignedHighlight),
         (2i64..=5).prop_map(Edit::KeyInHold),
         Just(Edit::Comment),
     ]
@@ -427,6 +454,8 @@ fn every_kind_of_edit_changes_the_frames_it_reaches() {
         (Edit::Light(0.4), FRAMES.to_vec()),
         (Edit::BandColour(0.3), FRAMES.to_vec()),
         (Edit::AlphaKey(6, 0.6), vec![4, 9]),
+        (Edit::Shade(0.4), FRAMES.to_vec()),
+        (Edit::DesignedHighlight, FRAMES.to_vec()),
         (Edit::KeyInHold(3), vec![]),
         (Edit::Comment, vec![]),
     ];
