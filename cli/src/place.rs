@@ -200,26 +200,37 @@ pub fn run(args: &PlaceArgs) -> Result<(), CliError> {
 }
 
 /// Keys the placed translation's α and β at the placement's frame in the file its highlight
-/// is written in ([`apply_edits`]: only those two tracks change, checked by reading the file
-/// back), and writes the file in place.
+/// is written in ([`write_translation`]).
 fn write_keys(r: &Report, p: &Placement) -> Result<(), CliError> {
-    let file = Path::new(&r.file);
+    let key = |value: f32| TrackEdit::Key {
+        frame: p.frame,
+        value: rounded_number_text(value),
+    };
+    write_translation(
+        &r.file,
+        &r.path,
+        [("alpha", key(r.alpha)), ("beta", key(r.beta))],
+    )
+}
+
+/// Writes `edits` of the α and β of the translation at parameter path `path` into `file`
+/// ([`apply_edits`]: only those two tracks change, checked by reading the file back), in
+/// place.
+fn write_translation(
+    file: &str,
+    path: &str,
+    edits: [(&str, TrackEdit); 2],
+) -> Result<(), CliError> {
+    let file = Path::new(file);
     let text = std::fs::read_to_string(file)
         .map_err(|e| CliError::Failed(anyhow!("{}: cannot read the file: {e}", file.display())))?;
     let bad = |e: glint::shot::EditError| CliError::BadInput(e.in_file(file).into());
-    let mut edits = Vec::with_capacity(2);
-    for (name, value) in [("alpha", r.alpha), ("beta", r.beta)] {
-        let path = parse_param_path(&text, &format!("{}.{name}", r.path)).map_err(bad)?;
-        let value = rounded_number_text(value);
-        edits.push((
-            path,
-            TrackEdit::Key {
-                frame: p.frame,
-                value,
-            },
-        ));
+    let mut parsed = Vec::with_capacity(2);
+    for (name, edit) in edits {
+        let at = parse_param_path(&text, &format!("{path}.{name}")).map_err(bad)?;
+        parsed.push((at, edit));
     }
-    let edited = apply_edits(&text, &edits).map_err(bad)?;
+    let edited = apply_edits(&text, &parsed).map_err(bad)?;
     write_in_place(file, &edited).map_err(CliError::Failed)
 }
 
@@ -259,31 +270,52 @@ fn report<'a>(job: &'a RenderJob, p: &Placement) -> Report<'a> {
     }
 }
 
-fn write_report(out: &mut dyn Write, r: &Report, p: &Placement) -> std::io::Result<()> {
-    let parts = if r.parts.is_empty() {
+/// The first two lines of a placement: the pixel, the frame and the surface point under it,
+/// then the translation placed, `PATH in FILE: Translate(alpha: A, beta: B)`.
+#[allow(clippy::too_many_arguments)]
+fn write_point_and_translation(
+    out: &mut dyn Write,
+    frame: &str,
+    pixel: [f64; 2],
+    patch: &str,
+    parts: &[&str],
+    (u, v): (f64, f64),
+    (path, file): (&str, &str),
+    (alpha, beta): (f32, f32),
+) -> std::io::Result<()> {
+    let parts = if parts.is_empty() {
         String::new()
     } else {
-        format!(" ({})", r.parts.join(", "))
+        format!(" ({})", parts.join(", "))
     };
     writeln!(
         out,
-        "pixel ({}, {}) at frame {}: {}{parts}, u = {}, v = {}",
-        r.pixel[0],
-        r.pixel[1],
-        r.frame,
-        r.patch,
-        number(r.u),
-        number(r.v)
+        "pixel ({}, {}) at frame {frame}: {patch}{parts}, u = {}, v = {}",
+        pixel[0],
+        pixel[1],
+        number(u),
+        number(v)
     )?;
-    let frame = frame_text(p.frame);
     writeln!(
         out,
-        "{} in {}: Translate(alpha: {}, beta: {})",
-        r.path,
-        r.file,
-        number(f64::from(r.alpha)),
-        number(f64::from(r.beta))
+        "{path} in {file}: Translate(alpha: {}, beta: {})",
+        number(f64::from(alpha)),
+        number(f64::from(beta))
+    )
+}
+
+fn write_report(out: &mut dyn Write, r: &Report, p: &Placement) -> std::io::Result<()> {
+    write_point_and_translation(
+        out,
+        &r.frame.to_string(),
+        r.pixel,
+        r.patch,
+        &r.parts,
+        (r.u, r.v),
+        (&r.path, &r.file),
+        (r.alpha, r.beta),
     )?;
+    let frame = frame_text(p.frame);
     writeln!(
         out,
         "keys at frame {frame}: alpha: ({frame}, {}), beta: ({frame}, {})",
@@ -526,47 +558,28 @@ fn shade_edit(keyed: bool, frame: f64, value: f32) -> TrackEdit {
 }
 
 /// Writes the placed translation's α and β ([`shade_edit`]) into the file the shade entry is
-/// written in ([`apply_edits`]: only those two tracks change), in place.
+/// written in ([`write_translation`]).
 fn write_shade(r: &ShadeReport, p: &ShadePlacement) -> Result<(), CliError> {
-    let file = Path::new(&r.file);
-    let text = std::fs::read_to_string(file)
-        .map_err(|e| CliError::Failed(anyhow!("{}: cannot read the file: {e}", file.display())))?;
-    let bad = |e: glint::shot::EditError| CliError::BadInput(e.in_file(file).into());
-    let mut edits = Vec::with_capacity(2);
-    for (name, value, keyed) in [
-        ("alpha", r.alpha, r.alpha_keyed),
-        ("beta", r.beta, r.beta_keyed),
-    ] {
-        let path = parse_param_path(&text, &format!("{}.{name}", r.path)).map_err(bad)?;
-        edits.push((path, shade_edit(keyed, p.frame, value)));
-    }
-    let edited = apply_edits(&text, &edits).map_err(bad)?;
-    write_in_place(file, &edited).map_err(CliError::Failed)
+    write_translation(
+        &r.file,
+        &r.path,
+        [
+            ("alpha", shade_edit(r.alpha_keyed, p.frame, r.alpha)),
+            ("beta", shade_edit(r.beta_keyed, p.frame, r.beta)),
+        ],
+    )
 }
 
 fn write_shade_report(out: &mut dyn Write, r: &ShadeReport) -> std::io::Result<()> {
-    let parts = if r.parts.is_empty() {
-        String::new()
-    } else {
-        format!(" ({})", r.parts.join(", "))
-    };
-    writeln!(
+    write_point_and_translation(
         out,
-        "pixel ({}, {}) at frame {}: {}{parts}, u = {}, v = {}",
-        r.pixel[0],
-        r.pixel[1],
-        frame_text(r.frame),
+        &frame_text(r.frame),
+        r.pixel,
         r.patch,
-        number(r.u),
-        number(r.v)
-    )?;
-    writeln!(
-        out,
-        "{} in {}: Translate(alpha: {}, beta: {})",
-        r.path,
-        r.file,
-        number(f64::from(r.alpha)),
-        number(f64::from(r.beta))
+        &r.parts,
+        (r.u, r.v),
+        (&r.path, &r.file),
+        (r.alpha, r.beta),
     )?;
     writeln!(
         out,
