@@ -66,19 +66,20 @@ fn samples(data: &dyn AbstractData, path: &sdf::Path) -> Vec<Sample> {
     let Some(sdf::Value::TimeSamples(map)) = field(data, path, "timeSamples") else {
         return Vec::new();
     };
-    let mut out: Vec<Sample> = Vec::with_capacity(map.len());
-    for (time, v) in &map {
-        let sample = Sample {
+    let mut out: Vec<Sample> = map
+        .iter()
+        .map(|(time, v)| Sample {
             time: *time,
             value: value(v),
             at: NOWHERE,
-        };
-        match out.iter_mut().find(|s| s.time.total_cmp(time).is_eq()) {
-            Some(same) => *same = sample,
-            None => out.push(sample),
-        }
-    }
+        })
+        .collect();
+    // A stable sort keeps samples of one time in the order written; of each run, the last
+    // stays.
     out.sort_by(|a, b| a.time.total_cmp(&b.time));
+    out.reverse();
+    out.dedup_by(|later, kept| later.time.total_cmp(&kept.time).is_eq());
+    out.reverse();
     out
 }
 
