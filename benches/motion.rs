@@ -44,7 +44,7 @@ use glint::render::Renderer;
 use glint::shot::{load_shot_text, Shot};
 
 /// Rounds of frames measured.
-const ROUNDS: usize = 12;
+const ROUNDS: usize = FRAMES as usize - 1;
 
 /// Frames of the shot.
 const FRAMES: i64 = 48;

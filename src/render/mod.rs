@@ -52,6 +52,14 @@ pub use surface_point::SurfacePoint;
 
 use thiserror::Error;
 
+/// A map for the frame's own bookkeeping, keyed by points, edges or pairs of patches: a fast
+/// hasher for small keys, seeded per process. What the renderer makes never depends on the
+/// order such a map is walked in.
+pub(crate) type FastMap<K, V> = std::collections::HashMap<K, V, foldhash::fast::RandomState>;
+
+/// The set kind of [`FastMap`].
+pub(crate) type FastSet<K> = std::collections::HashSet<K, foldhash::fast::RandomState>;
+
 /// A scene or setting the renderer cannot use.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum RenderError {

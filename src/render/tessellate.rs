@@ -9,6 +9,7 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use rayon::prelude::*;
 use serde::Deserialize;
 
+use super::FastMap;
 use crate::geom::{GridEvaluator, KnotVector, NamedPatch, NurbsSurface, PatchLibrary, Region};
 
 /// How finely patches are cut into triangles.
@@ -536,7 +537,7 @@ fn direction_classes_counted(library: &PatchLibrary) -> (Vec<usize>, usize) {
             .iter()
             .all(|p| (*p - points[0]).length() <= tolerance)
     };
-    let mut filed: HashMap<glam::I64Vec3, Vec<(usize, usize)>> = HashMap::new();
+    let mut filed: FastMap<glam::I64Vec3, Vec<(usize, usize)>> = FastMap::default();
     for (patch, patch_edges) in edges.iter().enumerate() {
         for (edge, points) in patch_edges.iter().enumerate() {
             if collapsed(points) {
@@ -601,88 +602,151 @@ fn direction_classes_counted(library: &PatchLibrary) -> (Vec<usize>, usize) {
 /// The grid meshes of all patches (their `patch_frames`), with boundary vertices at equal
 /// positions welded to one f32 value, and, when a patch is trimmed, where each triangle lies on
 /// its trim.
+///
+/// A boundary vertex takes the value of the first boundary vertex, in patch order and within a
+/// patch row by row, whose point rounds to the same multiple of the welding quantum. Only that
+/// choice is made in order, over the boundary vertices alone; each patch's vertices and
+/// triangles are then written in parallel into arrays of their final size (the mesh is rebuilt
+/// whenever a patch moves).
 fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
     let trimmed = library.patches.iter().any(|p| p.trim.is_some());
-    // Every array at its final size from the start: the mesh is rebuilt whenever a patch
-    // moves, and growing it by doubling would copy it about twice over.
-    let vertices: usize = patch_frames.iter().map(|f| f.us.len() * f.vs.len()).sum();
-    let triangles: usize = patch_frames
+    let vertex_counts: Vec<usize> = patch_frames
+        .iter()
+        .map(|f| f.us.len() * f.vs.len())
+        .collect();
+    let triangle_counts: Vec<usize> = patch_frames
         .iter()
         .map(|f| 2 * f.us.len().saturating_sub(1) * f.vs.len().saturating_sub(1))
-        .sum();
+        .collect();
+    let vertices: usize = vertex_counts.iter().sum();
+    let triangles: usize = triangle_counts.iter().sum();
+    let quantum = 1e-9 * model_scale(library);
+    let key_of = |point: DVec3| (point / quantum).round().as_i64vec3().to_array();
+    let border: Vec<Vec<([i64; 3], Vec3)>> = patch_frames
+        .par_iter()
+        .map(|f| {
+            let (nu, nv) = (f.us.len(), f.vs.len());
+            f.points
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| {
+                    let (i, j) = (k / nv, k % nv);
+                    i == 0 || j == 0 || i + 1 == nu || j + 1 == nv
+                })
+                .map(|(_, point)| (key_of(*point), point.as_vec3()))
+                .collect()
+        })
+        .collect();
+    let mut welded: FastMap<[i64; 3], Vec3> =
+        FastMap::with_capacity_and_hasher(border.iter().map(Vec::len).sum(), Default::default());
+    for (key, position) in border.into_iter().flatten() {
+        welded.entry(key).or_insert(position);
+    }
     let mut mesh = Mesh {
-        positions: Vec::with_capacity(vertices),
-        normals: Vec::with_capacity(vertices),
-        tangents_u: Vec::with_capacity(vertices),
-        uvs: Vec::with_capacity(vertices),
-        triangles: Vec::with_capacity(triangles),
-        triangle_patch: Vec::with_capacity(triangles),
+        positions: vec![Vec3::ZERO; vertices],
+        normals: vec![Vec3::ZERO; vertices],
+        tangents_u: vec![Vec3::ZERO; vertices],
+        uvs: vec![Vec2::ZERO; vertices],
+        triangles: vec![[0; 3]; triangles],
+        triangle_patch: vec![0; triangles],
         grids: Vec::with_capacity(patch_frames.len()),
-        triangle_region: Vec::with_capacity(if trimmed { triangles } else { 0 }),
+        triangle_region: vec![Region::Kept; if trimmed { triangles } else { 0 }],
         ..Mesh::default()
     };
-    let border_vertices: usize = patch_frames
+    let (mut first, mut first_triangle) = (0, 0);
+    for (f, (&n, &t)) in patch_frames
         .iter()
-        .map(|f| 2 * (f.us.len() + f.vs.len()))
-        .sum();
-    let mut welded: HashMap<[i64; 3], Vec3> = HashMap::with_capacity(border_vertices);
-    let quantum = 1e-9 * model_scale(library);
-    // The vertices welded and laid out in patch order.
-    for (patch_index, (patch, evaluated)) in library.patches.iter().zip(patch_frames).enumerate() {
-        let PatchFrames {
-            us,
-            vs,
-            points,
-            normals,
-            tangents_u,
-            regions,
-            ..
-        } = evaluated;
-        let first = mesh.positions.len() as u32;
-        let (nu, nv) = (us.len(), vs.len());
-        for (k, point) in points.iter().enumerate() {
-            let (i, j) = (k / nv, k % nv);
-            let mut position = point.as_vec3();
-            if i == 0 || j == 0 || i + 1 == nu || j + 1 == nv {
-                let key = (*point / quantum).round().as_i64vec3().to_array();
-                position = *welded.entry(key).or_insert(position);
-            }
-            mesh.positions.push(position);
-            mesh.uvs.push(Vec2::new(us[i] as f32, vs[j] as f32));
-        }
-        mesh.normals.extend_from_slice(normals);
-        mesh.tangents_u.extend_from_slice(tangents_u);
+        .zip(vertex_counts.iter().zip(&triangle_counts))
+    {
         mesh.grids.push(PatchGrid {
-            first,
-            nu: nu as u32,
-            nv: nv as u32,
-            first_triangle: mesh.triangles.len() as u32,
+            first: first as u32,
+            nu: f.us.len() as u32,
+            nv: f.vs.len() as u32,
+            first_triangle: first_triangle as u32,
         });
-        let index = |i: usize, j: usize| first + (i * nv + j) as u32;
-        for i in 0..nu - 1 {
-            if trimmed {
-                let row = (0..nv - 1).map(|j| match patch.trim {
-                    Some(_) => regions[i * (nv - 1) + j],
-                    None => Region::Kept,
-                });
-                mesh.triangle_region
-                    .extend(row.flat_map(|region| [region; 2]));
+        first += n;
+        first_triangle += t;
+    }
+    let region_counts: Vec<usize> = triangle_counts
+        .iter()
+        .map(|&t| if trimmed { t } else { 0 })
+        .collect();
+    let out = split_by(&mut mesh.positions, &vertex_counts)
+        .into_iter()
+        .zip(split_by(&mut mesh.normals, &vertex_counts))
+        .zip(split_by(&mut mesh.tangents_u, &vertex_counts))
+        .zip(split_by(&mut mesh.uvs, &vertex_counts))
+        .zip(split_by(&mut mesh.triangles, &triangle_counts))
+        .zip(split_by(&mut mesh.triangle_patch, &triangle_counts))
+        .zip(split_by(&mut mesh.triangle_region, &region_counts))
+        .map(|((((((p, n), t), uv), tri), tp), r)| (p, n, t, uv, tri, tp, r))
+        .collect::<Vec<_>>();
+    out.into_par_iter()
+        .zip(patch_frames.par_iter())
+        .zip(library.patches.par_iter())
+        .zip(mesh.grids.par_iter())
+        .enumerate()
+        .for_each(|(patch_index, (((out, evaluated), patch), grid))| {
+            let (positions, normals, tangents, uvs, tris, triangle_patch, regions_out) = out;
+            let PatchFrames {
+                us,
+                vs,
+                points,
+                normals: patch_normals,
+                tangents_u,
+                regions,
+                ..
+            } = evaluated;
+            let (nu, nv) = (us.len(), vs.len());
+            for (k, (point, (position, uv))) in points
+                .iter()
+                .zip(positions.iter_mut().zip(uvs.iter_mut()))
+                .enumerate()
+            {
+                let (i, j) = (k / nv, k % nv);
+                *position = if i == 0 || j == 0 || i + 1 == nu || j + 1 == nv {
+                    welded[&key_of(*point)]
+                } else {
+                    point.as_vec3()
+                };
+                *uv = Vec2::new(us[i] as f32, vs[j] as f32);
             }
-            for j in 0..nv - 1 {
+            normals.copy_from_slice(patch_normals);
+            tangents.copy_from_slice(tangents_u);
+            triangle_patch.fill(patch_index as u32);
+            let index = |i: usize, j: usize| grid.first + (i * nv + j) as u32;
+            let cells = (0..nu.saturating_sub(1))
+                .flat_map(|i| (0..nv.saturating_sub(1)).map(move |j| (i, j)));
+            for ((i, j), pair) in cells.zip(tris.chunks_exact_mut(2)) {
                 let (a, b, c, d) = (
                     index(i, j),
                     index(i + 1, j),
                     index(i + 1, j + 1),
                     index(i, j + 1),
                 );
-                mesh.triangles.push([a, b, c]);
-                mesh.triangles.push([a, c, d]);
-                mesh.triangle_patch.extend([patch_index as u32; 2]);
+                pair[0] = [a, b, c];
+                pair[1] = [a, c, d];
             }
-        }
-    }
+            if patch.trim.is_some() {
+                for (region, pair) in regions.iter().zip(regions_out.chunks_exact_mut(2)) {
+                    pair.fill(*region);
+                }
+            }
+        });
     mesh.borders = boundary_edges(&mesh.positions, &mesh.grids);
     mesh
+}
+
+/// `slice` cut into consecutive pieces of `lengths` (which sum to at most its length).
+fn split_by<'a, T>(mut slice: &'a mut [T], lengths: &[usize]) -> Vec<&'a mut [T]> {
+    lengths
+        .iter()
+        .map(|&n| {
+            let (head, tail) = std::mem::take(&mut slice).split_at_mut(n);
+            slice = tail;
+            head
+        })
+        .collect()
 }
 
 /// The pieces of every patch's domain boundary, each between two neighbouring vertices of its
@@ -692,8 +756,14 @@ fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
 #[must_use]
 pub fn boundary_edges(positions: &[Vec3], grids: &[PatchGrid]) -> Vec<BorderEdge> {
     let key = |v: u32| positions[v as usize].to_array().map(f32::to_bits);
-    let mut pieces: Vec<BorderEdge> = Vec::new();
-    let mut seen: HashMap<([u32; 3], [u32; 3]), usize> = HashMap::new();
+    // At most one piece per pair of neighbouring boundary vertices: sized once, not grown.
+    let most: usize = grids
+        .iter()
+        .map(|g| 2 * (g.nu as usize + g.nv as usize).saturating_sub(2))
+        .sum();
+    let mut pieces: Vec<BorderEdge> = Vec::with_capacity(most);
+    let mut seen: FastMap<([u32; 3], [u32; 3]), usize> =
+        FastMap::with_capacity_and_hasher(most, Default::default());
     for (patch, g) in grids.iter().enumerate() {
         for side in &g.sides() {
             for pair in side.windows(2) {

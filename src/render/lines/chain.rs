@@ -2,7 +2,7 @@
 //! so that a line neither breaks into dots nor keeps stray ones where a nearer surface almost
 //! touches it.
 
-use std::collections::HashMap;
+use crate::render::FastMap;
 
 use glam::DVec3;
 
@@ -137,7 +137,7 @@ fn same_points(pieces: &[Piece]) -> Vec<usize> {
         .fold(1.0f64, |m, p| m.max(p.abs().max_element()));
     let tolerance = SAME_POINT * extent;
     let cell = |p: DVec3| (p / tolerance).floor().as_i64vec3();
-    let mut filed: HashMap<glam::I64Vec3, Vec<(DVec3, usize)>> = HashMap::new();
+    let mut filed: FastMap<glam::I64Vec3, Vec<(DVec3, usize)>> = FastMap::default();
     for (k, &point) in ends.iter().enumerate() {
         if uses[ids[k]] != 1 {
             continue;

@@ -1,7 +1,7 @@
 //! Silhouettes: the curve where the surface turns from facing the eye to facing away, found on
 //! the mesh and refined onto the surface.
 
-use std::collections::HashMap;
+use crate::render::FastMap;
 
 use glam::{DVec2, DVec3, Mat4, Vec3};
 use rayon::prelude::*;
@@ -183,7 +183,7 @@ impl OnPatch<'_> {
         let front = |v: u32| value(v) >= 0.0;
         let mut pieces = Vec::new();
         // Each crossed edge is met by the two triangles beside it: found once.
-        let mut crossings: HashMap<(u32, u32), Crossing> = HashMap::new();
+        let mut crossings: FastMap<(u32, u32), Crossing> = FastMap::default();
         let mut on_edge = |x: u32, y: u32| {
             *crossings
                 .entry((x.min(y), x.max(y)))

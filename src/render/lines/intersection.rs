@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use super::super::tessellate::{Mesh, PatchGrid};
 use crate::geom::{PatchLibrary, Region};
+use crate::render::{FastMap, FastSet};
 
 /// Grid cells per side of the blocks whose bounds are compared before their triangles are.
 const BLOCK: u32 = 8;
@@ -190,8 +191,8 @@ fn blocks(mesh: &Mesh, patch: u32, grid: &PatchGrid) -> Vec<Block> {
 
 /// The pairs of patches `(lower, higher)` that share a vertex position: a piece of boundary
 /// across from the other, or a corner.
-fn touching_patches(mesh: &Mesh) -> std::collections::HashSet<(u32, u32)> {
-    let mut by_position: std::collections::HashMap<[u32; 3], Vec<u32>> = Default::default();
+fn touching_patches(mesh: &Mesh) -> FastSet<(u32, u32)> {
+    let mut by_position: FastMap<[u32; 3], Vec<u32>> = FastMap::default();
     for (patch, g) in mesh.grids.iter().enumerate() {
         let (nu, nv) = (g.nu, g.nv);
         let boundary = (0..nu)
@@ -205,7 +206,7 @@ fn touching_patches(mesh: &Mesh) -> std::collections::HashSet<(u32, u32)> {
             }
         }
     }
-    let mut pairs = std::collections::HashSet::new();
+    let mut pairs = FastSet::default();
     for list in by_position.values() {
         for (k, &a) in list.iter().enumerate() {
             for &b in &list[k + 1..] {
