@@ -28,7 +28,8 @@
 //!
 //! Run with `cargo bench --bench motion`; it prints each variant's frame time by stage, the
 //! grids, triangles, texels, intersection pairs and silhouettes the first moving frames made
-//! again and kept, then the ratio moving / still.
+//! again and kept, then the ratio moving / still, and what making each moving frame's SVG
+//! (`glint render --svg`) costs beside the frame.
 
 // Variant::render is for benchmarks that render one scene again and again.
 #[allow(dead_code)]
@@ -40,6 +41,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use frames::Variant;
+use glint::formats::svg::svg_document;
 use glint::render::Renderer;
 use glint::shot::{load_shot_text, Shot};
 
@@ -144,4 +146,30 @@ fn main() {
         );
     }
     measured.print_ratios("moving / still", &[("moving", "still")]);
+    // What writing a moving frame's lines as SVG costs beside the frame: the document made
+    // from the frame's strokes (`--svg`), frame by frame through the shot.
+    let mut renderer = Renderer::new(Arc::clone(&shot.library));
+    let mut ratios = Vec::new();
+    for frame in 1..=FRAMES {
+        let state = shot.at(frame as f64);
+        let scene = state.scene(shot).unwrap();
+        let start = std::time::Instant::now();
+        let image = renderer.render(&scene, &settings).unwrap();
+        let frame_seconds = start.elapsed().as_secs_f64();
+        let start = std::time::Instant::now();
+        let svg = svg_document(image.lines.as_deref().unwrap(), &[]);
+        let svg_seconds = start.elapsed().as_secs_f64();
+        std::hint::black_box(svg);
+        if frame > 1 {
+            ratios.push(svg_seconds / frame_seconds);
+        }
+    }
+    ratios.sort_by(f64::total_cmp);
+    let at = |q: f64| ratios[((ratios.len() - 1) as f64 * q).round() as usize];
+    println!(
+        "svg / moving frame (per frame, median and quartiles)   {:.4}   [{:.4}, {:.4}]",
+        at(0.5),
+        at(0.25),
+        at(0.75)
+    );
 }

@@ -29,6 +29,7 @@ mod highlight_sphere;
 mod highlight_stability;
 mod import_loops;
 mod job_reload;
+mod lines_svg;
 mod model_parts;
 mod motion_fingerprint;
 mod motion_loop;

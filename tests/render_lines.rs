@@ -4,10 +4,11 @@
 use std::sync::Arc;
 
 use glam::{DVec3, Mat4, Vec2, Vec3, Vec4};
+use glint::formats::svg::svg_document;
 use glint::geom::{shapes, NamedPatch, NurbsSurface, PatchLibrary};
 use glint::highlight::Light;
 use glint::render::{
-    Aovs, Camera, Outlines, PatchLook, Projection, Renderer, Scene, Settings, Tone,
+    Aovs, Camera, Outlines, PatchLook, Projection, RenderedFrame, Renderer, Scene, Settings, Tone,
 };
 use glint::toon::CelRamp;
 
@@ -62,6 +63,22 @@ fn lines(
     width: f32,
     settings: &Settings,
 ) -> (Vec<f32>, Vec<u32>) {
+    let frame = frame(library, camera, width, settings);
+    let outline: &Vec<Vec4> = frame.aovs.outline.as_ref().unwrap();
+    (
+        outline.iter().map(|c| c.w).collect(),
+        frame.aovs.patch_id.unwrap(),
+    )
+}
+
+/// One frame of `library`'s patches, two-tone, with black lines `width` pixels wide and the
+/// outline and patch-id AOVs.
+fn frame(
+    library: &Arc<PatchLibrary>,
+    camera: Camera,
+    width: f32,
+    settings: &Settings,
+) -> RenderedFrame {
     let scene = Scene {
         library,
         looks: vec![PatchLook {
@@ -90,14 +107,9 @@ fn lines(
             ..Aovs::default()
         },
     };
-    let frame = Renderer::new(Arc::clone(library))
+    Renderer::new(Arc::clone(library))
         .render(&scene, settings)
-        .unwrap();
-    let outline: &Vec<Vec4> = frame.aovs.outline.as_ref().unwrap();
-    (
-        outline.iter().map(|c| c.w).collect(),
-        frame.aovs.patch_id.unwrap(),
-    )
+        .unwrap()
 }
 
 /// How many 8-connected components the pixels `on` marks form.
@@ -379,4 +391,135 @@ fn a_plate_s_open_borders_seen_nearly_edge_on_are_inked_unbroken_at_one_sample()
         }
     }
     assert_eq!(views, 32);
+}
+
+/// The paths of an SVG document `svg_document` wrote, as (kind, points, closed, tapered): the
+/// kind from the group each is in, its points read back from its `d`.
+fn svg_paths(svg: &str) -> Vec<(String, Vec<Vec2>, bool, bool)> {
+    let mut kind = String::new();
+    let mut paths = Vec::new();
+    for line in svg.lines().map(str::trim) {
+        if let Some(rest) = line.strip_prefix("<g id=\"") {
+            if line.contains("class=\"lines ") {
+                kind = rest[..rest.find('"').unwrap()].to_string();
+            }
+        }
+        if !line.starts_with("<path") {
+            continue;
+        }
+        let d = &line[line.find(" d=\"").unwrap() + 4..];
+        let d = &d[..d.find('"').unwrap()];
+        let closed = d.ends_with('Z');
+        let points = d
+            .trim_end_matches('Z')
+            .split(['M', 'L'])
+            .filter(|p| !p.is_empty())
+            .map(|p| {
+                let (x, y) = p.split_once(' ').unwrap();
+                Vec2::new(x.parse().unwrap(), y.parse().unwrap())
+            })
+            .collect();
+        paths.push((
+            kind.clone(),
+            points,
+            closed,
+            line.contains("class=\"taper\""),
+        ));
+    }
+    paths
+}
+
+#[test]
+fn the_sphere_s_silhouette_in_svg_is_one_closed_path_on_the_true_outline() {
+    let sphere = library(shapes::sphere(DVec3::ZERO, 1.0).unwrap());
+    let distance = 4.0f32;
+    // The outline's circle, as in the raster test above.
+    let radius =
+        (1.0 / distance).asin().tan() / (0.5 * FOV_DEGREES.to_radians()).tan() * 0.5 * SIZE as f32;
+    let centre = Vec2::splat(0.5 * SIZE as f32);
+    let mut worst = 0.0f32;
+    for (settings, name) in [
+        (Settings::preview(SIZE, SIZE), "preview"),
+        (Settings::final_quality(SIZE, SIZE), "final"),
+    ] {
+        for (v, camera) in views(distance).into_iter().enumerate() {
+            let frame = frame(&sphere, camera, 2.0, &settings);
+            let svg = svg_document(frame.lines.as_deref().unwrap(), &[]);
+            let paths = svg_paths(&svg);
+            assert_eq!(paths.len(), 1, "{name} view {v}: {svg}");
+            let (kind, points, closed, tapered) = &paths[0];
+            assert_eq!(kind, "silhouette", "{name} view {v}");
+            assert!(*closed && !tapered, "{name} view {v}: a closed stroke");
+            // Around the whole circle, not a piece of it: no gap wider than 10° between
+            // neighbouring points.
+            let mut angles: Vec<f32> = points
+                .iter()
+                .map(|p| (*p - centre).y.atan2((*p - centre).x))
+                .collect();
+            angles.sort_by(f32::total_cmp);
+            let widest = angles
+                .windows(2)
+                .map(|w| w[1] - w[0])
+                .chain([angles[0] + std::f32::consts::TAU - angles[angles.len() - 1]])
+                .fold(0.0, f32::max);
+            assert!(
+                widest < 10f32.to_radians(),
+                "{name} view {v}: a gap of {widest} rad"
+            );
+            for p in points {
+                let off = (p.distance(centre) - radius).abs();
+                worst = worst.max(off);
+                assert!(
+                    off <= 0.25,
+                    "{name} view {v}: a point {off} px off the outline"
+                );
+            }
+        }
+    }
+    println!("sphere: worst point {worst:.4} px off the analytic outline");
+}
+
+#[test]
+fn the_torus_s_contours_in_svg_lie_on_its_true_contour() {
+    let (major, minor) = (2.0, 0.5);
+    let torus = library(shapes::torus(major, minor).unwrap());
+    let settings = Settings::preview(SIZE, SIZE);
+    for (v, camera) in views(9.0).into_iter().enumerate() {
+        let frame = frame(&torus, camera, 2.0, &settings);
+        let svg = svg_document(frame.lines.as_deref().unwrap(), &[]);
+        let contour = torus_contour(
+            major,
+            minor,
+            camera.eye.as_dvec3(),
+            camera.view_projection(1.0),
+        );
+        let paths = svg_paths(&svg);
+        assert!(!paths.is_empty(), "view {v}");
+        // Seen from above, the inner contour is a line of its own beside the outer one.
+        let closed = paths.iter().filter(|p| p.2).count();
+        if v >= 24 {
+            assert_eq!(closed, 2, "view {v}: outer and inner contour, each closed");
+        }
+        for (kind, points, _, _) in &paths {
+            assert_eq!(kind, "silhouette", "view {v}");
+            // On the contour; and where it is hidden, no further into the hidden part than
+            // the raster's lines go (a gap under 3 px is bridged).
+            for p in points {
+                let nearest = |visible: Option<bool>| {
+                    contour
+                        .iter()
+                        .filter(|(_, seen)| visible.is_none_or(|v| v == *seen))
+                        .map(|(q, _)| q.distance(*p))
+                        .fold(f32::INFINITY, f32::min)
+                };
+                let on = nearest(None);
+                assert!(on <= 0.25, "view {v}: a point {on} px off the contour");
+                let seen = nearest(Some(true));
+                assert!(
+                    seen <= 3.0,
+                    "view {v}: a point {seen} px from the visible contour"
+                );
+            }
+        }
+    }
 }

@@ -71,6 +71,10 @@ struct SlurmArgs {
     /// Accuracy preset instead of the shot's
     #[arg(long, value_enum)]
     preset: Option<PresetArg>,
+    /// Also write each frame's lines as SVG (as `glint render --svg`); the verification job
+    /// checks the SVGs too
+    #[arg(long)]
+    svg: bool,
     /// Where the tasks' logs go [default: a folder `slurm-logs` beside the shot]
     #[arg(long, value_name = "DIR")]
     logs: Option<PathBuf>,
@@ -114,6 +118,7 @@ fn run_slurm(args: &SlurmArgs) -> Result<(), CliError> {
         frames: args.frames.as_ref().map(|f| f.0.clone()),
         size: args.size,
         preset: args.preset.map(Preset::from),
+        svg: args.svg,
         // The ceiling is the task's own, set below from what it requests.
         max_memory: Some(u64::MAX),
         ..Overrides::default()
@@ -151,6 +156,9 @@ fn run_slurm(args: &SlurmArgs) -> Result<(), CliError> {
             PresetArg::Preview => " --preset preview",
             PresetArg::Final => " --preset final",
         });
+    }
+    if args.svg {
+        options.push_str(" --svg");
     }
     let name = shot
         .file_stem()

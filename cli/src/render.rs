@@ -26,6 +26,7 @@ use glint::shot::{Aov, Preset};
   glint render shots/teapot_turntable.ron
   glint render shots/sphere_ops.ron --frames 1-24 --preset preview --size 320x320
   glint render shots/crescent.ron --frames 1-48x2 --aov matte,patch_id --stats
+  glint render shots/line_styles.ron --frames 1 --svg                            # lines as SVG too
   glint render shots/teapot_turntable.ron --frames 49-96 --skip-existing --quiet   # a farm task
   glint render shots/teapot_turntable.ron --frames 12 --preset preview --watch     # tune, save, look
 
@@ -91,6 +92,10 @@ pub(super) struct Target {
     /// beside the frame and as layers of one EXR
     #[arg(long, value_name = "LIST", value_parser = parse_aov_list)]
     aov: Option<AovList>,
+    /// Also write each frame's lines as vector strokes, NAME.####.svg beside its PNG: one path
+    /// per stroke in pixel coordinates, grouped by kind and by part (docs/lines-for-2d.md)
+    #[arg(long)]
+    svg: bool,
 }
 
 impl Target {
@@ -105,6 +110,7 @@ impl Target {
             aovs: self.aov.as_ref().map(|a| a.0.clone()),
             threads,
             output: self.out.clone(),
+            svg: self.svg,
         }
     }
 }

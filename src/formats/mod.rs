@@ -15,6 +15,7 @@ pub mod replace_text;
 pub mod ron_location;
 pub mod ron_paths;
 mod srgb;
+pub mod svg;
 pub mod text_file;
 mod texture;
 mod usd;

@@ -1,5 +1,5 @@
 //! Whether a frame's files on disk are whole and current: each expected file (the colour PNG, an
-//! AOV's PNGs, the EXR) a regular file that decodes, of the shot's size, stamped with the
+//! AOV's PNGs, the EXR, the SVG) a regular file that decodes, of the shot's size, stamped with the
 //! frame's fingerprint.
 
 use std::path::{Path, PathBuf};
@@ -9,6 +9,7 @@ use super::RenderJob;
 use crate::formats::beside;
 use crate::formats::exr::try_read_exr_text;
 use crate::formats::png::try_read_png_text;
+use crate::formats::svg::try_read_svg;
 use crate::shot::Aov;
 
 /// How closely to look at a frame's files.
@@ -81,6 +82,9 @@ impl RenderJob {
         if !self.shot().aovs.is_empty() {
             files.push(colour.with_extension("exr"));
         }
+        if self.overrides.svg {
+            files.push(colour.with_extension("svg"));
+        }
         files
     }
 
@@ -115,6 +119,9 @@ fn check_file(
         return Some(FileProblem::NotAFile);
     }
     let is_exr = path.extension().is_some_and(|e| e == "exr");
+    if path.extension().is_some_and(|e| e == "svg") {
+        return check_svg(path, expected, size);
+    }
     let stamp = if is_exr {
         try_read_exr_text(path, FINGERPRINT_KEY)
     } else {
@@ -141,6 +148,21 @@ fn check_file(
     match (stamp, expected) {
         (Some(stamp), Some(expected)) if stamp == expected.0 => None,
         _ => Some(FileProblem::Stale),
+    }
+}
+
+/// What is wrong with the SVG at `path`, a regular file: it is read whole whatever the
+/// scrutiny (it holds its stamp as text, and is small beside the frame's images).
+fn check_svg(path: &Path, expected: Option<&Fingerprint>, size: (u32, u32)) -> Option<FileProblem> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(text) => text,
+        Err(e) => return Some(FileProblem::Broken(e.to_string())),
+    };
+    match try_read_svg(&text, FINGERPRINT_KEY) {
+        Err(reason) => Some(FileProblem::Broken(reason)),
+        Ok((found, _)) if found != size => Some(FileProblem::WrongSize { found }),
+        Ok((_, Some(stamp))) if expected.is_some_and(|e| e.0 == stamp) => None,
+        Ok(_) => Some(FileProblem::Stale),
     }
 }
 

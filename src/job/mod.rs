@@ -65,6 +65,9 @@ pub struct Overrides {
     pub threads: Option<usize>,
     /// Output pattern, relative to the shot file's folder unless absolute.
     pub output: Option<PathBuf>,
+    /// Also write each frame's lines as strokes, `NAME.####.svg` beside its colour
+    /// ([`svg_document`](crate::formats::svg::svg_document)).
+    pub svg: bool,
     /// The most memory a frame may need, in bytes, instead of
     /// [`default_memory_ceiling`]: a job whose frames would need more
     /// ([`estimate_peak_bytes`]) is refused before rendering.
@@ -343,10 +346,20 @@ impl RenderJob {
     }
 
     /// Makes the output folders of every frame of the job and checks that files can be
-    /// created in them, before anything is rendered.
+    /// created in them, and that nothing but a regular file stands where one of a frame's
+    /// files goes (a folder, a device), before anything is rendered.
     pub fn check_writable(&self) -> Result<(), JobError> {
         for &frame in &self.frames {
             write::check_writable(&self.frame_path(frame)).map_err(JobError::Output)?;
+            for file in self.frame_files(frame) {
+                if std::fs::metadata(&file).is_ok_and(|meta| !meta.is_file()) {
+                    return Err(JobError::Output(format!(
+                        "{}: something that is not a regular file is there (a folder, a \
+                         device); glint replaces only regular files",
+                        file.display()
+                    )));
+                }
+            }
         }
         Ok(())
     }
@@ -371,12 +384,15 @@ impl RenderJob {
     /// PNGs first and the colour PNG last, so that once the colour exists the whole frame does.
     /// Returns the paths written.
     pub fn write_frame(&self, frame: i64, image: &RenderedFrame) -> Result<Vec<PathBuf>, JobError> {
-        let exr = !self.shot.aovs.is_empty();
+        let files = write::FrameFiles {
+            exr: !self.shot.aovs.is_empty(),
+            svg: self.overrides.svg,
+        };
         let fingerprint = self.fingerprint(frame);
         Ok(write::write_frame(
             image,
             &self.frame_path(frame),
-            exr,
+            files,
             self.durability,
             fingerprint.as_ref(),
         )?)

@@ -17,6 +17,7 @@ use super::gbuffer::{Earlier, GBuffer, PIXELS_PER_JOB};
 use super::line_style::{LineKind, LineStyle};
 use super::lines::{
     self, draw_lines, IntersectionsFound, KeptSilhouettes, LineImage, LineInput, MeshLines,
+    VectorLines,
 };
 use super::plan::{Plan, Surfaces};
 use super::raster::{Cut, RasterOptions, RasterStats, Rasterizer, Viewport, VisibilityBuffer};
@@ -42,6 +43,8 @@ pub struct RenderedFrame {
     /// Linear RGB with straight alpha (0 on the background), rows from the top.
     pub colour: Vec<Vec4>,
     pub aovs: AovImages,
+    /// The frame's lines as strokes, when it draws lines.
+    pub lines: Option<std::sync::Arc<VectorLines>>,
     pub stats: RenderStats,
 }
 
@@ -465,6 +468,7 @@ impl StageBuffers {
             height: settings.height,
             colour,
             aovs,
+            lines: lines.map(|l| std::sync::Arc::clone(&l.vector)),
             stats,
         }
     }

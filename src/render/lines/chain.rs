@@ -199,6 +199,17 @@ fn samples_along(on: &OnScreen) -> u32 {
     (on.length() / STEP).ceil().clamp(1.0, MOST_SAMPLES) as u32
 }
 
+/// What one chain draws: its capsules in order, the piece each draws, and its stretches.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct Drawn {
+    pub capsules: Vec<Capsule>,
+    /// Per capsule, the piece it draws (its index in the frame's pieces).
+    pub pieces: Vec<u32>,
+    /// The visible stretches, each a run of `capsules` drawn one after another along the
+    /// line, and whether it is the whole of a closed line (no end).
+    pub stretches: Vec<(std::ops::Range<usize>, bool)>,
+}
+
 /// The capsules that draw the visible stretches of one chain (`screen[k]` is piece k's place
 /// on the image, None off it, and `shows[k]` its samples' visibility from [`sample_piece`]).
 /// Along the chain, hidden stretches shorter than [`SHORTEST_GAP`] between visible ones are
@@ -210,7 +221,7 @@ pub(crate) fn visible_capsules(
     line: &Chain,
     screen: &[Option<OnScreen>],
     shows: &[Vec<bool>],
-) -> Vec<Capsule> {
+) -> Drawn {
     let chain = &line.pieces[..];
     let mut samples: Vec<Sample> = Vec::new();
     let mut travelled = 0.0;
@@ -256,7 +267,7 @@ pub(crate) fn visible_capsules(
             runs[r].2 = true;
         }
     }
-    let mut capsules = Vec::new();
+    let mut drawn = Drawn::default();
     let mut r = 0;
     while r < runs.len() {
         if !runs[r].2 {
@@ -280,9 +291,14 @@ pub(crate) fn visible_capsules(
             first: !(line.closed && first == 0),
             last: !(line.closed && last + 1 == samples.len()),
         };
-        draw_stretch(&samples[first..=last], ends, chain, screen, &mut capsules);
+        let start = drawn.capsules.len();
+        draw_stretch(&samples[first..=last], ends, chain, screen, &mut drawn);
+        let whole_loop = !ends.first && !ends.last;
+        drawn
+            .stretches
+            .push((start..drawn.capsules.len(), whole_loop));
     }
-    capsules
+    drawn
 }
 
 /// Which ends of a drawn stretch are ends of the line (where it narrows over its taper).
@@ -314,7 +330,7 @@ fn draw_stretch(
     ends: Ends,
     chain: &[(usize, bool)],
     screen: &[Option<OnScreen>],
-    capsules: &mut Vec<Capsule>,
+    drawn: &mut Drawn,
 ) {
     let (start, finish) = (stretch[0].at, stretch[stretch.len() - 1].at);
     // The distance along the stretch to its nearer end that narrows.
@@ -340,6 +356,8 @@ fn draw_stretch(
         }
         let (piece, reversed) = chain[k];
         if let Some(on) = &screen[piece] {
+            let before = drawn.capsules.len();
+            let capsules = &mut drawn.capsules;
             let along = |t: f32| if reversed { 1.0 - t } else { t };
             let radius = |s: &Sample| on.radius * (to_end(s.at) / on.taper).min(1.0);
             let tapers =
@@ -359,6 +377,10 @@ fn draw_stretch(
             } else {
                 capsules.push(on.capsule(along(stretch[i].t), along(stretch[j].t), [on.radius; 2]));
             }
+            let added = drawn.capsules.len() - before;
+            drawn
+                .pieces
+                .extend(std::iter::repeat_n(piece as u32, added));
         }
         i = j + 1;
     }
@@ -433,7 +455,7 @@ mod tests {
             .collect();
         let lines = chains(pieces);
         assert_eq!(lines.len(), 1);
-        visible_capsules(&lines[0], &screen, &shows)
+        visible_capsules(&lines[0], &screen, &shows).capsules
     }
 
     #[test]

@@ -25,6 +25,7 @@ mod piece;
 mod screen;
 mod stroke;
 mod trim_border;
+mod vector;
 mod visible;
 
 use glam::{Mat4, Vec3, Vec4};
@@ -45,6 +46,7 @@ use visible::DepthTest;
 pub(super) use intersection::Meeting;
 use intersection::PairMeetings;
 pub(super) use kept_silhouettes::KeptSilhouettes;
+pub use vector::{part_of, VectorLines, VectorStroke};
 
 /// The lines of a frame: per output pixel their coverage and colour.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -62,6 +64,8 @@ pub(crate) struct LineImage {
     band_inked: Vec<u32>,
     /// How many pixels the lines ink (coverage above 0).
     pub inked: u64,
+    /// The same lines as strokes.
+    pub vector: std::sync::Arc<VectorLines>,
 }
 
 impl LineImage {
@@ -296,10 +300,12 @@ pub(super) fn draw_lines(
                 .map_or_else(Vec::new, |on| chain::sample_piece(on, &depth))
         })
         .collect();
-    let mut capsules: Vec<Capsule> = chain::chains(&pieces)
+    let drawn: Vec<chain::Drawn> = chain::chains(&pieces)
         .par_iter()
-        .flat_map_iter(|line| chain::visible_capsules(line, &screen, &shows))
+        .map(|line| chain::visible_capsules(line, &screen, &shows))
         .collect();
+    let vector = VectorLines::of(&drawn, &pieces, (styles, input.library), input.size);
+    let mut capsules: Vec<Capsule> = drawn.into_iter().flat_map(|d| d.capsules).collect();
     let one_colour = styles.windows(2).all(|s| s[0].colour == s[1].colour);
     let palette: Vec<Vec3> = if one_colour {
         styles.first().map(|s| s.colour).into_iter().collect()
@@ -325,5 +331,6 @@ pub(super) fn draw_lines(
         width: w as usize,
         inked: band_inked.iter().map(|&n| u64::from(n)).sum(),
         band_inked,
+        vector: std::sync::Arc::new(vector),
     }
 }
