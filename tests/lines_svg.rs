@@ -143,14 +143,17 @@ fn svg_files_are_written_stamped_and_verified_like_the_frame_s_others() {
     let resumed = run(args("render"), &["--quiet", "--skip-existing"]);
     assert_eq!(resumed.status.code(), Some(0), "{}", stderr(&resumed));
     assert_eq!(std::fs::read_to_string(&svg).unwrap(), text);
-    // Something that is not a file where an SVG goes: refused in one line, exit 2, before any
-    // frame is written.
+    // An output folder that cannot be made: refused in one line, exit 2, nothing written.
     let blocked = tempfile::tempdir().unwrap();
-    std::fs::create_dir_all(blocked.path().join("ls.0002.svg")).unwrap();
+    std::fs::write(blocked.path().join("blocker"), b"a file").unwrap();
     let mut a = args("render");
     let at = a.len() - 2;
-    a[at] = blocked.path().join("ls.####.png").display().to_string();
-    let refused = run(a, &["--quiet"]);
+    a[at] = blocked
+        .path()
+        .join("blocker/ls.####.png")
+        .display()
+        .to_string();
+    let refused = run(a.clone(), &["--quiet"]);
     assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
     assert_eq!(
         stderr(&refused).trim().lines().count(),
@@ -158,13 +161,20 @@ fn svg_files_are_written_stamped_and_verified_like_the_frame_s_others() {
         "{}",
         stderr(&refused)
     );
+    // Something that is not a file where an SVG goes: that frame fails (exit 1) and its colour
+    // is not written, so the frame is not taken for whole; the frame before it is.
+    std::fs::remove_file(blocked.path().join("blocker")).unwrap();
+    std::fs::create_dir_all(blocked.path().join("blocker/ls.0002.svg")).unwrap();
+    let failed = run(a, &["--quiet"]);
+    assert_eq!(failed.status.code(), Some(1), "{}", stderr(&failed));
     assert!(
-        stderr(&refused).contains("ls.0002.svg"),
+        stderr(&failed).contains("ls.0002.svg"),
         "{}",
-        stderr(&refused)
+        stderr(&failed)
     );
+    assert!(blocked.path().join("blocker/ls.0001.png").is_file());
     assert!(
-        !blocked.path().join("ls.0001.png").exists(),
-        "no partial output"
+        !blocked.path().join("blocker/ls.0002.png").exists(),
+        "no partial frame"
     );
 }

@@ -41,7 +41,7 @@ const CASES: &[Case] = &[
         name: "two points",
         shape: "Outline([(0.0, 0.1), (0.1, 0.0)])",
         at: "Outline(",
-        says: &["layer 1: outline:", "at least 3 distinct points", "it has 2"],
+        says: &["layers[0]: outline:", "at least 3 distinct points", "it has 2"],
     },
     Case {
         name: "a bow tie",

@@ -134,17 +134,19 @@ const CASES: &[Case] = &[
         from: "epsilon: 0.05",
         to: "epsilon: 2.5",
         file: "shot.ron",
-        at: "\"ball/*\"",
-        says: &["layer 1", "epsilon (ε) is 2.5", "(0, 2]"],
+        // At the layer whose value it is.
+        at: "(\n                stack",
+        says: &["layers[0]", "epsilon (ε) is 2.5", "(0, 2]"],
     },
     Case {
         name: "keyed value out of range at one key",
         from: "Scale(delta: 0.5)",
         to: "Scale(delta: [(1, 0.5), (8, 1.5)])",
         file: "shot.ron",
-        at: "\"ball/*\"",
+        // At the operation, which the message names as its parameter path does.
+        at: "Scale(delta",
         // δ = 0.5 + (f − 1)/7 first exceeds 1 at frame 5.
-        says: &["at frame 5", "op 2 (Scale)", "scale delta (δ) is 1.07", "[0, 1]"],
+        says: &["at frame 5", "layers[0]: stack[1] (Scale)", "scale delta (δ) is 1.07", "[0, 1]"],
     },
     Case {
         name: "selector matches no patch",
@@ -473,7 +475,7 @@ const CASES: &[Case] = &[
         to: "    shade: [(patches: \"ball/*\", stack: [Translate(alpha: 0.2, beta: 0.0), Scale(delta: [(1, 0.2), (10, 1.5)])])],\n    render: (preset: Preview),",
         file: "shot.ron",
         at: "Scale(delta: [(1, 0.2)",
-        says: &["shade on \"ball/*\" at frame 7", "op 2 (Scale)", "outside the allowed range"],
+        says: &["shade on \"ball/*\" at frame 7", "stack[1] (Scale)", "outside the allowed range"],
     },
     Case {
         name: "shade mask unordered",

@@ -65,7 +65,7 @@ impl Layer<f32> {
             .enumerate()
             .map(|(i, op)| {
                 op.prepare()
-                    .map_err(|e| e.at(format!("op {} ({})", i + 1, op.name())))
+                    .map_err(|e| e.at(format!("stack[{i}] ({})", op.name())))
             })
             .collect::<Result<Vec<_>, _>>()?;
         let g = PreparedStack::new(before).apply_local(h);

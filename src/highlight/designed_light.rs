@@ -59,7 +59,7 @@ impl ShadeStack<f32> {
     pub fn validate(&self) -> Result<(), HighlightError> {
         for (i, op) in self.stack.iter().enumerate() {
             op.validate()
-                .map_err(|e| e.at(format!("op {} ({})", i + 1, op.name())))?;
+                .map_err(|e| e.at(format!("stack[{i}] ({})", op.name())))?;
         }
         match &self.mask {
             Some(mask) => mask.validate(),

@@ -63,7 +63,7 @@ pub enum HighlightError {
     /// of a stack).
     #[error("{place}: {source}")]
     In {
-        /// Where, e.g. `"op 3 (Scale)"` or `"layer 2"`.
+        /// Where, as a parameter path names it, e.g. `"stack[2] (Scale)"` or `"layers[1]"`.
         place: String,
         /// What is wrong there.
         source: Box<HighlightError>,
@@ -71,7 +71,7 @@ pub enum HighlightError {
 }
 
 impl HighlightError {
-    /// Wraps `self` with the place it occurred, e.g. `"op 2 (Split)"`.
+    /// Wraps `self` with the place it occurred, e.g. `"stack[1] (Split)"`.
     #[must_use]
     pub fn at(self, place: impl Into<String>) -> Self {
         Self::In {
@@ -92,8 +92,8 @@ mod tests {
             check("scale delta (δ)", 1.5, Range::Unit, "; 0 leaves H alone").unwrap_err(),
         );
         assert_eq!(
-            e.at("op 3 (Scale)").to_string(),
-            "op 3 (Scale): scale delta (δ) is 1.5, outside the allowed range [0, 1]; 0 leaves H alone"
+            e.at("stack[2] (Scale)").to_string(),
+            "stack[2] (Scale): scale delta (δ) is 1.5, outside the allowed range [0, 1]; 0 leaves H alone"
         );
     }
 }

@@ -145,8 +145,9 @@ impl Expr<f32> {
         };
         Ok(match self {
             Expr::Layer(l) => {
+                let index = *count;
                 *count += 1;
-                PreparedExpr::Layer(l.prepare().map_err(|e| e.at(format!("layer {count}")))?)
+                PreparedExpr::Layer(l.prepare().map_err(|e| e.at(format!("layers[{index}]")))?)
             }
             Expr::Union(a, b) => {
                 let (a, b) = pair(a, b)?;
@@ -610,7 +611,7 @@ mod tests {
     fn errors_number_layers_left_to_right() {
         let e = Expr::Union(Box::new(layer(0.1, 1.0)), Box::new(layer(0.1, 2.0)));
         let msg = e.validate().unwrap_err().to_string();
-        assert!(msg.starts_with("layer 2: opacity is 2"), "{msg}");
+        assert!(msg.starts_with("layers[1]: opacity is 2"), "{msg}");
     }
 
     #[test]

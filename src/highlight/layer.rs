@@ -231,7 +231,7 @@ impl Layer<f32> {
     fn validate_but_shape(&self) -> Result<(), HighlightError> {
         for (i, op) in self.stack.iter().enumerate() {
             op.validate()
-                .map_err(|e| e.at(format!("op {} ({})", i + 1, op.name())))?;
+                .map_err(|e| e.at(format!("stack[{i}] ({})", op.name())))?;
         }
         check(
             "epsilon (ε)",
@@ -611,7 +611,7 @@ mod tests {
             },
         ]);
         let msg = l.prepare().unwrap_err().to_string();
-        assert!(msg.starts_with("op 2 (Split): split gamma_u"), "{msg}");
+        assert!(msg.starts_with("stack[1] (Split): split gamma_u"), "{msg}");
         let mut bad = layer(vec![]);
         bad.epsilon = 0.0;
         assert!(bad.validate().unwrap_err().to_string().contains("(0, 2]"));

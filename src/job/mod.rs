@@ -346,20 +346,10 @@ impl RenderJob {
     }
 
     /// Makes the output folders of every frame of the job and checks that files can be
-    /// created in them, and that nothing but a regular file stands where one of a frame's
-    /// files goes (a folder, a device), before anything is rendered.
+    /// created in them, before anything is rendered.
     pub fn check_writable(&self) -> Result<(), JobError> {
         for &frame in &self.frames {
             write::check_writable(&self.frame_path(frame)).map_err(JobError::Output)?;
-            for file in self.frame_files(frame) {
-                if std::fs::metadata(&file).is_ok_and(|meta| !meta.is_file()) {
-                    return Err(JobError::Output(format!(
-                        "{}: something that is not a regular file is there (a folder, a \
-                         device); glint replaces only regular files",
-                        file.display()
-                    )));
-                }
-            }
         }
         Ok(())
     }

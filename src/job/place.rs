@@ -226,7 +226,7 @@ impl RenderJob {
         if shot.pinned_patch(drawn, layer).is_some() {
             let pinned = &shot.library.patches[shot.pinned_patch(drawn, layer).unwrap_or(patch)];
             return Err(PlaceError::Layer(format!(
-                "layer {layer} of highlight {drawn} is pinned to a point of {}, and its translation is \
+                "highlights[{drawn}].layers[{layer}] is pinned to a point of {}, and its translation is \
                  solved on every frame; to move it, pin it here: pin: (patch: \"{name}\", u: {}, v: {})",
                 pinned.name,
                 rounded_number_text(uv.0 as f32),
@@ -242,10 +242,10 @@ impl RenderJob {
             .centring_translation_at(&point.frame, point.half_vector)
             .map_err(|e| match e {
                 HighlightError::NoTranslation => {
-                    PlaceError::Layer(format!("layer {layer} of highlight {drawn}: {e}"))
+                    PlaceError::Layer(format!("highlights[{drawn}].layers[{layer}]: {e}"))
                 }
                 other => PlaceError::Layer(format!(
-                    "layer {layer} of highlight {drawn} at frame {frame}: {other}"
+                    "highlights[{drawn}].layers[{layer}] at frame {frame}: {other}"
                 )),
             })?;
         let op = chosen

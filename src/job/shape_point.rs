@@ -49,7 +49,7 @@ pub enum ShapePointError {
     /// The transformed highlight vector points below the surface there: `(H′, N) ≤ 0`, where
     /// t′ no longer tells H′ apart.
     #[error(
-        "pixel ({x}, {y}) is where layer {layer} of highlight {highlight} turns H' below the \
+        "pixel ({x}, {y}) is where highlights[{highlight}].layers[{layer}] turns H' below the \
          surface ((H', N) = {normal:.4} ≤ 0): no outline can reach it; draw nearer the \
          highlight's centre"
     )]
@@ -62,7 +62,7 @@ pub enum ShapePointError {
     },
     /// t′ lies outside the disc `|t′| ≤ OUTLINE_BOUND` an outline must keep to.
     #[error(
-        "pixel ({x}, {y}) is at t' = ({:.4}, {:.4}) of layer {layer} of highlight {highlight}, \
+        "pixel ({x}, {y}) is at t' = ({:.4}, {:.4}) of highlights[{highlight}].layers[{layer}], \
          {:.4} from its centre, outside the allowed |t'| ≤ {OUTLINE_BOUND}; draw nearer the \
          highlight's centre",
         t.x,
@@ -129,7 +129,7 @@ impl RenderJob {
         drawn.shape = Shape::Disc;
         let prepared = drawn.prepare().map_err(|e| {
             PlaceError::Layer(format!(
-                "layer {layer} of highlight {highlight} at frame {frame}: {e}"
+                "highlights[{highlight}].layers[{layer}] at frame {frame}: {e}"
             ))
         })?;
         let point = self.shot.highlight_point(&state, patch, uv);

@@ -390,7 +390,7 @@ impl Session {
             if patch != pinned {
                 if shot.highlight_of(patch) != Some(entry) {
                     return Err(TuneError::Bad(format!(
-                        "layer {layer} of highlight {entry} is pinned to {}; {} under the \
+                        "highlights[{entry}].layers[{layer}] is pinned to {}; {} under the \
                          pointer has another highlight, so the pin cannot move there",
                         name(pinned),
                         name(patch)
@@ -402,7 +402,7 @@ impl Session {
                 });
                 if keyed_elsewhere {
                     return Err(TuneError::Bad(format!(
-                        "layer {layer} of highlight {entry} is pinned to {} with keys at other \
+                        "highlights[{entry}].layers[{layer}] is pinned to {} with keys at other \
                          frames, which belong to that patch; drag it on {} or delete those keys",
                         name(pinned),
                         name(pinned)
@@ -443,7 +443,7 @@ impl Session {
             let centred = shot
                 .layer_on(&chosen, patch, request.frame)
                 .centred_at(&point.frame, point.half_vector)
-                .map_err(|e| TuneError::Bad(format!("layer {layer} of highlight {entry}: {e}")))?;
+                .map_err(|e| TuneError::Bad(format!("highlights[{entry}].layers[{layer}]: {e}")))?;
             let Some(Op::Translate { alpha, beta }) = centred.stack.first() else {
                 return Err(TuneError::Failed(
                     "the centred layer does not start with its translation".to_string(),

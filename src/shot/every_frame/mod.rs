@@ -121,15 +121,8 @@ fn check_every_frame_counted(
     for (entry, (highlight, written)) in shot.highlights.iter().zip(highlights_written).enumerate()
     {
         let source = &sources[written.source];
-        let invalid = |frame: f64, e: HighlightError| {
-            let pattern = &highlight.patches.patterns()[0];
-            source.error_at(
-                &[Field("highlights"), Index(written.index), Field("patches")],
-                format!("the highlight on \"{pattern}\" at frame {frame}: {e}"),
-            )
-        };
         for (k, layer) in highlight.expr.layers().into_iter().enumerate() {
-            let in_layer = |e: HighlightError| e.at(format!("layer {}", k + 1));
+            let in_layer = |e: HighlightError| e.at(format!("layers[{k}]"));
             if !layer.shape.is_disc() {
                 let path = shape_path(*written, &highlight.expr, k);
                 let pattern = &highlight.patches.patterns()[0];
@@ -158,18 +151,32 @@ fn check_every_frame_counted(
                         source.error_at(&pin_path(*written, &highlight.expr, k), message)
                     })?;
                 }
-                own.map(|t| t.at(frame))
-                    .validate()
-                    .map_err(|e| invalid(frame, in_layer(e)))
+                own.map(|t| t.at(frame)).validate().map_err(|e| {
+                    let pattern = &highlight.patches.patterns()[0];
+                    source.error_at(
+                        &layer_path(*written, &highlight.expr, k),
+                        format!(
+                            "the highlight on \"{pattern}\" at frame {frame}: {}",
+                            in_layer(e)
+                        ),
+                    )
+                })
             })?;
             for (i, op) in layer.stack.iter().enumerate() {
                 let frames = key_frames(first, |add| op.for_each_param(|t| add(t)));
                 check_at(&frames, shot.frames, &mut checks, |frame| {
                     let at_frame = op.map(|t| t.at(frame));
                     at_frame.validate().map_err(|e| {
-                        invalid(
-                            frame,
-                            in_layer(e.at(format!("op {} ({})", i + 1, at_frame.name()))),
+                        // At the operation itself, as its parameter path names it.
+                        let mut path = layer_path(*written, &highlight.expr, k);
+                        path.extend([Field("stack"), Index(i)]);
+                        let pattern = &highlight.patches.patterns()[0];
+                        source.error_at(
+                            &path,
+                            format!(
+                                "the highlight on \"{pattern}\" at frame {frame}: {}",
+                                in_layer(e.at(format!("stack[{i}] ({})", at_frame.name())))
+                            ),
                         )
                     })
                 })?;
@@ -191,7 +198,7 @@ fn check_every_frame_counted(
                         &path,
                         format!(
                             "the shade on \"{pattern}\" at frame {frame}: {}",
-                            e.at(format!("op {} ({})", i + 1, at_frame.name()))
+                            e.at(format!("stack[{i}] ({})", at_frame.name()))
                         ),
                     )
                 })
@@ -246,6 +253,13 @@ fn check_every_frame_counted(
 
 /// Where layer `layer` of a highlight entry's expression writes its `shape`.
 fn shape_path<P>(written: Written, expr: &Expr<P>, layer: usize) -> Vec<Step<'static>> {
+    let mut path = layer_path(written, expr, layer);
+    path.push(Field("shape"));
+    path
+}
+
+/// Where layer `layer` of a highlight entry's `expr` is written, in its file.
+fn layer_path<P>(written: Written, expr: &Expr<P>, layer: usize) -> Vec<Step<'static>> {
     let mut path = vec![Field("highlights"), Index(written.index), Field("expr")];
     path.extend(
         expr.layer_route(layer)
@@ -253,7 +267,6 @@ fn shape_path<P>(written: Written, expr: &Expr<P>, layer: usize) -> Vec<Step<'st
             .into_iter()
             .map(Index),
     );
-    path.push(Field("shape"));
     path
 }
 

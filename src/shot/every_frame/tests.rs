@@ -65,7 +65,7 @@ fn a_key_beyond_the_frame_range_is_checked_too() {
     );
     let e = load_shot_text(&path, text).unwrap_err().to_string();
     assert!(
-        e.contains("at frame 40") && e.contains("layer 1: op 1"),
+        e.contains("at frame 40") && e.contains("layers[0]: stack[0]"),
         "{e}"
     );
 }
