@@ -121,26 +121,31 @@ fn check_every_frame_counted(
     for (entry, (highlight, written)) in shot.highlights.iter().zip(highlights_written).enumerate()
     {
         let source = &sources[written.source];
+        let pattern = &highlight.patches.patterns()[0];
         for (k, layer) in highlight.expr.layers().into_iter().enumerate() {
-            let in_layer = |e: HighlightError| e.at(format!("layers[{k}]"));
+            // What is wrong with layer k at `frame`, reported where `path` is written.
+            let invalid = |path: &[Step], frame: f64, e: HighlightError| {
+                source.error_at(
+                    path,
+                    format!(
+                        "the highlight on \"{pattern}\" at frame {frame}: {}",
+                        e.at(format!("layers[{k}]"))
+                    ),
+                )
+            };
             if !layer.shape.is_disc() {
                 let path = shape_path(*written, &highlight.expr, k);
-                let pattern = &highlight.patches.patterns()[0];
                 // Counts and bounds hold along a morph once they hold at its keys; a frame
                 // between two keys may cross itself, and is filled by the non-zero winding rule.
                 let frames = key_frames(first, |add| {
                     let _visited: Shape<()> = layer.shape.map(|t| add(t));
                 });
                 check_at(&frames, shot.frames, &mut checks, |frame| {
-                    layer.shape.map(|t| t.at(frame)).validate().map_err(|e| {
-                        source.error_at(
-                            &path,
-                            format!(
-                                "the highlight on \"{pattern}\" at frame {frame}: {}",
-                                in_layer(e)
-                            ),
-                        )
-                    })
+                    layer
+                        .shape
+                        .map(|t| t.at(frame))
+                        .validate()
+                        .map_err(|e| invalid(&path, frame, e))
                 })?;
             }
             let own = layer.without_stack();
@@ -151,16 +156,9 @@ fn check_every_frame_counted(
                         source.error_at(&pin_path(*written, &highlight.expr, k), message)
                     })?;
                 }
-                own.map(|t| t.at(frame)).validate().map_err(|e| {
-                    let pattern = &highlight.patches.patterns()[0];
-                    source.error_at(
-                        &layer_path(*written, &highlight.expr, k),
-                        format!(
-                            "the highlight on \"{pattern}\" at frame {frame}: {}",
-                            in_layer(e)
-                        ),
-                    )
-                })
+                own.map(|t| t.at(frame))
+                    .validate()
+                    .map_err(|e| invalid(&layer_path(*written, &highlight.expr, k), frame, e))
             })?;
             for (i, op) in layer.stack.iter().enumerate() {
                 let frames = key_frames(first, |add| op.for_each_param(|t| add(t)));
@@ -170,13 +168,10 @@ fn check_every_frame_counted(
                         // At the operation itself, as its parameter path names it.
                         let mut path = layer_path(*written, &highlight.expr, k);
                         path.extend([Field("stack"), Index(i)]);
-                        let pattern = &highlight.patches.patterns()[0];
-                        source.error_at(
+                        invalid(
                             &path,
-                            format!(
-                                "the highlight on \"{pattern}\" at frame {frame}: {}",
-                                in_layer(e.at(format!("stack[{i}] ({})", at_frame.name())))
-                            ),
+                            frame,
+                            e.at(format!("stack[{i}] ({})", at_frame.name())),
                         )
                     })
                 })?;
