@@ -637,11 +637,18 @@ fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
                 .collect()
         })
         .collect();
-    let mut welded: FastMap<[i64; 3], Vec3> =
+    // Per patch, the welded value of each of its boundary vertices, row by row.
+    let mut first_at: FastMap<[i64; 3], Vec3> =
         FastMap::with_capacity_and_hasher(border.iter().map(Vec::len).sum(), Default::default());
-    for (key, position) in border.into_iter().flatten() {
-        welded.entry(key).or_insert(position);
-    }
+    let welded: Vec<Vec<Vec3>> = border
+        .into_iter()
+        .map(|patch| {
+            patch
+                .into_iter()
+                .map(|(key, position)| *first_at.entry(key).or_insert(position))
+                .collect()
+        })
+        .collect();
     let mut mesh = Mesh {
         positions: vec![Vec3::ZERO; vertices],
         normals: vec![Vec3::ZERO; vertices],
@@ -685,54 +692,58 @@ fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
         .zip(patch_frames.par_iter())
         .zip(library.patches.par_iter())
         .zip(mesh.grids.par_iter())
+        .zip(welded.par_iter())
         .enumerate()
-        .for_each(|(patch_index, (((out, evaluated), patch), grid))| {
-            let (positions, normals, tangents, uvs, tris, triangle_patch, regions_out) = out;
-            let PatchFrames {
-                us,
-                vs,
-                points,
-                normals: patch_normals,
-                tangents_u,
-                regions,
-                ..
-            } = evaluated;
-            let (nu, nv) = (us.len(), vs.len());
-            for (k, (point, (position, uv))) in points
-                .iter()
-                .zip(positions.iter_mut().zip(uvs.iter_mut()))
-                .enumerate()
-            {
-                let (i, j) = (k / nv, k % nv);
-                *position = if i == 0 || j == 0 || i + 1 == nu || j + 1 == nv {
-                    welded[&key_of(*point)]
-                } else {
-                    point.as_vec3()
-                };
-                *uv = Vec2::new(us[i] as f32, vs[j] as f32);
-            }
-            normals.copy_from_slice(patch_normals);
-            tangents.copy_from_slice(tangents_u);
-            triangle_patch.fill(patch_index as u32);
-            let index = |i: usize, j: usize| grid.first + (i * nv + j) as u32;
-            let cells = (0..nu.saturating_sub(1))
-                .flat_map(|i| (0..nv.saturating_sub(1)).map(move |j| (i, j)));
-            for ((i, j), pair) in cells.zip(tris.chunks_exact_mut(2)) {
-                let (a, b, c, d) = (
-                    index(i, j),
-                    index(i + 1, j),
-                    index(i + 1, j + 1),
-                    index(i, j + 1),
-                );
-                pair[0] = [a, b, c];
-                pair[1] = [a, c, d];
-            }
-            if patch.trim.is_some() {
-                for (region, pair) in regions.iter().zip(regions_out.chunks_exact_mut(2)) {
-                    pair.fill(*region);
+        .for_each(
+            |(patch_index, ((((out, evaluated), patch), grid), welded))| {
+                let (positions, normals, tangents, uvs, tris, triangle_patch, regions_out) = out;
+                let PatchFrames {
+                    us,
+                    vs,
+                    points,
+                    normals: patch_normals,
+                    tangents_u,
+                    regions,
+                    ..
+                } = evaluated;
+                let (nu, nv) = (us.len(), vs.len());
+                let mut welded = welded.iter();
+                for (k, (point, (position, uv))) in points
+                    .iter()
+                    .zip(positions.iter_mut().zip(uvs.iter_mut()))
+                    .enumerate()
+                {
+                    let (i, j) = (k / nv, k % nv);
+                    *position = if i == 0 || j == 0 || i + 1 == nu || j + 1 == nv {
+                        *welded.next().expect("one welded value per boundary vertex")
+                    } else {
+                        point.as_vec3()
+                    };
+                    *uv = Vec2::new(us[i] as f32, vs[j] as f32);
                 }
-            }
-        });
+                normals.copy_from_slice(patch_normals);
+                tangents.copy_from_slice(tangents_u);
+                triangle_patch.fill(patch_index as u32);
+                let index = |i: usize, j: usize| grid.first + (i * nv + j) as u32;
+                let cells = (0..nu.saturating_sub(1))
+                    .flat_map(|i| (0..nv.saturating_sub(1)).map(move |j| (i, j)));
+                for ((i, j), pair) in cells.zip(tris.chunks_exact_mut(2)) {
+                    let (a, b, c, d) = (
+                        index(i, j),
+                        index(i + 1, j),
+                        index(i + 1, j + 1),
+                        index(i, j + 1),
+                    );
+                    pair[0] = [a, b, c];
+                    pair[1] = [a, c, d];
+                }
+                if patch.trim.is_some() {
+                    for (region, pair) in regions.iter().zip(regions_out.chunks_exact_mut(2)) {
+                        pair.fill(*region);
+                    }
+                }
+            },
+        );
     mesh.borders = boundary_edges(&mesh.positions, &mesh.grids);
     mesh
 }
