@@ -1,11 +1,10 @@
 //! Writing a frame's files so that a farm can retry anywhere: stale temporaries of killed runs
 //! cleared, every file written atomically, the colour last.
 
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::fingerprint::{Fingerprint, FINGERPRINT_KEY};
-use std::io::Write as _;
-
 use crate::formats::atomic::{
     remove_stale_temporaries, write_atomically_with, Durability, WriteError,
 };
