@@ -20,7 +20,9 @@ use super::lines::{
     VectorLines,
 };
 use super::plan::{Plan, Surfaces};
-use super::raster::{Cut, RasterOptions, RasterStats, Rasterizer, Viewport, VisibilityBuffer};
+use super::raster::{
+    Cut, LayerCopy, RasterOptions, RasterStats, Rasterizer, Viewport, VisibilityBuffer,
+};
 use super::scene::{Outlines, Scene};
 use super::settings::{Antialias, FrameMode, Settings};
 use super::shade::{shade, Edges, ShadeBuffers, Shaded};
@@ -73,6 +75,8 @@ struct StageBuffers {
     clip: Vec<Vec4>,
     rasterizer: Rasterizer,
     visibility: VisibilityBuffer,
+    /// What `visibility` holds of the static layer it was last drawn over.
+    visibility_copy: LayerCopy,
     /// Per patch, whether it moved or deformed since the last frame rasterized.
     moved: Vec<bool>,
     /// The visibility of the patches that did not move, while it serves.
@@ -83,6 +87,7 @@ struct StageBuffers {
     /// texels on the patches of the static layer both frames drew over are kept where the
     /// visibility stayed.
     earlier_visibility: VisibilityBuffer,
+    earlier_visibility_copy: LayerCopy,
     earlier_gbuffer: GBuffer,
     /// The key of the frame the G-buffer was last filled for and the static layer its
     /// visibility was drawn over; None when it was drawn over none, or not filled.
@@ -116,10 +121,12 @@ impl Renderer {
                 clip: Vec::new(),
                 rasterizer: Rasterizer::new(),
                 visibility: VisibilityBuffer::default(),
+                visibility_copy: LayerCopy::default(),
                 moved: Vec::new(),
                 static_layer: None,
                 layers_made: 0,
                 earlier_visibility: VisibilityBuffer::default(),
+                earlier_visibility_copy: LayerCopy::default(),
                 earlier_gbuffer: GBuffer::default(),
                 filled_over: None,
                 gbuffer: GBuffer::default(),
@@ -321,10 +328,12 @@ impl StageBuffers {
             clip,
             rasterizer,
             visibility,
+            visibility_copy,
             moved,
             static_layer,
             layers_made,
             earlier_visibility,
+            earlier_visibility_copy,
             earlier_gbuffer,
             filled_over,
             gbuffer,
@@ -350,11 +359,12 @@ impl StageBuffers {
                 let mesh = tessellate(tessellator, settings, &grid, segments, &mut stats);
                 generation += u64::from(stats.tessellation_rebuilt);
                 std::mem::swap(visibility, earlier_visibility);
+                std::mem::swap(visibility_copy, earlier_visibility_copy);
                 let covered = rasterize(
                     (rasterizer, mesh, library, &grid),
                     (key, moved, static_layer, layers_made),
                     clip,
-                    visibility,
+                    (visibility, visibility_copy),
                     &mut stats,
                 );
                 let over = static_layer.as_ref().map(|layer| (key, layer.id));
@@ -514,8 +524,9 @@ fn tessellate<'t>(
 /// visibility buffer at the sample resolution, less what the patches' trims cut away. Where
 /// `static_layer` shows the patches it holds as they are now (under `key`), only the others
 /// are drawn, over it; else, where patches `moved` since the last frame rasterized, the others
-/// are drawn into a new layer and the moved ones over it; else the whole mesh is drawn. Returns
-/// the samples covered.
+/// are drawn into a new layer and the moved ones over it; else the whole mesh is drawn. `copy`
+/// is what `visibility` holds of the layer it was last drawn over, and is kept up to date.
+/// Returns the samples covered.
 fn rasterize(
     (rasterizer, mesh, library, grid): (&mut Rasterizer, &Mesh, &PatchLibrary, &SampleGrid),
     (key, moved, static_layer, layers_made): (
@@ -525,7 +536,7 @@ fn rasterize(
         &mut u64,
     ),
     clip: &mut Vec<Vec4>,
-    visibility: &mut VisibilityBuffer,
+    (visibility, copy): (&mut VisibilityBuffer, &mut LayerCopy),
     stats: &mut RenderStats,
 ) -> u64 {
     let (raster, seconds) = timed(|| {
@@ -559,15 +570,16 @@ fn rasterize(
         let raster = match static_layer {
             Some(layer) => {
                 let ranges = layer.unheld(mesh);
-                rasterizer.rasterize_over_into(
+                rasterizer.rasterize_over_keeping(
                     grid.samples,
                     clip,
                     (triangles, &ranges),
                     (cut, &layer.layer),
-                    visibility,
+                    (visibility, copy),
                 )
             }
             None => {
+                copy.forget();
                 let options = RasterOptions {
                     threads: 0,
                     ..RasterOptions::default()

@@ -173,6 +173,8 @@ pub struct Tessellator {
     /// Classes of (patch, direction) that must be cut alike: `class[2 p + d]`, d = 0 for u.
     class: Vec<usize>,
     cached: Option<(Vec<Segments>, Mesh)>,
+    /// A mesh no longer drawn, whose memory the next mesh made is written into.
+    spare: Option<Mesh>,
     /// Per patch, its grid in the cached mesh: a mesh rebuilt because some patches' counts
     /// changed evaluates those patches alone.
     patch_frames: Vec<PatchFrames>,
@@ -261,6 +263,7 @@ impl Tessellator {
                 .collect(),
             library,
             cached: None,
+            spare: None,
             generation: 0,
             evaluated: 0,
         }
@@ -275,7 +278,7 @@ impl Tessellator {
             *frames = PatchFrames::default();
         }
         if moved.iter().any(|&m| m) {
-            self.cached = None;
+            self.spare = self.cached.take().map(|(_, mesh)| mesh);
         }
         self.library = library;
     }
@@ -307,7 +310,9 @@ impl Tessellator {
         if rebuilt {
             // The grids of the patches whose counts changed, in parallel; the others' are kept.
             self.evaluated = PatchFrames::refresh(&mut self.patch_frames, &self.library, &segments);
-            let mesh = build_mesh(&self.library, &self.patch_frames);
+            let spare = self.cached.take().map(|(_, mesh)| mesh);
+            let spare = spare.or_else(|| self.spare.take()).unwrap_or_default();
+            let mesh = build_mesh(&self.library, &self.patch_frames, spare);
             self.cached = Some((segments, mesh));
             self.generation += 1;
         }
@@ -607,8 +612,10 @@ fn direction_classes_counted(library: &PatchLibrary) -> (Vec<usize>, usize) {
 /// patch row by row, whose point rounds to the same multiple of the welding quantum. Only that
 /// choice is made in order, over the boundary vertices alone; each patch's vertices and
 /// triangles are then written in parallel into arrays of their final size (the mesh is rebuilt
-/// whenever a patch moves).
-fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
+/// whenever a patch moves), `spare`'s memory reused: every value of the mesh is written, so
+/// what `spare` held does not matter, and a mesh made frame after frame neither allocates nor
+/// touches fresh pages.
+fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames], spare: Mesh) -> Mesh {
     let trimmed = library.patches.iter().any(|p| p.trim.is_some());
     let vertex_counts: Vec<usize> = patch_frames
         .iter()
@@ -650,16 +657,21 @@ fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
         })
         .collect();
     let mut mesh = Mesh {
-        positions: vec![Vec3::ZERO; vertices],
-        normals: vec![Vec3::ZERO; vertices],
-        tangents_u: vec![Vec3::ZERO; vertices],
-        uvs: vec![Vec2::ZERO; vertices],
-        triangles: vec![[0; 3]; triangles],
-        triangle_patch: vec![0; triangles],
-        grids: Vec::with_capacity(patch_frames.len()),
-        triangle_region: vec![Region::Kept; if trimmed { triangles } else { 0 }],
-        ..Mesh::default()
+        positions: sized(spare.positions, vertices, Vec3::ZERO),
+        normals: sized(spare.normals, vertices, Vec3::ZERO),
+        tangents_u: sized(spare.tangents_u, vertices, Vec3::ZERO),
+        uvs: sized(spare.uvs, vertices, Vec2::ZERO),
+        triangles: sized(spare.triangles, triangles, [0; 3]),
+        triangle_patch: sized(spare.triangle_patch, triangles, 0),
+        grids: spare.grids,
+        triangle_region: sized(
+            spare.triangle_region,
+            if trimmed { triangles } else { 0 },
+            Region::Kept,
+        ),
+        borders: Vec::new(),
     };
+    mesh.grids.clear();
     let (mut first, mut first_triangle) = (0, 0);
     for (f, (&n, &t)) in patch_frames
         .iter()
@@ -741,11 +753,20 @@ fn build_mesh(library: &PatchLibrary, patch_frames: &[PatchFrames]) -> Mesh {
                     for (region, pair) in regions.iter().zip(regions_out.chunks_exact_mut(2)) {
                         pair.fill(*region);
                     }
+                } else {
+                    regions_out.fill(Region::Kept);
                 }
             },
         );
     mesh.borders = boundary_edges(&mesh.positions, &mesh.grids);
     mesh
+}
+
+/// `values` holding `len` values: those it held first, then `fill`. Its memory is kept.
+fn sized<T: Clone>(mut values: Vec<T>, len: usize, fill: T) -> Vec<T> {
+    values.truncate(len);
+    values.resize(len, fill);
+    values
 }
 
 /// `slice` cut into consecutive pieces of `lengths` (which sum to at most its length).
@@ -914,7 +935,7 @@ mod tests {
                 .zip(&segments)
                 .map(|(p, &cut)| PatchFrames::of(p, cut))
                 .collect();
-            let mesh = build_mesh(&library, &patch_frames);
+            let mesh = build_mesh(&library, &patch_frames, Mesh::default());
             assert_eq!(
                 vertex_count(&library, &segments),
                 mesh.positions.len() as u64
@@ -947,7 +968,68 @@ mod tests {
             );
             let again = fresh(&segments);
             assert_eq!(kept, again);
-            assert_eq!(build_mesh(&library, &kept), build_mesh(&library, &again));
+            assert_eq!(
+                build_mesh(&library, &kept, Mesh::default()),
+                build_mesh(&library, &again, Mesh::default())
+            );
+        }
+    }
+
+    #[test]
+    fn a_mesh_made_in_a_spare_s_memory_is_the_mesh_made_afresh() {
+        // The sphere trimmed by a hole, so that the mesh has trim regions, and the torus not.
+        let mut library = sphere_and_torus();
+        let domain = library.patches[0].surface.domain();
+        let at = |s: f64, t: f64| {
+            let (u, v) = (domain.u, domain.v);
+            glam::DVec2::new(u.0 + s * (u.1 - u.0), v.0 + t * (v.1 - v.0))
+        };
+        let outer = vec![at(0., 0.), at(1., 0.), at(1., 1.), at(0., 1.), at(0., 0.)];
+        let hole = vec![
+            at(0.2, 0.2),
+            at(0.2, 0.8),
+            at(0.8, 0.8),
+            at(0.8, 0.2),
+            at(0.2, 0.2),
+        ];
+        let trim = crate::geom::Trim::new(vec![outer, hole], domain).unwrap();
+        library.patches[0].trim = Some(Arc::new(trim));
+        let frames = |segments: &[Segments]| {
+            let mut patch_frames: Vec<PatchFrames> =
+                (0..2).map(|_| PatchFrames::default()).collect();
+            PatchFrames::refresh(&mut patch_frames, &library, segments);
+            patch_frames
+        };
+        // Spares larger and smaller than the mesh, holding values no mesh has.
+        for len in [5, 100_000] {
+            let spare = Mesh {
+                positions: vec![Vec3::NAN; len],
+                normals: vec![Vec3::NAN; len],
+                tangents_u: vec![Vec3::NAN; len],
+                uvs: vec![Vec2::NAN; len],
+                triangles: vec![[u32::MAX; 3]; len],
+                triangle_patch: vec![u32::MAX; len],
+                grids: vec![
+                    PatchGrid {
+                        first: 7,
+                        nu: 7,
+                        nv: 7,
+                        first_triangle: 7
+                    };
+                    3
+                ],
+                borders: Vec::new(),
+                triangle_region: vec![Region::Cut; len],
+            };
+            let patch_frames = frames(&[(8, 8), (4, 4)]);
+            let fresh = build_mesh(&library, &patch_frames, Mesh::default());
+            assert!(fresh.triangle_region.contains(&Region::Cut));
+            assert!(fresh.triangle_region.contains(&Region::Kept));
+            assert_eq!(
+                build_mesh(&library, &patch_frames, spare),
+                fresh,
+                "spare of {len}"
+            );
         }
     }
 }

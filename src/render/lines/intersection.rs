@@ -106,9 +106,9 @@ pub(crate) fn intersections_keeping(
             })
         })
         .collect();
-    let touching = touching_patches(mesh);
     let patches = blocks.len();
     let kept_patch = |p: usize| same.get(p).copied().unwrap_or(false);
+    let touching = touching_patches(mesh, |p| !kept_patch(p as usize));
     let mut found = Found::default();
     let mut pairs: Vec<(&Block, &Block)> = Vec::new();
     for p in 0..patches {
@@ -189,32 +189,40 @@ fn blocks(mesh: &Mesh, patch: u32, grid: &PatchGrid) -> Vec<Block> {
     out
 }
 
-/// The pairs of patches `(lower, higher)` that share a vertex position: a piece of boundary
-/// across from the other, or a corner.
-fn touching_patches(mesh: &Mesh) -> FastSet<(u32, u32)> {
+/// The pairs of patches `(lower, higher)` that share a vertex position (a piece of boundary
+/// across from the other, or a corner), of those pairs of which `asked` picks at least one
+/// patch: the positions of the picked patches' boundaries are filed, and every patch's
+/// boundary looked up among them.
+fn touching_patches(mesh: &Mesh, asked: impl Fn(u32) -> bool) -> FastSet<(u32, u32)> {
     let mut by_position: FastMap<[u32; 3], Vec<u32>> = FastMap::default();
-    for (patch, g) in mesh.grids.iter().enumerate() {
-        let (nu, nv) = (g.nu, g.nv);
-        let boundary = (0..nu)
-            .flat_map(|i| [g.vertex(i, 0), g.vertex(i, nv - 1)])
-            .chain((0..nv).flat_map(|j| [g.vertex(0, j), g.vertex(nu - 1, j)]));
-        for v in boundary {
-            let key = mesh.positions[v as usize].to_array().map(f32::to_bits);
+    for (patch, g) in (0..).zip(&mesh.grids).filter(|(p, _)| asked(*p)) {
+        for key in boundary_positions(mesh, *g) {
             let list = by_position.entry(key).or_default();
-            if list.last() != Some(&(patch as u32)) && !list.contains(&(patch as u32)) {
-                list.push(patch as u32);
+            if list.last() != Some(&patch) && !list.contains(&patch) {
+                list.push(patch);
             }
         }
     }
     let mut pairs = FastSet::default();
-    for list in by_position.values() {
-        for (k, &a) in list.iter().enumerate() {
-            for &b in &list[k + 1..] {
-                pairs.insert((a.min(b), a.max(b)));
+    for (patch, g) in (0..).zip(&mesh.grids) {
+        for key in boundary_positions(mesh, *g) {
+            let others = by_position.get(&key).map_or(&[][..], Vec::as_slice);
+            for &other in others.iter().filter(|&&o| o != patch) {
+                pairs.insert((patch.min(other), patch.max(other)));
             }
         }
     }
     pairs
+}
+
+/// The positions, bit for bit, of the vertices on the boundary of `grid`'s domain.
+fn boundary_positions(mesh: &Mesh, grid: PatchGrid) -> impl Iterator<Item = [u32; 3]> + '_ {
+    let (nu, nv) = (grid.nu, grid.nv);
+    let key = |v: u32| mesh.positions[v as usize].to_array().map(f32::to_bits);
+    (0..nu)
+        .flat_map(move |i| [grid.vertex(i, 0), grid.vertex(i, nv - 1)])
+        .chain((0..nv).flat_map(move |j| [grid.vertex(0, j), grid.vertex(nu - 1, j)]))
+        .map(key)
 }
 
 /// The triangles of a block, as vertex triples with their corners' (u, v); none that the

@@ -1,5 +1,7 @@
 //! A layer: what some of a list's triangles show, kept to draw the others over it.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use super::visibility::VisibilityBuffer;
 
 /// The visibility of some triangles of a list ([`Rasterizer::rasterize_layer_into`]), with
@@ -12,7 +14,13 @@ use super::visibility::VisibilityBuffer;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Layer {
     buffer: VisibilityBuffer,
+    /// Which drawing of a layer this is, unique in the process (0: never drawn), so that a
+    /// [`LayerCopy`](super::LayerCopy) knows the pixels it recorded.
+    stamp: u64,
 }
+
+/// The stamps given to layers drawn, counted across the process.
+static STAMPS: AtomicU64 = AtomicU64::new(0);
 
 impl Layer {
     /// The layer's pixels: depth unclamped, `f32::INFINITY` where empty.
@@ -21,7 +29,15 @@ impl Layer {
         &self.buffer
     }
 
+    /// Which drawing of a layer this is: a layer drawn again has a new stamp.
+    #[must_use]
+    pub(super) fn stamp(&self) -> u64 {
+        self.stamp
+    }
+
+    /// The buffer, to be drawn again: the layer takes a new stamp.
     pub(super) fn buffer_mut(&mut self) -> &mut VisibilityBuffer {
+        self.stamp = STAMPS.fetch_add(1, Ordering::Relaxed) + 1;
         &mut self.buffer
     }
 }

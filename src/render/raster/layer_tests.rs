@@ -87,3 +87,76 @@ fn drawing_over_a_layer_gives_the_full_raster_bit_for_bit() {
     assert!(centre.triangle != 1);
     assert!(full.triangle.contains(&3));
 }
+
+/// The buffer's bits: depth, triangle and barycentrics.
+fn bits(b: &VisibilityBuffer) -> (Vec<u32>, Vec<u32>, Vec<[u32; 2]>) {
+    let depth = b.depth.iter().map(|z| z.to_bits()).collect();
+    let bary = b.barycentric.iter().map(|c| c.map(f32::to_bits)).collect();
+    (depth, b.triangle.clone(), bary)
+}
+
+#[test]
+fn drawing_over_a_layer_into_a_buffer_that_holds_its_copy_writes_what_a_fresh_draw_does() {
+    let viewport = Viewport {
+        width: 300,
+        height: 200,
+    };
+    // Two layers of a big triangle, at two depths, and a small triangle that moves across
+    // the tiles frame by frame, drawn over one of them.
+    let layer_of = |z: f32, rasterizer: &mut Rasterizer, layer: &mut Layer| {
+        let mut positions = Vec::new();
+        let triangles = [at(
+            z,
+            [(-0.9, -0.9), (0.9, -0.8), (0.0, 0.9)],
+            &mut positions,
+        )];
+        let all = std::slice::from_ref(&(0..1));
+        rasterizer.rasterize_layer_into(viewport, &positions, (&triangles, all), None, layer);
+    };
+    // Triangle 0 is the layer's, not drawn over it; triangle 1 is the small one.
+    let small = |frame: usize| {
+        let mut positions = Vec::new();
+        let x = -1.0 + 0.25 * frame as f32;
+        let corners = [(x, -0.3), (x + 0.3, -0.2), (x + 0.1, 0.4)];
+        let triangles = vec![[0, 0, 0], at(0.4, corners, &mut positions)];
+        (positions, triangles)
+    };
+    let mut rasterizer = Rasterizer::new();
+    let (mut near, mut far) = (Layer::default(), Layer::default());
+    layer_of(0.5, &mut rasterizer, &mut near);
+    layer_of(0.3, &mut rasterizer, &mut far);
+    let mut buffers = [VisibilityBuffer::default(), VisibilityBuffer::default()];
+    let mut copies = [super::LayerCopy::default(), super::LayerCopy::default()];
+    let mut kept_tiles = 0;
+    for frame in 0..9 {
+        // The layer drawn over changes at frame 5, and is drawn again (a new stamp, the same
+        // buffer object) at frame 7 with other pixels.
+        if frame == 7 {
+            layer_of(0.7, &mut rasterizer, &mut near);
+        }
+        let layer = if (5..7).contains(&frame) { &far } else { &near };
+        let (positions, triangles) = small(frame);
+        let ranges = std::slice::from_ref(&(1..2));
+        let (buffer, copy) = (&mut buffers[frame % 2], &mut copies[frame % 2]);
+        kept_tiles += copy.copied_tiles();
+        let stats = rasterizer.rasterize_over_keeping(
+            viewport,
+            &positions,
+            (&triangles, ranges),
+            (None, layer),
+            (buffer, copy),
+        );
+        let mut fresh = VisibilityBuffer::default();
+        let fresh_stats = Rasterizer::new().rasterize_over_into(
+            viewport,
+            &positions,
+            (&triangles, ranges),
+            (None, layer),
+            &mut fresh,
+        );
+        assert!(bits(buffer) == bits(&fresh), "frame {frame}");
+        assert_eq!(stats, fresh_stats, "frame {frame}");
+    }
+    // Tiles were left as they were, not just copied again every time.
+    assert!(kept_tiles > 0);
+}

@@ -44,6 +44,7 @@ mod bin;
 mod clip;
 mod cut;
 mod layer;
+mod layer_copy;
 #[cfg(test)]
 mod layer_tests;
 mod setup;
@@ -65,6 +66,7 @@ use tile::Scratch;
 
 pub use cut::Cut;
 pub use layer::Layer;
+pub use layer_copy::LayerCopy;
 pub use setup::{MAX_VIEWPORT_SIDE, SUBPIXEL_BITS};
 pub use viewport::Viewport;
 pub use visibility::{Hit, VisibilityBuffer};
@@ -286,10 +288,11 @@ impl Rasterizer {
                 positions,
                 triangles,
                 (cut, rows),
-                drawn,
+                (drawn, None),
                 tile_size,
                 buffer,
             )
+            .0
         })
     }
 
@@ -313,7 +316,9 @@ impl Rasterizer {
             clamp: false,
         };
         let buffer = layer.buffer_mut();
-        self.rasterize_ranges(viewport, positions, triangles, cut, drawn, buffer)
+        let (stats, _) =
+            self.rasterize_ranges(viewport, positions, triangles, cut, (drawn, None), buffer);
+        stats
     }
 
     /// The triangles whose indices lie in `ranges` (ascending, not overlapping, within the list)
@@ -330,34 +335,69 @@ impl Rasterizer {
         &mut self,
         viewport: Viewport,
         positions: &[ClipVertex],
+        triangles: (&[[u32; 3]], &[Range<u32>]),
+        over: (Option<&dyn Cut>, &Layer),
+        buffer: &mut VisibilityBuffer,
+    ) -> RasterStats {
+        let mut copy = LayerCopy::default();
+        self.rasterize_over_keeping(viewport, positions, triangles, over, (buffer, &mut copy))
+    }
+
+    /// [`Rasterizer::rasterize_over_into`] into a `buffer` that `copy` describes: the record
+    /// of the last draw into it over a layer ([`LayerCopy`]), which the buffer is as that draw
+    /// left it. The tiles that draw copied from this same layer, where no triangle is drawn
+    /// now, are left as they are (they hold what copying them again would write); `copy` is
+    /// then this draw's record. The buffer is byte for byte the one
+    /// [`Rasterizer::rasterize_over_into`] makes: pass [`LayerCopy::default`] for a buffer of
+    /// unknown content, and [`LayerCopy::forget`] a record whose buffer was written otherwise.
+    ///
+    /// # Panics
+    /// As [`Rasterizer::rasterize_over_into`].
+    pub fn rasterize_over_keeping(
+        &mut self,
+        viewport: Viewport,
+        positions: &[ClipVertex],
         (triangles, ranges): (&[[u32; 3]], &[Range<u32>]),
         (cut, layer): (Option<&dyn Cut>, &Layer),
-        buffer: &mut VisibilityBuffer,
+        (buffer, copy): (&mut VisibilityBuffer, &mut LayerCopy),
     ) -> RasterStats {
         let over = layer.buffer();
         assert!(
             over.width == viewport.width && over.height == viewport.height,
             "the layer is of the viewport's size"
         );
+        if buffer.width != viewport.width || buffer.height != viewport.height {
+            copy.forget();
+        }
         let drawn = Drawn {
             ranges: Some(ranges),
             over: Some(over),
             clamp: true,
         };
-        self.rasterize_ranges(viewport, positions, triangles, cut, drawn, buffer)
+        let (stats, tiles) = self.rasterize_ranges(
+            viewport,
+            positions,
+            triangles,
+            cut,
+            (drawn, Some((layer, &*copy))),
+            buffer,
+        );
+        copy.record(layer, viewport, tiles);
+        stats
     }
 
     /// The checks and pool of [`Rasterizer::rasterize_rows_into`] for a draw of some ranges of
-    /// triangles.
+    /// triangles, with what the buffer holds of the layer drawn over (`copy`); returns the
+    /// counts and, per tile, the pixels covered where it is the layer's copy.
     fn rasterize_ranges(
         &mut self,
         viewport: Viewport,
         positions: &[ClipVertex],
         triangles: &[[u32; 3]],
         cut: Option<&dyn Cut>,
-        drawn: Drawn<'_>,
+        (drawn, copy): (Drawn<'_>, Option<(&Layer, &LayerCopy)>),
         buffer: &mut VisibilityBuffer,
-    ) -> RasterStats {
+    ) -> (RasterStats, Vec<Option<u64>>) {
         assert!(
             viewport.width <= MAX_VIEWPORT_SIDE && viewport.height <= MAX_VIEWPORT_SIDE,
             "viewport {}×{} exceeds {MAX_VIEWPORT_SIDE} pixels a side",
@@ -382,12 +422,19 @@ impl Rasterizer {
         }
         buffer.resize(viewport);
         if viewport.width == 0 || viewport.height == 0 {
-            return RasterStats::default();
+            return (RasterStats::default(), Vec::new());
         }
         let tile_size = RasterOptions::DEFAULT_TILE_SIZE;
         let kept = (cut, None);
+        let copied = copy.map(|(layer, copy)| (layer, copy, viewport));
         self.rasterize_in_pool(
-            viewport, positions, triangles, kept, drawn, tile_size, buffer,
+            viewport,
+            positions,
+            triangles,
+            kept,
+            (drawn, copied),
+            tile_size,
+            buffer,
         )
     }
 
@@ -398,10 +445,10 @@ impl Rasterizer {
         positions: &[ClipVertex],
         triangles: &[[u32; 3]],
         (cut, rows): Kept<'_>,
-        drawn: Drawn<'_>,
+        (drawn, copy): (Drawn<'_>, Option<(&Layer, &LayerCopy, Viewport)>),
         tile_size: u32,
         buffer: &mut VisibilityBuffer,
-    ) -> RasterStats {
+    ) -> (RasterStats, Vec<Option<u64>>) {
         let screen = Screen::new(viewport.width, viewport.height);
         let (guard_x, guard_y) = screen.guard_band();
         let planes = Planes::new(guard_x, guard_y);
@@ -439,7 +486,7 @@ impl Rasterizer {
             });
 
         let chunks = &self.chunks;
-        let counts = tile::tile_targets(buffer, &grid)
+        let counts: Vec<tile::TileCounts> = tile::tile_targets(buffer, &grid)
             .into_par_iter()
             .map_init(Scratch::new, |scratch, target| {
                 let index = target.index;
@@ -450,26 +497,30 @@ impl Rasterizer {
                         .iter()
                         .map(|&i| &chunk.setups[i as usize])
                 });
+                let copied =
+                    copy.and_then(|(layer, copy, viewport)| copy.copied(layer, viewport, index));
                 tile::render_tile(
                     target,
                     binned,
                     (cut, rows),
-                    (drawn.over, drawn.clamp),
+                    (drawn.over, drawn.clamp, copied),
                     scratch,
                 )
             })
-            .reduce(tile::TileCounts::default, |a, b| tile::TileCounts {
-                fragments: a.fragments + b.fragments,
-                pixels: a.pixels + b.pixels,
-            });
+            .collect();
         let stats = chunks
             .iter()
             .fold(RasterStats::default(), |s, c| s + c.stats);
-        RasterStats {
-            fragments: counts.fragments,
-            pixels_covered: counts.pixels,
+        let stats = RasterStats {
+            fragments: counts.iter().map(|c| c.fragments).sum(),
+            pixels_covered: counts.iter().map(|c| c.pixels).sum(),
             ..stats
-        }
+        };
+        let tiles = counts
+            .iter()
+            .map(|c| c.copied.then_some(c.pixels))
+            .collect();
+        (stats, tiles)
     }
 }
 

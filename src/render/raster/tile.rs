@@ -102,6 +102,9 @@ pub(super) struct TileCounts {
     pub fragments: u64,
     /// Pixels with a triangle.
     pub pixels: u64,
+    /// Whether the tile holds the pixels of the layer drawn over, copied with no triangle
+    /// drawn over them.
+    pub copied: bool,
 }
 
 /// Renders `triangles` (in ascending input order) into the tile `target`, in each row `y` of
@@ -109,25 +112,31 @@ pub(super) struct TileCounts {
 ///
 /// With `over`, the tile starts as `over` holds it (a [`Layer`](super::Layer) of other
 /// triangles, depth unclamped) instead of empty; with `clamp`, depth is written clamped to
-/// [0, 1].
+/// [0, 1]. A tile over which no triangle is drawn is `over`'s pixels copied, and with `copied`,
+/// the pixels covered where the tile already holds that copy ([`LayerCopy`]), it is left as it
+/// is.
 ///
 /// Depth test: a fragment replaces the stored one when nearer, or at equal depth when of a
 /// lower triangle index, so that per pixel the least `(depth, index)` wins whatever order the
 /// triangles are drawn in (in ascending order, as here, the second case never arises but over
 /// a layer); pieces of one clipped triangle meet in their clipping order.
+///
+/// [`LayerCopy`]: super::LayerCopy
 pub(super) fn render_tile<'s>(
     target: TileTarget<'_>,
     triangles: impl Iterator<Item = &'s TriangleSetup>,
     (cut, rows): Kept<'_>,
-    (over, clamp): (Option<&VisibilityBuffer>, bool),
+    (over, clamp, copied): (Option<&VisibilityBuffer>, bool, Option<u64>),
     scratch: &mut Scratch<'s>,
 ) -> TileCounts {
     let width = (target.rect.x1 - target.rect.x0 + 1) as usize;
     let mut triangles = triangles.peekable();
     if let (Some(over), None) = (over, triangles.peek()) {
+        let pixels = copied.unwrap_or_else(|| copy_over(target, width, over, clamp));
         return TileCounts {
             fragments: 0,
-            pixels: copy_over(target, width, over, clamp),
+            pixels,
+            copied: true,
         };
     }
     scratch.reset(width * target.depth.len(), over, &target.rect);
@@ -135,7 +144,11 @@ pub(super) fn render_tile<'s>(
         .map(|setup| draw(setup, &target.rect, width, (cut, rows), scratch))
         .sum();
     let pixels = resolve(target, width, scratch, (over, clamp));
-    TileCounts { fragments, pixels }
+    TileCounts {
+        fragments,
+        pixels,
+        copied: false,
+    }
 }
 
 /// The depth test over the pixels of `tile` (row width `width`) that `setup` covers, stepping
@@ -241,17 +254,23 @@ fn copy_over(
         let from = start..start + width;
         triangle.copy_from_slice(&over.triangle[from.clone()]);
         barycentric.copy_from_slice(&over.barycentric[from.clone()]);
-        depth.copy_from_slice(&over.depth[from]);
+        let from = &over.depth[from];
         if clamp {
-            for (z, _) in depth
-                .iter_mut()
-                .zip(&**triangle)
-                .filter(|(_, &t)| t != u32::MAX)
-            {
-                *z = z.clamp(0.0, 1.0);
+            // A select a pixel, not a branch, so that the loop runs in vector lanes.
+            for ((z, &was), &t) in depth.iter_mut().zip(from).zip(&**triangle) {
+                *z = if t == u32::MAX {
+                    was
+                } else {
+                    was.clamp(0.0, 1.0)
+                };
             }
+        } else {
+            depth.copy_from_slice(from);
         }
-        pixels += triangle.iter().filter(|&&t| t != u32::MAX).count() as u64;
+        pixels += triangle
+            .iter()
+            .map(|&t| u64::from(t != u32::MAX))
+            .sum::<u64>();
     }
     pixels
 }
