@@ -76,17 +76,27 @@ pub(crate) fn draw(
             ]
         })
         .collect();
+    // Per band, the capsules that reach it, in their order.
+    let bands = alpha.len().div_ceil(w * BAND);
+    let mut reaching: Vec<Vec<u32>> = vec![Vec::new(); bands];
+    for (k, &[_, _, y0, y1]) in (0..).zip(&bounds) {
+        for band in reaching.iter_mut().take(y1.div_ceil(BAND)).skip(y0 / BAND) {
+            band.push(k);
+        }
+    }
     // With one colour the colour image is empty: split it as if it had no rows.
     let colour_band = if coloured { w * BAND } else { 1 };
     let mut colour_bands: Vec<&mut [u32]> = colour.chunks_mut(colour_band).collect();
-    colour_bands.resize_with(alpha.len().div_ceil(w * BAND), Default::default);
+    colour_bands.resize_with(bands, Default::default);
     alpha
         .par_chunks_mut(w * BAND)
         .zip(colour_bands)
+        .zip(&reaching)
         .enumerate()
-        .map(|(band, (rows, colours))| {
+        .map(|(band, ((rows, colours), reaching))| {
             let (top, bottom) = (band * BAND, band * BAND + rows.len() / w);
-            for (c, &[x0, x1, y0, y1]) in capsules.iter().zip(&bounds) {
+            for &k in reaching {
+                let (c, &[x0, x1, y0, y1]) = (&capsules[k as usize], &bounds[k as usize]);
                 for y in y0.max(top)..y1.min(bottom) {
                     let row = (y - top) * w;
                     for x in x0..x1 {
