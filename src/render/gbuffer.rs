@@ -127,6 +127,8 @@ struct Frames<'a> {
 /// Per-job scratch for evaluating a run of frames on one patch.
 #[derive(Default)]
 struct FrameScratch {
+    /// Per pixel of the block being filled, whether its texel was kept from the earlier fill.
+    kept: Vec<bool>,
     starts: Vec<(f64, f64)>,
     searches: Vec<RaySearch>,
     params: Vec<(f64, f64)>,
@@ -206,25 +208,17 @@ impl GBuffer {
             evaluate,
             earlier,
         };
-        blocks
+        let kept: u64 = blocks
             .into_par_iter()
             .zip(self.slot.par_chunks_mut(PIXELS_PER_JOB))
             .enumerate()
-            .for_each_init(
+            .map_init(
                 FrameScratch::default,
                 |scratch, (block, ((first, texels), slots))| {
-                    fill.block(block * PIXELS_PER_JOB, first, texels, slots, scratch);
+                    fill.block(block * PIXELS_PER_JOB, first, texels, slots, scratch)
                 },
-            );
-        let kept = match earlier {
-            None => 0,
-            Some(_) => self
-                .texels
-                .par_iter()
-                .with_min_len(PIXELS_PER_JOB)
-                .filter(|t| fill.kept(t.pixel as usize).is_some())
-                .count() as u64,
-        };
+            )
+            .sum();
         let frames = match (mode, evaluate) {
             (FrameMode::Interpolated, _) => 0,
             (FrameMode::Exact | FrameMode::Refined, None) => self.texels.len() as u64 - kept,
@@ -325,7 +319,9 @@ impl GBuffer {
 }
 
 impl Fill<'_> {
-    /// Fills the slots of the pixels from `start` on and their texels, numbered from `first`.
+    /// Fills the slots of the pixels from `start` on and their texels, numbered from `first`;
+    /// returns how many texels were kept from the earlier fill ([`Fill::kept`], asked once a
+    /// pixel).
     fn block(
         &self,
         start: usize,
@@ -333,9 +329,12 @@ impl Fill<'_> {
         texels: &mut [Texel],
         slots: &mut [u32],
         scratch: &mut FrameScratch,
-    ) {
+    ) -> u64 {
+        let mut kept = std::mem::take(&mut scratch.kept);
+        kept.clear();
+        kept.resize(slots.len(), false);
         let mut k = 0;
-        for (i, slot) in (start..).zip(slots.iter_mut()) {
+        for ((i, slot), kept) in (start..).zip(slots.iter_mut()).zip(&mut kept) {
             let triangle = self.visibility.triangle[i];
             if triangle == EMPTY {
                 *slot = EMPTY;
@@ -343,7 +342,10 @@ impl Fill<'_> {
             }
             *slot = first + k as u32;
             texels[k] = match self.kept(i) {
-                Some(kept) => kept,
+                Some(texel) => {
+                    *kept = true;
+                    texel
+                }
                 None => self.texel(i, triangle),
             };
             k += 1;
@@ -353,9 +355,13 @@ impl Fill<'_> {
                 self.evaluate
                     .map_or(Evaluate::Full, |e| e[t.pixel as usize])
             };
-            let kept = |t: &Texel| self.kept(t.pixel as usize).is_some();
-            self.frames.exact_frames(texels, &evaluate, &kept, scratch);
+            let was_kept = |t: &Texel| kept[t.pixel as usize - start];
+            self.frames
+                .exact_frames(texels, &evaluate, &was_kept, scratch);
         }
+        let count = kept.iter().filter(|&&k| k).count() as u64;
+        scratch.kept = kept;
+        count
     }
 
     /// The earlier fill's texel of pixel `i`, where it is kept: the pixel's triangle is on a
