@@ -4,10 +4,12 @@
 //! flat-colour raster of the same mesh. Run with `cargo bench --bench render`; it prints each
 //! variant's frame time by stage, then the ratios.
 //!
-//! Frames of one view repeated reuse the surfaces (and, with nothing about them changed, the
-//! lines), as an animator's edit of a highlight does. The `moving` pair turns the camera by a
-//! degree between frames, as a shot does, so that every frame finds its surfaces and lines
-//! again: lines on against lines off there is what lines cost a rendered shot.
+//! Frames, not edits. Every variant but `edit_full` turns the camera by a degree between
+//! frames, as a shot does, so that every frame finds its surfaces (rasterized, its G-buffer
+//! filled) and lines again: each ratio compares what frames of a shot cost. The flat raster
+//! turns with them. `edit_full` repeats one view, as an animator's edit of a highlight does:
+//! the renderer keeps the surfaces and lines and runs only the stages the edit touches, so it is
+//! compared with the frame (`edit_full / moving`), never with the raster.
 //!
 //! The effect-free comparison. The effect-free shot has cel tone only — no highlight, no
 //! outline, no AOV — and is rendered with interpolated frames, the preview setting: an exact
@@ -87,15 +89,27 @@ fn scene<'a>(
 fn moving<'a>(
     name: &'static str,
     library: &Arc<PatchLibrary>,
-    views: [&'a Scene<'a>; 2],
+    view: &'a Scene<'a>,
+    turned: &'a Scene<'a>,
     settings: &'a Settings,
 ) -> Variant<'a> {
     let mut renderer = glint::render::Renderer::new(Arc::clone(library));
     let mut turn = 0usize;
     Variant::new(name, move || {
         turn += 1;
-        Some(renderer.render(views[turn % 2], settings).unwrap().stats)
+        let scene = if turn % 2 == 0 { view } else { turned };
+        Some(renderer.render(scene, settings).unwrap().stats)
     })
+}
+
+/// `scene` with the camera turned about the vertical axis by a degree.
+fn turned<'a>(scene: &Scene<'a>) -> Scene<'a> {
+    let mut camera = scene.camera;
+    camera.eye = glam::Quat::from_rotation_z(1f32.to_radians()) * camera.eye;
+    Scene {
+        camera,
+        ..scene.clone()
+    }
 }
 
 /// Rounds of frames measured.
@@ -123,14 +137,22 @@ fn main() {
     let interpolated = settings(FrameMode::Interpolated, 0);
     let one_thread = settings(FrameMode::Exact, 1);
 
-    // The baseline: the same mesh rasterized and filled with one flat colour.
+    // The baseline: the same mesh rasterized and filled with one flat colour, from the two
+    // views the moving variants alternate between.
     let mut tessellator = Tessellator::new(Arc::clone(&library));
-    let view_projection = camera().view_projection(WIDTH as f32 / HEIGHT as f32);
-    let (mesh, _) = tessellator.mesh(DENSITY, view_projection, WIDTH, HEIGHT);
+    let aspect = WIDTH as f32 / HEIGHT as f32;
+    let view_projections = [
+        full.camera.view_projection(aspect),
+        turned(&full).camera.view_projection(aspect),
+    ];
+    let (mesh, _) = tessellator.mesh(DENSITY, view_projections[0], WIDTH, HEIGHT);
     let (mut rasterizer, mut visibility) = (Rasterizer::new(), VisibilityBuffer::default());
     let mut clip = Vec::new();
     let flat = Vec4::new(0.4, 0.55, 0.9, 1.0);
+    let mut turn = 0usize;
     let flat_raster = move || {
+        turn += 1;
+        let view_projection = view_projections[turn % 2];
         mesh.positions
             .par_iter()
             .map(|p| view_projection * p.extend(1.0))
@@ -150,46 +172,70 @@ fn main() {
         None
     };
 
-    // The camera turned about the vertical axis by a degree, for frames that move.
-    fn turned<'a>(scene: &Scene<'a>) -> Scene<'a> {
-        let mut camera = scene.camera;
-        camera.eye = glam::Quat::from_rotation_z(1f32.to_radians()) * camera.eye;
-        Scene {
-            camera,
-            ..scene.clone()
-        }
-    }
-    let (full_turned, unlined_turned) = (turned(&full), turned(&unlined));
-
+    let turned_scenes = [&full, &plain, &unlined, &effect_free, &flat_colours].map(turned);
+    let [full_turned, plain_turned, unlined_turned, effect_free_turned, flat_colours_turned] =
+        &turned_scenes;
     let mut variants = [
-        Variant::render("full", &library, &full, &exact),
-        Variant::render("no_highlights", &library, &plain, &exact),
-        Variant::render("no_lines", &library, &unlined, &exact),
-        Variant::render("interpolated", &library, &full, &interpolated),
-        Variant::render("one_thread", &library, &full, &one_thread),
-        Variant::render("effect_free", &library, &effect_free, &interpolated),
-        Variant::render("flat_colours", &library, &flat_colours, &interpolated),
-        Variant::new("flat_raster", flat_raster),
-        moving("moving", &library, [&full, &full_turned], &exact),
+        moving("moving", &library, &full, full_turned, &exact),
+        moving(
+            "moving_no_highlights",
+            &library,
+            &plain,
+            plain_turned,
+            &exact,
+        ),
         moving(
             "moving_no_lines",
             &library,
-            [&unlined, &unlined_turned],
+            &unlined,
+            unlined_turned,
             &exact,
         ),
+        moving(
+            "moving_interpolated",
+            &library,
+            &full,
+            full_turned,
+            &interpolated,
+        ),
+        moving(
+            "moving_one_thread",
+            &library,
+            &full,
+            full_turned,
+            &one_thread,
+        ),
+        moving(
+            "effect_free",
+            &library,
+            &effect_free,
+            effect_free_turned,
+            &interpolated,
+        ),
+        moving(
+            "flat_colours",
+            &library,
+            &flat_colours,
+            flat_colours_turned,
+            &interpolated,
+        ),
+        Variant::new("flat_raster", flat_raster),
+        Variant::render("edit_full", &library, &full, &exact),
     ];
     let measured = frames::measure(&mut variants, ROUNDS);
     measured.print_frames("teapot, 1280×720: frame time by stage");
     measured.print_ratios(
         "frame-time ratios",
         &[
-            ("full", "no_highlights"),
-            ("full", "no_lines"),
+            ("moving", "flat_raster"),
+            ("moving_interpolated", "flat_raster"),
+            ("moving", "moving_no_highlights"),
             ("moving", "moving_no_lines"),
-            ("full", "interpolated"),
-            ("one_thread", "full"),
+            ("moving", "moving_interpolated"),
+            ("moving_one_thread", "moving"),
             ("effect_free", "flat_raster"),
             ("flat_colours", "flat_raster"),
+            ("edit_full", "moving"),
         ],
     );
 }

@@ -97,25 +97,27 @@ impl Measured {
     pub fn print_frames(&self, title: &str) {
         let rounds = self.seconds[0].len();
         println!("\n{title} (median of {rounds} rounds, ms)");
+        // Each column as wide as its variant's name, and at least 15.
+        let widths: Vec<usize> = self.names.iter().map(|n| n.len().max(15)).collect();
         print!("{:<14}", "stage");
-        for name in &self.names {
-            print!(" {name:>15}");
+        for (name, w) in self.names.iter().zip(&widths) {
+            print!(" {name:>w$}");
         }
         println!();
         for stage in Stage::ALL {
             print!("{:<14}", stage.name());
-            for frames in &self.stats {
+            for (frames, w) in self.stats.iter().zip(&widths) {
                 let seconds = |s: &RenderStats| s[stage].seconds;
                 match frames.iter().map(|s| s.as_ref().map(seconds)).collect() {
-                    Some(seconds) => print!(" {:>15.3}", quartiles(seconds)[1] * 1e3),
-                    None => print!(" {:>15}", "-"),
+                    Some(seconds) => print!(" {:>w$.3}", quartiles(seconds)[1] * 1e3),
+                    None => print!(" {:>w$}", "-"),
                 }
             }
             println!();
         }
         print!("{:<14}", "frame");
-        for seconds in &self.seconds {
-            print!(" {:>15.3}", quartiles(seconds.clone())[1] * 1e3);
+        for (seconds, w) in self.seconds.iter().zip(&widths) {
+            print!(" {:>w$.3}", quartiles(seconds.clone())[1] * 1e3);
         }
         println!();
         for (label, stage) in [
@@ -123,10 +125,10 @@ impl Measured {
             ("supersampled", Stage::Supersample),
         ] {
             print!("{label:<14}");
-            for frames in &self.stats {
+            for (frames, w) in self.stats.iter().zip(&widths) {
                 match &frames[0] {
-                    Some(s) => print!(" {:>15}", s[stage].pixels),
-                    None => print!(" {:>15}", "-"),
+                    Some(s) => print!(" {:>w$}", s[stage].pixels),
+                    None => print!(" {:>w$}", "-"),
                 }
             }
             println!();
