@@ -128,9 +128,11 @@ try {
   // A corner off the sphere: refused on the page, nothing written.
   await clickPixel(page, [4, 4]);
   await page.keyboard.press("Enter");
-  // The error line shows the refusal until the next frame is painted: what it showed is kept.
+  // The error line shows the refusal until it is dismissed.
   await until(page, () => /shows no patch/.test(window.glintTune.lastError), undefined, "the refusal on the page");
   await new Promise((r) => setTimeout(r, 300));
+  const shown = await page.evaluate(() => document.getElementById("status").textContent);
+  check(/shows no patch/.test(shown), `the refusal left the page: "${shown}"`);
   check(readFileSync(shot, "utf8") === written, "a refused outline changed the file");
   await page.screenshot({ path: join(artefacts, "13-refused.png") });
   console.log("page test passed: an outline drawn, edited, written and rendered; a bad corner refused");

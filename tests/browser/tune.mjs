@@ -58,6 +58,8 @@ try {
   // Drag the highlight from the sphere's centre to the drop point and release.
   const drop = { x: 150, y: 100 };
   let paints = await page.evaluate(() => window.glintTune.paints);
+  const alphaField = 'input[data-number="highlights[0].layers[0].stack[0].alpha"]';
+  const alphaBefore = await page.locator(alphaField).inputValue();
   const start = await pagePoint(page, 120, 120);
   await page.mouse.move(start.x, start.y);
   await page.mouse.down();
@@ -66,6 +68,9 @@ try {
     await page.mouse.move(p.x, p.y);
     await new Promise((r) => setTimeout(r, 30));
   }
+  // The α field follows the drag before it is released.
+  await until(page, ([field, was]) => document.querySelector(field).value !== was,
+    [alphaField, alphaBefore], "the α field to follow the drag");
   await page.mouse.up();
   const dragged = await waitForFile((t) => t !== original, "change after the drop");
   await settle(page, paints);
@@ -94,15 +99,20 @@ try {
   console.log(`drop at (${drop.x}, ${drop.y}); matte centroid (${centroid.x.toFixed(2)}, ${centroid.y.toFixed(2)}), ${miss.toFixed(2)} px away`);
   check(miss <= 2, `the matte centroid is ${miss.toFixed(2)} px from the drop point`);
 
-  // Move the ε slider: the file and the image change.
+  // Move the ε slider: the file and the image change. The slider is logarithmic over ε's legal
+  // range from 10⁻⁴: its position is log10 ε.
   const before = await canvasHash(page);
   paints = await page.evaluate(() => window.glintTune.paints);
   const epsilon = page.locator('input[type=range][data-path="highlights[0].layers[0].epsilon"]');
-  await epsilon.evaluate((el) => {
-    el.value = "0.06";
+  const scale = await epsilon.evaluate((el) => [el.dataset.scale, Number(el.min), Number(el.max)]);
+  check(scale[0] === "log" && Math.abs(scale[1] + 4) < 1e-9 && Math.abs(scale[2] - Math.log10(2)) < 1e-6,
+    `the ε slider is ${scale[0]} over [${scale[1]}, ${scale[2]}], not log10 over [-4, log10 2]`);
+  const slide = (el, position) => {
+    el.value = String(position);
     el.dispatchEvent(new Event("input", { bubbles: true }));
     el.dispatchEvent(new Event("change", { bubbles: true }));
-  });
+  };
+  await epsilon.evaluate(slide, Math.log10(0.06));
   const widened = await waitForFile((t) => /epsilon: 0\.06\b/.test(t), "hold epsilon: 0.06");
   await settle(page, paints);
   await until(page, () => !document.getElementById("status").textContent, undefined, "no error shown");
@@ -110,6 +120,27 @@ try {
   check(after !== before, "the image did not change when epsilon moved");
   check(widened.replace("epsilon: 0.06", "epsilon: 0.025") === dragged, "the slider changed more than epsilon");
   await page.screenshot({ path: join(artefacts, "03-slider.png") });
+  // ε of a small glint is within the slider's reach, as a short decimal.
+  await epsilon.evaluate(slide, Math.log10(0.0004));
+  await waitForFile((t) => /epsilon: 0\.0004\b/.test(t), "hold epsilon: 0.0004");
+  await epsilon.evaluate(slide, Math.log10(0.06));
+  await waitForFile((t) => t === widened, "hold epsilon: 0.06 again");
+
+  // A refused value: its message stays on the page over later frames until dismissed.
+  const epsilonField = page.locator('input[data-number="highlights[0].layers[0].epsilon"]');
+  await epsilonField.fill("-1");
+  await epsilonField.dispatchEvent("change");
+  await until(page, () => /epsilon/.test(document.getElementById("status").textContent), undefined, "the refusal on the page");
+  check(readFileSync(shot, "utf8") === widened, "a refused ε changed the file");
+  paints = await page.evaluate(() => window.glintTune.paints);
+  await page.evaluate(() => { document.getElementById("overlay-seams").click(); });
+  await settle(page, paints);
+  await new Promise((r) => setTimeout(r, 300));
+  const kept = await page.evaluate(() => document.getElementById("status").textContent);
+  check(/epsilon/.test(kept), `the refusal was cleared by a new frame: "${kept}"`);
+  await page.locator("#dismiss").click();
+  await until(page, () => !document.getElementById("status").textContent, undefined, "the dismissed refusal to go");
+  await page.evaluate(() => { document.getElementById("overlay-seams").click(); });
 
   // Scrub the timeline to frame 12: a new image, and the selected parameter's keys marked.
   // Frames are compared at final quality, each once the page has painted it: a preview and the
@@ -137,7 +168,11 @@ try {
   await until(page, () => document.getElementById("frame-number").value === "24", undefined, "the next key, 24");
   await page.screenshot({ path: join(artefacts, "04-timeline.png") });
 
-  // Undo the slider: the file is as it was after the drag.
+  // Undo the slider's three moves, one by one: the file is as it was after the drag.
+  await page.locator("#undo").click();
+  await waitForFile((t) => /epsilon: 0\.0004\b/.test(t), "hold epsilon: 0.0004 again");
+  await page.locator("#undo").click();
+  await waitForFile((t) => t === widened, "hold epsilon: 0.06 again");
   await page.locator("#undo").click();
   await waitForFile((t) => t === dragged, "be as it was after the drag");
 
@@ -154,7 +189,18 @@ try {
   paints = await page.evaluate(() => window.glintTune.paints);
   await settle(page, paints);
   await page.screenshot({ path: join(artefacts, "05-overlays.png") });
-  console.log("page test passed: drag, slider, timeline, undo, an outside edit");
+
+  // Pinned with `glint place --pin`: the page shows the placing translation as solved by the
+  // pin, not as values to set.
+  runGlint(["place", shot, "--frame", "1", "--pixel", "120,120", "--pin", "--write"]);
+  const alphaSlider = 'input[type=range][data-path="highlights[0].layers[0].stack[0].alpha"]';
+  await until(page, (sel) => {
+    const slider = document.querySelector(sel);
+    return slider && slider.disabled && /pin/.test(slider.title);
+  }, alphaSlider, "α to show as solved by the pin");
+  const betaDisabled = await page.locator('input[data-number="highlights[0].layers[0].stack[0].beta"]').isDisabled();
+  check(betaDisabled, "β's field can still be edited on a pinned layer");
+  console.log("page test passed: drag, slider, a refused value, timeline, undo, an outside edit, a pin");
 } catch (error) {
   failed = true;
   console.error("page test failed: " + error.message);

@@ -125,6 +125,9 @@ pub struct ParamView {
     pub max_open: bool,
     /// The span its slider covers: the useful values, widened to hold its value now.
     pub slider: [f32; 2],
+    /// Whether the slider moves on a logarithmic scale ([`is_logarithmic`]): each step
+    /// multiplies the value, so that small values get as much of its length as large ones.
+    pub log: bool,
 }
 
 /// The span of an operation parameter's slider (see [`slider_span`]).
@@ -139,13 +142,49 @@ pub fn op_slider_span(param: OpParam) -> [f32; 2] {
     }
 }
 
+/// Whether an operation parameter's slider is logarithmic: a squaring's `n`, a positive
+/// exponent whose useful values run from a quarter to eight.
+#[must_use]
+pub fn op_is_logarithmic(param: OpParam) -> bool {
+    match param {
+        OpParam::N => true,
+        OpParam::Alpha
+        | OpParam::Beta
+        | OpParam::Degrees
+        | OpParam::Axis
+        | OpParam::Delta
+        | OpParam::Sigma
+        | OpParam::GammaU
+        | OpParam::GammaV => false,
+    }
+}
+
+/// Whether a parameter's slider is logarithmic: ε, whose useful values on a small or flat
+/// patch lie far below those on a sphere (10⁻⁴ to 2, its legal range less what no disc shows),
+/// and the scale-like operation parameters ([`op_is_logarithmic`]).
+#[must_use]
+pub fn is_logarithmic(param: LayerParam) -> bool {
+    match param {
+        LayerParam::Epsilon => true,
+        LayerParam::Op { param, .. } => op_is_logarithmic(param),
+        LayerParam::Colour(_)
+        | LayerParam::Opacity
+        | LayerParam::Feather
+        | LayerParam::MaskU(_)
+        | LayerParam::MaskV(_)
+        | LayerParam::MaskFeather
+        | LayerParam::PinU
+        | LayerParam::PinV => false,
+    }
+}
+
 /// The span of a parameter's slider: where its useful values lie. Translations past ±1 make H
-/// nearly tangent; a split past 1 pushes the pieces off a sphere; ε past 0.5 covers a quarter of
-/// it.
+/// nearly tangent; a split past 1 pushes the pieces off a sphere; ε runs over its legal range
+/// (0, 2] from 10⁻⁴, on a logarithmic slider ([`is_logarithmic`]).
 #[must_use]
 pub fn slider_span(param: LayerParam) -> [f32; 2] {
     match param {
-        LayerParam::Epsilon => [0.001, 0.5],
+        LayerParam::Epsilon => [1e-4, 2.0],
         LayerParam::Colour(_) | LayerParam::Opacity => [0.0, 1.0],
         LayerParam::Feather => [0.0, 0.05],
         LayerParam::MaskU(_) | LayerParam::MaskV(_) | LayerParam::PinU | LayerParam::PinV => {
@@ -163,6 +202,15 @@ pub fn shade_slider_span(param: ShadeParam) -> [f32; 2] {
         ShadeParam::MaskU(_) | ShadeParam::MaskV(_) => [0.0, 1.0],
         ShadeParam::MaskFeather => [0.0, 0.5],
         ShadeParam::Op { param, .. } => op_slider_span(param),
+    }
+}
+
+/// Whether a shade entry parameter's slider is logarithmic, as a layer's of the same kind.
+#[must_use]
+pub fn shade_is_logarithmic(param: ShadeParam) -> bool {
+    match param {
+        ShadeParam::MaskU(_) | ShadeParam::MaskV(_) | ShadeParam::MaskFeather => false,
+        ShadeParam::Op { param, .. } => op_is_logarithmic(param),
     }
 }
 
@@ -198,13 +246,18 @@ fn param_view(param: LayerParam, reading: &ParamReading) -> ParamView {
         reading,
         param_name(param),
         param.bounds(),
-        slider_span(param),
+        (slider_span(param), is_logarithmic(param)),
     )
 }
 
-/// A parameter read at a frame, with its name, bounds and slider span, for the page: the span
-/// widened to hold its value now.
-fn view_of(reading: &ParamReading, name: String, bounds: Bounds, span: [f32; 2]) -> ParamView {
+/// A parameter read at a frame, with its name, bounds, and slider span and scale, for the
+/// page: the span widened to hold its value now.
+fn view_of(
+    reading: &ParamReading,
+    name: String,
+    bounds: Bounds,
+    (span, log): ([f32; 2], bool),
+) -> ParamView {
     let mut slider = span;
     for &v in &reading.value {
         slider = [slider[0].min(v), slider[1].max(v)];
@@ -219,6 +272,7 @@ fn view_of(reading: &ParamReading, name: String, bounds: Bounds, span: [f32; 2])
         min_open: bounds.min_open,
         max_open: bounds.max_open,
         slider,
+        log,
     }
 }
 
@@ -332,7 +386,7 @@ pub fn shade_views(shot: &Shot, text: &str, frame: f64) -> Result<Vec<ShadeView>
                             r,
                             shade_param_name(param),
                             param.bounds(),
-                            shade_slider_span(param),
+                            (shade_slider_span(param), shade_is_logarithmic(param)),
                         ))
                     }
                     _ => None,

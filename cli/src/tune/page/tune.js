@@ -31,12 +31,18 @@ function overlays() {
   };
 }
 
+// An error stays on the page until it is dismissed or another replaces it: frames painted
+// after it do not clear it.
 function showError(message) {
-  $("status").textContent = message || "";
-  if (message) {
-    window.glintTune.errors += 1;
-    window.glintTune.lastError = message;
-  }
+  if (!message) return;
+  const dismiss = element("button", { id: "dismiss", title: "Dismiss", onclick: clearError }, "×");
+  $("status").replaceChildren(element("span", { id: "message" }, message), " ", dismiss);
+  window.glintTune.errors += 1;
+  window.glintTune.lastError = message;
+}
+
+function clearError() {
+  $("status").replaceChildren();
 }
 
 async function api(method, url, body) {
@@ -89,7 +95,6 @@ async function pump() {
     window.glintTune.last = { quality, frame, renderMs, totalMs: total, at: performance.now() };
     if (quality === "preview") window.glintTune.latencies.push(total);
     $("frame-time").textContent = `${quality} ${width}×${height}: render ${renderMs.toFixed(1)} ms (${stages}), on screen ${total.toFixed(1)} ms`;
-    showError("");
     if (quality === "preview") scheduleFinal();
   } catch (error) {
     showError(error.message);
@@ -234,28 +239,42 @@ function isKeyedHere(param) {
   return param.keys.some((k) => Math.abs(k - page.frame) < 1e-9);
 }
 
-function paramRow(param, editable) {
+// A slider's position for a value and back: on a logarithmic slider (`param.log`) the position
+// is log10 of the value, and a value read back keeps three significant digits.
+function sliderPosition(param, value) {
+  return param.log ? Math.log10(Math.max(value, param.slider[0])) : value;
+}
+
+function sliderValue(param, position) {
+  return param.log ? Number(Math.pow(10, Number(position)).toPrecision(3)) : Number(position);
+}
+
+// A parameter's row: its slider, its field and its key buttons; with `why`, the reason it
+// cannot be edited, as their tooltip.
+function paramRow(param, editable, why) {
   const value = param.value.length > 0 ? param.value[0] : 0;
+  const [low, high] = param.slider.map((v) => sliderPosition(param, v));
   // A power of ten, about a thousandth of the span, so that values stay short decimals.
-  const step = Math.pow(10, Math.floor(Math.log10((param.slider[1] - param.slider[0]) / 500)));
+  const step = Math.pow(10, Math.floor(Math.log10((high - low) / 500)));
   const range = element("input", {
-    type: "range", min: param.slider[0], max: param.slider[1], step, value,
-    dataset: { path: param.path }, disabled: !editable,
+    type: "range", min: low, max: high, step, value: sliderPosition(param, value),
+    dataset: { path: param.path, scale: param.log ? "log" : "linear" }, disabled: !editable,
+    title: why || null,
   });
   const legal = `${param.min_open ? "(" : "["}${param.min ?? "-inf"}, ${param.max ?? "inf"}${param.max_open ? ")" : "]"}`;
   const number = element("input", {
     type: "number", value: param.value.length > 0 ? String(value) : "", placeholder: "none",
-    title: `${param.name}: any value in ${legal}`,
+    title: why || `${param.name}: any value in ${legal}`,
     step: "any", min: param.min ?? null, max: param.max ?? null,
     dataset: { number: param.path }, disabled: !editable,
   });
   const select = () => { page.param = param.path; renderKeys(); markSelected(); };
   range.addEventListener("input", () => {
     select();
-    number.value = range.value;
-    showFrame([valueChange(param, [Number(range.value)])]);
+    number.value = String(sliderValue(param, range.value));
+    showFrame([valueChange(param, [sliderValue(param, range.value)])]);
   });
-  range.addEventListener("change", () => commit([valueChange(param, [Number(range.value)])]));
+  range.addEventListener("change", () => commit([valueChange(param, [sliderValue(param, range.value)])]));
   number.addEventListener("change", () => {
     select();
     commit([valueChange(param, [Number(number.value)])]);
@@ -343,6 +362,10 @@ function renderPanel() {
   const layer = currentLayer();
   if (!layer) return;
   if (layer.pinned_to) box.append(element("p", {}, `pinned to ${layer.pinned_to}: dragging moves the pin`));
+  // A pin solves the placing translation (the last Translate) at every frame: its α and β
+  // are not the layer's to set.
+  const placing = layer.pinned_to ? layer.ops.map((op) => op.name).lastIndexOf("Translate") : -1;
+  const solved = `solved at every frame by the pin on ${layer.pinned_to}: drag to move the pin`;
   const structural = (change) => commit([Object.assign({ highlight: fileIndex, layer: layer.index }, change)]);
   box.append(element("h3", {}, "operations"));
   layer.ops.forEach((op, i) => {
@@ -351,7 +374,8 @@ function renderPanel() {
       element("button", { title: "Move up", disabled: !editable || i === 0, onclick: () => structural({ kind: "move_op", from: i, to: i - 1 }) }, "↑"),
       element("button", { title: "Move down", disabled: !editable || i === layer.ops.length - 1, onclick: () => structural({ kind: "move_op", from: i, to: i + 1 }) }, "↓"),
       element("button", { title: "Remove", dataset: { remove: i }, disabled: !editable, onclick: () => structural({ kind: "remove_op", index: i }) }, "✕"));
-    box.append(element("div", { class: "op" }, head, ...op.params.map((p) => paramRow(p, editable))));
+    const rows = op.params.map((p) => (i === placing ? paramRow(p, false, solved) : paramRow(p, editable)));
+    box.append(element("div", { class: "op" }, head, ...rows));
   });
   const kind = element("select", { id: "op-kind" }, ...page.state.op_kinds.map((k) => element("option", { value: k }, k)));
   box.append(element("div", {}, kind, " ",
@@ -493,7 +517,7 @@ canvas.addEventListener("pointermove", (event) => {
     requestImage("shade_drag", {
       frame: page.frame, x: at.x, y: at.y, entry: page.shadeEntry,
       quality: "preview", overlays: overlays(),
-    }, (changes) => { dragChanges = changes; });
+    }, (changes) => { dragChanges = changes; showChanges(changes); });
     return;
   }
   const h = currentHighlight();
@@ -503,8 +527,20 @@ canvas.addEventListener("pointermove", (event) => {
   requestImage("drag", {
     frame: page.frame, x: at.x, y: at.y, highlight: page.highlight, layer: page.layer,
     quality: "preview", overlays: overlays(),
-  }, (changes) => { dragChanges = changes; });
+  }, (changes) => { dragChanges = changes; showChanges(changes); });
 });
+
+// The values a drag would write, shown in the panel's fields and sliders as it goes.
+function showChanges(changes) {
+  for (const change of changes) {
+    if (!change.path || !Array.isArray(change.value) || change.value.length !== 1) continue;
+    const param = findParam(change.path);
+    const number = document.querySelector(`input[data-number="${CSS.escape(change.path)}"]`);
+    const range = document.querySelector(`input[type=range][data-path="${CSS.escape(change.path)}"]`);
+    if (number) number.value = String(change.value[0]);
+    if (range && param) range.value = String(sliderPosition(param, change.value[0]));
+  }
+}
 
 async function release() {
   const was = dragging;
@@ -589,7 +625,6 @@ async function finishDrawing() {
     };
     await api("POST", "/api/draw", body);
     drawing.sent += 1;
-    showError("");
     await loadState();
     showFrame();
   } catch (error) {
