@@ -182,6 +182,12 @@ try {
     const field = document.querySelector('input[data-number="highlights[0].layers[0].epsilon"]');
     return field && field.value === "0.03";
   }, undefined, "the page to show the file's new epsilon");
+  // The history the page had is gone, and the page says why.
+  await until(page, () => {
+    const undo = document.getElementById("undo");
+    return undo.disabled && /changed outside tune/.test(undo.title)
+      && document.getElementById("history-note").textContent === "history cleared";
+  }, undefined, "undo greyed out with the reason");
 
   // Overlays.
   await page.locator("#overlay-seams").check();
@@ -200,7 +206,7 @@ try {
   }, alphaSlider, "α to show as solved by the pin");
   const betaDisabled = await page.locator('input[data-number="highlights[0].layers[0].stack[0].beta"]').isDisabled();
   check(betaDisabled, "β's field can still be edited on a pinned layer");
-  console.log("page test passed: drag, slider, a refused value, timeline, undo, an outside edit, a pin");
+  console.log("page test passed: drag, slider, a refused value, timeline, undo, an outside edit and why undo went, a pin");
 } catch (error) {
   failed = true;
   console.error("page test failed: " + error.message);

@@ -157,6 +157,8 @@ pub struct Session {
     text: String,
     version: u64,
     history: History,
+    /// Why there is nothing to undo, when an edit made elsewhere cleared the history.
+    history_note: Option<String>,
     preview: Rendering,
     final_frames: Rendering,
     disk_error: Option<String>,
@@ -239,6 +241,7 @@ impl Session {
             text,
             version: 1,
             history: History::default(),
+            history_note: None,
             disk_error: None,
         })
     }
@@ -279,6 +282,7 @@ impl Session {
             undo,
             redo,
             disk_error: self.disk_error.clone(),
+            history_note: self.history_note.clone(),
             highlights: highlight_views(shot, &text, frame)?,
             shade: shade_views(shot, &text, frame)?,
             op_kinds: OpKind::ALL.map(OpKind::name),
@@ -608,6 +612,7 @@ impl Session {
         self.write(edited.clone())?;
         let before = std::mem::replace(&mut self.text, edited);
         self.history.record(before, self.text.clone());
+        self.history_note = None;
         Ok(self.bump())
     }
 
@@ -653,6 +658,13 @@ impl Session {
             Ok(_) => {
                 self.text = text;
                 self.disk_error = None;
+                if self.history.depth() != (0, 0) {
+                    self.history_note = Some(
+                        "the file was changed outside tune: the changes before that cannot be \
+                         undone or redone here"
+                            .to_string(),
+                    );
+                }
                 self.history.clear();
                 self.preview.stale = true;
                 self.final_frames.stale = true;

@@ -32,6 +32,9 @@ pub struct StateView {
     /// The last edit of the file made elsewhere that does not load, if the file is in that
     /// state now (the page keeps the last good state and shows this).
     pub disk_error: Option<String>,
+    /// Why nothing can be undone, when an edit of the file made elsewhere cleared the history
+    /// (until the next change made here).
+    pub history_note: Option<String>,
     pub highlights: Vec<HighlightView>,
     /// The shade entries, includes first.
     pub shade: Vec<ShadeView>,

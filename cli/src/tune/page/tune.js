@@ -167,6 +167,11 @@ async function loadState() {
   $("frame-number").value = page.frame;
   $("undo").disabled = s.undo === 0;
   $("redo").disabled = s.redo === 0;
+  // Why undo is greyed out after an edit made elsewhere.
+  const note = s.undo === 0 && s.redo === 0 ? s.history_note : null;
+  $("history-note").textContent = note ? "history cleared" : "";
+  $("history-note").title = note || "";
+  $("undo").title = note || "Undo (Ctrl+Z)";
   if (s.disk_error) showError("the file does not load now: " + s.disk_error);
   if (page.highlight === null && s.highlights.length > 0) {
     const editable = s.highlights.find((h) => h.file_index !== null);
