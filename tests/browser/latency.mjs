@@ -1,7 +1,9 @@
 // The tuning page's latency: from a slider change to the new frame decoded and on the canvas,
 // teapot at 640×360, preview — with the pixels sent raw and as PNG, in alternating blocks on
 // one server so both see the same machine. Prints the median and 95th percentile of each and
-// writes them to target/page-tests/latency.json.
+// writes them to target/page-tests/latency.json. Then playback of the whole shot: once round to
+// render and keep its frames, then the frames per second shown the second time round, against
+// the shot's fps.
 //
 //   node tests/browser/latency.mjs [CHANGES_PER_BLOCK] [BLOCKS]
 
@@ -68,6 +70,18 @@ try {
     console.log(`${format.padEnd(8)} ${r.median_ms.toFixed(1).padStart(9)} ${r.p95_ms.toFixed(1).padStart(8)} ${r.render_median_ms.toFixed(1).padStart(12)}`);
   }
   console.log(`png / raw median: ${(report.png.median_ms / report.raw.median_ms).toFixed(2)}`);
+  const { page } = pages.png;
+  await new Promise((r) => setTimeout(r, 1500));
+  const [frames, fps] = await page.evaluate(() => [page.state.frames[1] - page.state.frames[0] + 1, page.state.fps]);
+  await page.locator("#play").click();
+  await page.waitForFunction((n) => window.glintTune.played.length >= n, 2 * frames, { timeout: 120000 });
+  await page.locator("#play").click();
+  const played = await page.evaluate(() => window.glintTune.played);
+  const second = played.slice(frames, 2 * frames);
+  const shown = (second.length - 1) * 1000 / (second[second.length - 1][1] - second[0][1]);
+  const first = (frames - 1) * 1000 / (played[frames - 1][1] - played[0][1]);
+  report.playback = { frames, fps, first_loop_fps: first, kept_fps: shown };
+  console.log(`playback of ${frames} frames at ${fps} fps: ${first.toFixed(1)} frames a second while rendering ahead, ${shown.toFixed(1)} once kept`);
   mkdirSync(artefacts, { recursive: true });
   writeFileSync(join(artefacts, "latency.json"), JSON.stringify(report, null, 2));
 } finally {

@@ -196,6 +196,22 @@ try {
   await settle(page, paints);
   await page.screenshot({ path: join(artefacts, "05-overlays.png") });
 
+  // Play: frames shown in order, each rendered once ahead of the playhead and kept, so that the
+  // second time round the loop shows what was kept and renders nothing.
+  const last = await page.evaluate(() => window.glintTune.played.length === 0 && page.state.frames[1]);
+  check(last === 120, `the shot's last frame is ${last}, not 120, or playback already ran`);
+  await page.locator("#play").click();
+  await until(page, (n) => window.glintTune.played.length >= n, last + 40, "playback past one loop");
+  await page.locator("#play").click();
+  const played = await page.evaluate(() => window.glintTune.played.map(([f]) => f));
+  const renders = await page.evaluate(() => window.glintTune.playbackRenders);
+  played.slice(1).forEach((f, i) => {
+    const expected = played[i] >= last ? 1 : played[i] + 1;
+    check(f === expected, `playback showed frame ${f} after ${played[i]}, not ${expected}`);
+  });
+  console.log(`playback showed ${played.length} frames and rendered ${renders}`);
+  check(renders <= last, `playback rendered ${renders} frames for ${played.length} shown: the loop was not kept`);
+
   // Pinned with `glint place --pin`: the page shows the placing translation as solved by the
   // pin, not as values to set.
   runGlint(["place", shot, "--frame", "1", "--pixel", "120,120", "--pin", "--write"]);

@@ -121,19 +121,28 @@ function fitCanvas() {
 window.addEventListener("resize", fitCanvas);
 
 async function paint(response, width, height) {
-  if (canvas.width !== width || canvas.height !== height) {
-    canvas.width = width;
-    canvas.height = height;
+  const image = await decode(response, width, height);
+  draw(image);
+  if (image.bitmap) image.bitmap.close();
+}
+
+// A frame's pixels from the server's answer, decoded: a bitmap of a PNG, or raw pixels.
+async function decode(response, width, height) {
+  if (page.format === "png") return { width, height, bitmap: await createImageBitmap(await response.blob()) };
+  return { width, height, pixels: new ImageData(new Uint8ClampedArray(await response.arrayBuffer()), width, height) };
+}
+
+function draw(image) {
+  if (canvas.width !== image.width || canvas.height !== image.height) {
+    canvas.width = image.width;
+    canvas.height = image.height;
   }
   fitCanvas();
-  if (page.format === "png") {
-    const bitmap = await createImageBitmap(await response.blob());
-    context.clearRect(0, 0, width, height);
-    context.drawImage(bitmap, 0, 0);
-    bitmap.close();
+  if (image.bitmap) {
+    context.clearRect(0, 0, image.width, image.height);
+    context.drawImage(image.bitmap, 0, 0);
   } else {
-    const pixels = new Uint8ClampedArray(await response.arrayBuffer());
-    context.putImageData(new ImageData(pixels, width, height), 0, 0);
+    context.putImageData(image.pixels, 0, 0);
   }
 }
 
@@ -439,21 +448,109 @@ function jumpKey(direction) {
   if (next !== undefined) goToFrame(next);
 }
 
+// ---- playback -------------------------------------------------------------------------------
+
+// Frames rendered ahead of the playhead and kept decoded, by frame, while the state they were
+// rendered from (its version, the pixel format and the overlays) stays: playback shows them at
+// the shot's fps, and a second time round the loop renders nothing.
+const PLAYBACK_KEPT = 240;
+const PLAYBACK_AHEAD = 12;
+const playback = { key: null, frames: new Map() };
+window.glintTune.played = []; // [frame, time] of each frame playback showed
+window.glintTune.playbackRenders = 0; // frames playback asked the server for
+
+function playbackKey() {
+  return `${page.state.version} ${page.format} ${JSON.stringify(overlays())}`;
+}
+
+// The frames kept, dropped when what they were rendered from changed.
+function keptFrames() {
+  const key = playbackKey();
+  if (playback.key !== key) {
+    for (const image of playback.frames.values()) if (image.bitmap) image.bitmap.close();
+    playback.frames.clear();
+    playback.key = key;
+  }
+  return playback.frames;
+}
+
+function frameAfter(frame) {
+  const [first, last] = page.state.frames;
+  return frame >= last ? first : frame + 1;
+}
+
+// While playing, renders the next frames the playhead will reach that are not kept yet, one
+// at a time.
+async function renderAhead() {
+  while (page.playing) {
+    const kept = keptFrames();
+    const key = playback.key;
+    let frame = page.frame;
+    let missing = null;
+    for (let k = 0; k < PLAYBACK_AHEAD && missing === null; k++) {
+      frame = frameAfter(frame);
+      if (!kept.has(frame)) missing = frame;
+    }
+    if (missing === null) {
+      await new Promise((r) => setTimeout(r, 10));
+      continue;
+    }
+    try {
+      const body = { frame: missing, quality: "preview", overlays: overlays(), changes: [] };
+      const response = await api("POST", "/api/frame?format=" + page.format, body);
+      const width = Number(response.headers.get("X-Glint-Width"));
+      const height = Number(response.headers.get("X-Glint-Height"));
+      const image = await decode(response, width, height);
+      window.glintTune.playbackRenders += 1;
+      if (playback.key !== key || !page.playing) {
+        if (image.bitmap) image.bitmap.close();
+        continue;
+      }
+      kept.set(missing, image);
+      if (kept.size > PLAYBACK_KEPT) {
+        const [oldest, dropped] = kept.entries().next().value;
+        if (dropped.bitmap) dropped.bitmap.close();
+        kept.delete(oldest);
+      }
+    } catch (error) {
+      showError(error.message);
+      page.playing = false;
+      $("play").textContent = "play";
+    }
+  }
+}
+
 function play() {
   page.playing = !page.playing;
   $("play").textContent = page.playing ? "pause" : "play";
-  const step = () => {
-    if (!page.playing) { loadState().catch(() => {}); scheduleFinal(); return; }
-    const [first, last] = page.state.frames;
-    page.frame = page.frame >= last ? first : page.frame + 1;
-    $("frame").value = page.frame;
-    $("frame-number").value = page.frame;
-    const before = window.glintTune.paints;
-    showFrame();
-    const wait = () => (window.glintTune.paints > before || !inFlight && !waiting ? setTimeout(step, 1000 / page.state.fps) : requestAnimationFrame(wait));
-    requestAnimationFrame(wait);
+  if (!page.playing) {
+    loadState().catch(() => {});
+    scheduleFinal();
+    return;
+  }
+  clearTimeout(page.finalTimer);
+  renderAhead();
+  const period = 1000 / page.state.fps;
+  let due = performance.now();
+  // Each display refresh: the next frame, once it is kept and due; a frame is due one period
+  // after the one before, or at once where playback fell behind waiting for it.
+  const tick = (now) => {
+    if (!page.playing) return;
+    const next = frameAfter(page.frame);
+    const image = keptFrames().get(next);
+    if (image && now >= due) {
+      page.frame = next;
+      $("frame").value = next;
+      $("frame-number").value = next;
+      draw(image);
+      window.glintTune.paints += 1;
+      window.glintTune.played.push([next, now]);
+      window.glintTune.last = { quality: "preview", frame: next, renderMs: 0, totalMs: 0, at: now };
+      due = now - due > period ? now + period : due + period;
+    }
+    requestAnimationFrame(tick);
   };
-  if (page.playing) step();
+  requestAnimationFrame(tick);
 }
 
 // ---- the pointer ----------------------------------------------------------------------------
