@@ -693,6 +693,18 @@ fn commits_are_checked_like_the_file_and_refused_ones_write_nothing() {
             "no pin",
         ),
         (
+            json!({"kind": "pin", "highlight": 0, "layer": 0, "patch": "ball/nothing", "u": 0.5, "v": 0.5}),
+            "ball/nothing",
+        ),
+        (
+            json!({"kind": "pin", "highlight": 0, "layer": 0, "patch": "ball/sphere", "u": 1.5, "v": 0.5}),
+            "1.5",
+        ),
+        (
+            json!({"kind": "unpin", "highlight": 0, "layer": 0}),
+            "no pin",
+        ),
+        (
             json!({"kind": "add_mask", "highlight": 0, "layer": 0, "extra": 1}),
             "extra",
         ),

@@ -212,9 +212,24 @@ try {
   console.log(`playback showed ${played.length} frames and rendered ${renders}`);
   check(renders <= last, `playback rendered ${renders} frames for ${played.length} shown: the loop was not kept`);
 
-  // Pinned with `glint place --pin`: the page shows the placing translation as solved by the
-  // pin, not as values to set.
-  runGlint(["place", shot, "--frame", "1", "--pixel", "120,120", "--pin", "--write"]);
+  // Pinned from the page: a click picks the point, "pin here" writes the pin, and the page
+  // shows the placing translation as solved by the pin, not as values to set.
+  await page.locator("#overlay-seams").uncheck();
+  await page.locator("#overlay-matte").uncheck();
+  const centre = await pagePoint(page, 120, 120);
+  await page.mouse.click(centre.x, centre.y);
+  await until(page, () => !document.getElementById("pin-here").disabled, undefined, "pin here to be offered");
+  const unpinned = readFileSync(shot, "utf8");
+  check(!/pin:/.test(unpinned), "the layer was pinned before the button");
+  await page.locator("#pin-here").click();
+  const pinned = await waitForFile((t) => /pin: \(/.test(t), "hold a pin");
+  const pin = pinned.match(/pin: \(patch: "([^"]+)", u: ([0-9.e-]+), v: ([0-9.e-]+)/);
+  check(pin, `no pin of a patch and (u, v) in the file:\n${pinned}`);
+  // The pin is the point under the clicked pixel: glint probe puts it back on that pixel.
+  const probe = JSON.parse(runGlint(["probe", shot, "--patch", pin[1], "--uv", `${pin[2]},${pin[3]}`,
+    "--frame", "1", "--size", `${SIZE}x${SIZE}`]));
+  const at = (probe.points || probe)[0].image.pixel;
+  check(Math.hypot(at[0] - 120, at[1] - 120) <= 1, `the pin lands on pixel (${at}), not (120, 120)`);
   const alphaSlider = 'input[type=range][data-path="highlights[0].layers[0].stack[0].alpha"]';
   await until(page, (sel) => {
     const slider = document.querySelector(sel);
@@ -222,7 +237,11 @@ try {
   }, alphaSlider, "α to show as solved by the pin");
   const betaDisabled = await page.locator('input[data-number="highlights[0].layers[0].stack[0].beta"]').isDisabled();
   check(betaDisabled, "β's field can still be edited on a pinned layer");
-  console.log("page test passed: drag, slider, a refused value, timeline, undo, an outside edit and why undo went, a pin");
+  // Unpinned: the file is as it was, and α and β can be set again.
+  await page.locator("#unpin").click();
+  await waitForFile((t) => t === unpinned, "be as it was before the pin");
+  await until(page, (sel) => !document.querySelector(sel).disabled, alphaSlider, "α to be editable again");
+  console.log("page test passed: drag, slider, a refused value, timeline, undo, an outside edit and why undo went, pin and unpin");
 } catch (error) {
   failed = true;
   console.error("page test failed: " + error.message);

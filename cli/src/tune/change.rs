@@ -22,6 +22,8 @@ use glint::shot::{
 /// {"kind": "add_mask", "highlight": 0, "layer": 0}
 /// {"kind": "remove_mask", "highlight": 0, "layer": 0}
 /// {"kind": "pin_to", "highlight": 0, "layer": 0, "patch": "teapot/5"}
+/// {"kind": "pin", "highlight": 0, "layer": 0, "patch": "teapot/5", "u": 0.4, "v": 0.25}
+/// {"kind": "unpin", "highlight": 0, "layer": 0}
 /// {"kind": "outline", "highlight": 0, "layer": 0, "key": 12, "points": [[0.0, 0.2], [0.17, -0.1], [-0.17, -0.1]]}
 /// {"kind": "disc", "highlight": 0, "layer": 0}
 /// ```
@@ -71,6 +73,17 @@ pub enum Change {
         layer: usize,
         patch: String,
     },
+    /// Pin the layer to `(u, v)` of the patch named `patch`: a pin added, or the layer's pin
+    /// replaced whole ([`LayerEdit::Pin`]).
+    Pin {
+        highlight: usize,
+        layer: usize,
+        patch: String,
+        u: f32,
+        v: f32,
+    },
+    /// Take the layer's pin out ([`LayerEdit::Unpin`]).
+    Unpin { highlight: usize, layer: usize },
     /// Give the layer the drawn outline of the corners `points` in t′, keyed at `key` when it
     /// is given ([`LayerEdit::Outline`]).
     Outline {
@@ -218,6 +231,25 @@ impl Change {
                     patch: patch.clone(),
                 },
             ),
+            Change::Pin {
+                highlight,
+                layer,
+                patch,
+                u,
+                v,
+            } => edit_layer(
+                text,
+                *highlight,
+                *layer,
+                &LayerEdit::Pin {
+                    patch: patch.clone(),
+                    u: *u,
+                    v: *v,
+                },
+            ),
+            Change::Unpin { highlight, layer } => {
+                edit_layer(text, *highlight, *layer, &LayerEdit::Unpin)
+            }
             Change::Outline {
                 highlight,
                 layer,

@@ -19,6 +19,7 @@ const page = {
   finalTimer: null,
   shadeMode: false, // drags move the cel shadow's edge; the panel shows a shade entry
   shadeEntry: null, // a shot shade entry index (includes first)
+  lastPick: null, // the server's answer to the last click on the model
 };
 
 // What tests and the latency benchmark read: every painted frame, with its times.
@@ -380,7 +381,21 @@ function renderPanel() {
   // are not the layer's to set.
   const placing = layer.pinned_to ? layer.ops.map((op) => op.name).lastIndexOf("Translate") : -1;
   const solved = `solved at every frame by the pin on ${layer.pinned_to}: drag to move the pin`;
+  // Pin to the point last clicked, where this highlight is drawn; or take the pin out.
+  const here = page.lastPick && page.lastPick.highlight === h.entry ? page.lastPick : null;
+  const pinHere = element("button", {
+    id: "pin-here", disabled: !editable || !here,
+    title: here
+      ? `Pin the layer to ${here.patch} at u ${here.uv[0].toFixed(3)}, v ${here.uv[1].toFixed(3)}, the point last clicked`
+      : "Click the model where this highlight is drawn to pick the point to pin to",
+    onclick: () => structural({ kind: "pin", patch: here.patch, u: here.uv[0], v: here.uv[1] }),
+  }, "pin here");
+  const unpin = element("button", {
+    id: "unpin", disabled: !editable || !layer.pinned_to, title: "Take the pin out: the translation is used as written",
+    onclick: () => structural({ kind: "unpin" }),
+  }, "unpin");
   const structural = (change) => commit([Object.assign({ highlight: fileIndex, layer: layer.index }, change)]);
+  box.append(element("div", {}, pinHere, " ", unpin));
   box.append(element("h3", {}, "operations"));
   layer.ops.forEach((op, i) => {
     const head = element("div", { class: "op-head" },
@@ -578,6 +593,7 @@ canvas.addEventListener("pointerdown", async (event) => {
     const pick = await response.json();
     // A click is over before its pick arrives: the pick still selects.
     press.picked = pick;
+    page.lastPick = pick;
     const parts = pick.parts.length ? ` (${pick.parts.join(", ")})` : "";
     const where = `${pick.patch}${parts} at u ${pick.uv[0].toFixed(3)}, v ${pick.uv[1].toFixed(3)}`;
     if (page.shadeMode) {
