@@ -212,6 +212,37 @@ try {
   console.log(`playback showed ${played.length} frames and rendered ${renders}`);
   check(renders <= last, `playback rendered ${renders} frames for ${played.length} shown: the loop was not kept`);
 
+  // A mask drawn as a rectangle: its bounds are the (u, v) under the drag's two corners, each
+  // of which glint probe puts back on its pixel; removed, the file is as it was.
+  const unmasked = readFileSync(shot, "utf8");
+  check(!/mask: \(/.test(unmasked), "the layer had a mask before");
+  await page.locator("#mask-mode").click();
+  const corners = [[100, 96], [142, 131]];
+  const [c0, c1] = [await pagePoint(page, ...corners[0]), await pagePoint(page, ...corners[1])];
+  await page.mouse.move(c0.x, c0.y);
+  await page.mouse.down();
+  await page.mouse.move((c0.x + c1.x) / 2, (c0.y + c1.y) / 2);
+  await page.mouse.move(c1.x, c1.y);
+  await page.mouse.up();
+  const masked = await waitForFile((t) => /mask: \(/.test(t), "hold a mask");
+  const mask = masked.match(/mask: \(u: \(([0-9.e-]+), ([0-9.e-]+)\), v: \(([0-9.e-]+), ([0-9.e-]+)\)/);
+  check(mask, `no mask of u and v bounds in the file:\n${masked}`);
+  const [u0, u1, v0, v1] = mask.slice(1, 5).map(Number);
+  check(u0 < u1 && v0 < v1, `the mask's bounds are u (${u0}, ${u1}), v (${v0}, ${v1})`);
+  for (const [x, y] of corners) {
+    const near = [[u0, v0], [u0, v1], [u1, v0], [u1, v1]].some(([u, v]) => {
+      const probed = JSON.parse(runGlint(["probe", shot, "--patch", "ball/sphere", "--uv", `${u},${v}`,
+        "--frame", "1", "--size", `${SIZE}x${SIZE}`]));
+      const p = probed[0].image.pixel;
+      return Math.hypot(p[0] - x, p[1] - y) <= 1;
+    });
+    check(near, `no corner of the mask lands on pixel (${x}, ${y})`);
+  }
+  await page.locator("#mask-mode").click();
+  await until(page, () => document.getElementById("remove-mask"), undefined, "the mask in the panel");
+  await page.locator("#remove-mask").click();
+  await waitForFile((t) => t === unmasked, "be as it was before the mask");
+
   // Pinned from the page: a click picks the point, "pin here" writes the pin, and the page
   // shows the placing translation as solved by the pin, not as values to set.
   await page.locator("#overlay-seams").uncheck();
@@ -241,7 +272,7 @@ try {
   await page.locator("#unpin").click();
   await waitForFile((t) => t === unpinned, "be as it was before the pin");
   await until(page, (sel) => !document.querySelector(sel).disabled, alphaSlider, "α to be editable again");
-  console.log("page test passed: drag, slider, a refused value, timeline, undo, an outside edit and why undo went, pin and unpin");
+  console.log("page test passed: drag, slider, a refused value, timeline, undo, an outside edit and why undo went, a mask drawn, pin and unpin");
 } catch (error) {
   failed = true;
   console.error("page test failed: " + error.message);

@@ -20,6 +20,7 @@ const page = {
   shadeMode: false, // drags move the cel shadow's edge; the panel shows a shade entry
   shadeEntry: null, // a shot shade entry index (includes first)
   lastPick: null, // the server's answer to the last click on the model
+  maskMode: false, // drags draw the rectangle of the selected layer's mask
 };
 
 // What tests and the latency benchmark read: every painted frame, with its times.
@@ -583,7 +584,7 @@ function imagePosition(event) {
 }
 
 canvas.addEventListener("pointerdown", async (event) => {
-  if (drawing.on) return;
+  if (drawing.on || page.maskMode) return;
   const at = imagePosition(event);
   const press = { x: at.x, y: at.y, picked: null };
   pressed = press;
@@ -624,7 +625,7 @@ canvas.addEventListener("pointerdown", async (event) => {
 });
 
 canvas.addEventListener("pointermove", (event) => {
-  if (drawing.on || !pressed) return;
+  if (drawing.on || page.maskMode || !pressed) return;
   const at = imagePosition(event);
   if (!dragging && Math.hypot(at.x - pressed.x, at.y - pressed.y) < 3) return;
   if (page.shadeMode) {
@@ -675,6 +676,98 @@ async function release() {
 canvas.addEventListener("pointerup", release);
 canvas.addEventListener("pointercancel", release);
 
+// ---- a mask drawn as a rectangle ----------------------------------------------------------
+
+// In mask mode a drag on the model spans the selected layer's mask: its u and v bounds become
+// those of the surface points under the drag's two corners, on one patch.
+const masking = { from: null, to: null };
+
+function setMaskMode(on) {
+  if (on && drawing.on) setDrawing(false);
+  if (on && page.shadeMode) setShadeMode(false);
+  page.maskMode = on;
+  $("mask-mode").classList.toggle("on", on);
+  canvas.style.cursor = on ? "crosshair" : "";
+  masking.from = masking.to = null;
+  drawMaskRectangle();
+}
+
+function drawMaskRectangle() {
+  const layer = $("draw-layer");
+  const g = layer.getContext("2d");
+  g.clearRect(0, 0, layer.width, layer.height);
+  if (!masking.from || !masking.to) return;
+  const scale = canvas.width / Math.max(1, canvas.getBoundingClientRect().width);
+  g.lineWidth = 1.5 * scale;
+  g.strokeStyle = "#ffd84a";
+  const [a, b] = [masking.from, masking.to];
+  g.strokeRect(Math.min(a.x, b.x) + 0.5, Math.min(a.y, b.y) + 0.5, Math.abs(b.x - a.x), Math.abs(b.y - a.y));
+}
+
+async function pickAt(at) {
+  const response = await api("POST", "/api/pick", { frame: page.frame, x: at.x, y: at.y });
+  return response.json();
+}
+
+// The changes that give the layer the mask [u0, u1] × [v0, v1]: the mask added first where the
+// layer has none; each bound keyed at this frame where its track has keys, set otherwise.
+function maskChanges(layer, h, [u0, u1], [v0, v1]) {
+  const epsilon = layer.params.find((p) => p.name === "epsilon");
+  const base = epsilon.path.slice(0, -"epsilon".length);
+  const changes = layer.has_mask ? [] : [{ kind: "add_mask", highlight: h.file_index, layer: layer.index }];
+  const bounds = [["mask.u[0]", u0], ["mask.u[1]", u1], ["mask.v[0]", v0], ["mask.v[1]", v1]];
+  for (const [name, value] of bounds) {
+    const param = layer.params.find((p) => p.name === name);
+    changes.push(param ? valueChange(param, [value]) : { kind: "set", path: base + name, value: [value] });
+  }
+  return changes;
+}
+
+async function finishMask() {
+  const [from, to] = [masking.from, masking.to];
+  masking.from = masking.to = null;
+  drawMaskRectangle();
+  if (!from || !to || Math.hypot(to.x - from.x, to.y - from.y) < 2) return;
+  const h = currentHighlight();
+  const layer = currentLayer();
+  if (!h || !layer || h.file_index === null) {
+    showError("pick a highlight of the shot file to mask its layer");
+    return;
+  }
+  try {
+    const [a, b] = [await pickAt(from), await pickAt(to)];
+    if (a.highlight !== h.entry || b.highlight !== h.entry) {
+      showError(`both corners of a mask must be on patches of highlight ${h.entry}`);
+      return;
+    }
+    if (a.patch !== b.patch) {
+      showError(`a mask's corners must be on one patch: ${a.patch} and ${b.patch}`);
+      return;
+    }
+    const u = [Math.min(a.uv[0], b.uv[0]), Math.max(a.uv[0], b.uv[0])];
+    const v = [Math.min(a.uv[1], b.uv[1]), Math.max(a.uv[1], b.uv[1])];
+    await commit(maskChanges(layer, h, u, v));
+  } catch (error) {
+    showError(error.message);
+  }
+}
+
+canvas.addEventListener("pointerdown", (event) => {
+  if (!page.maskMode) return;
+  masking.from = masking.to = imagePosition(event);
+  canvas.setPointerCapture(event.pointerId);
+});
+
+canvas.addEventListener("pointermove", (event) => {
+  if (!page.maskMode || !masking.from) return;
+  masking.to = imagePosition(event);
+  drawMaskRectangle();
+});
+
+canvas.addEventListener("pointerup", () => {
+  if (page.maskMode) finishMask();
+});
+
 // ---- drawing an outline ------------------------------------------------------------------
 
 // The corners drawn so far, in image pixels (pixel centres at integers); kept after "done" so
@@ -720,6 +813,7 @@ function drawOverlay() {
 
 function setDrawing(on) {
   if (on && page.shadeMode) setShadeMode(false);
+  if (on && page.maskMode) setMaskMode(false);
   drawing.on = on;
   drawing.held = null;
   $("draw").classList.toggle("on", on);
@@ -776,6 +870,7 @@ canvas.addEventListener("pointerup", () => { drawing.held = null; });
 canvas.addEventListener("contextmenu", (event) => { if (drawing.on) event.preventDefault(); });
 
 $("draw").addEventListener("click", () => setDrawing(!drawing.on));
+$("mask-mode").addEventListener("click", () => setMaskMode(!page.maskMode));
 $("draw-done").addEventListener("click", finishDrawing);
 $("draw-clear").addEventListener("click", () => { drawing.points = []; drawOverlay(); });
 $("draw-cancel").addEventListener("click", () => setDrawing(false));
@@ -791,6 +886,7 @@ for (const id of ["overlay-seams", "overlay-matte", "overlay-pins", "overlay-ter
 
 function setShadeMode(on) {
   if (on && drawing.on) setDrawing(false);
+  if (on && page.maskMode) setMaskMode(false);
   page.shadeMode = on;
   page.param = null;
   $("shade-mode").classList.toggle("on", on);
@@ -821,6 +917,7 @@ document.addEventListener("keydown", (event) => {
   else if (event.key === " " && !(event.target instanceof HTMLInputElement)) { event.preventDefault(); play(); }
   else if ((event.key === "d" || event.key === "D") && !event.ctrlKey && !event.metaKey && !(event.target instanceof HTMLInputElement)) setDrawing(!drawing.on);
   else if ((event.key === "s" || event.key === "S") && !event.ctrlKey && !event.metaKey && !(event.target instanceof HTMLInputElement)) setShadeMode(!page.shadeMode);
+  else if ((event.key === "m" || event.key === "M") && !event.ctrlKey && !event.metaKey && !(event.target instanceof HTMLInputElement)) setMaskMode(!page.maskMode);
   else if (event.key === "Enter" && drawing.on) { event.preventDefault(); finishDrawing(); }
   else if (event.key === "Escape" && drawing.on) setDrawing(false);
   else if (event.key === "Backspace" && drawing.on && drawing.points.length > 0) { event.preventDefault(); drawing.points.pop(); drawOverlay(); }
