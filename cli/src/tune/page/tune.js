@@ -704,6 +704,18 @@ function drawMaskRectangle() {
   g.strokeRect(Math.min(a.x, b.x) + 0.5, Math.min(a.y, b.y) + 0.5, Math.abs(b.x - a.x), Math.abs(b.y - a.y));
 }
 
+// The selected highlight and layer, where the shot file itself holds them; otherwise none, and
+// the page says what to pick `to` do.
+function editableLayer(to) {
+  const h = currentHighlight();
+  const layer = currentLayer();
+  if (!h || !layer || h.file_index === null) {
+    showError(`pick a highlight of the shot file ${to}`);
+    return {};
+  }
+  return { h, layer };
+}
+
 async function pickAt(at) {
   const response = await api("POST", "/api/pick", { frame: page.frame, x: at.x, y: at.y });
   return response.json();
@@ -728,12 +740,8 @@ async function finishMask() {
   masking.from = masking.to = null;
   drawMaskRectangle();
   if (!from || !to || Math.hypot(to.x - from.x, to.y - from.y) < 2) return;
-  const h = currentHighlight();
-  const layer = currentLayer();
-  if (!h || !layer || h.file_index === null) {
-    showError("pick a highlight of the shot file to mask its layer");
-    return;
-  }
+  const { h, layer } = editableLayer("to mask its layer");
+  if (!layer) return;
   try {
     const [a, b] = [await pickAt(from), await pickAt(to)];
     if (a.highlight !== h.entry || b.highlight !== h.entry) {
@@ -824,12 +832,8 @@ function setDrawing(on) {
 
 async function finishDrawing() {
   if (!drawing.on) return;
-  const h = currentHighlight();
-  const layer = currentLayer();
-  if (!h || !layer || h.file_index === null) {
-    showError("pick a highlight of the shot file to draw its outline");
-    return;
-  }
+  const { layer } = editableLayer("to draw its outline");
+  if (!layer) return;
   try {
     const body = {
       frame: page.frame, highlight: page.highlight, layer: layer.index,
