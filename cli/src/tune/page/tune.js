@@ -38,7 +38,7 @@ function overlays() {
 function showError(message) {
   if (!message) return;
   const dismiss = element("button", { id: "dismiss", title: "Dismiss", onclick: clearError }, "×");
-  $("status").replaceChildren(element("span", { id: "message" }, message), " ", dismiss);
+  $("status").replaceChildren(dismiss, " ", element("span", { id: "message", title: message }, message));
   window.glintTune.errors += 1;
   window.glintTune.lastError = message;
 }
