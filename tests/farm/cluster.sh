@@ -12,6 +12,19 @@ copy_turntable() {
     cp "$root/patches/teapot.bpt" "$root/patches/teapot.parts.ron" "$1/patches/"
 }
 
+# Whether the jobs $1 (a comma-separated list) have all left the queue: squeue answered and
+# listed none of them, on each of 10 readings 0.1 s apart. A reading where squeue does not
+# answer (the controller busy) counts as not yet, and so does a single empty one: a task that
+# requeues itself can be missing from the list between its end and its new start.
+queue_empty() {
+    local listed
+    for _ in $(seq 10); do
+        listed="$(squeue -h -j "$1" 2>/dev/null)" || return 1
+        [ -z "$listed" ] || return 1
+        sleep 0.1
+    done
+}
+
 require_slurm() {
     for tool in munged slurmctld slurmd sbatch squeue scontrol sinfo; do
         command -v "$tool" >/dev/null || { echo "$tool is missing: apt-get install slurm-wlm munge" >&2; exit 2; }

@@ -42,7 +42,8 @@ mkdir -p "$out/teapot_turntable.0006.png"
 # Let a task that Slurm holds back after a requeue start again at once, so that the test does
 # not wait out Slurm's requeue delay.
 release_requeued() {
-    squeue -h -j "$1" -t PENDING -o %i 2>/dev/null | while read -r task; do
+    squeue -h -j "$1" -t PENDING -o "%i %r" 2>/dev/null | while read -r task reason; do
+        [ "$reason" = BeginTime ] || continue
         scontrol update JobId="$task" StartTime=now >/dev/null 2>&1 || true
     done
 }
@@ -52,7 +53,9 @@ release_requeued() {
 wait_for() {
     local jobs="$1" victim="${2:-}" array="${3:-}" killed=no
     for _ in $(seq 2400); do
-        [ -z "$(squeue -h -j "$jobs" 2>/dev/null)" ] && { echo "$killed"; return; }
+        # What the queue held, every reading, for a failure to show.
+        { date +%T.%N; squeue -h -j "$jobs" -t all -o "%i %T %r" 2>&1; } >> "$work/queue.log"
+        queue_empty "$jobs" && { echo "$killed"; return; }
         if [ -n "$victim" ] && [ "$killed" = no ] \
             && [ "$(squeue -h -j "${array}_${victim}" -o %T 2>/dev/null)" = RUNNING ]; then
             # The render of that task: its command line names the task's chunk.
@@ -89,7 +92,8 @@ restarts() {
 }
 # The task that could not write gave up after exactly --retries requeues.
 gave_up="$(restarts "${array}_1")"
-[ "$gave_up" = "$retries" ] || fail "task 1 was requeued $gave_up times, not $retries"
+[ "$gave_up" = "$retries" ] \
+    || fail "task 1 was requeued $gave_up times, not $retries: $(cat "$logs/glint-${array}_1.log"; tail -40 "$work/queue.log")"
 # Its log keeps every try: two that requeued themselves, and the last.
 requeues="$(grep -c "failed (1): requeued" "$logs/glint-${array}_1.log" || true)"
 [ "$requeues" = "$retries" ] \
@@ -98,7 +102,8 @@ requeues="$(grep -c "failed (1): requeued" "$logs/glint-${array}_1.log" || true)
 again="$(restarts "${array}_2")"
 [ "${again:-0}" -ge 1 ] || fail "task 2 was not requeued after its render was killed"
 for frame in 9 10 11 12; do
-    [ -s "$out/teapot_turntable.$(printf %04d "$frame").png" ] || fail "frame $frame is missing after task 2's retry"
+    [ -s "$out/teapot_turntable.$(printf %04d "$frame").png" ] \
+        || fail "frame $frame is missing after task 2's retry: $(cat "$logs/glint-${array}_2.log"; scontrol show job "${array}_2")"
 done
 
 # The verification job names what is missing as a frame list, and nothing else.

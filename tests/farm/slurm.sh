@@ -46,7 +46,7 @@ done
 [ "$requeued" = yes ] || { echo "task 1 ended before it could be requeued" >&2; exit 1; }
 
 for _ in $(seq 1200); do
-    [ -z "$(squeue -h -j "$array,$check" 2>/dev/null)" ] && break
+    queue_empty "$array,$check" && break
     sleep 0.25
 done
 [ -z "$(squeue -h -j "$array,$check")" ] || { echo "the jobs did not finish" >&2; exit 1; }
