@@ -90,6 +90,7 @@ fn scene<'a>(library: &'a PatchLibrary, shape: Shape, turned: bool) -> Scene<'a>
             patch_borders: false,
         }),
         aovs: Aovs::default(),
+        materials: Vec::new(),
     }
 }
 

@@ -61,6 +61,7 @@ fn teapot_scene<'a>(library: &'a PatchLibrary, highlight: &PreparedExpr, lines: 
             patch_borders: false,
         }),
         aovs: Aovs::default(),
+        materials: Vec::new(),
     }
 }
 

@@ -81,6 +81,7 @@ fn scene<'a>(
             patch_borders: false,
         }),
         aovs: Aovs::default(),
+        materials: Vec::new(),
     }
 }
 

@@ -88,6 +88,7 @@ fn scene<'a>(library: &'a PatchLibrary, shade: Option<&DesignedLight>) -> Scene<
             patch_borders: false,
         }),
         aovs: Aovs::default(),
+        materials: Vec::new(),
     }
 }
 

@@ -45,6 +45,7 @@ fn scene(library: &PatchLibrary, tone: Tone) -> Scene<'_> {
         },
         outlines: None,
         aovs: Aovs::default(),
+        materials: Vec::new(),
     }
 }
 

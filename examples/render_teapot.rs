@@ -93,6 +93,7 @@ fn main() -> anyhow::Result<()> {
             n_dot_h: true,
             ..Aovs::default()
         },
+        materials: Vec::new(),
     };
     let mut renderer = Renderer::new(std::sync::Arc::clone(&library));
     let frame = renderer.render(&scene, &Settings::final_quality(960, 640))?;

@@ -94,6 +94,7 @@ fn render(model: &Model, texture: &Arc<ToonTexture>, panel: &Panel) -> anyhow::R
             patch_borders: false,
         }),
         aovs: Aovs::default(),
+        materials: Vec::new(),
     };
     let settings = Settings::final_quality(PANEL.0, PANEL.1);
     Ok(Renderer::new(Arc::clone(&model.library))

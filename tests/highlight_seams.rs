@@ -133,6 +133,7 @@ fn scene<'a>(library: &'a PatchLibrary, highlight: &Layer) -> Scene<'a> {
             patch_id: true,
             ..Aovs::default()
         },
+        materials: Vec::new(),
     }
 }
 

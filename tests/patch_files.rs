@@ -195,6 +195,7 @@ fn every_shipped_model_renders() {
                 matte: true,
                 ..Aovs::default()
             },
+            materials: Vec::new(),
         };
         let frame = Renderer::new(Arc::clone(&library))
             .render(&scene, &Settings::preview(96, 96))

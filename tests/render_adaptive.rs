@@ -67,6 +67,7 @@ fn teapot_scene(library: &PatchLibrary, outlines: bool) -> Scene<'_> {
             matte: true,
             ..Aovs::default()
         },
+        materials: Vec::new(),
     }
 }
 
@@ -292,6 +293,7 @@ fn a_band_edge_straight_across_a_pixel_is_drawn_at_one_sample_with_its_area() {
         light: Light::Directional { towards },
         outlines: None,
         aovs: Aovs::default(),
+        materials: Vec::new(),
     };
     let render = |scene: &Scene, antialias| final_with(&library, scene, size, antialias);
     // Per pixel, of 16 × 16 rays: the fraction that meet the sphere, and that meet it lit.
@@ -480,6 +482,7 @@ fn a_gap_thinner_than_a_pixel_between_two_patches_that_end_there_is_drawn_with_i
         },
         outlines: None,
         aovs: Aovs::default(),
+        materials: Vec::new(),
     };
     let frame = Renderer::new(Arc::clone(&library))
         .render(&scene, &Settings::final_quality(200, 200))

@@ -81,6 +81,7 @@ fn lines(library: &Arc<PatchLibrary>, styles: &[Option<LineStyle>]) -> Vec<Vec4>
             outline: true,
             ..Aovs::default()
         },
+        materials: Vec::new(),
     };
     let frame = Renderer::new(Arc::clone(library))
         .render(&scene, &Settings::preview(WIDTH, HEIGHT))

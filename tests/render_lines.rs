@@ -106,6 +106,7 @@ fn frame(
             patch_id: true,
             ..Aovs::default()
         },
+        materials: Vec::new(),
     };
     Renderer::new(Arc::clone(library))
         .render(&scene, settings)

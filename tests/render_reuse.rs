@@ -83,6 +83,7 @@ fn scene<'a>(
             patch_borders: true,
         }),
         aovs,
+        materials: Vec::new(),
     }
 }
 

@@ -68,6 +68,7 @@ fn scene<'a>(
             patch_borders: true,
         }),
         aovs,
+        materials: Vec::new(),
     }
 }
 

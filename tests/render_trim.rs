@@ -147,6 +147,7 @@ fn scene<'a>(library: &'a PatchLibrary, camera: Camera, outlines: Option<Outline
             uv: true,
             ..Aovs::default()
         },
+        materials: Vec::new(),
     }
 }
 

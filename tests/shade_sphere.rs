@@ -341,6 +341,7 @@ fn rendered(view: &View, stack: &[Op]) -> Vec<(f64, f64)> {
         },
         outlines: None,
         aovs: Aovs::default(),
+        materials: Vec::new(),
     };
     let frame = Renderer::new(Arc::clone(&library))
         .render(&scene, &Settings::final_quality(SIZE, SIZE))
@@ -657,6 +658,7 @@ fn rendered_matte(view: &View, stack: &[Op], reads: HighlightLight) -> Vec<(f64,
             matte: true,
             ..Aovs::default()
         },
+        materials: Vec::new(),
     };
     let frame = Renderer::new(Arc::clone(&library))
         .render(&scene, &Settings::final_quality(SIZE, SIZE))

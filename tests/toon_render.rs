@@ -61,6 +61,7 @@ fn render(library: &Arc<PatchLibrary>, looks: Vec<PatchLook>, camera: Camera) ->
             patch_id: true,
             ..Aovs::default()
         },
+        materials: Vec::new(),
     };
     let settings = Settings {
         density: Density::PerSpan { u: 6, v: 6 },
@@ -154,6 +155,7 @@ fn xtoon_on_the_exact_sphere_matches_the_analytic_sphere() {
         light: Light::Directional { towards: l },
         outlines: None,
         aovs: Aovs::default(),
+        materials: Vec::new(),
     };
     let settings = Settings {
         density: Density::PerSpan { u: 8, v: 8 },

@@ -94,6 +94,7 @@ impl AnalyticSphere {
             },
             outlines: None,
             aovs,
+            materials: Vec::new(),
         }
     }
 

@@ -125,6 +125,7 @@ fn scene(library: &PatchLibrary) -> Scene<'_> {
         },
         outlines: None,
         aovs: Aovs::default(),
+        materials: Vec::new(),
     }
 }
 

@@ -34,6 +34,8 @@ pub fn kind_name(kind: LineKind) -> &'static str {
         LineKind::Crease => "crease",
         LineKind::Border => "border",
         LineKind::Intersection => "intersection",
+        LineKind::MaterialBorder => "material-border",
+        LineKind::LightContour => "light-contour",
     }
 }
 

@@ -98,12 +98,17 @@ impl RenderJob {
             light,
             outlines,
             aovs,
+            materials,
         } = &scene;
         let _ = write!(
             HashWriter(&mut hash),
             "{:?}",
             (looks, camera, light, outlines, aovs)
         );
+        // Filled only when some patch draws material borders, which read it.
+        if !materials.is_empty() {
+            let _ = write!(HashWriter(&mut hash), "{materials:?}");
+        }
         if self.shot().moves() {
             frame_model(&mut hash, library);
         }

@@ -171,6 +171,7 @@ pub fn render_patch_map(
             depth: true,
             ..Aovs::default()
         },
+        materials: Vec::new(),
     };
     let frame = Renderer::new(Arc::clone(library)).render(&scene, &settings)?;
     let pixels = frame.colour.len();

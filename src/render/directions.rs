@@ -205,6 +205,7 @@ mod tests {
                     light,
                     outlines: None,
                     aovs: Aovs::default(),
+                    materials: Vec::new(),
                 };
                 let mut side_by_side = [Vec3::ZERO; LANES];
                 let mut view = Lanes::default();

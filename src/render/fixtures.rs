@@ -41,6 +41,7 @@ pub(super) fn empty_scene(library: &PatchLibrary, aovs: Aovs) -> Scene<'_> {
         light: Light::Directional { towards: Vec3::Z },
         outlines: None,
         aovs,
+        materials: Vec::new(),
     }
 }
 

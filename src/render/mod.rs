@@ -41,7 +41,10 @@ mod xtoon_tone;
 pub use aov::AovImages;
 pub use camera::{Camera, Projection};
 pub use facing::facing_frame;
-pub use line_style::{LineKind, LineKinds, LineStyle, MAX_LINE_WIDTH, MAX_TAPER};
+pub use line_style::{
+    Dash, HiddenLines, LineKind, LineKinds, LineStyle, MAX_DASHES, MAX_LINE_WIDTH,
+    MAX_OCCLUSION_LEVEL, MAX_TAPER,
+};
 pub use lines::{part_of, VectorLines, VectorStroke};
 pub use plan::{Plan, Surfaces, FINE_MESH_PIXELS};
 pub use renderer::{RenderedFrame, Renderer};

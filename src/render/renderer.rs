@@ -23,7 +23,7 @@ use super::plan::{Plan, Surfaces};
 use super::raster::{
     Cut, LayerCopy, RasterOptions, RasterStats, Rasterizer, Viewport, VisibilityBuffer,
 };
-use super::scene::{Outlines, Scene};
+use super::scene::{Outlines, PatchLook, Scene};
 use super::settings::{Antialias, FrameMode, Settings};
 use super::shade::{shade, Edges, ShadeBuffers, Shaded};
 use super::stage::Stage;
@@ -36,6 +36,7 @@ use super::visibility_shade::shade_visibility;
 use super::xtoon_tone::{self, Views, XToonDetail};
 use super::RenderError;
 use crate::geom::PatchLibrary;
+use crate::highlight::Light;
 
 /// A rendered frame at output resolution.
 #[derive(Clone, Debug, PartialEq)]
@@ -102,12 +103,42 @@ struct StageBuffers {
     kept_lines: Option<KeptLines>,
 }
 
-/// The lines of a frame, kept for the next: while the surfaces are reused and the outlines
-/// and every patch's line style stay the same, they are the next frame's lines too.
+/// The lines of a frame, kept for the next: while the surfaces are reused and the outlines,
+/// every patch's line style and what else the lines read ([`LineReads`]) stay the same, they
+/// are the next frame's lines too.
 struct KeptLines {
     outlines: Outlines,
     styles: Vec<LineStyle>,
+    reads: LineReads,
     image: LineImage,
+}
+
+/// What a frame's lines read besides the surfaces, the outlines and the styles: the patches'
+/// materials (for material borders) and, where light contours are drawn, the light and every
+/// patch's look (its tone's thresholds and designed light).
+struct LineReads {
+    materials: Vec<u32>,
+    light: Option<(Light, Vec<PatchLook>)>,
+}
+
+impl LineReads {
+    /// What the lines of `scene`, drawn in `styles`, read.
+    fn of(scene: &Scene, styles: &[LineStyle]) -> Self {
+        Self {
+            materials: scene.materials.clone(),
+            light: lines::draws(styles, LineKind::LightContour)
+                .then(|| (scene.light, scene.looks.clone())),
+        }
+    }
+
+    /// Whether the lines of `scene`, drawn in `styles`, read these.
+    fn hold_for(&self, scene: &Scene, styles: &[LineStyle]) -> bool {
+        let light = match &self.light {
+            Some((light, looks)) => *light == scene.light && *looks == scene.looks,
+            None => !lines::draws(styles, LineKind::LightContour),
+        };
+        light && self.materials == scene.materials
+    }
 }
 
 impl Renderer {
@@ -301,10 +332,11 @@ impl StageBuffers {
                 .collect()
         });
         let reuse_lines = reuse
-            && self
-                .kept_lines
-                .as_ref()
-                .is_some_and(|kept| Some(kept.outlines) == scene.outlines && kept.styles == styles);
+            && self.kept_lines.as_ref().is_some_and(|kept| {
+                Some(kept.outlines) == scene.outlines
+                    && kept.styles == styles
+                    && kept.reads.hold_for(scene, &styles)
+            });
         let plan = if reuse_lines {
             plan.reusing_lines()
         } else {
@@ -789,6 +821,8 @@ fn outline(
                 k: grid.k,
                 size: (settings.width, settings.height),
                 styles: &styles,
+                materials: &scene.materials,
+                light: (&scene.light, &scene.looks),
             };
             let recycled = kept_lines.take().map(|kept| kept.image);
             let (image, drawn) =
@@ -798,6 +832,7 @@ fn outline(
             stats.add_seconds(Stage::Outline, seconds);
             *kept_lines = Some(KeptLines {
                 outlines: *outlines,
+                reads: LineReads::of(scene, &styles),
                 styles,
                 image,
             });

@@ -111,6 +111,9 @@ pub struct Scene<'a> {
     pub light: Light,
     pub outlines: Option<Outlines>,
     pub aovs: Aovs,
+    /// Per patch of `library`, its material (an index of the shot's), which material borders
+    /// read; empty when no patch draws them, every patch then of one material.
+    pub materials: Vec<u32>,
 }
 
 impl Scene<'_> {

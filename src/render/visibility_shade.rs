@@ -261,6 +261,7 @@ mod tests {
                 },
                 outlines: None,
                 aovs: Aovs::default(),
+                materials: Vec::new(),
             };
             for mesh in [mesh, &reversed] {
                 let colour = shade_visibility(&visibility, mesh, &scene);

@@ -74,8 +74,12 @@ pub struct InstanceSpec {
     pub name: String,
     /// A patch library (`.ron`) or Bezier patches (`.bpt`), relative to the file that names it.
     pub file: String,
-    /// The material of every patch of the instance.
+    /// The material of every patch of the instance but those of `part_materials`.
     pub material: String,
+    /// Parts of the instance in other materials: a part's name (without the instance's) and
+    /// a material's; a patch in several of them takes the smallest's.
+    #[serde(default)]
+    pub part_materials: BTreeMap<String, String>,
     #[serde(default)]
     pub transform: TransformSpec,
     /// Parts of this instance that move against it: each a part's name (without the
@@ -362,12 +366,37 @@ pub struct OutlinesSpec {
     pub crease_degrees: f32,
     #[serde(default)]
     pub patch_borders: bool,
-    /// The kinds of line drawn (default: all four).
+    /// The kinds of line drawn (default: silhouettes, creases, borders and intersections).
     #[serde(default)]
     pub kinds: Option<Vec<LineKind>>,
     /// Pixels over which a line narrows to its ends (default 0: round ends).
     #[serde(default = "no_taper")]
     pub taper: Track<f32>,
+    /// Lines drawn where surfaces hide them (default: none).
+    #[serde(default)]
+    pub hidden: Option<HiddenSpec>,
+}
+
+/// Hidden lines: how a style's lines draw where up to `levels` surfaces hide them.
+#[derive(Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HiddenSpec {
+    /// Drawn behind at most this many surfaces, from 0 (none) to 16 (default 1).
+    #[serde(default = "one_level")]
+    pub levels: u32,
+    /// Width in pixels (default: the style's own).
+    #[serde(default)]
+    pub width: Option<Track<f32>>,
+    /// Linear RGB (default: the style's own).
+    #[serde(default)]
+    pub colour: Option<Track<Vec3>>,
+    /// Lengths in pixels drawn and left out in turn (default: solid).
+    #[serde(default)]
+    pub dash: Vec<f32>,
+}
+
+fn one_level() -> u32 {
+    1
 }
 
 fn outline_width() -> Track<f32> {
@@ -401,6 +430,9 @@ pub struct LineSpec {
     pub kinds: Option<Vec<LineKind>>,
     #[serde(default)]
     pub taper: Option<Track<f32>>,
+    /// Lines drawn where surfaces hide them; `(levels: 0)` draws none.
+    #[serde(default)]
+    pub hidden: Option<HiddenSpec>,
 }
 
 fn crease_degrees() -> f32 {

@@ -226,7 +226,19 @@ impl FrameState {
                     })
                 }),
             })
-            .collect();
+            .collect::<Vec<PatchLook>>();
+        // Material borders alone read the patches' materials.
+        let material_borders = looks.iter().any(|look| {
+            look.lines
+                .is_some_and(|style| style.draws(crate::render::LineKind::MaterialBorder))
+        });
+        let materials = if material_borders {
+            (0..shot.library.patches.len())
+                .map(|patch| shot.material_of(patch) as u32)
+                .collect()
+        } else {
+            Vec::new()
+        };
         Ok(Scene {
             library: &self.library,
             looks,
@@ -234,6 +246,7 @@ impl FrameState {
             light: self.light,
             outlines: self.outlines.map(|(outlines, _)| outlines),
             aovs: shot.aov_switches(),
+            materials,
         })
     }
 }

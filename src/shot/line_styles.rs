@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 
-use super::file::{LineSpec, OutlinesSpec};
+use super::file::{HiddenSpec, LineSpec, OutlinesSpec};
 use super::glob;
 use super::no_match::no_match_message;
 use super::source::Source;
@@ -13,7 +13,7 @@ use crate::anim::Keyed;
 use crate::formats::ron_location::closest_name;
 use crate::formats::ron_paths::Step::{Field, Index};
 use crate::geom::PatchLibrary;
-use crate::render::{LineKinds, LineStyle, Outlines};
+use crate::render::{Dash, HiddenLines, LineKinds, LineStyle, Outlines};
 
 /// The fields a `lines` entry sets, read at one frame; None where it leaves the field as the
 /// outlines (or an earlier entry) set it.
@@ -23,17 +23,75 @@ pub struct LineFields {
     pub colour: Option<Vec3>,
     pub kinds: Option<LineKinds>,
     pub taper: Option<f32>,
+    pub hidden: Option<HiddenFields>,
+}
+
+/// What an entry's `hidden` sets, read at one frame; None where the width or colour is the
+/// style's own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HiddenFields {
+    pub levels: u32,
+    pub width: Option<f32>,
+    pub colour: Option<Vec3>,
+    pub dash: Dash,
+}
+
+impl HiddenFields {
+    /// The hidden lines of a style of `width` and `colour`.
+    #[must_use]
+    pub fn of(&self, width: f32, colour: Vec3) -> HiddenLines {
+        HiddenLines {
+            levels: self.levels,
+            width: self.width.unwrap_or(width),
+            colour: self.colour.unwrap_or(colour),
+            dash: self.dash,
+        }
+    }
+}
+
+impl HiddenSpec {
+    /// What it sets at `frame`; a dash pattern that cannot be used is solid here (the shot's
+    /// checks refuse it, [`Dash::try_new`]).
+    #[must_use]
+    pub fn at(&self, frame: f64) -> HiddenFields {
+        HiddenFields {
+            levels: self.levels,
+            width: self.width.as_ref().map(|t| t.at(frame)),
+            colour: self.colour.as_ref().map(|t| t.at(frame)),
+            dash: Dash::try_new(&self.dash).unwrap_or(Dash::SOLID),
+        }
+    }
+
+    /// Calls `f` with each of its tracks.
+    fn for_each_param(&self, f: &mut dyn FnMut(&dyn Keyed)) {
+        let HiddenSpec {
+            levels: _,
+            width,
+            colour,
+            dash: _,
+        } = self;
+        if let Some(width) = width {
+            f(width);
+        }
+        if let Some(colour) = colour {
+            f(colour);
+        }
+    }
 }
 
 impl LineFields {
-    /// `style` with the fields this entry sets replaced.
+    /// `style` with the fields this entry sets replaced; hidden lines the entry sets take the
+    /// width and colour of the style it leaves where they set none.
     #[must_use]
     pub fn over(&self, style: LineStyle) -> LineStyle {
+        let width = self.width.unwrap_or(style.width);
+        let colour = self.colour.unwrap_or(style.colour);
         LineStyle {
-            width: self.width.unwrap_or(style.width),
-            colour: self.colour.unwrap_or(style.colour),
+            width,
+            colour,
             kinds: self.kinds.unwrap_or(style.kinds),
             taper: self.taper.unwrap_or(style.taper),
+            hidden: self.hidden.map(|h| h.of(width, colour)).or(style.hidden),
         }
     }
 }
@@ -47,6 +105,7 @@ impl LineSpec {
             colour: self.colour.as_ref().map(|t| t.at(frame)),
             kinds: self.kinds.as_deref().map(LineKinds::of),
             taper: self.taper.as_ref().map(|t| t.at(frame)),
+            hidden: self.hidden.as_ref().map(|h| h.at(frame)),
         }
     }
 
@@ -59,6 +118,7 @@ impl LineSpec {
             colour,
             kinds: _,
             taper,
+            hidden,
         } = self;
         if let Some(width) = width {
             f(width);
@@ -68,6 +128,9 @@ impl LineSpec {
         }
         if let Some(taper) = taper {
             f(taper);
+        }
+        if let Some(hidden) = hidden {
+            hidden.for_each_param(f);
         }
     }
 }
@@ -82,10 +145,18 @@ impl OutlinesSpec {
             crease_degrees: self.crease_degrees,
             patch_borders: self.patch_borders,
         };
+        let base = outlines.style();
         let style = LineStyle {
-            kinds: self.kinds.as_deref().map_or(LineKinds::ALL, LineKinds::of),
+            kinds: self
+                .kinds
+                .as_deref()
+                .map_or(LineKinds::DEFAULT, LineKinds::of),
             taper: self.taper.at(frame),
-            ..outlines.style()
+            hidden: self
+                .hidden
+                .as_ref()
+                .map(|h| h.at(frame).of(base.width, base.colour)),
+            ..base
         };
         (outlines, style)
     }
@@ -99,10 +170,14 @@ impl OutlinesSpec {
             patch_borders: _,
             kinds: _,
             taper,
+            hidden,
         } = self;
         f(width);
         f(colour);
         f(taper);
+        if let Some(hidden) = hidden {
+            hidden.for_each_param(f);
+        }
     }
 }
 

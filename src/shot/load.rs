@@ -437,7 +437,16 @@ fn place_instances(
         if pose.moves() {
             check_reach(&pose, spec, index, source)?;
         }
+        let material_names: Vec<&str> = looks.materials.iter().map(|m| m.0.as_str()).collect();
+        let materials = part_materials(
+            spec,
+            (index, material),
+            (&looks.material_index, &material_names, &all_groups),
+            model.patches.len(),
+            source,
+        )?;
         for (k, patch) in model.patches.iter().enumerate() {
+            let material = materials[k];
             let surface = pose.place(k, first_frame);
             if !pose.moves()
                 && !surface
@@ -676,6 +685,52 @@ impl Assets {
 }
 
 /// "unknown KIND "NAME"; did you mean …? / the KINDs are …".
+/// Per patch of the model of instance `spec` (the `index`th, of `patches` patches), its
+/// material's index: the instance's `material`, or that of the smallest of its
+/// `part_materials` holding the patch (`groups` the model's parts, `material_index` the shot's
+/// materials by name, `material_names` their names in order).
+fn part_materials(
+    spec: &InstanceSpec,
+    (index, material): (usize, usize),
+    (material_index, material_names, groups): (&HashMap<String, usize>, &[&str], &[&PatchGroup]),
+    patches: usize,
+    source: &Source,
+) -> Result<Vec<usize>, ShotError> {
+    let mut of_patch = vec![(usize::MAX, material); patches];
+    for (part, name) in &spec.part_materials {
+        let at = |field: Option<&'static str>, message: String| {
+            let mut path = vec![
+                Field("instances"),
+                Index(index),
+                Field("part_materials"),
+                Entry(part),
+            ];
+            path.extend(field.map(Field));
+            source.error_at(&path, message)
+        };
+        let Some(group) = groups.iter().find(|g| g.name == *part) else {
+            let names: Vec<&str> = groups.iter().map(|g| g.name.as_str()).collect();
+            return Err(at(
+                None,
+                format!(
+                    "instance \"{}\": {}",
+                    spec.name,
+                    unknown("part", part, &names)
+                ),
+            ));
+        };
+        let Some(&m) = material_index.get(name) else {
+            return Err(at(None, unknown("material", name, material_names)));
+        };
+        for &patch in &group.patches {
+            if group.patches.len() < of_patch[patch].0 {
+                of_patch[patch] = (group.patches.len(), m);
+            }
+        }
+    }
+    Ok(of_patch.into_iter().map(|(_, m)| m).collect())
+}
+
 fn unknown(kind: &str, name: &str, names: &[&str]) -> String {
     match closest_name(name, names) {
         Some(close) => format!("unknown {kind} \"{name}\"; did you mean \"{close}\"?"),

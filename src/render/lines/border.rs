@@ -37,6 +37,8 @@ pub(crate) fn crease_opacity(angle: f32, crease: f32) -> f32 {
 /// - a boundary no other patch continues: a [`LineKind::Border`];
 /// - a seam where the eye sees one side's front and the other's back (`g` of opposite signs
 ///   at both ends, the normals apart by more than [`SMOOTH_DEGREES`]): a silhouette;
+/// - a seam between two patches of different materials (`materials`, per patch; none differ
+///   when it is empty), where either side draws material borders: a material border;
 /// - a seam between two patches, with patch borders on: a border;
 /// - otherwise a seam whose normals turn by more than the crease angle (less the half band):
 ///   a crease, with [`crease_opacity`] of the mean angle at its two ends.
@@ -50,8 +52,7 @@ pub(crate) fn borders_and_creases(
     camera: &Camera,
     view_projection: Mat4,
     size: (u32, u32),
-    outlines: &Outlines,
-    styles: &[LineStyle],
+    (outlines, styles, materials): (&Outlines, &[LineStyle], &[u32]),
 ) -> Vec<Piece> {
     let facing = EyeSide::of(camera);
     let drawn = |patch: u32, kind: LineKind| styles[patch as usize].draws(kind);
@@ -84,7 +85,7 @@ pub(crate) fn borders_and_creases(
                 .into_iter()
                 .flat_map(move |(span, here, across)| match (here, across) {
                     (true, true) => {
-                        let kind = classify(mesh, facing, outlines, edge);
+                        let kind = classify(mesh, facing, (outlines, styles, materials), edge);
                         draw(span, kind, whole, edge.across.is_none())
                     }
                     // What a trim leaves of the boundary on one side only is an open border.
@@ -151,7 +152,7 @@ fn sides_kept(
 fn classify(
     mesh: &Mesh,
     facing: EyeSide,
-    outlines: &Outlines,
+    (outlines, styles, materials): (&Outlines, &[LineStyle], &[u32]),
     edge: &BorderEdge,
 ) -> Option<(LineKind, f32)> {
     let Some((a2, b2, other)) = edge.across else {
@@ -169,6 +170,13 @@ fn classify(
     let folds = |v: u32, w: u32| facing.at_vertex(mesh, v) * facing.at_vertex(mesh, w) < 0.0;
     if folds(edge.a, a2) && folds(edge.b, b2) && at_a.min(at_b) > SMOOTH_DEGREES {
         return Some((LineKind::Silhouette, 1.0));
+    }
+    let material = |patch: u32| materials.get(patch as usize).copied().unwrap_or(0);
+    let draws_material = |patch: u32| styles[patch as usize].draws(LineKind::MaterialBorder);
+    if material(edge.patch) != material(other)
+        && (draws_material(edge.patch) || draws_material(other))
+    {
+        return Some((LineKind::MaterialBorder, 1.0));
     }
     if outlines.patch_borders && other != edge.patch {
         return Some((LineKind::Border, 1.0));
@@ -305,8 +313,7 @@ mod tests {
                 &camera,
                 view_projection,
                 (64, 64),
-                &outlines,
-                &[outlines.style(); 2],
+                (&outlines, &[outlines.style(); 2], &[]),
             );
             let creases: Vec<f32> = pieces
                 .iter()

@@ -1,5 +1,6 @@
-//! Silhouettes: the curve where the surface turns from facing the eye to facing away, found on
-//! the mesh and refined onto the surface.
+//! Contours: the curve where a function of the surface's point and frame changes sign — the
+//! silhouette, where the surface turns from facing the eye to facing away, or a light contour
+//! ([`light_contour`](super::light_contour)) — found on the mesh and refined onto the surface.
 
 use crate::render::FastMap;
 
@@ -10,7 +11,7 @@ use super::super::camera::{Camera, Projection};
 use super::super::tessellate::{Mesh, PatchGrid};
 use super::piece::Piece;
 use super::screen::to_screen;
-use crate::geom::{NurbsSurface, PatchLibrary, Trim};
+use crate::geom::{Frame, NurbsSurface, PatchLibrary, Trim};
 use crate::render::line_style::LineKind;
 
 /// The most regula falsi steps that move a point of the silhouette from the mesh onto the
@@ -34,9 +35,63 @@ pub(crate) const LONGEST_PIECE_PIXELS: f32 = 4.0;
 /// How many times a piece may be cut in two.
 const MOST_HALVINGS: u32 = 8;
 
-/// The fraction of its largest value below which `g` is taken as 0 ([`EyeSide::grazes`]).
-const GRAZING: f64 = 1e-6;
+/// The fraction of its largest value below which `g` is taken as 0 ([`Level::grazes`]).
+pub(crate) const GRAZING: f64 = 1e-6;
 
+/// A signed function of the surface whose zero set is a line: `g` at a point from its frame,
+/// and at a mesh vertex from the mesh's own normal and tangent.
+pub(crate) trait Level: Sync {
+    /// The kind of line where it is zero.
+    fn kind(&self) -> LineKind;
+
+    /// `g` at the point of the surface with frame `frame`, at patch parameters `uv`.
+    fn at(&self, uv: DVec2, frame: &Frame) -> f64;
+
+    /// `g` at mesh vertex `v`.
+    fn at_vertex(&self, mesh: &Mesh, v: u32) -> f64;
+
+    /// Whether `g` at `point` is so small against its largest possible value that its sign is
+    /// rounding: it is then taken as 0.
+    fn grazes(&self, point: DVec3, g: f64) -> bool;
+}
+
+impl Level for EyeSide {
+    fn kind(&self) -> LineKind {
+        LineKind::Silhouette
+    }
+
+    #[inline]
+    fn at(&self, _uv: DVec2, frame: &Frame) -> f64 {
+        EyeSide::at(self, frame.point, frame.normal)
+    }
+
+    #[inline]
+    fn at_vertex(&self, mesh: &Mesh, v: u32) -> f64 {
+        EyeSide::at_vertex(self, mesh, v)
+    }
+
+    #[inline]
+    fn grazes(&self, point: DVec3, g: f64) -> bool {
+        EyeSide::grazes(self, point, g)
+    }
+}
+
+/// Which side of the silhouette a contour is kept on: where the eye sees the side its normal
+/// points to (`g` of [`EyeSide`] at most 0), or the other.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct KeptSide {
+    pub eye: EyeSide,
+    /// Keep where the eye sees the side the normal points to.
+    pub front: bool,
+}
+
+impl KeptSide {
+    /// Whether the side at a point where [`EyeSide`] takes `g` is kept.
+    #[inline]
+    fn keeps(&self, g: f64) -> bool {
+        (g <= 0.0) == self.front
+    }
+}
 /// Which side of the surface the eye is on, as a signed number: `g(P, N) = N·(P − E)` under
 /// perspective, `N·F` (F the line of sight) under orthographic projection. The silhouette is
 /// where it is zero.
@@ -99,15 +154,17 @@ struct Crossing {
 /// on the silhouette.
 const ROUNDING_SIDE: f64 = 1e-9;
 
-/// What finding silhouettes on one patch needs.
-struct OnPatch<'a> {
+/// What finding a contour on one patch needs.
+struct OnPatch<'a, L: Level> {
     mesh: &'a Mesh,
     /// The patch's index in the library.
     patch: u32,
     surface: &'a NurbsSurface,
     /// The patch's trim: silhouettes are drawn only on what it keeps.
     trim: Option<&'a Trim>,
-    side: EyeSide,
+    level: &'a L,
+    /// Where the contour is drawn, when only on one side of the silhouette.
+    kept_side: Option<KeptSide>,
     view_projection: Mat4,
     size: (u32, u32),
 }
@@ -133,23 +190,47 @@ pub(crate) fn silhouettes(
     let side = EyeSide::of(camera);
     mesh.grids
         .par_iter()
-        .zip(&library.patches)
         .enumerate()
-        .map(|(k, (grid, patch))| {
+        .map(|(k, _)| {
             searched(k as u32).then(|| {
-                let on = OnPatch {
+                contour_on_patch(
+                    &side,
+                    None,
+                    k as u32,
                     mesh,
-                    patch: k as u32,
-                    surface: &patch.surface,
-                    trim: patch.trim.as_deref(),
-                    side,
-                    view_projection,
-                    size,
-                };
-                on.silhouettes(grid, &grazing_as_zero(mesh, grid, side))
+                    library,
+                    (view_projection, size),
+                )
             })
         })
         .collect()
+}
+
+/// The pieces of the zero set of `level` on patch `patch` of `library` (its grid in `mesh`),
+/// on what its trim keeps, and on `kept_side` of the silhouette when one is given; found as
+/// [`silhouettes`] finds the silhouette.
+#[must_use]
+pub(crate) fn contour_on_patch<L: Level>(
+    level: &L,
+    kept_side: Option<KeptSide>,
+    patch: u32,
+    mesh: &Mesh,
+    library: &PatchLibrary,
+    (view_projection, size): (Mat4, (u32, u32)),
+) -> Vec<Piece> {
+    let named = &library.patches[patch as usize];
+    let grid = &mesh.grids[patch as usize];
+    let on = OnPatch {
+        mesh,
+        patch,
+        surface: &named.surface,
+        trim: named.trim.as_deref(),
+        level,
+        kept_side,
+        view_projection,
+        size,
+    };
+    on.contour(grid, &grazing_as_zero(mesh, grid, level))
 }
 
 /// `g` at every vertex of `grid` in `mesh`, in the grid's order, 0 where the line of sight
@@ -160,12 +241,12 @@ pub(crate) fn silhouettes(
 /// along the seam itself, vertices of random signs would leave it in scraps. At 0, every such
 /// vertex is on the front, and the triangles behind find the seam once.
 #[must_use]
-fn grazing_as_zero(mesh: &Mesh, grid: &PatchGrid, side: EyeSide) -> Vec<f64> {
+fn grazing_as_zero<L: Level>(mesh: &Mesh, grid: &PatchGrid, level: &L) -> Vec<f64> {
     let first = grid.first;
     (first..first + grid.nu * grid.nv)
         .map(|v| {
-            let g = side.at_vertex(mesh, v);
-            if side.grazes(mesh.positions[v as usize].as_dvec3(), g) {
+            let g = level.at_vertex(mesh, v);
+            if level.grazes(mesh.positions[v as usize].as_dvec3(), g) {
                 0.0
             } else {
                 g
@@ -174,10 +255,10 @@ fn grazing_as_zero(mesh: &Mesh, grid: &PatchGrid, side: EyeSide) -> Vec<f64> {
         .collect()
 }
 
-impl OnPatch<'_> {
-    /// The silhouette pieces of the patch whose vertices are `grid`, `g` given at each of
-    /// them in the grid's order.
-    fn silhouettes(&self, grid: &PatchGrid, g: &[f64]) -> Vec<Piece> {
+impl<L: Level> OnPatch<'_, L> {
+    /// The contour's pieces on the patch whose vertices are `grid`, `g` given at each of them
+    /// in the grid's order.
+    fn contour(&self, grid: &PatchGrid, g: &[f64]) -> Vec<Piece> {
         let (nu, nv) = (grid.nu, grid.nv);
         let value = |v: u32| g[(v - grid.first) as usize];
         let front = |v: u32| value(v) >= 0.0;
@@ -228,7 +309,7 @@ impl OnPatch<'_> {
             self.mesh.positions[y as usize],
         );
         let bracket = self.bracket(px.as_dvec3(), py.as_dvec3());
-        let found = self.root_on_line((uv(x), gx), (uv(y), gy), bracket);
+        let found = root_on_line(self.surface, self.level, (uv(x), gx), (uv(y), gy), bracket);
         let on_mesh = px.lerp(py, found.0 as f32);
         Crossing {
             uv: found.1,
@@ -260,6 +341,9 @@ impl OnPatch<'_> {
                 return;
             }
         }
+        let Some((start, end)) = self.on_kept_side(corners, start, end) else {
+            return;
+        };
         let Some(trim) = self.trim else {
             pieces.push(self.piece(start, end));
             return;
@@ -290,13 +374,58 @@ impl OnPatch<'_> {
         }
     }
 
-    /// The silhouette piece from `start` to `end`.
+    /// What lies on the kept side of the silhouette of the piece from `start` to `end` inside
+    /// the triangle `corners`: all of it without a kept side, none of it when neither end is
+    /// on it, and otherwise the part from the end on it to the silhouette's crossing, found
+    /// on the surface along the piece's line in (u, v).
+    fn on_kept_side(
+        &self,
+        corners: &[(u32, f64); 3],
+        start: Crossing,
+        end: Crossing,
+    ) -> Option<(Crossing, Crossing)> {
+        let Some(kept) = self.kept_side else {
+            return Some((start, end));
+        };
+        let eye = |at: DVec2| {
+            let frame = self.surface.frame(at.x, at.y);
+            kept.eye.at(frame.point, frame.normal)
+        };
+        let (g_start, g_end) = (eye(start.uv), eye(end.uv));
+        match (kept.keeps(g_start), kept.keeps(g_end)) {
+            (true, true) => Some((start, end)),
+            (false, false) => None,
+            (keeps_start, _) => {
+                let bracket = self.bracket(start.point, end.point);
+                let (_, at, point) = root_on_line(
+                    self.surface,
+                    &kept.eye,
+                    (start.uv, g_start),
+                    (end.uv, g_end),
+                    bracket,
+                );
+                let on_mesh = self.on_mesh(corners, at);
+                let cut = Crossing {
+                    uv: at,
+                    point: point.unwrap_or(on_mesh.as_dvec3()),
+                    on_mesh,
+                };
+                Some(if keeps_start {
+                    (start, cut)
+                } else {
+                    (cut, end)
+                })
+            }
+        }
+    }
+
+    /// The contour's piece from `start` to `end`.
     fn piece(&self, start: Crossing, end: Crossing) -> Piece {
         Piece {
             ends: [start.point, end.point],
             on_mesh: [start.on_mesh, end.on_mesh],
             opacity: 1.0,
-            kind: LineKind::Silhouette,
+            kind: self.level.kind(),
             open: false,
             patches: [self.patch; 2],
         }
@@ -321,7 +450,7 @@ impl OnPatch<'_> {
         let rounding = ROUNDING_SIDE * g_lone.abs().max(g_p.abs()).max(g_q.abs());
         let on_silhouette = |at: DVec2| {
             let frame = self.surface.frame(at.x, at.y);
-            let g = self.side.at(frame.point, frame.normal);
+            let g = self.level.at(at, &frame);
             (frame.point.is_finite() && g.abs() <= rounding).then(|| Crossing {
                 uv: at,
                 point: frame.point,
@@ -348,7 +477,7 @@ impl OnPatch<'_> {
             return Some(middle);
         }
         let frame = self.surface.frame(far.x, far.y);
-        let g_far = self.side.at(frame.point, frame.normal);
+        let g_far = self.level.at(far, &frame);
         if (g_far >= 0.0) == (g_lone >= 0.0) {
             return None;
         }
@@ -356,7 +485,8 @@ impl OnPatch<'_> {
             self.mesh.positions[lone as usize].as_dvec3(),
             self.on_mesh(corners, far).as_dvec3(),
         );
-        let (_, at, point) = self.root_on_line((o, g_lone), (far, g_far), bracket);
+        let (_, at, point) =
+            root_on_line(self.surface, self.level, (o, g_lone), (far, g_far), bracket);
         let on_mesh = self.on_mesh(corners, at);
         Some(Crossing {
             uv: at,
@@ -406,54 +536,55 @@ impl OnPatch<'_> {
             _ => 0.0,
         }
     }
+}
 
-    /// Where `g` is zero on the surface along the straight line in (u, v) from `from` to `to`
-    /// (with `g` of opposite signs there), to within `bracket` of the way: the fraction of the
-    /// way, the (u, v), and the point on the surface (None if no evaluation gave a finite one).
-    /// Regula falsi (Illinois) keeps the root bracketed, so the fraction stays in [0, 1]
-    /// whatever the surface does between.
-    fn root_on_line(
-        &self,
-        (from, g_from): (DVec2, f64),
-        (to, g_to): (DVec2, f64),
-        bracket: f64,
-    ) -> (f64, DVec2, Option<DVec3>) {
-        let (mut lo, mut hi) = ((0.0, g_from), (1.0, g_to));
-        let mut t = linear_root(lo, hi);
-        let mut found = None;
-        let mut last_side = 0i8;
-        for _ in 0..REFINE_STEPS {
-            let uv = from.lerp(to, t);
-            let frame = self.surface.frame(uv.x, uv.y);
-            let value = self.side.at(frame.point, frame.normal);
-            if frame.point.is_finite() {
-                found = Some((t, frame.point));
-            }
-            if value == 0.0 || !value.is_finite() {
-                break;
-            }
-            if (value < 0.0) == (lo.1 < 0.0) {
-                lo = (t, value);
-                if last_side == -1 {
-                    hi.1 *= 0.5;
-                }
-                last_side = -1;
-            } else {
-                hi = (t, value);
-                if last_side == 1 {
-                    lo.1 *= 0.5;
-                }
-                last_side = 1;
-            }
-            t = linear_root(lo, hi);
-            if (hi.0 - lo.0).abs() < bracket {
-                break;
-            }
+/// Where `g` is zero on the surface along the straight line in (u, v) from `from` to `to`
+/// (with `g` of opposite signs there), to within `bracket` of the way: the fraction of the
+/// way, the (u, v), and the point on the surface (None if no evaluation gave a finite one).
+/// Regula falsi (Illinois) keeps the root bracketed, so the fraction stays in [0, 1]
+/// whatever the surface does between.
+fn root_on_line<L: Level + ?Sized>(
+    surface: &NurbsSurface,
+    level: &L,
+    (from, g_from): (DVec2, f64),
+    (to, g_to): (DVec2, f64),
+    bracket: f64,
+) -> (f64, DVec2, Option<DVec3>) {
+    let (mut lo, mut hi) = ((0.0, g_from), (1.0, g_to));
+    let mut t = linear_root(lo, hi);
+    let mut found = None;
+    let mut last_side = 0i8;
+    for _ in 0..REFINE_STEPS {
+        let uv = from.lerp(to, t);
+        let frame = surface.frame(uv.x, uv.y);
+        let value = level.at(uv, &frame);
+        if frame.point.is_finite() {
+            found = Some((t, frame.point));
         }
-        match found {
-            Some((t, point)) => (t, from.lerp(to, t), Some(point)),
-            None => (t, from.lerp(to, t), None),
+        if value == 0.0 || !value.is_finite() {
+            break;
         }
+        if (value < 0.0) == (lo.1 < 0.0) {
+            lo = (t, value);
+            if last_side == -1 {
+                hi.1 *= 0.5;
+            }
+            last_side = -1;
+        } else {
+            hi = (t, value);
+            if last_side == 1 {
+                lo.1 *= 0.5;
+            }
+            last_side = 1;
+        }
+        t = linear_root(lo, hi);
+        if (hi.0 - lo.0).abs() < bracket {
+            break;
+        }
+    }
+    match found {
+        Some((t, point)) => (t, from.lerp(to, t), Some(point)),
+        None => (t, from.lerp(to, t), None),
     }
 }
 

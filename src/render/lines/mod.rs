@@ -7,7 +7,8 @@
 //! ([`contour`]), a border or crease is a piece of a patch's domain boundary ([`border`]) or of
 //! a trimmed patch's trim loops ([`trim_border`]), an
 //! intersection is where two patches pass through each other ([`intersection`], found once per
-//! mesh: [`MeshLines`]).
+//! mesh: [`MeshLines`]), a light contour where the tone's `N·L` crosses a band threshold
+//! ([`light_contour`]).
 //! Pieces that share an end are joined into lines ([`chain`]); each line is cut into samples
 //! half a pixel apart, each kept when no nearer surface hides it ([`visible`]), and each
 //! visible stretch is drawn as capsules of the line's width ([`stroke`]): where capsules meet,
@@ -21,6 +22,7 @@ mod contour;
 mod grid_shape;
 mod intersection;
 mod kept_silhouettes;
+mod light_contour;
 mod piece;
 mod screen;
 mod stroke;
@@ -35,9 +37,10 @@ use super::camera::Camera;
 use super::colour::{premultiplied, straight};
 use super::line_style::{LineKind, LineStyle};
 use super::raster::VisibilityBuffer;
-use super::scene::Outlines;
+use super::scene::{Outlines, PatchLook};
 use super::tessellate::Mesh;
 use crate::geom::PatchLibrary;
+use crate::highlight::Light;
 use grid_shape::GridShape;
 use piece::Piece;
 use stroke::Capsule;
@@ -210,6 +213,12 @@ pub(super) struct LineInput<'a> {
     pub size: (u32, u32),
     /// Per patch of the library, how its lines are drawn.
     pub styles: &'a [LineStyle],
+    /// Per patch of the library, its material ([`Scene::materials`]: empty, one material).
+    ///
+    /// [`Scene::materials`]: super::Scene::materials
+    pub materials: &'a [u32],
+    /// The light, and per patch of the library its look: what light contours follow.
+    pub light: (&'a Light, &'a [PatchLook]),
 }
 
 /// Whether some patch draws lines of `kind`.
@@ -257,8 +266,7 @@ pub(super) fn draw_lines(
         input.camera,
         input.view_projection,
         input.size,
-        outlines,
-        styles,
+        (outlines, styles, input.materials),
     ));
     pieces.extend(trim_border::trim_borders(
         input.mesh,
@@ -267,6 +275,15 @@ pub(super) fn draw_lines(
         input.size,
         styles,
     ));
+    if draws(styles, LineKind::LightContour) {
+        pieces.extend(light_contour::light_contours(
+            |patch| styles[patch as usize].draws(LineKind::LightContour),
+            input.light,
+            (input.mesh, input.library),
+            input.camera,
+            (input.view_projection, input.size),
+        ));
+    }
     pieces.extend(input.intersections.iter().map(|m| Piece {
         ends: m.ends.map(|p| p.as_dvec3()),
         on_mesh: m.ends,

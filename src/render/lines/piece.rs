@@ -83,7 +83,10 @@ impl Piece {
             style,
             reach: match self.kind {
                 LineKind::Silhouette | LineKind::Intersection => 1.0,
-                LineKind::Crease | LineKind::Border => 0.5,
+                LineKind::Crease
+                | LineKind::Border
+                | LineKind::MaterialBorder
+                | LineKind::LightContour => 0.5,
             },
             open_on: (self.kind == LineKind::Border && self.open).then_some(self.patches[0]),
         })

@@ -219,6 +219,25 @@ fn check_every_frame_counted(
             })?;
         }
     }
+    // A dash pattern holds for the whole shot: checked once, where it is written.
+    let hidden = shot
+        .outlines
+        .iter()
+        .map(|o| (o.hidden.as_ref(), vec![Field("render"), Field("outlines")]))
+        .chain(
+            shot.lines
+                .iter()
+                .enumerate()
+                .map(|(entry, l)| (l.hidden.as_ref(), vec![Field("lines"), Index(entry)])),
+        );
+    for (spec, mut path) in hidden {
+        if let Some(spec) = spec {
+            crate::render::Dash::try_new(&spec.dash).map_err(|e| {
+                path.extend([Field("hidden"), Field("dash")]);
+                shot_source.error_at(&path, e)
+            })?;
+        }
+    }
     if let Some(outlines) = &shot.outlines {
         let frames = key_frames(first, |add| outlines.for_each_param(add));
         check_at(&frames, shot.frames, &mut checks, |frame| {
