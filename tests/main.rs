@@ -46,6 +46,7 @@ mod raster_geometry;
 mod render_adaptive;
 mod render_line_styles;
 mod render_lines;
+mod render_lines_kinds;
 mod render_lines_motion;
 mod render_motion_reuse;
 mod render_reuse;

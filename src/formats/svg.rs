@@ -7,20 +7,26 @@
 //!     <g id="silhouette.teapot-lid" class="part" data-part="teapot/lid">
 //!       <path d="M x y L x y …" stroke="#rrggbb" stroke-width="w"/>
 //!       <path class="taper" d="M … Z" fill="#rrggbb"/>
+//!   <g id="hidden-silhouette" class="lines hidden silhouette">   hidden lines, kind by kind
+//!     <g id="hidden-silhouette.teapot-lid" class="part" data-part="teapot/lid">
+//!       <path d="…" stroke="#rrggbb" stroke-width="w" stroke-dasharray="4 3"
+//!             stroke-dashoffset="o"/>
 //! ```
 //!
 //! A stroke of one width is a stroked path with round caps and joins, as the frame draws it; a
 //! closed line ends with `Z`. A taper (a stroke whose width changes along it) is a filled
 //! outline, class `taper`: the polyline offset by half its width on either side, each point
 //! along the mean of its two neighbours' directions. Coordinates are pixels with the origin
-//! at the image's top left corner, to 1/1000 px.
+//! at the image's top left corner, to 1/1000 px. A hidden line is a stroked path in its dash
+//! pattern, its offset where along its stretch it starts, so that its dashes fall where the
+//! frame's do.
 
 use std::fmt::Write as _;
 
 use glam::Vec2;
 
 use super::srgb::{byte, linear_to_srgb};
-use crate::render::{LineKind, VectorLines};
+use crate::render::{LineKind, VectorLines, VectorStroke};
 
 /// The attribute a stamp (a frame's fingerprint) is stored under, on the document's
 /// `<metadata>` element: `<metadata data-key="KEY">VALUE</metadata>`.
@@ -92,21 +98,34 @@ pub fn svg_document(lines: &VectorLines, tags: &[(&str, &str)]) -> String {
         );
     }
     let mut ids: Vec<String> = Vec::new();
-    for kind in LineKind::ALL {
-        if !lines.strokes.iter().any(|s| s.kind == kind) {
+    for (hidden, kind) in [false, true]
+        .into_iter()
+        .flat_map(|h| LineKind::ALL.map(|k| (h, k)))
+    {
+        let of_group = |s: &&VectorStroke| s.kind == kind && s.hidden == hidden;
+        if !lines.strokes.iter().any(|s| of_group(&s)) {
             continue;
         }
-        let name = kind_name(kind);
+        let name = if hidden {
+            format!("hidden-{}", kind_name(kind))
+        } else {
+            kind_name(kind).to_string()
+        };
+        let class = if hidden {
+            format!("lines hidden {}", kind_name(kind))
+        } else {
+            format!("lines {name}")
+        };
         let _ = writeln!(
             out,
-            "  <g id=\"{name}\" class=\"lines {name}\" fill=\"none\" stroke-linecap=\"round\" \
+            "  <g id=\"{name}\" class=\"{class}\" fill=\"none\" stroke-linecap=\"round\" \
              stroke-linejoin=\"round\">"
         );
         for (p, part) in lines.parts.iter().enumerate() {
             let strokes: Vec<_> = lines
                 .strokes
                 .iter()
-                .filter(|s| s.kind == kind && s.part as usize == p)
+                .filter(|s| of_group(s) && s.part as usize == p)
                 .collect();
             if strokes.is_empty() {
                 continue;
@@ -123,30 +142,7 @@ pub fn svg_document(lines: &VectorLines, tags: &[(&str, &str)]) -> String {
                 escaped(part)
             );
             for s in strokes {
-                let c = s.colour.to_array().map(|v| byte(linear_to_srgb(v)));
-                let colour = format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
-                match s.uniform_width() {
-                    Some(width) => {
-                        let d = path_data(&s.points, s.closed);
-                        let _ = write!(
-                            out,
-                            "      <path d=\"{d}\" stroke=\"{colour}\" stroke-width=\"{}\"",
-                            number(width)
-                        );
-                    }
-                    None => {
-                        let d = path_data(&outline(&s.points, &s.widths), true);
-                        let _ = write!(
-                            out,
-                            "      <path class=\"taper\" d=\"{d}\" fill=\"{colour}\" \
-                             stroke=\"none\""
-                        );
-                    }
-                }
-                if s.opacity < 1.0 {
-                    let _ = write!(out, " opacity=\"{}\"", number(s.opacity));
-                }
-                out.push_str("/>\n");
+                write_stroke(&mut out, s);
             }
             out.push_str("    </g>\n");
         }
@@ -154,6 +150,41 @@ pub fn svg_document(lines: &VectorLines, tags: &[(&str, &str)]) -> String {
     }
     out.push_str("</svg>\n");
     out
+}
+
+/// One stroke as a `<path>` element: stroked at one width (dashed in its pattern, from its
+/// offset along it), or filled as the outline of a taper.
+fn write_stroke(out: &mut String, s: &VectorStroke) {
+    let c = s.colour.to_array().map(|v| byte(linear_to_srgb(v)));
+    let colour = format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+    match s.uniform_width() {
+        Some(width) => {
+            let d = path_data(&s.points, s.closed);
+            let _ = write!(
+                out,
+                "      <path d=\"{d}\" stroke=\"{colour}\" stroke-width=\"{}\"",
+                number(width)
+            );
+            if !s.dash.is_solid() {
+                let lengths: Vec<String> = s.dash.lengths().iter().map(|&l| number(l)).collect();
+                let _ = write!(out, " stroke-dasharray=\"{}\"", lengths.join(" "));
+                if s.dash_offset > 0.0 {
+                    let _ = write!(out, " stroke-dashoffset=\"{}\"", number(s.dash_offset));
+                }
+            }
+        }
+        None => {
+            let d = path_data(&outline(&s.points, &s.widths), true);
+            let _ = write!(
+                out,
+                "      <path class=\"taper\" d=\"{d}\" fill=\"{colour}\" stroke=\"none\""
+            );
+        }
+    }
+    if s.opacity < 1.0 {
+        let _ = write!(out, " opacity=\"{}\"", number(s.opacity));
+    }
+    out.push_str("/>\n");
 }
 
 /// `M x y L x y …`, with `Z` when `closed`.
@@ -226,7 +257,7 @@ pub fn try_read_svg(text: &str, key: &str) -> Result<((u32, u32), Option<String>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::VectorStroke;
+    use crate::render::{Dash, VectorStroke};
     use glam::{Vec2, Vec3};
 
     fn lines() -> VectorLines {
@@ -246,6 +277,9 @@ mod tests {
                     ],
                     widths: vec![2.0; 3],
                     closed: true,
+                    hidden: false,
+                    dash: Dash::SOLID,
+                    dash_offset: 0.0,
                 },
                 VectorStroke {
                     kind: LineKind::Crease,
@@ -255,6 +289,21 @@ mod tests {
                     points: vec![Vec2::new(0.0, 0.0), Vec2::new(-0.0001, 31.0)],
                     widths: vec![1.25; 2],
                     closed: false,
+                    hidden: false,
+                    dash: Dash::SOLID,
+                    dash_offset: 0.0,
+                },
+                VectorStroke {
+                    kind: LineKind::Silhouette,
+                    part: 0,
+                    colour: Vec3::new(1.0, 0.0, 0.0),
+                    opacity: 1.0,
+                    points: vec![Vec2::new(5.0, 5.0), Vec2::new(20.0, 5.0)],
+                    widths: vec![1.0; 2],
+                    closed: false,
+                    hidden: true,
+                    dash: Dash::try_new(&[4.0, 2.5]).unwrap(),
+                    dash_offset: 3.25,
                 },
             ],
         }
@@ -265,6 +314,12 @@ mod tests {
         let svg = svg_document(&lines(), &[("glint:fingerprint", "abc")]);
         assert!(svg.contains("viewBox=\"0 0 64 32\""));
         assert!(svg.contains("<g id=\"silhouette\" class=\"lines silhouette\""));
+        // A hidden line in a group of its own, dashed from where along its stretch it starts.
+        assert!(svg.contains("<g id=\"hidden-silhouette\" class=\"lines hidden silhouette\""));
+        assert!(svg.contains(
+            "<path d=\"M5 5L20 5\" stroke=\"#ff0000\" stroke-width=\"1\" \
+             stroke-dasharray=\"4 2.5\" stroke-dashoffset=\"3.25\"/>"
+        ));
         assert!(svg
             .contains("<g id=\"silhouette.teapot-lid\" class=\"part\" data-part=\"teapot/lid\">"));
         assert!(svg

@@ -134,6 +134,9 @@ impl LineKinds {
 /// The most entries a dash pattern holds.
 pub const MAX_DASHES: usize = 8;
 
+/// The least a dash pattern's lengths add up to, in pixels.
+pub const MIN_DASH_CYCLE: f32 = 1.0;
+
 /// The most surfaces hidden lines are drawn behind.
 pub const MAX_OCCLUSION_LEVEL: u32 = 16;
 
@@ -154,7 +157,8 @@ impl Dash {
     };
 
     /// The pattern of `lengths` (pixels), checked: at most [`MAX_DASHES`] entries, each
-    /// finite and from 0 to 1e4, some above 0.
+    /// from 0 to 1e4, adding up to at least [`MIN_DASH_CYCLE`] (so that a line is cut into at
+    /// most a few pieces per pixel).
     pub fn try_new(lengths: &[f32]) -> Result<Self, String> {
         if lengths.len() > MAX_DASHES {
             return Err(format!(
@@ -167,11 +171,12 @@ impl Dash {
                 "dash length {bad} must be between 0 and 1e4 pixels"
             ));
         }
-        if !lengths.is_empty() && lengths.iter().all(|&l| l == 0.0) {
-            return Err(
-                "a dash pattern needs a length above 0 (leave it empty for a solid line)"
-                    .to_string(),
-            );
+        let total: f32 = lengths.iter().sum();
+        if !lengths.is_empty() && total < MIN_DASH_CYCLE {
+            return Err(format!(
+                "a dash pattern's lengths must add up to at least {MIN_DASH_CYCLE} pixel, not \
+                 {total} (leave it empty for a solid line)"
+            ));
         }
         let mut dash = Self::SOLID;
         dash.lengths[..lengths.len()].copy_from_slice(lengths);
@@ -191,28 +196,43 @@ impl Dash {
         self.count == 0
     }
 
-    /// The drawn intervals of `[0, length]` (pixels along a stretch from its start): the
-    /// whole for a solid line; else the pattern's drawn lengths laid from 0, repeating (with
-    /// an odd count, twice over, so that drawn and left-out lengths alternate). At most
-    /// `most` intervals: a pattern far finer than the stretch is long stops there.
+    /// The `k`th length of the pattern laid end to end from the start of a line, and whether
+    /// it is drawn: the lengths in turn, drawn and left out by turns, the pattern gone through
+    /// twice when its count is odd (as SVG's `stroke-dasharray` does).
     #[must_use]
-    pub fn drawn(&self, length: f32, most: usize) -> Vec<(f32, f32)> {
+    pub fn step(&self, k: usize) -> (f32, bool) {
+        let pattern = self.lengths();
+        (pattern[k % pattern.len()], k % 2 == 0)
+    }
+
+    /// The number of steps before the pattern repeats.
+    #[must_use]
+    pub fn cycle(&self) -> usize {
+        let n = self.count as usize;
+        if n % 2 == 1 {
+            2 * n
+        } else {
+            n
+        }
+    }
+
+    /// The drawn intervals of `[0, length]` (pixels along a line from its start): the whole
+    /// for a solid line; else the pattern's drawn [steps](Self::step).
+    #[must_use]
+    pub fn drawn(&self, length: f32) -> Vec<(f32, f32)> {
         if self.is_solid() {
             return vec![(0.0, length)];
         }
-        let pattern = self.lengths();
-        let cycle = if pattern.len() % 2 == 1 { 2 } else { 1 } * pattern.len();
         let mut out = Vec::new();
-        let mut at = 0.0f32;
-        let mut k = 0usize;
-        while at < length && out.len() < most {
-            let step = pattern[k % pattern.len()];
-            if k % 2 == 0 {
+        let (mut at, mut k) = (0.0f32, 0);
+        while at < length {
+            let (step, drawn) = self.step(k);
+            if drawn {
                 // A dash of length 0 is a dot: the round caps draw it.
                 out.push((at, (at + step).min(length)));
             }
             at += step;
-            k = (k + 1) % cycle;
+            k = (k + 1) % self.cycle();
         }
         out
     }
@@ -379,26 +399,29 @@ mod dash_tests {
     fn a_dash_pattern_alternates_drawn_and_left_out_lengths_from_the_start() {
         let dash = Dash::try_new(&[4.0, 2.0]).unwrap();
         assert_eq!(
-            dash.drawn(15.0, 100),
+            dash.drawn(15.0),
             vec![(0.0, 4.0), (6.0, 10.0), (12.0, 15.0)]
         );
         // An odd count goes round twice: 3 drawn, 1 out, 2 drawn, 3 out, 1 drawn, 2 out.
         let odd = Dash::try_new(&[3.0, 1.0, 2.0]).unwrap();
         assert_eq!(
-            odd.drawn(14.0, 100),
+            odd.drawn(14.0),
             vec![(0.0, 3.0), (4.0, 6.0), (9.0, 10.0), (12.0, 14.0)]
         );
-        assert_eq!(Dash::SOLID.drawn(7.5, 100), vec![(0.0, 7.5)]);
-        // A pattern far finer than the stretch stops at the ceiling.
+        assert_eq!(Dash::SOLID.drawn(7.5), vec![(0.0, 7.5)]);
+        // Dots: drawn lengths of 0.
         assert_eq!(
-            Dash::try_new(&[0.0, 1e-3]).unwrap().drawn(1e4, 50).len(),
-            50
+            Dash::try_new(&[0.0, 2.0]).unwrap().drawn(5.0),
+            vec![(0.0, 0.0), (2.0, 2.0), (4.0, 4.0)]
         );
     }
 
     #[test]
     fn a_dash_pattern_without_a_positive_length_or_with_a_bad_one_is_refused() {
-        assert!(Dash::try_new(&[0.0, 0.0]).unwrap_err().contains("above 0"));
+        assert!(Dash::try_new(&[0.0, 0.0])
+            .unwrap_err()
+            .contains("add up to at least 1"));
+        assert!(Dash::try_new(&[0.25, 0.5]).is_err());
         assert!(Dash::try_new(&[f32::NAN, 1.0]).is_err());
         assert!(Dash::try_new(&[-1.0, 1.0]).is_err());
         assert!(Dash::try_new(&[1.0; MAX_DASHES + 1]).is_err());

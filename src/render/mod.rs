@@ -43,7 +43,7 @@ pub use camera::{Camera, Projection};
 pub use facing::facing_frame;
 pub use line_style::{
     Dash, HiddenLines, LineKind, LineKinds, LineStyle, MAX_DASHES, MAX_LINE_WIDTH,
-    MAX_OCCLUSION_LEVEL, MAX_TAPER,
+    MAX_OCCLUSION_LEVEL, MAX_TAPER, MIN_DASH_CYCLE,
 };
 pub use lines::{part_of, VectorLines, VectorStroke};
 pub use plan::{Plan, Surfaces, FINE_MESH_PIXELS};

@@ -6,6 +6,7 @@ use crate::render::FastMap;
 
 use glam::DVec3;
 
+use super::occlusion::Occluders;
 use super::piece::{OnScreen, Piece};
 use super::stroke::Capsule;
 use super::visible::DepthTest;
@@ -176,23 +177,40 @@ struct Sample {
     shows: bool,
 }
 
-/// Per piece on the image, whether each of its samples shows: the piece cut into `n + 1`
-/// samples at most [`STEP`] apart (both ends included, from its first end), each tested
-/// against `depth`.
+/// Per piece on the image, the occlusion level of each of its samples: the piece cut into
+/// `n + 1` samples at most [`STEP`] apart (both ends included, from its first end), each 0
+/// where it shows against `depth`; elsewhere, with `hidden` (the surfaces in front and the
+/// most levels drawn), the number of surfaces in front of it, at least 1 (the depth test found
+/// one), up to `most + 1`; without, [`BEYOND`].
 #[must_use]
-pub(crate) fn sample_piece(on: &OnScreen, depth: &DepthTest) -> Vec<bool> {
+pub(crate) fn sample_piece(
+    on: &OnScreen,
+    depth: &DepthTest,
+    hidden: Option<(&Occluders, u32)>,
+) -> Vec<u8> {
     let n = samples_along(on);
     (0..=n)
         .map(|i| {
             let t = i as f32 / n as f32;
             let (point, z, reach) = (on.point(t), on.depth(t), on.reach_at(t));
-            match on.open_on {
-                Some(patch) => depth.shows_open(point, z, reach, patch),
-                None => depth.shows(point, z, reach),
+            let shows = match (on.open_on, on.inside) {
+                (Some(patch), _) => depth.shows_open(point, z, reach, patch),
+                (None, true) => depth.shows_on_surface(point, z, reach),
+                (None, false) => depth.shows(point, z, reach),
+            };
+            match (shows, hidden) {
+                (true, _) => 0,
+                (false, Some((occluders, most))) => {
+                    occluders.in_front(point, z, most).clamp(1, most + 1) as u8
+                }
+                (false, None) => BEYOND,
             }
         })
         .collect()
 }
+
+/// The occlusion level of a sample hidden behind more surfaces than any style draws.
+pub(crate) const BEYOND: u8 = u8::MAX;
 
 /// How many steps a piece is cut into.
 fn samples_along(on: &OnScreen) -> u32 {
@@ -210,8 +228,10 @@ pub(crate) struct Drawn {
     pub stretches: Vec<(std::ops::Range<usize>, bool)>,
 }
 
-/// The capsules that draw the visible stretches of one chain (`screen[k]` is piece k's place
-/// on the image, None off it, and `shows[k]` its samples' visibility from [`sample_piece`]).
+/// The capsules that draw the stretches of one chain where `draws` says its samples are drawn,
+/// given their piece and occlusion level — where they show, or where they are hidden behind
+/// few enough surfaces (`screen[k]` is piece k's place on the image, None off it, and
+/// `levels[k]` its samples' occlusion levels from [`sample_piece`]).
 /// Along the chain, hidden stretches shorter than [`SHORTEST_GAP`] between visible ones are
 /// drawn, and visible stretches shorter than [`SHORTEST_STROKE`] between hidden ones are not.
 /// Each drawn stretch narrows toward its ends over its pieces' taper; the point where a
@@ -220,7 +240,8 @@ pub(crate) struct Drawn {
 pub(crate) fn visible_capsules(
     line: &Chain,
     screen: &[Option<OnScreen>],
-    shows: &[Vec<bool>],
+    levels: &[Vec<u8>],
+    draws: impl Fn(usize, u8) -> bool,
 ) -> Drawn {
     let chain = &line.pieces[..];
     let mut samples: Vec<Sample> = Vec::new();
@@ -245,7 +266,7 @@ pub(crate) fn visible_capsules(
                 piece: k,
                 t,
                 at: travelled + length * t,
-                shows: shows[piece][own as usize],
+                shows: draws(piece, levels[piece][own as usize]),
             });
         }
         travelled += length;
@@ -449,13 +470,13 @@ mod tests {
             .iter()
             .map(|p| p.on_screen(glam::Mat4::IDENTITY, (200, 200), &[style], 0))
             .collect();
-        let shows: Vec<Vec<bool>> = screen
+        let levels: Vec<Vec<u8>> = screen
             .iter()
-            .map(|on| vec![true; samples_along(on.as_ref().unwrap()) as usize + 1])
+            .map(|on| vec![0; samples_along(on.as_ref().unwrap()) as usize + 1])
             .collect();
         let lines = chains(pieces);
         assert_eq!(lines.len(), 1);
-        visible_capsules(&lines[0], &screen, &shows).capsules
+        visible_capsules(&lines[0], &screen, &levels, |_, level| level == 0).capsules
     }
 
     #[test]

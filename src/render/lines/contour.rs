@@ -76,22 +76,6 @@ impl Level for EyeSide {
     }
 }
 
-/// Which side of the silhouette a contour is kept on: where the eye sees the side its normal
-/// points to (`g` of [`EyeSide`] at most 0), or the other.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct KeptSide {
-    pub eye: EyeSide,
-    /// Keep where the eye sees the side the normal points to.
-    pub front: bool,
-}
-
-impl KeptSide {
-    /// Whether the side at a point where [`EyeSide`] takes `g` is kept.
-    #[inline]
-    fn keeps(&self, g: f64) -> bool {
-        (g <= 0.0) == self.front
-    }
-}
 /// Which side of the surface the eye is on, as a signed number: `g(P, N) = N·(P − E)` under
 /// perspective, `N·F` (F the line of sight) under orthographic projection. The silhouette is
 /// where it is zero.
@@ -123,14 +107,20 @@ impl EyeSide {
         }
     }
 
-    /// Whether `g` at `point` is within [`GRAZING`] of its largest possible value (`|P − E|`,
-    /// or 1 under orthographic projection): the line of sight lies within 10⁻⁶ radians of the
-    /// tangent plane, closer than the mesh's single-precision normals can tell.
+    /// Whether `g` at `point` is within [`GRAZING`] of its largest possible value
+    /// ([`reach`](Self::reach)): the line of sight lies within 10⁻⁶ radians of the tangent
+    /// plane, closer than the mesh's single-precision normals can tell.
     #[inline]
     #[must_use]
     pub fn grazes(&self, point: DVec3, g: f64) -> bool {
-        let most = self.eye.map_or(1.0, |eye| point.distance(eye));
-        g.abs() <= GRAZING * most
+        g.abs() <= GRAZING * self.reach(point)
+    }
+
+    /// The largest `|g|` at `point`: `|P − E|`, or 1 under orthographic projection.
+    #[inline]
+    #[must_use]
+    pub fn reach(&self, point: DVec3) -> f64 {
+        self.eye.map_or(1.0, |eye| point.distance(eye))
     }
 
     /// `g` at a mesh vertex.
@@ -139,6 +129,34 @@ impl EyeSide {
     pub fn at_vertex(&self, mesh: &Mesh, v: u32) -> f64 {
         let v = v as usize;
         self.at(mesh.positions[v].as_dvec3(), mesh.normals[v].as_dvec3())
+    }
+}
+
+/// How far from edge-on a surface must be seen for a contour on it to be kept, as `|N·V|`:
+/// 0.05, the line of sight 3° or more off the tangent plane. A contour of the side seen is cut
+/// where it runs into the silhouette this close, a fraction of a pixel short of it (`R ε²/2`
+/// for an outline of radius R pixels); a contour of the far side, which runs behind the
+/// silhouette within the depth test's reach of it, is not drawn there.
+const EDGE_ON: f64 = 0.05;
+
+/// Which side of the silhouette a contour is kept on: where the eye sees the side its normal
+/// points to (`g` of [`EyeSide`] below 0), or the other, by at least [`EDGE_ON`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct KeptSide {
+    pub eye: EyeSide,
+    /// Keep where the eye sees the side the normal points to.
+    pub front: bool,
+}
+
+impl KeptSide {
+    /// How far inside the kept side a point of frame `frame` is: `±N·V − ε`, `N·V = −g / |P − E|`
+    /// (`−g` under orthographic projection), the sign `+` for the front; kept where at least 0.
+    #[inline]
+    fn inside(&self, frame: &Frame) -> f64 {
+        let g = self.eye.at(frame.point, frame.normal);
+        let n_dot_v = -g / self.eye.reach(frame.point);
+        let facing = if self.front { n_dot_v } else { -n_dot_v };
+        facing - EDGE_ON
     }
 }
 
@@ -309,7 +327,13 @@ impl<L: Level> OnPatch<'_, L> {
             self.mesh.positions[y as usize],
         );
         let bracket = self.bracket(px.as_dvec3(), py.as_dvec3());
-        let found = root_on_line(self.surface, self.level, (uv(x), gx), (uv(y), gy), bracket);
+        let found = root_on_line(
+            self.surface,
+            &|uv, f| self.level.at(uv, f),
+            (uv(x), gx),
+            (uv(y), gy),
+            bracket,
+        );
         let on_mesh = px.lerp(py, found.0 as f32);
         Crossing {
             uv: found.1,
@@ -375,9 +399,9 @@ impl<L: Level> OnPatch<'_, L> {
     }
 
     /// What lies on the kept side of the silhouette of the piece from `start` to `end` inside
-    /// the triangle `corners`: all of it without a kept side, none of it when neither end is
-    /// on it, and otherwise the part from the end on it to the silhouette's crossing, found
-    /// on the surface along the piece's line in (u, v).
+    /// the triangle `corners` ([`KeptSide::inside`]): all of it without a kept side, none of
+    /// it when neither end is on it, and otherwise the part from the end on it to where the
+    /// side's edge crosses it, found on the surface along the piece's line in (u, v).
     fn on_kept_side(
         &self,
         corners: &[(u32, f64); 3],
@@ -387,19 +411,16 @@ impl<L: Level> OnPatch<'_, L> {
         let Some(kept) = self.kept_side else {
             return Some((start, end));
         };
-        let eye = |at: DVec2| {
-            let frame = self.surface.frame(at.x, at.y);
-            kept.eye.at(frame.point, frame.normal)
-        };
-        let (g_start, g_end) = (eye(start.uv), eye(end.uv));
-        match (kept.keeps(g_start), kept.keeps(g_end)) {
+        let inside = |at: DVec2| kept.inside(&self.surface.frame(at.x, at.y));
+        let (g_start, g_end) = (inside(start.uv), inside(end.uv));
+        match (g_start >= 0.0, g_end >= 0.0) {
             (true, true) => Some((start, end)),
             (false, false) => None,
             (keeps_start, _) => {
                 let bracket = self.bracket(start.point, end.point);
                 let (_, at, point) = root_on_line(
                     self.surface,
-                    &kept.eye,
+                    &|_, f| kept.inside(f),
                     (start.uv, g_start),
                     (end.uv, g_end),
                     bracket,
@@ -432,8 +453,9 @@ impl<L: Level> OnPatch<'_, L> {
     }
 
     /// The point of the silhouette on the line in (u, v) from the lone corner through the
-    /// middle `m` of `start` and `end`, up to the opposite edge; None when `g` there has the
-    /// lone corner's sign (the silhouette leaves the triangle's line).
+    /// middle `m` of `start` and `end`, up to the opposite edge, or as far again past it where
+    /// `g` there still has the lone corner's sign; else on the line [`across`](Self::across)
+    /// the chord; None when neither meets it.
     ///
     /// Where `g` is rounding alone — at most [`ROUNDING_SIDE`] of the largest at the corners —
     /// the point is on the silhouette: at `m` itself (a silhouette running along a seam or an
@@ -466,11 +488,11 @@ impl<L: Level> OnPatch<'_, L> {
         let (d, e) = (m - o, b - a);
         let det = d.perp_dot(e);
         if det.abs() <= f64::EPSILON * d.length() * e.length() {
-            return None;
+            return self.across(corners, start, end);
         }
         let s = (a - o).perp_dot(e) / det;
         if !(s.is_finite() && s >= 1.0) {
-            return None;
+            return self.across(corners, start, end);
         }
         let far = o + d * s;
         if let Some(middle) = on_silhouette(far) {
@@ -479,14 +501,82 @@ impl<L: Level> OnPatch<'_, L> {
         let frame = self.surface.frame(far.x, far.y);
         let g_far = self.level.at(far, &frame);
         if (g_far >= 0.0) == (g_lone >= 0.0) {
+            // The contour on the surface may bulge past the opposite side, which the mesh's
+            // linear `g` does not: look as far again beyond it.
+            let beyond = far + (far - m);
+            if self.surface.domain().contains(beyond.x, beyond.y) {
+                let frame = self.surface.frame(beyond.x, beyond.y);
+                let g_beyond = self.level.at(beyond, &frame);
+                if g_beyond.is_finite() && (g_beyond >= 0.0) != (g_lone >= 0.0) {
+                    return self.root_between(corners, (far, g_far), (beyond, g_beyond));
+                }
+            }
+            return self.across(corners, start, end);
+        }
+        self.root_between(corners, (o, g_lone), (far, g_far))
+    }
+
+    /// The point of the contour on the line in (u, v) through the middle of `start` and `end`
+    /// square to the chord between them, across the triangle `corners`; None when `g` takes
+    /// one sign at both its ends. Where `g` on the surface departs from the mesh's (about a
+    /// pole, whose cells the (u, v) rectangle stretches), the line from the lone corner may
+    /// miss the contour while this one, the shortest across it, meets it.
+    fn across(
+        &self,
+        corners: &[(u32, f64); 3],
+        start: Crossing,
+        end: Crossing,
+    ) -> Option<Crossing> {
+        let uv = |v: u32| self.mesh.uvs[v as usize].as_dvec2();
+        let [o, a, b] = corners.map(|(v, _)| uv(v));
+        let m = 0.5 * (start.uv + end.uv);
+        let dir = (end.uv - start.uv).perp();
+        // The line m + s dir meets the triangle's sides between its least and greatest s.
+        let (mut least, mut most) = (f64::INFINITY, f64::NEG_INFINITY);
+        for (p, q) in [(o, a), (a, b), (b, o)] {
+            let e = q - p;
+            let det = dir.perp_dot(e);
+            if det.abs() <= f64::EPSILON * dir.length() * e.length() {
+                continue;
+            }
+            let t = (m - p).perp_dot(dir) / -det;
+            let s = (p - m).perp_dot(e) / det;
+            if s.is_finite() && (0.0..=1.0).contains(&t) {
+                least = least.min(s);
+                most = most.max(s);
+            }
+        }
+        if !(least < 0.0 && most > 0.0) {
             return None;
         }
+        let (lo, hi) = (m + dir * least, m + dir * most);
+        let g = |at: DVec2| self.level.at(at, &self.surface.frame(at.x, at.y));
+        let (g_lo, g_hi) = (g(lo), g(hi));
+        if !(g_lo.is_finite() && g_hi.is_finite()) || (g_lo >= 0.0) == (g_hi >= 0.0) {
+            return None;
+        }
+        self.root_between(corners, (lo, g_lo), (hi, g_hi))
+    }
+
+    /// The contour's point on the line in (u, v) from `from` to `to` inside the triangle
+    /// `corners`, `g` of opposite signs at the two.
+    fn root_between(
+        &self,
+        corners: &[(u32, f64); 3],
+        (from, g_from): (DVec2, f64),
+        (to, g_to): (DVec2, f64),
+    ) -> Option<Crossing> {
         let bracket = self.bracket(
-            self.mesh.positions[lone as usize].as_dvec3(),
-            self.on_mesh(corners, far).as_dvec3(),
+            self.on_mesh(corners, from).as_dvec3(),
+            self.on_mesh(corners, to).as_dvec3(),
         );
-        let (_, at, point) =
-            root_on_line(self.surface, self.level, (o, g_lone), (far, g_far), bracket);
+        let (_, at, point) = root_on_line(
+            self.surface,
+            &|uv, f| self.level.at(uv, f),
+            (from, g_from),
+            (to, g_to),
+            bracket,
+        );
         let on_mesh = self.on_mesh(corners, at);
         Some(Crossing {
             uv: at,
@@ -543,9 +633,9 @@ impl<L: Level> OnPatch<'_, L> {
 /// way, the (u, v), and the point on the surface (None if no evaluation gave a finite one).
 /// Regula falsi (Illinois) keeps the root bracketed, so the fraction stays in [0, 1]
 /// whatever the surface does between.
-fn root_on_line<L: Level + ?Sized>(
+fn root_on_line(
     surface: &NurbsSurface,
-    level: &L,
+    level: &dyn Fn(DVec2, &Frame) -> f64,
     (from, g_from): (DVec2, f64),
     (to, g_to): (DVec2, f64),
     bracket: f64,
@@ -557,7 +647,7 @@ fn root_on_line<L: Level + ?Sized>(
     for _ in 0..REFINE_STEPS {
         let uv = from.lerp(to, t);
         let frame = surface.frame(uv.x, uv.y);
-        let value = level.at(uv, &frame);
+        let value = level(uv, &frame);
         if frame.point.is_finite() {
             found = Some((t, frame.point));
         }

@@ -19,10 +19,12 @@
 mod border;
 mod chain;
 mod contour;
+mod dashes;
 mod grid_shape;
 mod intersection;
 mod kept_silhouettes;
 mod light_contour;
+mod occlusion;
 mod piece;
 mod screen;
 mod stroke;
@@ -35,14 +37,15 @@ use rayon::prelude::*;
 
 use super::camera::Camera;
 use super::colour::{premultiplied, straight};
-use super::line_style::{LineKind, LineStyle};
+use super::line_style::{Dash, LineKind, LineStyle};
 use super::raster::VisibilityBuffer;
 use super::scene::{Outlines, PatchLook};
 use super::tessellate::Mesh;
 use crate::geom::PatchLibrary;
 use crate::highlight::Light;
 use grid_shape::GridShape;
-use piece::Piece;
+use occlusion::Occluders;
+use piece::{OnScreen, Piece};
 use stroke::Capsule;
 use visible::DepthTest;
 
@@ -309,25 +312,90 @@ pub(super) fn draw_lines(
         .with_min_len(256)
         .map(|(piece, &s)| piece.on_screen(input.view_projection, input.size, styles, s))
         .collect();
-    let shows: Vec<Vec<bool>> = screen
-        .par_iter()
-        .with_min_len(64)
-        .map(|on| {
-            on.as_ref()
-                .map_or_else(Vec::new, |on| chain::sample_piece(on, &depth))
+    // Per piece, how many surfaces may hide it where it is still drawn (0: it is not drawn
+    // where hidden).
+    let most: Vec<u32> = pieces
+        .iter()
+        .zip(&style)
+        .map(|(piece, &s)| {
+            styles[s as usize]
+                .hidden_lines(piece.kind)
+                .map_or(0, |h| h.levels)
         })
         .collect();
-    let drawn: Vec<chain::Drawn> = chain::chains(&pieces)
+    let occluders = most.iter().any(|&m| m > 0).then(|| {
+        Occluders::new(
+            (input.mesh, input.library),
+            input.camera,
+            input.view_projection,
+            input.size,
+        )
+    });
+    let levels: Vec<Vec<u8>> = screen
         .par_iter()
-        .map(|line| chain::visible_capsules(line, &screen, &shows))
+        .zip(&most)
+        .with_min_len(64)
+        .map(|(on, &most)| {
+            let hidden = occluders.as_ref().filter(|_| most > 0).map(|o| (o, most));
+            on.as_ref()
+                .map_or_else(Vec::new, |on| chain::sample_piece(on, &depth, hidden))
+        })
         .collect();
-    let vector = VectorLines::of(&drawn, &pieces, (styles, input.library), input.size);
+    let chains = chain::chains(&pieces);
+    let drawn: Vec<chain::Drawn> = chains
+        .par_iter()
+        .map(|line| chain::visible_capsules(line, &screen, &levels, |_, level| level == 0))
+        .collect();
+    // Hidden stretches: in the hidden style of the patch whose style draws them, its colour
+    // after the styles' own in the palette.
+    let hidden: Vec<chain::Drawn> = match &occluders {
+        Some(_) => {
+            let count = styles.len() as u32;
+            let hidden_screen: Vec<Option<OnScreen>> = screen
+                .iter()
+                .zip(&pieces)
+                .map(|(on, piece)| {
+                    let on = on.as_ref()?;
+                    let h = styles[on.style as usize].hidden_lines(piece.kind)?;
+                    Some(on.hidden(0.5 * h.width, count + on.style))
+                })
+                .collect();
+            chains
+                .par_iter()
+                .map(|line| {
+                    chain::visible_capsules(line, &hidden_screen, &levels, |piece, level| {
+                        (1..=most[piece]).contains(&u32::from(level))
+                    })
+                })
+                .collect()
+        }
+        None => Vec::new(),
+    };
+    let hidden_colour = |s: &LineStyle| s.hidden.map_or(s.colour, |h| h.colour);
+    let vector = VectorLines::of(
+        (&drawn, &hidden),
+        &pieces,
+        (styles, input.library),
+        input.size,
+    );
+    let dash_of = |colour: u32| {
+        let s = colour as usize % styles.len().max(1);
+        styles[s].hidden.map_or(Dash::SOLID, |h| h.dash)
+    };
     let mut capsules: Vec<Capsule> = drawn.into_iter().flat_map(|d| d.capsules).collect();
-    let one_colour = styles.windows(2).all(|s| s[0].colour == s[1].colour);
+    capsules.extend(hidden.iter().flat_map(|d| dashes::dashed(d, dash_of)));
+    let colours = styles
+        .iter()
+        .map(|s| s.colour)
+        .chain(styles.iter().map(hidden_colour));
+    let one_colour = colours
+        .clone()
+        .zip(colours.clone().skip(1))
+        .all(|(a, b)| a == b);
     let palette: Vec<Vec3> = if one_colour {
         styles.first().map(|s| s.colour).into_iter().collect()
     } else {
-        styles.iter().map(|s| s.colour).collect()
+        colours.collect()
     };
     if one_colour {
         capsules.iter_mut().for_each(|c| c.colour = 0);

@@ -41,7 +41,8 @@ pub(crate) struct OnScreen {
     pub radius: f32,
     /// Over how many pixels from a stretch's ends its line narrows ([`LineStyle::taper`]).
     pub taper: f32,
-    /// The patch whose style draws it, which names its colour.
+    /// The patch whose style draws it, which names its colour (for a hidden line, that
+    /// patch's index after every patch's: [`hidden`](Self::hidden)).
     pub style: u32,
     /// How far around its points the depth test looks ([`DepthTest::shows`]).
     ///
@@ -50,6 +51,9 @@ pub(crate) struct OnScreen {
     /// The patch of an open border ([`Piece::open`]), whose depth test is
     /// [`DepthTest::shows_open`](super::visible::DepthTest::shows_open).
     pub open_on: Option<u32>,
+    /// Whether it lies inside a surface's outline (a light contour), where the background does
+    /// not show it ([`DepthTest::shows_on_surface`](super::visible::DepthTest::shows_on_surface)).
+    pub inside: bool,
 }
 
 impl Piece {
@@ -81,14 +85,14 @@ impl Piece {
             radius,
             taper: styles[style as usize].taper,
             style,
+            // A light contour may run along a silhouette, where the surface about it is seen
+            // at a grazing angle, as a silhouette is.
             reach: match self.kind {
-                LineKind::Silhouette | LineKind::Intersection => 1.0,
-                LineKind::Crease
-                | LineKind::Border
-                | LineKind::MaterialBorder
-                | LineKind::LightContour => 0.5,
+                LineKind::Silhouette | LineKind::Intersection | LineKind::LightContour => 1.0,
+                LineKind::Crease | LineKind::Border | LineKind::MaterialBorder => 0.5,
             },
             open_on: (self.kind == LineKind::Border && self.open).then_some(self.patches[0]),
+            inside: self.kind == LineKind::LightContour,
         })
     }
 }
@@ -121,6 +125,18 @@ impl OnScreen {
     pub fn reach_at(&self, t: f32) -> f32 {
         let apart = |k: usize| self.ends[k].distance(self.on_mesh[k]);
         self.reach + apart(0) + (apart(1) - apart(0)) * t
+    }
+
+    /// The piece drawn as a hidden line: of radius `radius`, without taper, in the colour
+    /// of palette entry `colour`.
+    #[must_use]
+    pub fn hidden(&self, radius: f32, colour: u32) -> OnScreen {
+        OnScreen {
+            radius,
+            taper: 0.0,
+            style: colour,
+            ..*self
+        }
     }
 
     /// The stretch from fraction `t0` to `t1` as a capsule whose radius runs from `radii[0]`

@@ -5,14 +5,15 @@
 //! visible stretch of a chain, the capsules of one colour, opacity, kind and part that follow
 //! one another make one polyline with a width at each point. A stretch at full width is one
 //! polyline of one width; each taper, where the width runs down to an end, is a polyline of
-//! its own whose width changes point by point.
+//! its own whose width changes point by point. Hidden lines are polylines of their own, whole:
+//! their dash pattern goes with them, and where along its stretch each starts.
 
 use glam::{Vec2, Vec3};
 
 use super::chain::Drawn;
 use super::piece::Piece;
 use crate::geom::PatchLibrary;
-use crate::render::line_style::{LineKind, LineStyle};
+use crate::render::line_style::{Dash, LineKind, LineStyle};
 
 /// Points of one polyline closer than this (pixels) are the same point: the capsules of a
 /// stretch share their ends exactly, so this only absorbs rounding.
@@ -46,6 +47,13 @@ pub struct VectorStroke {
     pub widths: Vec<f32>,
     /// Whether the polyline closes on itself: its last point joins its first.
     pub closed: bool,
+    /// Whether it is a hidden line (behind some surface), drawn in its dash pattern.
+    pub hidden: bool,
+    /// The dash pattern it is drawn in ([`Dash::SOLID`] for a visible line).
+    pub dash: Dash,
+    /// How far along its pattern it starts (pixels): where along its stretch its first
+    /// point lies.
+    pub dash_offset: f32,
 }
 
 impl VectorStroke {
@@ -70,11 +78,12 @@ pub fn part_of(library: &PatchLibrary, patch: usize) -> &str {
 }
 
 impl VectorLines {
-    /// The strokes of `drawn` (each chain's capsules, in drawing order), whose pieces are
+    /// The strokes of `drawn` (each chain's capsules, in drawing order) and then of `hidden`
+    /// (its hidden stretches, in the colours after the styles' own), whose pieces are
     /// `pieces`, coloured and grouped by the styles and parts of `library`'s patches.
     #[must_use]
     pub(super) fn of(
-        drawn: &[Drawn],
+        (drawn, hidden): (&[Drawn], &[Drawn]),
         pieces: &[Piece],
         (styles, library): (&[LineStyle], &PatchLibrary),
         size: (u32, u32),
@@ -97,27 +106,41 @@ impl VectorLines {
                 }
             })
         };
-        for chain in drawn {
+        let count = styles.len();
+        let chains = drawn.iter().map(|d| (d, false));
+        for (chain, is_hidden) in chains.chain(hidden.iter().map(|d| (d, true))) {
             for (range, whole_loop) in &chain.stretches {
                 let first = lines.strokes.len();
                 let mut open: Option<VectorStroke> = None;
+                // How far along the stretch the capsule starts.
+                let mut along = 0.0f32;
                 for k in range.clone() {
                     let c = &chain.capsules[k];
-                    let style = c.colour as usize;
+                    let style = c.colour as usize % count.max(1);
+                    let (colour, dash) = match (is_hidden, styles[style].hidden) {
+                        (true, Some(h)) => (h.colour, h.dash),
+                        (true, None) | (false, _) => (styles[style].colour, Dash::SOLID),
+                    };
                     let stroke = VectorStroke {
                         kind: pieces[chain.pieces[k] as usize].kind,
                         part: part(style, &mut lines.parts),
-                        colour: styles[style].colour,
+                        colour,
                         opacity: c.opacity,
                         points: vec![c.a, c.b],
                         widths: vec![2.0 * c.radii[0], 2.0 * c.radii[1]],
                         closed: false,
+                        hidden: is_hidden,
+                        dash,
+                        dash_offset: along,
                     };
+                    along += c.a.distance(c.b);
                     // A capsule of one radius goes on a stroke of that width; one whose radius
                     // changes, on a taper.
                     let tapered = c.radii[0] != c.radii[1];
                     let continues = open.as_ref().is_some_and(|o| {
                         o.kind == stroke.kind
+                            && o.hidden == stroke.hidden
+                            && o.dash == stroke.dash
                             && o.part == stroke.part
                             && o.colour == stroke.colour
                             && o.opacity == stroke.opacity

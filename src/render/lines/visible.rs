@@ -85,6 +85,22 @@ impl<'a> DepthTest<'a> {
             .is_none_or(|mut samples| samples.any(|s| self.visibility.depth[s] >= threshold))
     }
 
+    /// Whether the point at `pixel` with NDC depth `z` of a line inside a surface's outline (a
+    /// light contour) shows: some sample within `reach` pixels of it sees a surface no nearer
+    /// than the point by more than [`RELATIVE_GAP`] of its distance. The background does not
+    /// show such a line: near a silhouette, a line on the surface's far side has background
+    /// within reach of it, but the near side covers it.
+    #[must_use]
+    pub fn shows_on_surface(&self, pixel: Vec2, z: f32, reach: f32) -> bool {
+        let threshold = self.threshold(z);
+        self.samples(pixel, reach).is_some_and(|mut samples| {
+            samples.any(|s| {
+                let depth = self.visibility.depth[s];
+                depth >= threshold && depth.is_finite()
+            })
+        })
+    }
+
     /// Whether the point at `pixel` with NDC depth `z` of an open border on `patch` (its
     /// surface ends there, nothing continues it) shows: as [`shows`](Self::shows) within
     /// `reach`, or within `reach` and [`OPEN_BORDER_EXTRA`] more, as a silhouette is tested,
