@@ -1,7 +1,7 @@
 //! The teapot at 1280×720 with a 5-op highlight stack on every patch, outlines on and exact
 //! frames, against variants measured side by side in the same run, frame by frame in turn:
-//! highlights off, lines off, interpolated frames, one thread, and two effect-free shots against a
-//! flat-colour raster of the same mesh. Run with `cargo bench --bench render`; it prints each
+//! highlights off, lines off, hidden lines on (behind two surfaces, dashed), interpolated frames,
+//! one thread, and two effect-free shots against a flat-colour raster of the same mesh. Run with `cargo bench --bench render`; it prints each
 //! variant's frame time by stage, then the ratios.
 //!
 //! Frames, not edits. Every variant but `edit_full` turns the camera by a degree between
@@ -44,7 +44,9 @@ use glint::geom::PatchLibrary;
 use glint::highlight::{Expr, Layer, Light};
 use glint::render::raster::{RasterOptions, Rasterizer, Viewport, VisibilityBuffer};
 use glint::render::tessellate::{Density, Tessellator};
-use glint::render::{Aovs, FrameMode, Outlines, PatchLook, Scene, Settings, Tone};
+use glint::render::{
+    Aovs, Dash, FrameMode, HiddenLines, LineStyle, Outlines, PatchLook, Scene, Settings, Tone,
+};
 use glint::toon::CelRamp;
 use rayon::prelude::*;
 
@@ -120,6 +122,27 @@ fn main() {
     let library = Arc::new(load_patches(std::path::Path::new("patches/teapot.bpt")).unwrap());
     let two_tone = CelRamp::two_tone(Vec3::new(0.2, 0.25, 0.5), Vec3::new(0.4, 0.55, 0.9), 0.1);
     let full = scene(&library, &two_tone, true, true);
+    // Every patch's lines also drawn behind up to two surfaces, thinner, in red, dashed.
+    let hidden_style = LineStyle {
+        hidden: Some(HiddenLines {
+            levels: 2,
+            width: 1.0,
+            colour: Vec3::X,
+            dash: Dash::try_new(&[5.0, 3.0]).unwrap(),
+        }),
+        ..full.outlines.unwrap().style()
+    };
+    let hidden = Scene {
+        looks: full
+            .looks
+            .iter()
+            .map(|look| PatchLook {
+                lines: Some(hidden_style),
+                ..look.clone()
+            })
+            .collect(),
+        ..full.clone()
+    };
     let plain = scene(&library, &two_tone, false, true);
     let unlined = scene(&library, &two_tone, true, false);
     let effect_free = scene(&library, &two_tone, false, false);
@@ -173,8 +196,16 @@ fn main() {
         None
     };
 
-    let turned_scenes = [&full, &plain, &unlined, &effect_free, &flat_colours].map(turned);
-    let [full_turned, plain_turned, unlined_turned, effect_free_turned, flat_colours_turned] =
+    let turned_scenes = [
+        &full,
+        &plain,
+        &unlined,
+        &effect_free,
+        &flat_colours,
+        &hidden,
+    ]
+    .map(turned);
+    let [full_turned, plain_turned, unlined_turned, effect_free_turned, flat_colours_turned, hidden_turned] =
         &turned_scenes;
     let mut variants = [
         moving("moving", &library, &full, full_turned, &exact),
@@ -190,6 +221,13 @@ fn main() {
             &library,
             &unlined,
             unlined_turned,
+            &exact,
+        ),
+        moving(
+            "moving_hidden_lines",
+            &library,
+            &hidden,
+            hidden_turned,
             &exact,
         ),
         moving(
@@ -232,6 +270,7 @@ fn main() {
             ("moving_interpolated", "flat_raster"),
             ("moving", "moving_no_highlights"),
             ("moving", "moving_no_lines"),
+            ("moving_hidden_lines", "moving"),
             ("moving", "moving_interpolated"),
             ("moving_one_thread", "moving"),
             ("effect_free", "flat_raster"),

@@ -347,4 +347,58 @@ mod tests {
             1.0
         );
     }
+
+    #[test]
+    fn a_seam_between_two_materials_is_a_material_border_where_a_side_draws_them() {
+        // Two squares side by side in one plane: a smooth seam, no crease.
+        let library = Arc::new(hinge(0.0));
+        let camera = Camera {
+            eye: Vec3::new(0.0, 0.5, 5.0),
+            target: Vec3::new(0.0, 0.5, 0.0),
+            up: Vec3::Y,
+            projection: Projection::Perspective {
+                fov_y_degrees: 40.0,
+            },
+            near: 0.1,
+            far: 100.0,
+        };
+        let view_projection = camera.view_projection(1.0);
+        let mut tessellator = Tessellator::new(Arc::clone(&library));
+        let (mesh, _) = tessellator.mesh(Density::PerSpan { u: 3, v: 3 }, view_projection, 64, 64);
+        let outlines = Outlines {
+            width: 2.0,
+            colour: Vec3::ZERO,
+            crease_degrees: 60.0,
+            patch_borders: false,
+        };
+        let plain = outlines.style();
+        let drawing = LineStyle {
+            kinds: crate::render::LineKinds::of(&[LineKind::MaterialBorder]),
+            ..plain
+        };
+        // On the seam x = 0: the pieces of a kind there.
+        let on_seam = |styles: &[LineStyle], materials: &[u32], kind: LineKind| {
+            borders_and_creases(
+                mesh,
+                &library,
+                &camera,
+                view_projection,
+                (64, 64),
+                (&outlines, styles, materials),
+            )
+            .into_iter()
+            .filter(|p| p.kind == kind && p.ends.iter().all(|e| e.x.abs() < 1e-9))
+            .count()
+        };
+        let material = LineKind::MaterialBorder;
+        // Drawn when the materials differ and either side draws material borders.
+        assert!(on_seam(&[drawing, drawing], &[0, 1], material) >= 3);
+        assert!(on_seam(&[plain, drawing], &[0, 1], material) >= 3);
+        // Not when they are one material, or when neither side draws them.
+        assert_eq!(on_seam(&[drawing, drawing], &[1, 1], material), 0);
+        assert_eq!(on_seam(&[drawing, drawing], &[], material), 0);
+        assert_eq!(on_seam(&[plain, plain], &[0, 1], material), 0);
+        // Without them, the smooth seam draws nothing.
+        assert_eq!(on_seam(&[plain, plain], &[0, 1], LineKind::Border), 0);
+    }
 }

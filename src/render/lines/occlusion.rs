@@ -3,9 +3,9 @@
 //!
 //! The depth buffer holds only the nearest surface; a hidden line's level needs all of them.
 //! The mesh's triangles are binned over the image once, and for each hidden point of a line the
-//! line of sight from the eye to it is intersected with the triangles of its bin, each one it
-//! passes through in front of the point (and kept by its patch's trim) counting once: a closed
-//! body in front counts twice, its near and its far side.
+//! line of sight from the eye to it is intersected with the triangles of its bin, each surface
+//! it passes through in front of the point (where its patch's trim keeps it) counting once: a
+//! closed body in front counts twice, its near and its far side.
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
@@ -31,6 +31,14 @@ const APART_PIXELS: f32 = 8.0;
 /// line's own (the depth test's own margin).
 const RELATIVE_GAP: f32 = 1e-3;
 
+/// Crossings of the line of sight this close, as fractions of the way from the point to the
+/// eye, are one surface's: the triangles about an edge or a vertex it passes through, or two
+/// patches at their seam.
+const SAME_CROSSING: f32 = 1e-5;
+
+/// The most crossings one line of sight keeps apart; past them, each counts as a surface.
+const MOST_HITS: usize = 64;
+
 /// The mesh's triangles, binned over the image, to count those in front of a point.
 pub(crate) struct Occluders<'a> {
     mesh: &'a Mesh,
@@ -50,6 +58,9 @@ pub(crate) struct Occluders<'a> {
     /// The triangles of bin `k`: `triangles[first[k]..first[k + 1]]`.
     first: Vec<u32>,
     triangles: Vec<u32>,
+    /// Per triangle, its box on the image, `[x0, y0, x1, y1]` (empty for one no bin holds): a
+    /// point outside it is not tested against the triangle.
+    bounds: Vec<[f32; 4]>,
     /// Triangles reaching behind the eye, which no bin holds: tested everywhere.
     everywhere: Vec<u32>,
 }
@@ -75,7 +86,8 @@ impl<'a> Occluders<'a> {
         // Per triangle, the bins its box on the image covers, `None` when it reaches behind
         // the eye, empty when it misses the image or is cut away.
         let cut = MeshCut::of(mesh, library);
-        let boxes: Vec<Option<[usize; 4]>> = (0..mesh.triangles.len())
+        const NONE: (Option<[usize; 4]>, [f32; 4]) = (Some([1, 0, 1, 0]), [f32::NAN; 4]);
+        let (boxes, bounds): (Vec<Option<[usize; 4]>>, Vec<[f32; 4]>) = (0..mesh.triangles.len())
             .into_par_iter()
             .with_min_len(4096)
             .map(|t| {
@@ -83,27 +95,42 @@ impl<'a> Occluders<'a> {
                     .as_ref()
                     .is_some_and(|c| c.region(t as u32) == Region::Cut);
                 if cut_away {
-                    return Some([1, 0, 1, 0]);
+                    return NONE;
                 }
                 let mut lo = Vec2::splat(f32::INFINITY);
                 let mut hi = Vec2::splat(f32::NEG_INFINITY);
                 for v in mesh.triangles[t] {
-                    let (p, _) = project(v)?;
+                    let Some((p, _)) = project(v) else {
+                        // Behind the eye: tested everywhere.
+                        return (
+                            None,
+                            [
+                                f32::NEG_INFINITY,
+                                f32::NEG_INFINITY,
+                                f32::INFINITY,
+                                f32::INFINITY,
+                            ],
+                        );
+                    };
                     lo = lo.min(p);
                     hi = hi.max(p);
                 }
                 if hi.x < 0.0 || hi.y < 0.0 || lo.x > size.0 as f32 || lo.y > size.1 as f32 {
-                    return Some([1, 0, 1, 0]);
+                    return NONE;
                 }
                 let cell = |x: f32, n: usize| ((x / BIN).floor().max(0.0) as usize).min(n - 1);
-                Some([
-                    cell(lo.x, columns),
-                    cell(hi.x, columns),
-                    cell(lo.y, rows),
-                    cell(hi.y, rows),
-                ])
+                (
+                    Some([
+                        cell(lo.x, columns),
+                        cell(hi.x, columns),
+                        cell(lo.y, rows),
+                        cell(hi.y, rows),
+                    ]),
+                    // Widened a little, so that rounding never leaves out a point on an edge.
+                    [lo.x - 0.01, lo.y - 0.01, hi.x + 0.01, hi.y + 0.01],
+                )
             })
-            .collect();
+            .unzip();
         let mut first = vec![0u32; columns * rows + 1];
         let mut everywhere = Vec::new();
         let bins = |b: [usize; 4]| {
@@ -142,6 +169,7 @@ impl<'a> Occluders<'a> {
             columns,
             first,
             triangles,
+            bounds,
             everywhere,
         }
     }
@@ -182,52 +210,159 @@ impl<'a> Occluders<'a> {
         };
         let bin = (pixel.y / BIN) as usize * self.columns + (pixel.x / BIN) as usize;
         let listed = &self.triangles[self.first[bin] as usize..self.first[bin + 1] as usize];
-        let mut count = 0;
+        // Where along the line of sight it crosses triangles: a line of sight through an edge
+        // or a vertex crosses every triangle there at once, and one surface is counted once.
+        let mut hits = [0.0f32; MOST_HITS];
+        let mut found = 0usize;
+        let mut more = 0u32;
         for &t in listed.iter().chain(&self.everywhere) {
-            if self.crosses(t, point, toward, least) {
-                count += 1;
-                if count >= beyond {
-                    break;
+            let [x0, y0, x1, y1] = self.bounds[t as usize];
+            if !(pixel.x >= x0 && pixel.x <= x1 && pixel.y >= y0 && pixel.y <= y1) {
+                continue;
+            }
+            if let Some(s) = self.crosses(t, point, toward, least) {
+                match hits.get_mut(found) {
+                    Some(slot) => {
+                        *slot = s;
+                        found += 1;
+                    }
+                    None => more += 1,
                 }
             }
         }
-        count
+        let hits = &mut hits[..found];
+        hits.sort_unstable_by(f32::total_cmp);
+        let surfaces = hits
+            .iter()
+            .enumerate()
+            .filter(|&(k, &s)| k == 0 || s - hits[k - 1] > SAME_CROSSING)
+            .count() as u32;
+        (surfaces + more).min(beyond)
     }
 
-    /// Whether the segment `origin + s · toward`, `s ∈ (least, 1)`, passes through triangle `t`
-    /// where its patch's trim keeps it (Möller–Trumbore: `s = (e₂ · q) / (e₁ · p)` with
+    /// Where the segment `origin + s · toward`, `s ∈ (least, 1)`, passes through triangle `t`
+    /// and its patch's trim keeps it, its `s` (Möller–Trumbore: `s = (e₂ · q) / (e₁ · p)` with
     /// `p = toward × e₂`, `q = (origin − a) × e₁`, and barycentrics `b₁ = (origin − a)·p / det`,
-    /// `b₂ = toward · q / det`).
-    fn crosses(&self, t: u32, origin: Vec3, toward: Vec3, least: f32) -> bool {
+    /// `b₂ = toward · q / det`); None where it does not.
+    fn crosses(&self, t: u32, origin: Vec3, toward: Vec3, least: f32) -> Option<f32> {
         let [a, b, c] = self.mesh.triangles[t as usize].map(|v| self.mesh.positions[v as usize]);
         let (e1, e2) = (b - a, c - a);
         let p = toward.cross(e2);
         let det = e1.dot(p);
         if det.abs() <= f32::EPSILON * e1.length() * e2.length() * toward.length() {
-            return false;
+            return None;
         }
         let inverse = 1.0 / det;
         let from_a = origin - a;
         let b1 = from_a.dot(p) * inverse;
         if !(0.0..=1.0).contains(&b1) {
-            return false;
+            return None;
         }
         let q = from_a.cross(e1);
         let b2 = toward.dot(q) * inverse;
         if b2 < 0.0 || b1 + b2 > 1.0 {
-            return false;
+            return None;
         }
         let s = e2.dot(q) * inverse;
         if !(s > least && s < 1.0) {
-            return false;
+            return None;
         }
-        match &self.cut {
+        let kept = match &self.cut {
             Some(cut) => match cut.region(t) {
                 Region::Kept => true,
                 Region::Cut => false,
                 Region::Both => cut.keeps(t, [b1, b2]),
             },
             None => true,
+        };
+        kept.then_some(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use glam::{DVec2, DVec3};
+
+    use super::*;
+    use crate::geom::{shapes, NamedPatch, Trim};
+    use crate::render::tessellate::{Density, Tessellator};
+
+    /// A square plate of side 2 about (0, 0, z), square to the z axis.
+    fn plate(z: f64) -> NamedPatch {
+        let p = |x: f64, y: f64| DVec3::new(x, y, z);
+        NamedPatch {
+            name: format!("plate{z}"),
+            trim: None,
+            surface: shapes::bezier(
+                1,
+                1,
+                &[
+                    vec![p(-1.0, -1.0), p(-1.0, 1.0)],
+                    vec![p(1.0, -1.0), p(1.0, 1.0)],
+                ],
+            )
+            .unwrap(),
         }
+    }
+
+    #[test]
+    fn the_surfaces_in_front_of_a_point_are_counted_where_their_trims_keep_them() {
+        // Three plates above the origin, seen from above; the middle one with a square hole
+        // over the middle of its domain.
+        let mut holed = plate(2.0);
+        let domain = holed.surface.domain();
+        let at = |s: f64, t: f64| {
+            let (u, v) = (domain.u, domain.v);
+            DVec2::new(u.0 + s * (u.1 - u.0), v.0 + t * (v.1 - v.0))
+        };
+        let outer = vec![at(0., 0.), at(1., 0.), at(1., 1.), at(0., 1.), at(0., 0.)];
+        let hole = vec![
+            at(0.3, 0.3),
+            at(0.3, 0.7),
+            at(0.7, 0.7),
+            at(0.7, 0.3),
+            at(0.3, 0.3),
+        ];
+        holed.trim = Some(Arc::new(Trim::new(vec![outer, hole], domain).unwrap()));
+        let library = Arc::new(PatchLibrary {
+            patches: vec![plate(1.0), holed, plate(3.0)],
+            groups: Vec::new(),
+        });
+        let camera = Camera {
+            eye: Vec3::new(0.0, 0.0, 10.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            projection: Projection::Perspective {
+                fov_y_degrees: 30.0,
+            },
+            near: 0.1,
+            far: 100.0,
+        };
+        let size = (256, 256);
+        let view_projection = camera.view_projection(1.0);
+        let mut tessellator = Tessellator::new(Arc::clone(&library));
+        let (mesh, _) =
+            tessellator.mesh(Density::PerSpan { u: 6, v: 6 }, view_projection, 256, 256);
+        let occluders = Occluders::new((mesh, &library), &camera, view_projection, size);
+        let count = |p: Vec3, most: u32| {
+            let (pixel, z) = to_screen(view_projection * p.extend(1.0), size).unwrap();
+            occluders.in_front(pixel, z, most)
+        };
+        // Under the middle, through the hole: the top plate alone; under a corner, all three
+        // (the middle lies on a vertex of each plate's mesh, the corner does not).
+        assert_eq!(count(Vec3::ZERO, 8), 2);
+        assert_eq!(
+            count(Vec3::new(0.0, 0.0, 1.0), 8),
+            1,
+            "the plate it lies on does not count"
+        );
+        assert_eq!(count(Vec3::new(0.8, 0.8, 0.0), 8), 3);
+        assert_eq!(count(Vec3::new(0.8, 0.8, 2.5), 8), 1);
+        // Counted up to one past the most asked for.
+        assert_eq!(count(Vec3::new(0.8, 0.8, 0.0), 1), 2);
+        // Beside the plates, nothing.
+        assert_eq!(count(Vec3::new(1.5, 0.0, 0.0), 8), 0);
     }
 }
