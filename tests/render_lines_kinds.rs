@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use glam::{DVec3, Mat4, Vec2, Vec3, Vec4};
 use glint::geom::{shapes, NamedPatch, PatchLibrary};
-use glint::highlight::Light;
+use glint::highlight::{DesignedLight, Light, Op, ShadeStack};
 use glint::render::{
     Aovs, Camera, Dash, HiddenLines, LineKind, LineKinds, LineStyle, Outlines, PatchLook,
     Projection, RenderedFrame, Renderer, Scene, Settings, Tone, VectorLines,
@@ -56,8 +56,18 @@ fn frame(
     (style, threshold): (LineStyle, f32),
     settings: &Settings,
 ) -> RenderedFrame {
+    designed_frame(library, (camera, light, None), (style, threshold), settings)
+}
+
+/// [`frame`], the tone reading the designed light `designed`.
+fn designed_frame(
+    library: &Arc<PatchLibrary>,
+    (camera, light, designed): (Camera, Light, Option<DesignedLight>),
+    (style, threshold): (LineStyle, f32),
+    settings: &Settings,
+) -> RenderedFrame {
     let look = PatchLook {
-        designed_light: None,
+        designed_light: designed,
         lines: Some(style),
         tone: Tone::Cel(CelRamp::two_tone(
             Vec3::new(0.2, 0.3, 0.5),
@@ -288,6 +298,99 @@ fn the_sphere_s_light_contour_lies_on_the_analytic_terminator() {
         }
     }
     println!("light contour: worst point {worst:.4} px off the analytic terminator");
+}
+
+#[test]
+fn under_designed_shade_the_light_contour_follows_n_dot_l_prime() {
+    // L' = normalize(L + α du + β dv) in the sphere's frame (east, north, outward): the
+    // designed light's translation, written here in closed form.
+    let (alpha, beta, threshold) = (0.4f64, -0.25f64, 0.2f64);
+    let stack = ShadeStack {
+        stack: vec![Op::Translate {
+            alpha: alpha as f32,
+            beta: beta as f32,
+        }],
+        mask: None,
+    }
+    .prepare()
+    .unwrap();
+    let designed = DesignedLight::new(vec![stack]);
+    let towards = DVec3::new(0.3, -0.5, 0.8).normalize();
+    let light = Light::Directional {
+        towards: towards.as_vec3(),
+    };
+    // `N·L' − t` at the point `p` of the unit sphere, seen from its front (N = p).
+    let g = |p: DVec3| {
+        let east = DVec3::Z.cross(p).normalize();
+        let north = p.cross(east);
+        let local = DVec3::new(
+            towards.dot(east) + alpha,
+            towards.dot(north) + beta,
+            towards.dot(p),
+        );
+        local.z / local.length() - threshold
+    };
+    let ball = spheres(&[(DVec3::ZERO, 1.0)]);
+    for k in 0..4 {
+        let view = camera(
+            Vec3::ZERO,
+            4.0,
+            20.0 + 15.0 * k as f32,
+            60.0 * k as f32 + 7.0,
+        );
+        let eye = view.eye.as_dvec3();
+        let view_projection = view.view_projection(1.0);
+        // The analytic contour: where g changes sign along each of 3000 meridians, away from
+        // the poles (where east is undefined), on the side the eye sees.
+        let mut truth = Vec::new();
+        for i in 0..3000 {
+            let lon = std::f64::consts::TAU * f64::from(i) / 3000.0;
+            let at = |j: u32| {
+                let lat = -1.5 + 3.0 * f64::from(j) / 3000.0;
+                DVec3::new(lat.cos() * lon.cos(), lat.cos() * lon.sin(), lat.sin())
+            };
+            for j in 0..3000 {
+                let (a, b) = (at(j), at(j + 1));
+                let (ga, gb) = (g(a), g(b));
+                if (ga < 0.0) != (gb < 0.0) {
+                    let p = a.lerp(b, ga / (ga - gb)).normalize();
+                    if p.dot(eye - p) > 0.0 {
+                        truth.extend(on_image(view_projection, p));
+                    }
+                }
+            }
+        }
+        assert!(truth.len() > 100, "view {k}: the contour is in view");
+        let outline_points: Vec<Vec2> = outline(DVec3::ZERO, 1.0, eye, 4000)
+            .into_iter()
+            .filter_map(|p| on_image(view_projection, p))
+            .collect();
+        let drawn = designed_frame(
+            &ball,
+            (view, light, Some(designed.clone())),
+            (light_contour_style(), threshold as f32),
+            &Settings::final_quality(SIZE, SIZE),
+        );
+        let points = stroke_points(drawn.lines.as_deref().unwrap(), |_| true);
+        assert!(!points.is_empty(), "view {k}");
+        for &p in points
+            .iter()
+            .filter(|&&p| nearest(&outline_points, p) > 2.0)
+        {
+            let off = nearest(&truth, p);
+            assert!(
+                off <= 0.5,
+                "view {k}: a point {off} px off the contour of N·L'"
+            );
+        }
+        for &q in truth.iter().filter(|&&q| nearest(&outline_points, q) > 3.0) {
+            let gap = nearest(&points, q);
+            assert!(
+                gap <= 1.0,
+                "view {k}: the contour at {q} is {gap} px from the line"
+            );
+        }
+    }
 }
 
 /// The back sphere, of radius 1 at the origin, and the front one, nearer the eye and off to

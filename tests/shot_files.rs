@@ -35,7 +35,7 @@ fn purpose(name: &str) -> Shows {
         | "car_doors" => Shows::MovingCamera,
         "xtoon_backlight" | "xtoon_plastic" | "xtoon_shape_teapot" | "xtoon_shape_torus"
         | "line_styles" => Shows::AnimatedShading,
-        "teapot_lid_opens" | "car_drive" | "usd_flag" => Shows::MovingModel,
+        "teapot_lid_opens" | "car_drive" | "usd_flag" | "line_kinds" => Shows::MovingModel,
         _ => panic!("shots/{name}.ron: say here what it shows"),
     }
 }
