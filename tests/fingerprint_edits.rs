@@ -79,6 +79,7 @@ const LOOKS: &str = r#"Looks(
         "clay": Cel(base: (0.30, 0.10, 0.06), bands: [(0.05, (0.75, 0.35, 0.20))]),
         "porcelain": Cel(base: (0.10, 0.16, 0.32), bands: [(0.0, (0.30, 0.45, 0.80))]),
         "plastic": XToon(texture: "../../textures/plastic_highlight.png", detail: Highlight(s: 8.0)),
+        "clay_twin": Cel(base: (0.3, 0.1, 0.06), bands: [(0.05, (0.75, 0.35, 0.2))]),
     },
 )
 "#;
@@ -212,6 +213,12 @@ enum Edit {
     /// A shade entry added on the lid, pushing its light far enough to move its band edge on
     /// every frame, with the lid's pinned highlight reading the designed light.
     DesignedHighlight,
+    /// The teapot's knob in porcelain (`part_materials`).
+    PartMaterial,
+    /// The teapot's lines drawn where up to this many surfaces hide them, dashed.
+    Hidden(u32),
+    /// The body's lines: its silhouettes and light contours.
+    LightContours,
     /// A key in the ring's hold, at its held value: no frame changes.
     KeyInHold(i64),
     /// A comment and spacing: no frame changes.
@@ -328,6 +335,23 @@ impl Edit {
                     "pin: (patch: \"teapot/25\", u: 0.3, v: 0.5),\n            )),\n            light: Designed,",
                 );
             }
+            Edit::PartMaterial => fixture.replace(
+                shot,
+                r#"material: "clay","#,
+                r#"material: "clay", part_materials: {"knob": "porcelain"},"#,
+            ),
+            Edit::Hidden(levels) => fixture.replace(
+                shot,
+                "    lines: [",
+                &format!(
+                    "    lines: [(patches: [\"teapot/*\"], hidden: (levels: {levels}, dash: [4.0, 2.0])), "
+                ),
+            ),
+            Edit::LightContours => fixture.replace(
+                shot,
+                "    lines: [",
+                "    lines: [(patches: [\"teapot/body\"], kinds: [Silhouette, LightContour]), ",
+            ),
             Edit::KeyInHold(frame) => fixture.replace(
                 shot,
                 "(6, (2.6, -1.4, 0.4))",
@@ -362,6 +386,9 @@ fn edits() -> impl Strategy<Value = Edit> {
         (2i64..=11, prop::sample::select(vec![-0.3, 0.6])).prop_map(|(f, a)| Edit::AlphaKey(f, a)),
         (0.2f64..0.6).prop_map(Edit::Shade),
         Just(Edit::DesignedHighlight),
+        Just(Edit::PartMaterial),
+        (1u32..=3).prop_map(Edit::Hidden),
+        Just(Edit::LightContours),
         (2i64..=5).prop_map(Edit::KeyInHold),
         Just(Edit::Comment),
     ]
@@ -456,6 +483,9 @@ fn every_kind_of_edit_changes_the_frames_it_reaches() {
         (Edit::AlphaKey(6, 0.6), vec![4, 9]),
         (Edit::Shade(0.4), FRAMES.to_vec()),
         (Edit::DesignedHighlight, FRAMES.to_vec()),
+        (Edit::PartMaterial, FRAMES.to_vec()),
+        (Edit::Hidden(2), FRAMES.to_vec()),
+        (Edit::LightContours, FRAMES.to_vec()),
         (Edit::KeyInHold(3), vec![]),
         (Edit::Comment, vec![]),
     ];
@@ -463,5 +493,33 @@ fn every_kind_of_edit_changes_the_frames_it_reaches() {
         let (rendered, fingerprinted) = changed_frames(&edit);
         assert_eq!(rendered, expected, "{edit:?}: renders changed");
         assert_eq!(fingerprinted, expected, "{edit:?}: fingerprints changed");
+    }
+}
+
+/// Material borders read which material each patch has, not only how it looks: a rim in a
+/// material that looks exactly like the body's still draws a border where they meet, and its
+/// frames are fingerprinted apart.
+#[test]
+fn a_material_border_between_twin_materials_changes_the_fingerprint() {
+    let bordered = |fixture: &Fixture| {
+        fixture.replace(
+            "shots/edit.ron",
+            "    lines: [",
+            "    lines: [(patches: [\"teapot/*\"], kinds: [Silhouette, MaterialBorder]), ",
+        );
+    };
+    let one = Fixture::new();
+    bordered(&one);
+    let twins = Fixture::new();
+    bordered(&twins);
+    twins.replace(
+        "shots/edit.ron",
+        r#"material: "clay","#,
+        r#"material: "clay", part_materials: {"rim": "clay_twin"},"#,
+    );
+    let (before, after) = (one.frames(), twins.frames());
+    for (k, (b, a)) in before.iter().zip(&after).enumerate() {
+        assert_ne!(b.1, a.1, "frame {}: the border is drawn", FRAMES[k]);
+        assert_ne!(b.0, a.0, "frame {}: its fingerprint changed", FRAMES[k]);
     }
 }
