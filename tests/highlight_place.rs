@@ -701,3 +701,199 @@ fn a_pinned_highlight_reading_the_designed_light_stays_on_its_point() {
          not tell"
     );
 }
+
+/// Reference blob count for a layer translated by `(α, β)` on one patch, seen orthographically
+/// along `view` (unit, toward the eye) under a directional light `light` (unit, toward it),
+/// written apart from glint's highlight code: on an `n × n` grid over the patch's domain, the
+/// frame `(du, s·dv, s·N)` turned toward the eye (`s = sign(N·V)`), `h = (H·du, H·dv, H·N)` in
+/// it, and the highlight where `1 − h_z / |h + (α, β, 0)| < ε`; its connected pieces (wrapping
+/// round a closed direction of the domain), counting those whose least point is inside the
+/// domain, or on a closed edge, and where the eye sees the patch's front (each case's back is
+/// inside a closed body).
+fn reference_centres(
+    surface: &glint::geom::NurbsSurface,
+    (view, light): (DVec3, DVec3),
+    (alpha, beta, epsilon): (f64, f64, f64),
+    (n, wrap_u, wrap_v): (usize, bool, bool),
+) -> usize {
+    let h = (light + view).normalize();
+    let domain = surface.domain();
+    let value = |i: usize, j: usize| {
+        let u = domain.u.0 + (domain.u.1 - domain.u.0) * i as f64 / (n - 1) as f64;
+        let v = domain.v.0 + (domain.v.1 - domain.v.0) * j as f64 / (n - 1) as f64;
+        let f = surface.frame(u, v);
+        let s = if f.normal.dot(view) < 0.0 { -1.0 } else { 1.0 };
+        let local = DVec3::new(h.dot(f.du), s * h.dot(f.dv), s * h.dot(f.normal));
+        1.0 - local.z / (local + DVec3::new(alpha, beta, 0.0)).length()
+    };
+    let values: Vec<f64> = (0..n * n).map(|k| value(k / n, k % n)).collect();
+    let front = |k: usize| {
+        let (i, j) = (k / n, k % n);
+        let u = domain.u.0 + (domain.u.1 - domain.u.0) * i as f64 / (n - 1) as f64;
+        let v = domain.v.0 + (domain.v.1 - domain.v.0) * j as f64 / (n - 1) as f64;
+        surface.frame(u, v).normal.dot(view) >= 0.0
+    };
+    let inside = |k: usize| values[k] < epsilon;
+    let mut seen = vec![false; n * n];
+    let mut count = 0;
+    for start in 0..n * n {
+        if !inside(start) || seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        let mut stack = vec![start];
+        let mut least = (f64::INFINITY, 0usize);
+        while let Some(k) = stack.pop() {
+            if values[k] < least.0 {
+                least = (values[k], k);
+            }
+            let (i, j) = (k / n, k % n);
+            let step = |x: usize, d: i64, wrap: bool| -> Option<usize> {
+                let y = x as i64 + d;
+                if (0..n as i64).contains(&y) {
+                    Some(y as usize)
+                } else if wrap {
+                    // The first and last samples of a closed direction are one point.
+                    Some(if y < 0 { n - 2 } else { 1 })
+                } else {
+                    None
+                }
+            };
+            let around = [
+                step(i, -1, wrap_u).map(|a| (a, j)),
+                step(i, 1, wrap_u).map(|a| (a, j)),
+                step(j, -1, wrap_v).map(|b| (i, b)),
+                step(j, 1, wrap_v).map(|b| (i, b)),
+            ];
+            for (a, b) in around.into_iter().flatten() {
+                let m = a * n + b;
+                if inside(m) && !seen[m] {
+                    seen[m] = true;
+                    stack.push(m);
+                }
+            }
+        }
+        let (i, j) = (least.1 / n, least.1 % n);
+        let on_open_edge =
+            (!wrap_u && (i == 0 || i == n - 1)) || (!wrap_v && (j == 0 || j == n - 1));
+        if !on_open_edge && front(least.1) {
+            count += 1;
+        }
+    }
+    count
+}
+
+#[test]
+fn place_lists_every_centre_a_layer_has_one_on_the_sphere_two_where_normals_repeat() {
+    let dir = tempfile::tempdir().unwrap();
+    let (eye, light) = (
+        DVec3::new(1.0, -6.0, 2.0),
+        DVec3::new(0.3, -1.0, 0.5).normalize(),
+    );
+    let view = eye.normalize();
+    let camera = format!(
+        "(eye: ({}, {}, {}), target: (0.0, 0.0, 0.0), projection: Orthographic(height: {{h}}))",
+        eye.x, eye.y, eye.z
+    );
+    // (model, selector, orthographic height, ε, the pixel placed on, whether the reference
+    // wraps in u and in v, the patch whose centres are counted): the torus, whose normals come
+    // round twice, and the teapot's spout, whose S-bend turns its normals back.
+    let cases = [
+        (
+            "patches/sphere.ron",
+            "m/*",
+            2.6,
+            0.05,
+            (160.0, 120.0),
+            (true, false),
+            0usize,
+        ),
+        (
+            "patches/torus.ron",
+            "m/*",
+            6.0,
+            0.05,
+            (162.0, 130.0),
+            (true, true),
+            0,
+        ),
+        (
+            "patches/teapot.bpt",
+            "m/spout",
+            6.0,
+            0.01,
+            (245.0, 88.0),
+            (false, false),
+            16,
+        ),
+    ];
+    for (model, selector, height, epsilon, pixel, (wrap_u, wrap_v), counted) in cases {
+        let shot = TestShot {
+            model,
+            selector,
+            camera: camera.replace("{h}", &height.to_string()),
+            light: format!(
+                "Directional(towards: ({}, {}, {}))",
+                light.x, light.y, light.z
+            ),
+            layer: translated(0.0, 0.0, epsilon),
+            frames: (1, 1),
+            size: (320, 240),
+            render: "(preset: Final)",
+        };
+        let path = shot.write(dir.path(), "centres");
+        let mut placing = job(&path);
+        let placed = placing
+            .place(1.0, pixel, LayerChoice::default())
+            .unwrap_or_else(|e| panic!("{model}: {e}"));
+        let library = &placing.shot().library;
+        let (alpha, beta) = (
+            f64::from(placed.translation.x),
+            f64::from(placed.translation.y),
+        );
+        let on_patch: Vec<_> = placed
+            .centres
+            .iter()
+            .filter(|c| c.patch == counted)
+            .collect();
+        let expected = reference_centres(
+            &library.patches[counted].surface,
+            (view, light),
+            (alpha, beta, f64::from(epsilon)),
+            (301, wrap_u, wrap_v),
+        );
+        println!(
+            "{model}: {} centres on patch {counted}, {expected} in the reference; all: {:?}",
+            on_patch.len(),
+            placed.centres
+        );
+        assert_eq!(on_patch.len(), expected, "{model}");
+        match model {
+            "patches/sphere.ron" => assert_eq!(placed.centres.len(), 1, "one on the sphere"),
+            _ => assert!(on_patch.len() >= 2, "{model}: a second centre"),
+        }
+        // Each centre with the pixel it lands on, and the pixels apart.
+        for c in &placed.centres {
+            let at = c.pixel.expect("a pixel for every centre");
+            assert!(at.pixel.0.is_finite() && at.pixel.1.is_finite());
+        }
+        for (a, b) in on_patch.iter().zip(on_patch.iter().skip(1)) {
+            let (p, q) = (a.pixel.unwrap().pixel, b.pixel.unwrap().pixel);
+            assert!(
+                (p.0 - q.0).hypot(p.1 - q.1) > 2.0,
+                "{model}: two centres at one pixel"
+            );
+        }
+        // The centre placed on lands on the pixel asked for.
+        let placed_centre = placed
+            .centres
+            .iter()
+            .filter_map(|c| c.pixel)
+            .map(|p| (p.pixel.0 - pixel.0).hypot(p.pixel.1 - pixel.1))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            placed_centre < 1.0,
+            "{model}: {placed_centre} px from the pixel"
+        );
+    }
+}

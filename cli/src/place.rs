@@ -30,7 +30,9 @@ use glint::shot::{
 ///
 /// One (α, β) serves every patch the layer is drawn on, each in its own frame; the report
 /// shows, for each, how near its highlight comes to a centre there (0 at a centre, below ε
-/// where the highlight shows).
+/// where the highlight shows). Where the layer shows more than once — on several patches, or
+/// twice on one whose normals turn back (an S-bend, a lid) — it warns and lists every centre,
+/// each with the pixel it lands on and whether the frame shows it (docs/tutorial.md).
 ///
 /// With --pin the layer is pinned instead: its pin, added or replaced, names the patch and
 /// (u, v) under the pixel, and its translation is solved there on every frame from then on
@@ -129,6 +131,18 @@ struct Report<'a> {
     alpha: f32,
     beta: f32,
     residuals: Vec<ResidualReport<'a>>,
+    centres: Vec<CentreReport<'a>>,
+}
+
+/// One centre of the placed layer, where it lands and whether the frame shows it there.
+#[derive(Serialize)]
+struct CentreReport<'a> {
+    patch: &'a str,
+    u: f64,
+    v: f64,
+    nearest: f32,
+    pixel: [f64; 2],
+    visible: bool,
 }
 
 #[derive(Serialize)]
@@ -267,6 +281,23 @@ fn report<'a>(job: &'a RenderJob, p: &Placement) -> Report<'a> {
                 covered: r.covered,
             })
             .collect(),
+        centres: p
+            .centres
+            .iter()
+            .map(|c| {
+                let (pixel, visible) = c.pixel.map_or(([f64::NAN; 2], false), |i| {
+                    ([i.pixel.0, i.pixel.1], i.visible)
+                });
+                CentreReport {
+                    patch: &library.patches[c.patch].name,
+                    u: c.uv.0,
+                    v: c.uv.1,
+                    nearest: c.nearest,
+                    pixel,
+                    visible,
+                }
+            })
+            .collect(),
     }
 }
 
@@ -322,6 +353,33 @@ fn write_report(out: &mut dyn Write, r: &Report, p: &Placement) -> std::io::Resu
         number(f64::from(r.alpha)),
         number(f64::from(r.beta))
     )?;
+    if r.centres.len() > 1 {
+        writeln!(
+            out,
+            "warning: the layer shows {} times: it has a centre (a least ‖N − H'‖) at each of",
+            r.centres.len()
+        )?;
+        for c in &r.centres {
+            let seen = if c.visible {
+                "in view"
+            } else {
+                "out of view or hidden"
+            };
+            writeln!(
+                out,
+                "  {:<16} u = {}, v = {}: pixel ({}, {}), {seen}",
+                c.patch,
+                number(c.u),
+                number(c.v),
+                number(c.pixel[0]),
+                number(c.pixel[1])
+            )?;
+        }
+        writeln!(
+            out,
+            "  a mask on the layer keeps one (tune's mask mode draws it; docs/highlights.md)"
+        )?;
+    }
     if r.residuals.len() > 1 {
         writeln!(
             out,

@@ -18,6 +18,7 @@
 //! ```
 
 mod ceiling;
+mod centres;
 mod fingerprint;
 mod frame_check;
 mod frame_fingerprint;
@@ -25,6 +26,7 @@ mod frame_list;
 mod memory;
 mod pixel_of;
 mod place;
+mod place_error;
 pub mod shade_place;
 mod shape_point;
 mod write;
@@ -35,12 +37,14 @@ use std::sync::Arc;
 use thiserror::Error;
 
 use ceiling::MemoryCeiling;
+pub use centres::Centre;
 pub use fingerprint::{Fingerprint, FINGERPRINT_KEY};
 pub use frame_check::{aov_file_names, FileProblem, Scrutiny};
 pub use frame_list::{frame_spec, parse_frames};
 pub use memory::{bytes_text, default_memory_ceiling, estimate_peak_bytes, parse_memory_size};
 pub use pixel_of::{PointInImage, VISIBLE_DEPTH_TOLERANCE};
-pub use place::{LayerChoice, LayerUnder, PlaceError, Placement, Residual};
+pub use place::{LayerChoice, LayerUnder, Placement, Residual};
+pub use place_error::PlaceError;
 pub use shade_place::{ShadeChoice, ShadePlacement};
 pub use shape_point::{ShapePoint, ShapePointError};
 

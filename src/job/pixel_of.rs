@@ -3,7 +3,7 @@
 
 use glam::{DVec3, DVec4};
 
-use super::place::PlaceError;
+use super::place_error::PlaceError;
 use super::RenderJob;
 use crate::render::Aovs;
 

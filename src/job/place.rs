@@ -2,8 +2,9 @@
 //! translation that centres a layer's highlight there.
 
 use glam::Vec2;
-use thiserror::Error;
 
+use super::centres::{centres, Centre};
+use super::place_error::PlaceError;
 use super::{JobError, RenderJob};
 use crate::highlight::{HighlightError, Layer, Shape};
 use crate::render::{Aovs, RenderedFrame};
@@ -39,6 +40,10 @@ pub struct Placement {
     pub translation: Vec2,
     /// How near the placed layer comes to a highlight centre on each patch it is drawn on.
     pub residuals: Vec<Residual>,
+    /// Every centre of the placed layer, on every patch it is drawn on, the deepest first, each
+    /// with where it lands in the frame ([`Centre`]): more than one where the highlight shows
+    /// twice. A centre where the eye sees the surface's back is listed where the frame shows it.
+    pub centres: Vec<Centre>,
 }
 
 /// How near a placed layer's highlight comes to having a centre on one patch: one `(α, β)`
@@ -69,56 +74,6 @@ pub struct LayerUnder {
     pub highlight: usize,
     /// The layer, left to right from 0.
     pub layer: usize,
-}
-
-/// Why a highlight cannot be placed at a pixel.
-#[derive(Debug, Error)]
-pub enum PlaceError {
-    /// The position lies outside the image.
-    #[error("pixel ({x}, {y}) is outside the {width}×{height} image")]
-    OutsideImage {
-        x: f64,
-        y: f64,
-        width: u32,
-        height: u32,
-    },
-    /// No patch is drawn at the pixel.
-    #[error("pixel ({x}, {y}) at frame {frame} shows no patch of the model")]
-    OffModel { x: f64, y: f64, frame: f64 },
-    /// The patch under the pixel has no designed highlight, or not the one asked for.
-    #[error("{0}")]
-    NoHighlight(String),
-    /// The layer asked for does not exist, has no translation, or is pinned.
-    #[error("{0}")]
-    Layer(String),
-    /// The surface point asked for is not on the model: no such patch, or (u, v) outside its
-    /// domain.
-    #[error("{0}")]
-    NoPoint(String),
-    /// A band edge cannot be placed by a shade entry: the patch has none (or not the one asked
-    /// for), the entry has no translation, the patch's tone has no such band, or no translation
-    /// reaches the point.
-    #[error("{0}")]
-    Shade(String),
-    /// The frame could not be read or rendered.
-    #[error(transparent)]
-    Job(#[from] JobError),
-}
-
-impl PlaceError {
-    /// Whether the input is at fault (exit code 2), not the work.
-    #[must_use]
-    pub fn is_bad_input(&self) -> bool {
-        match self {
-            PlaceError::OutsideImage { .. }
-            | PlaceError::OffModel { .. }
-            | PlaceError::NoHighlight(_)
-            | PlaceError::Layer(_)
-            | PlaceError::NoPoint(_)
-            | PlaceError::Shade(_) => true,
-            PlaceError::Job(e) => e.is_bad_input(),
-        }
-    }
 }
 
 /// Samples per side of the grid a patch's residual is searched on.
@@ -152,6 +107,20 @@ impl RenderJob {
             beta: placement.translation.y,
         };
         placement.residuals = residuals(&self.shot, placement.highlight, &placed, &state)?;
+        let mut found = centres(
+            &self.shot,
+            (placement.highlight, &placed),
+            &state,
+            Some((placement.patch, placement.uv)),
+        )
+        .map_err(|e| PlaceError::Layer(e.to_string()))?;
+        for centre in &mut found {
+            centre.pixel = Some(self.pixel_of(frame, centre.patch, centre.uv)?);
+        }
+        // A centre on the side of a surface the eye sees from behind shows only where the frame
+        // shows it: an open sheet's back; on a closed body it lies within, never seen.
+        found.retain(|c| !c.back || c.pixel.is_some_and(|p| p.visible));
+        placement.centres = found;
         Ok(placement)
     }
 
@@ -205,8 +174,8 @@ impl RenderJob {
         })
     }
 
-    /// [`RenderJob::place`] without the residuals (`residuals` is empty): the translation alone,
-    /// for a highlight that follows a pointer.
+    /// [`RenderJob::place`] without the residuals and centres (both empty): the translation
+    /// alone, for a highlight that follows a pointer.
     pub fn place_centre(
         &mut self,
         frame: f64,
@@ -261,6 +230,7 @@ impl RenderJob {
             op,
             translation,
             residuals: Vec::new(),
+            centres: Vec::new(),
         })
     }
 

@@ -4,7 +4,7 @@
 
 use glam::Vec2;
 
-use super::place::PlaceError;
+use super::place_error::PlaceError;
 use super::RenderJob;
 use crate::highlight::{DesignedLight, Op, ShadeStack};
 use crate::param::MAX_STEP;

@@ -4,7 +4,8 @@
 use glam::Vec2;
 use thiserror::Error;
 
-use super::place::{LayerChoice, LayerUnder, PlaceError};
+use super::place::{LayerChoice, LayerUnder};
+use super::place_error::PlaceError;
 use super::RenderJob;
 use crate::highlight::{Shape, OUTLINE_BOUND};
 
