@@ -39,7 +39,7 @@ struct Found {
 }
 
 /// Samples per side of the grid each patch is searched on.
-const GRID: usize = 33;
+pub(super) const GRID: usize = 33;
 
 /// Steps of the compass search that refines each minimum of the grid.
 const REFINE_STEPS: usize = 60;
@@ -200,9 +200,10 @@ pub(crate) fn centres(
     Ok(out)
 }
 
-/// A compass search down `distance` from `(uv, value)` over `domain`: a step along ±u or ±v
-/// that lowers it is taken, and the step halves when none does.
-fn refine(
+/// A compass search down `distance` from `(uv, value)` over `domain`, from a step of a 32nd of
+/// the domain: a step along ±u or ±v that lowers it is taken, and the step halves when none
+/// does, 60 times.
+pub(super) fn refine(
     distance: &dyn Fn((f64, f64)) -> f32,
     domain: Domain,
     mut best: ((f64, f64), f32),

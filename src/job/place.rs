@@ -3,7 +3,7 @@
 
 use glam::Vec2;
 
-use super::centres::{centres, Centre};
+use super::centres::{centres, refine, Centre, GRID};
 use super::place_error::PlaceError;
 use super::{JobError, RenderJob};
 use crate::highlight::{HighlightError, Layer, Shape};
@@ -75,12 +75,6 @@ pub struct LayerUnder {
     /// The layer, left to right from 0.
     pub layer: usize,
 }
-
-/// Samples per side of the grid a patch's residual is searched on.
-const RESIDUAL_GRID: usize = 33;
-
-/// Steps of the compass search that refines the best grid sample.
-const REFINE_STEPS: usize = 60;
 
 impl RenderJob {
     /// Places a highlight layer's centre on the surface point under image position `pixel`
@@ -330,10 +324,10 @@ fn residuals(
             let point = point(uv);
             layer.epsilon - disc.signed(&point.frame, point.half_vector)
         };
-        let last = (RESIDUAL_GRID - 1) as f64;
+        let last = (GRID - 1) as f64;
         let mut best = (f32::INFINITY, domain.center());
-        for i in 0..RESIDUAL_GRID {
-            for j in 0..RESIDUAL_GRID {
+        for i in 0..GRID {
+            for j in 0..GRID {
                 let uv = domain.lerp(i as f64 / last, j as f64 / last);
                 let nearest = distance(uv);
                 if nearest < best.0 {
@@ -341,29 +335,8 @@ fn residuals(
                 }
             }
         }
-        // Compass search from the best sample: a step along ±u or ±v that lowers the
-        // distance is taken, and the step halves when none does.
-        let mut step = (
-            (domain.u.1 - domain.u.0) / last,
-            (domain.v.1 - domain.v.0) / last,
-        );
-        for _ in 0..REFINE_STEPS {
-            let (u, v) = best.1;
-            let better = [(step.0, 0.0), (-step.0, 0.0), (0.0, step.1), (0.0, -step.1)]
-                .into_iter()
-                .map(|(du, dv)| {
-                    let uv = (
-                        (u + du).clamp(domain.u.0, domain.u.1),
-                        (v + dv).clamp(domain.v.0, domain.v.1),
-                    );
-                    (distance(uv), uv)
-                })
-                .find(|candidate| candidate.0 < best.0);
-            match better {
-                Some(candidate) => best = candidate,
-                None => step = (step.0 / 2.0, step.1 / 2.0),
-            }
-        }
+        let (uv, nearest) = refine(&distance, domain, (best.1, best.0));
+        let best = (nearest, uv);
         residuals.push(Residual {
             patch,
             nearest: best.0.max(0.0),
