@@ -1,20 +1,24 @@
 //! [`Stage::Outline`](super::Stage::Outline): ink lines as anti-aliased strokes along curves
-//! found on the mesh — silhouettes, creases, borders and intersections — kept where the depth
-//! buffer shows them.
+//! found on the mesh — silhouettes, creases, borders, material borders, intersections and light
+//! contours — kept where the depth buffer shows them (or drawn in their hidden style where it
+//! does not).
 //!
 //! The curves are decided on the surface, not by comparing neighbouring pixels, so that a line
 //! does not break up when the view turns: a silhouette is where `N·(P − E)` changes sign
 //! ([`contour`]), a border or crease is a piece of a patch's domain boundary ([`border`]) or of
-//! a trimmed patch's trim loops ([`trim_border`]), an
-//! intersection is where two patches pass through each other ([`intersection`], found once per
+//! a trimmed patch's trim loops ([`trim_border`]) — a material border where its two sides'
+//! materials differ — an intersection is where two patches pass through each other ([`intersection`], found once per
 //! mesh: [`MeshLines`]), a light contour where the tone's `N·L` crosses a band threshold
 //! ([`light_contour`]).
 //! Pieces that share an end are joined into lines ([`chain`]); each line is cut into samples
 //! half a pixel apart, each kept when no nearer surface hides it ([`visible`]), and each
 //! visible stretch is drawn as capsules of the line's width ([`stroke`]): where capsules meet,
-//! the joins are round. Each patch's [`LineStyle`] says which kinds of line it draws, how wide,
-//! in what colour and with what taper; a piece on two patches (a seam, an intersection) is
-//! drawn by the wider of the styles that draw its kind.
+//! the joins are round. Where a style draws hidden lines, the hidden samples are given the
+//! number of surfaces in front of them ([`occlusion`]), and the stretches behind few enough are
+//! drawn in the hidden style, cut into dashes ([`dashes`]). Each patch's [`LineStyle`] says
+//! which kinds of line it draws, how wide, in what colour, with what taper and how where
+//! hidden; a piece on two patches (a seam, an intersection) is drawn by the wider of the styles
+//! that draw its kind.
 
 mod border;
 mod chain;
@@ -59,8 +63,8 @@ pub use vector::{part_of, VectorLines, VectorStroke};
 pub(crate) struct LineImage {
     /// Per pixel, the lines' coverage in [0, 1].
     pub alpha: Vec<f32>,
-    /// The lines' colours, linear RGB: one per patch, or a single one when every patch's
-    /// lines have the same.
+    /// The lines' colours, linear RGB: per patch its lines' colour, then per patch its hidden
+    /// lines' colour; or a single one when every one of those is the same.
     palette: Vec<Vec3>,
     /// Per pixel, its colour's index in `palette`; empty when the palette has one colour.
     colour: Vec<u32>,
