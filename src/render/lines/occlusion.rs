@@ -77,12 +77,14 @@ impl<'a> Occluders<'a> {
     ) -> Self {
         let columns = (size.0 as f32 / BIN).ceil().max(1.0) as usize;
         let rows = (size.1 as f32 / BIN).ceil().max(1.0) as usize;
-        let project = |v: u32| {
-            to_screen(
-                view_projection * mesh.positions[v as usize].extend(1.0),
-                size,
-            )
-        };
+        // Each vertex on the image once (None behind the eye): a vertex is shared by about six
+        // triangles.
+        let on_image: Vec<Option<Vec2>> = mesh
+            .positions
+            .par_iter()
+            .with_min_len(4096)
+            .map(|p| to_screen(view_projection * p.extend(1.0), size).map(|(q, _)| q))
+            .collect();
         // Per triangle, the bins its box on the image covers, `None` when it reaches behind
         // the eye, empty when it misses the image or is cut away.
         let cut = MeshCut::of(mesh, library);
@@ -100,7 +102,7 @@ impl<'a> Occluders<'a> {
                 let mut lo = Vec2::splat(f32::INFINITY);
                 let mut hi = Vec2::splat(f32::NEG_INFINITY);
                 for v in mesh.triangles[t] {
-                    let Some((p, _)) = project(v) else {
+                    let Some(p) = on_image[v as usize] else {
                         // Behind the eye: tested everywhere.
                         return (
                             None,
