@@ -25,6 +25,25 @@ queue_empty() {
     done
 }
 
+# Lets the requeued job $1 (its own id: `squeue -o %A`) start again at once rather than wait out
+# Slurm's requeue delay, once its earlier try has left the node (no slurmstepd of it runs) and
+# two seconds have passed since the requeue; answers 1 until then. A try launched sooner fails
+# at once with no output — slurmd refuses a credential issued in the second its job's last one
+# was revoked ("Job credential revoked") — which the delay a real farm keeps never lets happen.
+release_requeued_job() {
+    pgrep -f "slurmstepd: \[$1\." >/dev/null && return 1
+    local requeued
+    requeued="$(scontrol show job "$1" 2>/dev/null | sed -n 's/.*SubmitTime=\([^ ]*\).*/\1/p' | head -n 1)"
+    [ -n "$requeued" ] || return 1
+    [ $(($(date +%s) - $(date -d "$requeued" +%s))) -ge 2 ] || return 1
+    scontrol update JobId="$1" StartTime=now >/dev/null 2>&1 || true
+}
+
+# What Slurm's own daemons said last, for a failure message.
+slurm_logs() {
+    tail -n 30 "$cluster/log/slurmctld.log" "$cluster/log/slurmd.log" 2>/dev/null || true
+}
+
 require_slurm() {
     for tool in munged slurmctld slurmd sbatch squeue scontrol sinfo; do
         command -v "$tool" >/dev/null || { echo "$tool is missing: apt-get install slurm-wlm munge" >&2; exit 2; }

@@ -42,9 +42,9 @@ mkdir -p "$out/teapot_turntable.0006.png"
 # Let a task that Slurm holds back after a requeue start again at once, so that the test does
 # not wait out Slurm's requeue delay.
 release_requeued() {
-    squeue -h -j "$1" -t PENDING -o "%i %r" 2>/dev/null | while read -r task reason; do
+    squeue -h -j "$1" -t PENDING -o "%A %r" 2>/dev/null | while read -r task reason; do
         [ "$reason" = BeginTime ] || continue
-        scontrol update JobId="$task" StartTime=now >/dev/null 2>&1 || true
+        release_requeued_job "$task" || true
     done
 }
 
@@ -93,7 +93,7 @@ restarts() {
 # The task that could not write gave up after exactly --retries requeues.
 gave_up="$(restarts "${array}_1")"
 [ "$gave_up" = "$retries" ] \
-    || fail "task 1 was requeued $gave_up times, not $retries: $(cat "$logs/glint-${array}_1.log"; tail -40 "$work/queue.log")"
+    || fail "task 1 was requeued $gave_up times, not $retries: $(cat "$logs/glint-${array}_1.log"; tail -40 "$work/queue.log"; slurm_logs)"
 # Its log keeps every try: two that requeued themselves, and the last.
 requeues="$(grep -c "failed (1): requeued" "$logs/glint-${array}_1.log" || true)"
 [ "$requeues" = "$retries" ] \
@@ -103,7 +103,7 @@ again="$(restarts "${array}_2")"
 [ "${again:-0}" -ge 1 ] || fail "task 2 was not requeued after its render was killed"
 for frame in 9 10 11 12; do
     [ -s "$out/teapot_turntable.$(printf %04d "$frame").png" ] \
-        || fail "frame $frame is missing after task 2's retry: $(cat "$logs/glint-${array}_2.log"; scontrol show job "${array}_2")"
+        || fail "frame $frame is missing after task 2's retry: $(cat "$logs/glint-${array}_2.log"; scontrol show job "${array}_2"; slurm_logs)"
 done
 
 # The verification job names what is missing as a frame list, and nothing else.

@@ -34,9 +34,13 @@ for _ in $(seq 600); do
     state="$(squeue -h -j "${array}_1" -o %T 2>/dev/null || true)"
     if [ "$state" = RUNNING ] && grep -q "^frame" "$logs/glint-${array}_1.log" 2>/dev/null; then
         scontrol requeue "${array}_1"
-        # Slurm holds a requeued job back for a while; let it start again at once.
-        sleep 1
-        scontrol update JobId="${array}_1" StartTime=now || true
+        # Slurm holds a requeued job back for a while; let it start again as soon as its
+        # first try has left the node.
+        task="$(squeue -h -j "${array}_1" -o %A 2>/dev/null || true)"
+        for _ in $(seq 600); do
+            [ -n "$task" ] && release_requeued_job "$task" && break
+            sleep 0.1
+        done
         requeued=yes
         break
     fi
