@@ -192,6 +192,8 @@ enum Edit {
     LineWidth(f64),
     /// The pin's u.
     PinU(f64),
+    /// The lid's pin holds the shape of this frame.
+    Hold(i64),
     /// The mask's upper u bound.
     MaskU(f64),
     /// The X-Toon texture's colours scaled.
@@ -268,6 +270,9 @@ impl Edit {
                 );
             }
             Edit::PinU(u) => fixture.replace(shot, "u: 0.3, v: 0.5", &format!("u: {u:?}, v: 0.5")),
+            Edit::Hold(frame) => {
+                fixture.replace(shot, "u: 0.3, v: 0.5)", &format!("u: 0.3, v: 0.5, hold: {frame})"))
+            }
             Edit::MaskU(u) => fixture.replace(shot, "u: (0.0, 0.8)", &format!("u: (0.0, {u:?})")),
             Edit::Texture(scale) => {
                 let path = fixture.path("textures/plastic_highlight.png");
@@ -376,6 +381,7 @@ fn edits() -> impl Strategy<Value = Edit> {
         prop::sample::select(vec!["teapot/*", "teapot/spout", "teapot/4"]).prop_map(Edit::Selector),
         (2.5f64..5.0).prop_map(Edit::LineWidth),
         (0.5f64..0.8).prop_map(Edit::PinU),
+        (1i64..=12).prop_map(Edit::Hold),
         (0.2f64..0.5).prop_map(Edit::MaskU),
         (0.3f32..0.7).prop_map(Edit::Texture),
         (0.2f64..0.3).prop_map(Edit::PatchFile),
@@ -493,6 +499,22 @@ fn every_kind_of_edit_changes_the_frames_it_reaches() {
         let (rendered, fingerprinted) = changed_frames(&edit);
         assert_eq!(rendered, expected, "{edit:?}: renders changed");
         assert_eq!(fingerprinted, expected, "{edit:?}: fingerprints changed");
+    }
+}
+
+/// A pin that holds its shape draws the held frame as it was, and every other frame with the
+/// map that holds it: the fingerprint changes on every frame but the held one, and the render
+/// of some.
+#[test]
+fn a_held_shape_changes_every_frame_but_the_held_one() {
+    for held in [1, 9] {
+        let (rendered, fingerprinted) = changed_frames(&Edit::Hold(held));
+        let others: Vec<i64> = FRAMES.iter().copied().filter(|&f| f != held).collect();
+        assert_eq!(fingerprinted, others, "hold {held}: fingerprints changed");
+        assert!(
+            !rendered.is_empty() && rendered.iter().all(|f| others.contains(f)),
+            "hold {held}: renders changed at {rendered:?}"
+        );
     }
 }
 

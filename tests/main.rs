@@ -21,6 +21,7 @@ mod geometry_sphere;
 mod geometry_stability;
 mod geometry_teapot;
 mod hardening;
+mod highlight_hold;
 mod highlight_outline;
 mod highlight_place;
 mod highlight_seams;

@@ -203,6 +203,7 @@ fn layer_fields(layer: &Layer) -> String {
         pin: _,
         frame: _,
         shape,
+        shape_map,
     } = layer;
     let mut fields = format!(
         "epsilon: {}, colour: {}, opacity: {}",
@@ -218,6 +219,17 @@ fn layer_fields(layer: &Layer) -> String {
     }
     if let Some(shape) = shape_text(shape) {
         fields.push_str(&format!(", {shape}"));
+    }
+    if let Some(map) = shape_map {
+        // Solved at the frame for a pin that holds its shape: rows of the map.
+        let m = map.matrix;
+        fields.push_str(&format!(
+            ", holding its shape by the map (({}, {}), ({}, {}))",
+            number(m.x_axis.x),
+            number(m.y_axis.x),
+            number(m.x_axis.y),
+            number(m.y_axis.y)
+        ));
     }
     fields
 }

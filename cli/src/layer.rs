@@ -1,6 +1,6 @@
 //! `glint layer`: a structural edit of one highlight layer — an operation inserted, removed or
-//! moved, a mask added or removed, a pin removed, an outline drawn or keyed, the disc again —
-//! written into the file the layer is in.
+//! moved, a mask added or removed, a pin removed or made to hold its shape, an outline drawn or
+//! keyed, the disc again — written into the file the layer is in.
 
 use std::path::PathBuf;
 
@@ -13,8 +13,8 @@ use glint::highlight::Op;
 use glint::shot::{edit_layer, load_shot, op_text, rounded_number_text, LayerEdit};
 
 /// Change the structure of one highlight layer in its file: insert, remove or move an
-/// operation of its stack, add or remove its mask, remove its pin, or give it a drawn outline
-/// (or the disc back).
+/// operation of its stack, add or remove its mask, remove its pin or make it hold the layer's
+/// shape, or give it a drawn outline (or the disc back).
 ///
 /// The layer is layer --layer (left to right through the expression's Booleans, from 0) of
 /// highlight entry --highlight (from 0, includes first); the edit is written into the file the
@@ -24,6 +24,11 @@ use glint::shot::{edit_layer, load_shot, op_text, rounded_number_text, LayerEdit
 /// (`u: (0, 1), v: (0, 1)`), to narrow with `glint key … --at '…mask.u[0]'`. To add or move a
 /// pin, use `glint place --pin`.
 ///
+/// --hold FRAME makes a pinned layer hold the shape it has at FRAME: on every other frame its
+/// highlight covers as much of the surface about the pin, as long and as wide, as it does
+/// there, while the view and the light change (docs/highlights.md, "Holding the shape").
+/// --no-hold lets the shape follow the view again.
+///
 /// --outline gives the layer a drawn outline of corners in the coordinates
 /// t' = ((H', du), (H', dv)) (docs/highlights.md, "Drawn outlines"), written to 4 decimals:
 /// `shape: Outline([…])`; with --key-at FRAME it is the outline's key at that frame in
@@ -32,16 +37,17 @@ use glint::shot::{edit_layer, load_shot, op_text, rounded_number_text, LayerEdit
 /// constant keyed with `glint key` does). --disc takes the shape out: the ε-disc again.
 ///
 /// Exit code 2 for an index out of range, an operation that is not valid, a mask or pin that is
-/// not there or already is, an outline that is not a simple closed curve within |t'| ≤ 0.99,
+/// not there or already is, a hold on a layer with no pin, an outline that is not a simple closed curve within |t'| ≤ 0.99,
 /// a key with another number of points than the other keys.
 #[derive(Debug, Args)]
-#[command(group(ArgGroup::new("edit").required(true).args(["insert_op", "remove_op", "move_op", "add_mask", "remove_mask", "unpin", "outline", "disc"])))]
+#[command(group(ArgGroup::new("edit").required(true).args(["insert_op", "remove_op", "move_op", "add_mask", "remove_mask", "unpin", "hold", "no_hold", "outline", "disc"])))]
 #[command(after_help = "Examples:
   glint layer shots/sphere_ops.ron --highlight 0 --insert-op 'Scale(delta: 0.5, axis: V)'
   glint layer shots/sphere_ops.ron --highlight 0 --insert-op 'Rotate(degrees: 20.0)' --at 0
   glint layer shots/sphere_ops.ron --highlight 0 --move-op 2 --to 0
   glint layer shots/sphere_ops.ron --highlight 0 --remove-op 1
   glint layer shots/crescent.ron --highlight 0 --layer 1 --add-mask
+  glint layer shots/teapot_turntable.ron --highlight 1 --hold 1
   glint layer shots/sphere_ops.ron --highlight 0 --outline '(0.0, 0.3), (0.26, -0.15), (-0.26, -0.15)'
   glint layer shots/sphere_ops.ron --highlight 0 --outline '(0.0, 0.2), (0.17, -0.1), (-0.17, -0.1)' --key-at 24
   glint layer shots/sphere_ops.ron --highlight 0 --outline '(0.0, 0.4), (0.35, -0.2), (-0.35, -0.2)' --key-at 48
@@ -79,6 +85,12 @@ pub struct LayerArgs {
     /// Remove the layer's pin: its translation is used as written again
     #[arg(long)]
     unpin: bool,
+    /// Make the layer's pin hold the shape the layer has at this frame
+    #[arg(long, value_name = "FRAME", allow_negative_numbers = true)]
+    hold: Option<i64>,
+    /// Let the layer's shape follow the view again: its pin's hold taken out
+    #[arg(long)]
+    no_hold: bool,
     /// Give the layer this drawn outline of corners (x, y) in t', e.g.
     /// '(0.0, 0.3), (0.26, -0.15), (-0.26, -0.15)'
     #[arg(long, value_name = "POINTS")]
@@ -172,6 +184,16 @@ pub fn run(args: &LayerArgs) -> Result<(), CliError> {
         )
     } else if args.disc {
         (LayerEdit::Disc, "made the shape the disc again".into())
+    } else if let Some(frame) = args.hold {
+        (
+            LayerEdit::Hold { frame: Some(frame) },
+            format!("the pin holds the shape of frame {frame}"),
+        )
+    } else if args.no_hold {
+        (
+            LayerEdit::Hold { frame: None },
+            "the shape follows the view again".into(),
+        )
     } else {
         (LayerEdit::Unpin, "removed the pin".into())
     };

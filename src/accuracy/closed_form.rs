@@ -26,6 +26,8 @@ pub enum ClosedFormError {
     Outline { layer: usize },
     /// Layer `layer` is pinned: its translation is solved from a surface point first.
     Pinned { layer: usize },
+    /// Layer `layer` holds a shape by a solved map, which the reference does not follow.
+    ShapeMap { layer: usize },
 }
 
 impl fmt::Display for ClosedFormError {
@@ -38,6 +40,10 @@ impl fmt::Display for ClosedFormError {
             Self::Pinned { layer } => write!(
                 f,
                 "layer {layer}: a pinned layer must be centred before the reference reads it"
+            ),
+            Self::ShapeMap { layer } => write!(
+                f,
+                "layer {layer}: a held shape's map has no closed form in the reference; let the pin's hold go"
             ),
         }
     }
@@ -65,6 +71,9 @@ impl ClosedForm {
             }
             if layer.pin.is_some() {
                 return Err(ClosedFormError::Pinned { layer: number });
+            }
+            if layer.shape_map.is_some() {
+                return Err(ClosedFormError::ShapeMap { layer: number });
             }
         }
         Ok(Self { expr: expr.clone() })
@@ -322,11 +331,18 @@ mod tests {
             member: 0,
             u: 0.5,
             v: 0.5,
+            hold: None,
         });
         let expr = Expr::Union(cap(vec![], 0.1, [1.0; 3]), Box::new(Expr::Layer(layer)));
         assert_eq!(
             ClosedForm::try_new(&expr),
             Err(ClosedFormError::Pinned { layer: 2 })
+        );
+        let mut held = Layer::new(vec![], 0.1, [1.0; 3]);
+        held.shape_map = Some(crate::highlight::ShapeMap::IDENTITY);
+        assert_eq!(
+            ClosedForm::try_new(&Expr::Layer(held)),
+            Err(ClosedFormError::ShapeMap { layer: 1 })
         );
     }
 

@@ -480,6 +480,7 @@ mod tests {
             pin: None,
             frame: crate::highlight::LayerFrame::Patch,
             shape: crate::highlight::Shape::Disc,
+            shape_map: None,
         })
     }
 

@@ -9,10 +9,11 @@ use super::footprint::Footprint;
 use super::frame::TangentFrame;
 use super::inside::{coverage_from_signed, signed_inside};
 use super::layer_frame::{LayerFrame, PreparedFrame};
-use super::ops::Op;
+use super::ops::{Op, PreparedOp};
 use super::pin::Pin;
 use super::point_chunk::PointChunk;
 use super::shape::{PreparedShape, Shape};
+use super::shape_map::ShapeMap;
 use super::stack::{LocalChunk, PreparedStack};
 use crate::math::LANES;
 use crate::param::{check, Range};
@@ -64,11 +65,17 @@ pub struct Layer<P = f32> {
     /// the tangent coordinates `t' = ((H', du), (H', dv))`, after the stack as the disc is.
     #[serde(default, skip_serializing_if = "Shape::is_disc")]
     pub shape: Shape<P>,
+    /// The map that holds a pinned layer's shape on this frame, applied right after the placing
+    /// translation ([`ShapeMap`]): solved with the centring for a pin that holds
+    /// ([`Pin::hold`]), never written. None: the shape as the view makes it.
+    #[serde(skip)]
+    pub shape_map: Option<ShapeMap>,
 }
 
 /// Every field in order, as `#[derive(Debug)]` prints them, but the frame only when it is not the
-/// patch's own and the shape only when it is not the disc: a layer in its patch's frame with the
-/// disc prints as layers did before they had frames and shapes, so that what a frame's
+/// patch's own, the shape only when it is not the disc and the shape map only when there is
+/// one: a layer in its patch's frame with the disc and no held shape prints as layers did
+/// before they had frames, shapes and maps, so that what a frame's
 /// fingerprint hashes of a shot without them stays the same.
 impl<P: std::fmt::Debug> std::fmt::Debug for Layer<P> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -86,6 +93,9 @@ impl<P: std::fmt::Debug> std::fmt::Debug for Layer<P> {
         }
         if !self.shape.is_disc() {
             layer.field("shape", &self.shape);
+        }
+        if let Some(map) = &self.shape_map {
+            layer.field("shape_map", map);
         }
         layer.finish()
     }
@@ -127,6 +137,7 @@ impl Layer {
             pin: None,
             frame: LayerFrame::Patch,
             shape: Shape::Disc,
+            shape_map: None,
         }
     }
 }
@@ -147,6 +158,7 @@ impl<P: Clone> Layer<P> {
             pin: self.pin.clone(),
             frame: self.frame.clone(),
             shape: self.shape.clone(),
+            shape_map: self.shape_map,
         }
     }
 }
@@ -170,6 +182,7 @@ impl<P> Layer<P> {
             pin: self.pin.as_ref().map(|p| p.map(&mut f)),
             frame: self.frame.map(&mut f),
             shape: self.shape.map(&mut f),
+            shape_map: self.shape_map,
         }
     }
 }
@@ -262,7 +275,8 @@ impl Layer<f32> {
         self.frame.validate()
     }
 
-    /// Validates and precomputes the per-point form. A pinned layer is first centred on its
+    /// Validates and precomputes the per-point form, with the shape map, where there is one,
+    /// right after the placing translation. A pinned layer is first centred on its
     /// point ([`centred_on`](Self::centred_on)) by whoever knows the point; with its pin still
     /// set it is an error, never a translation silently left as written. A drawn outline is
     /// checked for its values but not for crossing itself ([`Outline::prepare`]): a frame
@@ -276,13 +290,17 @@ impl Layer<f32> {
                 patch: pin.patch.clone(),
             });
         }
+        let mut ops = self
+            .stack
+            .iter()
+            .map(Op::prepare)
+            .collect::<Result<Vec<_>, _>>()?;
+        if let Some(map) = self.shape_map {
+            let after = self.placing_translation().map_or(0, |at| at + 1);
+            ops.insert(after, PreparedOp::Linear(map.matrix));
+        }
         Ok(PreparedLayer {
-            stack: PreparedStack::new(
-                self.stack
-                    .iter()
-                    .map(Op::prepare)
-                    .collect::<Result<Vec<_>, _>>()?,
-            ),
+            stack: PreparedStack::new(ops),
             epsilon: self.epsilon,
             paint: Paint {
                 colour: Vec3::from_array(self.colour),
@@ -520,6 +538,7 @@ mod tests {
             pin: None,
             frame: LayerFrame::Patch,
             shape: Shape::Disc,
+            shape_map: None,
         }
     }
 
@@ -783,6 +802,44 @@ mod tests {
         let mut seen = Vec::new();
         l.map(|p| *p + 1.0).for_each_param(|p| seen.push(*p));
         assert_eq!(seen, [1.1, 2.0, 2.0, 2.0, 2.0, 1.0, 1.0, 1.0]);
+    }
+
+    #[test]
+    fn a_shape_map_acts_right_after_the_placing_translation() {
+        // The map R(−30°) is the rotation op's: a layer with it after its translation is the
+        // layer with Rotate(30) there, and not the one with Rotate(30) at the end.
+        let translate = Op::Translate {
+            alpha: 0.05,
+            beta: -0.02,
+        };
+        let scale = Op::Scale {
+            delta: 0.7,
+            axis: crate::highlight::Axis::U,
+        };
+        let mut held = layer(vec![translate.clone(), scale.clone()]);
+        let (s, c) = 30f32.to_radians().sin_cos();
+        held.shape_map = Some(ShapeMap {
+            matrix: glam::Mat2::from_cols(Vec2::new(c, -s), Vec2::new(s, c)),
+        });
+        let rotate = Op::Rotate { degrees: 30.0 };
+        let turned = layer(vec![translate.clone(), rotate.clone(), scale.clone()]);
+        let last = layer(vec![translate, scale, rotate]);
+        let (held, turned, last) = (
+            held.prepare().unwrap(),
+            turned.prepare().unwrap(),
+            last.prepare().unwrap(),
+        );
+        let mut apart = 0.0_f32;
+        for i in 0..40 {
+            let t = i as f32 * 0.157;
+            let h = Vec3::new(0.2 * t.cos(), 0.2 * t.sin(), 1.0).normalize();
+            let s = held.signed(&FRAME, h);
+            assert!((s - turned.signed(&FRAME, h)).abs() < 1e-6, "{i}");
+            apart = apart.max((s - last.signed(&FRAME, h)).abs());
+        }
+        assert!(apart > 1e-3, "{apart}");
+        // The map prints only when there is one.
+        assert!(!format!("{:?}", layer(vec![])).contains("shape_map"));
     }
 
     #[test]

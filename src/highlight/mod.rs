@@ -30,6 +30,7 @@ mod pin;
 mod point_chunk;
 mod polygon;
 mod shape;
+mod shape_map;
 mod shape_text;
 mod stack;
 
@@ -55,4 +56,5 @@ pub use pin::Pin;
 pub(crate) use point_chunk::PointChunk;
 pub use polygon::PreparedOutline;
 pub use shape::{PreparedShape, Shape};
+pub use shape_map::{ShapeMap, SHAPE_MAP_RANGE};
 pub use stack::PreparedStack;

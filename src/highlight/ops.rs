@@ -282,6 +282,9 @@ pub enum PreparedOp {
         /// The style.
         style: SquareStyle,
     },
+    /// `t ← M t`: the map a pin that holds its layer's shape solves on each frame
+    /// ([`ShapeMap`](super::ShapeMap)); no file writes it. Linear, so homogeneous and odd.
+    Linear(glam::Mat2),
 }
 
 /// The `sgn` of Anjyo & Hiramitsu 2003, with `sgn(0) = sgn(−0) = +1`.
@@ -400,7 +403,7 @@ impl PreparedOp {
                 SquareStyle::PerAxis => true,
                 SquareStyle::Tangent => false,
             },
-            PreparedOp::Rotate { .. } | PreparedOp::Scale { .. } => false,
+            PreparedOp::Rotate { .. } | PreparedOp::Scale { .. } | PreparedOp::Linear(_) => false,
         }
     }
 
@@ -442,6 +445,7 @@ impl PreparedOp {
                 }),
                 Exponent::Real(r) => square(target, style, sigma, |x| x.powf(r)),
             },
+            PreparedOp::Linear(m) => target.run(|t| m * t),
         }
     }
 

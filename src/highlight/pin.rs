@@ -12,7 +12,8 @@ use serde::{Deserialize, Serialize};
 /// does not [`prepare`](super::Layer::prepare).
 ///
 /// RON: `(patch: "teapot/lid", u: 0.5, v: 0.25)`, or with keys
-/// `(patch: "teapot/5", u: [(1, 0.2), (48, 0.6)], v: 0.5)`.
+/// `(patch: "teapot/5", u: [(1, 0.2), (48, 0.6)], v: 0.5)`; holding the shape the layer has at
+/// frame 1, `(patch: "teapot/24", u: 0.5, v: 0.5, hold: 1)`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Pin<P = f32> {
@@ -26,6 +27,12 @@ pub struct Pin<P = f32> {
     pub u: P,
     /// The v parameter, inside the patch's domain.
     pub v: P,
+    /// The frame whose shape the layer holds around the point: on every frame a linear map of
+    /// the tangent coordinates is solved so that the highlight covers the surface about the
+    /// point as it does at this frame, in size, aspect and direction, while the view and light
+    /// change ([`ShapeMap`](super::ShapeMap)). None (the default): the shape follows the view.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hold: Option<i64>,
 }
 
 impl<P> Pin<P> {
@@ -37,6 +44,7 @@ impl<P> Pin<P> {
             member: self.member,
             u: f(&self.u),
             v: f(&self.v),
+            hold: self.hold,
         }
     }
 }

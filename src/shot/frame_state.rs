@@ -41,12 +41,37 @@ pub struct FrameState {
     pub lines: Vec<LineFields>,
 }
 
+/// The frames the pins of one frame hold their shapes from ([`Pin::hold`]), each posed once.
+///
+/// [`Pin::hold`]: crate::highlight::Pin::hold
+#[derive(Default)]
+pub(super) struct HeldFrames(Vec<FrameState>);
+
 impl Shot {
     /// Every track read at `frame` (fractional frames allowed). Pure: the same frame always
     /// gives the same state, and nothing is read from or written to disk.
     #[must_use]
     pub fn at(&self, frame: f64) -> FrameState {
-        let mut state = FrameState {
+        let mut state = self.posed_at(frame);
+        // The frames pins hold their shapes from, posed once each.
+        let mut held = HeldFrames::default();
+        state.highlights = self
+            .highlights
+            .iter()
+            .enumerate()
+            .map(|(entry, h)| {
+                let mut expr = h.expr.map(|t| t.at(frame));
+                self.centre_pins(entry, &mut expr, &state, &mut held);
+                expr
+            })
+            .collect();
+        state
+    }
+
+    /// Every track but the highlights' read at `frame`: the model posed, the camera, light,
+    /// materials, shade and lines; no highlight entry.
+    fn posed_at(&self, frame: f64) -> FrameState {
+        FrameState {
             frame,
             library: self.library_at(frame),
             camera: self.camera_at(frame),
@@ -56,18 +81,20 @@ impl Shot {
             shade: self.shade.iter().map(|s| s.at(frame)).collect(),
             outlines: self.outlines.as_ref().map(|o| o.at(frame)),
             lines: self.lines.iter().map(|l| l.at(frame)).collect(),
+        }
+    }
+
+    /// The state at `frame` without its highlights, as a pin that holds its shape from that
+    /// frame reads it: posed once per frame asked for.
+    pub(super) fn held_frame<'a>(&self, held: &'a mut HeldFrames, frame: i64) -> &'a FrameState {
+        let index = match held.0.iter().position(|s| s.frame == frame as f64) {
+            Some(index) => index,
+            None => {
+                held.0.push(self.posed_at(frame as f64));
+                held.0.len() - 1
+            }
         };
-        state.highlights = self
-            .highlights
-            .iter()
-            .enumerate()
-            .map(|(entry, h)| {
-                let mut expr = h.expr.map(|t| t.at(frame));
-                self.centre_pins(entry, &mut expr, &state);
-                expr
-            })
-            .collect();
-        state
+        &held.0[index]
     }
 
     /// The camera's tracks read at `frame`.

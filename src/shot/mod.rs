@@ -21,6 +21,7 @@ mod output;
 mod params;
 mod pin;
 mod pose;
+mod shape_hold;
 mod source;
 mod transform;
 mod validated;

@@ -2,7 +2,7 @@
 //! every frame, and on each frame the layer's translation solved for its point.
 
 use super::file::HighlightSpec;
-use super::frame_state::FrameState;
+use super::frame_state::{FrameState, HeldFrames};
 use super::source::Source;
 use super::validated::Shot;
 use super::written::Written;
@@ -100,7 +100,18 @@ impl Shot {
     /// so that a pin on a moving part stays on its point of the part; the pins are cleared. A
     /// layer whose centring fails (an invalid operation before its translation) keeps its pin,
     /// so that preparing it reports the error.
-    pub(super) fn centre_pins(&self, entry: usize, expr: &mut Expr, state: &FrameState) {
+    ///
+    /// A pin that holds its shape ([`Pin::hold`]) on a frame other than the held one also gets
+    /// the map that keeps its highlight on the surface as it lies there ([`Shot::shape_map`]):
+    /// the layer as read at this frame, centred on the same (u, v) on the held frame's model,
+    /// under its camera and light.
+    pub(super) fn centre_pins(
+        &self,
+        entry: usize,
+        expr: &mut Expr,
+        state: &FrameState,
+        held: &mut HeldFrames,
+    ) {
         for (k, layer) in expr.layers_mut().into_iter().enumerate() {
             let (Some(pin), Some(patch)) = (&layer.pin, self.pinned_patch(entry, k)) else {
                 continue;
@@ -110,11 +121,21 @@ impl Shot {
             // Centred in the layer's frame as the pinned patch draws it; the layer keeps its axis
             // in the model's coordinates.
             let drawn = self.layer_on(layer, patch, state.frame);
-            if let Ok(centred) = drawn.centred_at(&point.frame, point.half_vector) {
-                let frame = std::mem::replace(&mut layer.frame, centred.frame.clone());
-                *layer = centred;
-                layer.frame = frame;
+            let Ok(mut centred) = drawn.centred_at(&point.frame, point.half_vector) else {
+                continue;
+            };
+            if let Some(frame) = pin.hold.filter(|&f| f as f64 != state.frame) {
+                let held_state = self.held_frame(held, frame);
+                let point = self.highlight_point(held_state, patch, uv);
+                let drawn = self.layer_on(layer, patch, held_state.frame);
+                if let Ok(then) = drawn.centred_at(&point.frame, point.half_vector) {
+                    centred.shape_map =
+                        self.shape_map((&centred, state), (&then, held_state), patch, uv);
+                }
             }
+            let frame = std::mem::replace(&mut layer.frame, centred.frame.clone());
+            *layer = centred;
+            layer.frame = frame;
         }
     }
 

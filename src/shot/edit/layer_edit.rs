@@ -35,6 +35,10 @@ pub enum LayerEdit {
     Pin { patch: String, u: f32, v: f32 },
     /// The pin taken out: the layer's translation is used as written again.
     Unpin,
+    /// The pin made to hold the shape the layer has at `frame` (`hold: frame` in the pin,
+    /// replacing the frame it held), or with None to let the shape follow the view again
+    /// (the pin's `hold` taken out).
+    Hold { frame: Option<i64> },
     /// The shape made the drawn outline of the corners `points`, in the coordinates
     /// `t′ = ((H′, du), (H′, dv))` (docs/highlights.md, "Drawn outlines"), each coordinate
     /// written to 4 decimal places. With `key: None`, the plain `shape: Outline([…])` in place
@@ -80,14 +84,22 @@ impl LayerEdit {
                 }
             }
             LayerEdit::Pin { patch, u, v } => {
+                // A pin moved keeps the shape it held.
+                let hold = layer.pin.as_ref().and_then(|pin| pin.hold);
                 layer.pin = Some(Pin {
                     patch: patch.clone(),
                     member: 0,
                     u: Track::Constant(*u),
                     v: Track::Constant(*v),
+                    hold,
                 });
             }
             LayerEdit::Unpin => layer.pin = None,
+            LayerEdit::Hold { frame } => {
+                if let Some(pin) = &mut layer.pin {
+                    pin.hold = *frame;
+                }
+            }
             LayerEdit::Outline { key, points } => reshaped(&mut layer.shape, *key, points),
             LayerEdit::Disc => layer.shape = Shape::Disc,
         }
@@ -185,6 +197,18 @@ pub fn edit_layer(
         LayerEdit::Unpin if parsed.pin.is_none() => {
             return Err(bad("the layer has no pin to remove".to_string()))
         }
+        LayerEdit::Hold { .. } if parsed.pin.is_none() => {
+            return Err(bad(
+                "the layer has no pin, and only a pinned layer holds its shape: pin it first \
+                 (glint place --pin)"
+                    .to_string(),
+            ))
+        }
+        LayerEdit::Hold { frame: None }
+            if parsed.pin.as_ref().is_some_and(|p| p.hold.is_none()) =>
+        {
+            return Err(bad("the layer's pin holds no shape to let go".to_string()))
+        }
         LayerEdit::Pin { u, v, .. } if !(u.is_finite() && v.is_finite()) => {
             return Err(bad(format!(
                 "a pin's (u, v) must be finite, not ({u}, {v})"
@@ -214,6 +238,7 @@ pub fn edit_layer(
         | LayerEdit::PinTo { .. }
         | LayerEdit::Pin { .. }
         | LayerEdit::Unpin
+        | LayerEdit::Hold { .. }
         | LayerEdit::Disc => {}
     }
     edit.apply_to(parsed);
@@ -286,8 +311,12 @@ pub fn edit_layer(
             vec![remove_item(text, &fields, index)]
         }
         LayerEdit::Pin { patch, u, v } => {
+            let hold = match parsed.pin.as_ref().and_then(|pin| pin.hold) {
+                Some(frame) => format!(", hold: {frame}"),
+                None => String::new(),
+            };
             let written = format!(
-                "pin: (patch: {}, u: {}, v: {})",
+                "pin: (patch: {}, u: {}, v: {}{hold})",
                 serde_json::to_string(patch).unwrap_or_default(),
                 number_text(*u),
                 number_text(*v)
@@ -309,6 +338,25 @@ pub fn edit_layer(
             let index = field_index(text, &fields, "pin")
                 .ok_or_else(|| unchecked("the pin is not written as it reads"))?;
             vec![remove_item(text, &fields, index)]
+        }
+        LayerEdit::Hold { frame } => {
+            let mut pin_steps = steps.clone();
+            pin_steps.push(Field("pin"));
+            let fields = try_item_spans(text, &pin_steps)
+                .ok_or_else(|| unchecked("the pin is not written as it reads"))?;
+            let held = field_index(text, &fields, "hold");
+            match (frame, held) {
+                (Some(frame), Some(index)) => vec![Splice {
+                    span: fields[index].clone(),
+                    text: format!("hold: {frame}"),
+                }],
+                (Some(frame), None) => {
+                    vec![insert_item(text, &fields, None, &format!("hold: {frame}"))
+                        .ok_or_else(|| unchecked("the pin is not written as it reads"))?]
+                }
+                (None, Some(index)) => vec![remove_item(text, &fields, index)],
+                (None, None) => return Err(unchecked("the pin's hold is not written as it reads")),
+            }
         }
         LayerEdit::Outline { key, points } => match (key, &keyed_at) {
             (Some(frame), Some(frames)) => {
@@ -546,6 +594,49 @@ mod tests {
         assert!(e.to_string().contains("no pin to remove"), "{e}");
         let e = edit_layer(&text, 0, 1, &pin(f32::NAN, 0.5)).unwrap_err();
         assert!(e.to_string().contains("finite"), "{e}");
+    }
+
+    #[test]
+    fn a_pin_holds_a_shape_keeps_it_when_moved_and_lets_it_go() {
+        let text = shot("[]", "");
+        let hold = |frame| LayerEdit::Hold { frame };
+        let e = edit_layer(&text, 0, 1, &hold(Some(12))).unwrap_err();
+        assert!(e.to_string().contains("only a pinned layer holds"), "{e}");
+        let keyed = shot(
+            "[]",
+            "\n            pin: (patch: \"ball/body\", member: 2, u: 0.5, v: [(1, 0.25)]),",
+        );
+        // The hold goes into the pin, which keeps its keys and member.
+        let held = edit_layer(&keyed, 0, 1, &hold(Some(12))).unwrap();
+        assert_eq!(
+            held,
+            shot(
+                "[]",
+                "\n            pin: (patch: \"ball/body\", member: 2, u: 0.5, v: [(1, 0.25)], hold: 12),"
+            )
+        );
+        let moved = edit_layer(&held, 0, 1, &hold(Some(-3))).unwrap();
+        assert!(moved.contains("v: [(1, 0.25)], hold: -3)"), "{moved}");
+        // A pin put elsewhere keeps the shape it held.
+        let repinned = edit_layer(
+            &moved,
+            0,
+            1,
+            &LayerEdit::Pin {
+                patch: "ball/4".to_string(),
+                u: 0.75,
+                v: 0.125,
+            },
+        )
+        .unwrap();
+        assert!(
+            repinned.contains("pin: (patch: \"ball/4\", u: 0.75, v: 0.125, hold: -3)"),
+            "{repinned}"
+        );
+        let released = edit_layer(&held, 0, 1, &hold(None)).unwrap();
+        assert_eq!(released, keyed);
+        let e = edit_layer(&keyed, 0, 1, &hold(None)).unwrap_err();
+        assert!(e.to_string().contains("holds no shape"), "{e}");
     }
 
     /// The outline of layer 1 as `text` reads: each key's frame (none for a plain outline) with

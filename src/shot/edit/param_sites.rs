@@ -436,6 +436,8 @@ fn layer_sites<'a>(
         frame: _,
         // Nor has a drawn outline's points.
         shape: _,
+        // A held shape's map is solved, never written.
+        shape_map: _,
     } = l;
     op_sites(stack, &mut |index, param, steps, track| {
         site(LayerParam::Op { index, param }, &steps, track);
