@@ -551,3 +551,150 @@ fn a_shade_drag_keys_the_translation_that_puts_the_band_edge_under_the_pointer()
     assert_eq!(refused.len(), 2, "{refused:?}");
     assert_eq!(std::fs::read_to_string(&served.shot).unwrap(), written);
 }
+
+/// The spout of the teapot seen from the side, its small highlight placed where its S-bend turns
+/// the normals back, so that it shows twice on one patch; served at 320 × 240.
+fn serve_spout() -> (tempfile::TempDir, PathBuf, TuneServer) {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("spout.ron");
+    let write = |alpha: f32, beta: f32| {
+        let text = format!(
+            r#"Shot(
+    resolution: (320, 240),
+    frames: (1, 1),
+    fps: 24,
+    output: "out/spout.####.png",
+    instances: [(name: "m", file: "{model}", material: "grey")],
+    materials: {{ "grey": Cel(base: (0.1, 0.1, 0.1), bands: [(0.0, (0.5, 0.5, 0.5))]) }},
+    camera: (eye: (1.0, -6.0, 2.0), target: (0.0, 0.0, 0.0), projection: Orthographic(height: 6.0)),
+    light: Directional(towards: (0.26, -0.87, 0.43)),
+    highlights: [(patches: "m/spout", expr: Layer((stack: [Translate(alpha: {alpha}, beta: {beta})], epsilon: 0.01, colour: (1.0, 1.0, 1.0))))],
+    render: (preset: Final),
+)"#,
+            model = repo_file("patches/teapot.bpt").display(),
+        );
+        std::fs::write(&shot, text).unwrap();
+    };
+    write(0.0, 0.0);
+    let mut job = RenderJob::load(&shot, &Overrides::default()).unwrap();
+    let placed = job
+        .place(1.0, (245.0, 88.0), glint::job::LayerChoice::default())
+        .unwrap();
+    write(placed.translation.x, placed.translation.y);
+    let session = Session::open(&shot, None).expect("the shot opens");
+    let server = TuneServer::start(session, &ServerOptions::default()).expect("the server starts");
+    (dir, shot, server)
+}
+
+/// The centres overlay crosses every centre of the chosen layer, and the crosses are where the
+/// highlight shows: each in view lies on its own blob of the rendered matte, the S-bend gives
+/// two in view, and a blob without one is near a centre the frame hides (the spout's tip shows
+/// an edge of a highlight centred out of sight). A frame with unsaved changes (a drag) carries
+/// none.
+#[test]
+fn the_centres_overlay_crosses_each_blob_of_the_highlight_once() {
+    let (_dir, shot, server) = serve_spout();
+    let token = server.token().to_string();
+    let post = |body: &Value| {
+        let reply = request(
+            server.address(),
+            "POST",
+            "/api/frame?format=raw",
+            &[
+                ("X-Glint-Token", &token),
+                ("Content-Type", "application/json"),
+            ],
+            &serde_json::to_vec(body).unwrap(),
+        );
+        assert_eq!(reply.status, 200, "{}", reply.text());
+        reply
+    };
+    let crossed = post(&json!({"frame": 1, "overlays": {"centres": [0, 0]}}));
+    let listed = crossed
+        .header("x-glint-centres")
+        .expect("the centres")
+        .to_string();
+    let centres: Vec<(f64, f64, bool)> = listed
+        .split(';')
+        .map(|c| {
+            let v: Vec<f64> = c.split(',').map(|x| x.parse().unwrap()).collect();
+            (v[0], v[1], v[2] == 1.0)
+        })
+        .collect();
+    let shown: Vec<(f64, f64)> = centres.iter().filter(|c| c.2).map(|c| (c.0, c.1)).collect();
+    assert!(shown.len() >= 2, "{listed}");
+
+    // The matte of a local render, its blobs apart.
+    let overrides = Overrides {
+        aovs: Some(vec![Aov::Matte]),
+        ..Overrides::default()
+    };
+    let mut job = RenderJob::load(&shot, &overrides).unwrap();
+    let image = job.render_frame(1.0).unwrap();
+    let (w, h) = (image.width as usize, image.height as usize);
+    let matte = image.aovs.matte.unwrap();
+    let on: Vec<bool> = matte.iter().map(|&m| m >= 0.5).collect();
+    let (label, sizes) = crate::common::labels(&on, (w, h));
+    // The blob within 2 pixels of a point, if any.
+    let blob_near = |(x, y): (f64, f64)| {
+        let (cx, cy) = (x.round() as i64, y.round() as i64);
+        (-2i64..=2)
+            .flat_map(|dy| (-2i64..=2).map(move |dx| (cx + dx, cy + dy)))
+            .filter(|&(px, py)| px >= 0 && py >= 0 && px < w as i64 && py < h as i64)
+            .map(|(px, py)| label[py as usize * w + px as usize])
+            .find(|&l| l != usize::MAX)
+    };
+    let mut held: Vec<usize> = shown
+        .iter()
+        .map(|&c| blob_near(c).unwrap_or_else(|| panic!("the cross at {c:?} is off the matte")))
+        .collect();
+    held.sort_unstable();
+    held.dedup();
+    assert_eq!(held.len(), shown.len(), "two crosses on one blob: {listed}");
+    // Every other blob is where the frame shows part of a highlight whose centre it hides:
+    // near a centre listed as out of view.
+    let hidden: Vec<(f64, f64)> = centres
+        .iter()
+        .filter(|c| !c.2)
+        .map(|c| (c.0, c.1))
+        .collect();
+    for (id, &size) in sizes.iter().enumerate() {
+        if size < 4 || held.contains(&id) {
+            continue;
+        }
+        let near_hidden = (0..label.len()).filter(|&k| label[k] == id).any(|k| {
+            let (x, y) = ((k % w) as f64, (k / w) as f64);
+            hidden
+                .iter()
+                .any(|&(cx, cy)| (x - cx).hypot(y - cy) <= 12.0)
+        });
+        assert!(
+            near_hidden,
+            "blob {id} of {size} px has no centre: {listed}"
+        );
+    }
+
+    // Each cross is drawn: magenta on its arms, the frame as rendered elsewhere.
+    let plain = post(&json!({"frame": 1}));
+    assert!(plain.header("x-glint-centres").is_none());
+    let (rgba, bare) = (&crossed.body, &plain.body);
+    for &(x, y) in &shown {
+        let (px, py) = (x.round() as usize + 5, y.round() as usize);
+        let k = 4 * (py * w + px);
+        assert_eq!(
+            &rgba[k..k + 3],
+            [255, 60, 200],
+            "the arm right of ({x}, {y})"
+        );
+    }
+    let far = 4 * (5 * w + 5);
+    assert_eq!(&rgba[far..far + 4], &bare[far..far + 4]);
+
+    // A frame with an unsaved change (as a drag sends) searches for no centres.
+    let dragged = post(&json!({
+        "frame": 1,
+        "overlays": {"centres": [0, 0]},
+        "changes": [{"kind": "set", "path": "highlights[0].layers[0].epsilon", "value": [0.012]}],
+    }));
+    assert!(dragged.header("x-glint-centres").is_none());
+}

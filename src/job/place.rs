@@ -118,6 +118,41 @@ impl RenderJob {
         Ok(placement)
     }
 
+    /// Every centre of layer `layer` of highlight entry `highlight` as it is read at `frame`
+    /// (a pinned layer centred on its point), on every patch the entry is drawn on, the
+    /// deepest first, each with where it lands in the frame; a centre where the eye sees the
+    /// surface's back only where the frame shows it (as [`RenderJob::place`] lists them).
+    /// Errors when there is no such entry or layer, or the layer does not prepare.
+    pub fn centres_at(
+        &mut self,
+        frame: f64,
+        highlight: usize,
+        layer: usize,
+    ) -> Result<Vec<Centre>, PlaceError> {
+        let state = self.shot.at(frame);
+        let Some(layers) = state.highlights.get(highlight).map(|e| e.layers()) else {
+            return Err(PlaceError::Layer(format!(
+                "the shot has {} highlight entries, numbered from 0, so there is no highlight \
+                 {highlight}",
+                state.highlights.len()
+            )));
+        };
+        let Some(&chosen) = layers.get(layer) else {
+            return Err(PlaceError::Layer(format!(
+                "highlight {highlight} has {} layer(s), numbered from 0, so there is no layer \
+                 {layer}",
+                layers.len()
+            )));
+        };
+        let mut found = centres(&self.shot, (highlight, chosen), &state, None)
+            .map_err(|e| PlaceError::Layer(e.to_string()))?;
+        for centre in &mut found {
+            centre.pixel = Some(self.pixel_of(frame, centre.patch, centre.uv)?);
+        }
+        found.retain(|c| !c.back || c.pixel.is_some_and(|p| p.visible));
+        Ok(found)
+    }
+
     /// The highlight layer drawn on the surface point under `pixel` at `frame`
     /// ([`point_under`](Self::point_under)): the entry drawn on its patch (which must be
     /// `choice.highlight` if given), and its layer `choice.layer`, or the first with a

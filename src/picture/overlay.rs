@@ -1,6 +1,6 @@
 //! Marks drawn over a rendered frame for the person tuning it: patch seams, the highlight
-//! matte, the cel bands' edges, and pin points — each on an sRGB RGBA8 image, rows from the
-//! top.
+//! matte, the cel bands' edges, pin points and a layer's centres — each on an sRGB RGBA8
+//! image, rows from the top.
 
 /// Darkens the pixels where the patch changes to the right or below (a seam between patches,
 /// or the silhouette against the background): `ids` holds a patch index per pixel, `u32::MAX`
@@ -119,6 +119,39 @@ pub fn draw_pin(rgba: &mut [u8], width: u32, height: u32, (x, y): (f64, f64)) {
             let colour = if (5.0..=7.0).contains(&r) || r <= 1.5 {
                 [255, 220, 0]
             } else if (4.0..5.0).contains(&r) || (7.0..8.0).contains(&r) {
+                [0, 0, 0]
+            } else {
+                continue;
+            };
+            let at = (py as usize * width as usize + px as usize) * 4;
+            blend(&mut rgba[at..at + 4], colour, 1.0);
+        }
+    }
+}
+
+/// Draws a highlight centre's marker on image position `(x, y)` (a pixel's centre at integer
+/// values): a magenta cross whose four arms, 3 px wide, run from 3 to 8 px off the point, each
+/// with a dark outline, so that the point itself stays in view. Parts outside the image are
+/// clipped.
+pub fn draw_centre(rgba: &mut [u8], width: u32, height: u32, (x, y): (f64, f64)) {
+    if !(x.is_finite() && y.is_finite()) {
+        return;
+    }
+    let (cx, cy) = (x.round() as i64, y.round() as i64);
+    // Whether (dx, dy) lies on an arm of half width `w` running from `from` to `to` px out.
+    let on_arm = |dx: i64, dy: i64, w: i64, from: i64, to: i64| {
+        let along = |a: i64, b: i64| b.abs() <= w && (from..=to).contains(&a.abs());
+        along(dx, dy) || along(dy, dx)
+    };
+    for dy in -9i64..=9 {
+        for dx in -9i64..=9 {
+            let (px, py) = (cx + dx, cy + dy);
+            if px < 0 || py < 0 || px >= i64::from(width) || py >= i64::from(height) {
+                continue;
+            }
+            let colour = if on_arm(dx, dy, 1, 3, 8) {
+                [255, 60, 200]
+            } else if on_arm(dx, dy, 2, 2, 9) {
                 [0, 0, 0]
             } else {
                 continue;

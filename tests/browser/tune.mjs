@@ -51,6 +51,12 @@ try {
   await until(page, () => window.glintTune.paints >= 1, undefined, "the first frame");
   await page.screenshot({ path: join(artefacts, "01-open.png") });
 
+  // The selected layer's centres are crossed on the frame: one on the sphere, and no note.
+  await until(page, () => Array.isArray(window.glintTune.centres), undefined, "the layer's centres");
+  const centres = await page.evaluate(() => window.glintTune.centres);
+  check(centres.length === 1 && centres[0][2] === 1, `the sphere's layer has centres ${JSON.stringify(centres)}, not one in view`);
+  check(await page.locator("#centres-note").textContent() === "", "a note of centres for a layer with one");
+
   // A request without the token is refused, and the page's own requests carry it.
   const refused = await page.evaluate(() => fetch("/api/state").then((r) => r.status));
   check(refused === 401, `a request without the token answered ${refused}, not 401`);
@@ -268,11 +274,18 @@ try {
   }, alphaSlider, "α to show as solved by the pin");
   const betaDisabled = await page.locator('input[data-number="highlights[0].layers[0].stack[0].beta"]').isDisabled();
   check(betaDisabled, "β's field can still be edited on a pinned layer");
+  // The pinned layer holds the shape of the frame shown, and lets it go again.
+  const holdFrame = await page.locator("#frame-number").inputValue();
+  await page.locator("#hold").click();
+  await waitForFile((t) => new RegExp(`pin: \\([^)]*, hold: ${holdFrame}\\)`).test(t), `hold the shape of frame ${holdFrame}`);
+  await until(page, () => /let go/.test(document.getElementById("hold").textContent), undefined, "the hold to show");
+  await page.locator("#hold").click();
+  await waitForFile((t) => t === pinned, "be pinned without a hold");
   // Unpinned: the file is as it was, and α and β can be set again.
   await page.locator("#unpin").click();
   await waitForFile((t) => t === unpinned, "be as it was before the pin");
   await until(page, (sel) => !document.querySelector(sel).disabled, alphaSlider, "α to be editable again");
-  console.log("page test passed: drag, slider, a refused value, timeline, undo, an outside edit and why undo went, a mask drawn, pin and unpin");
+  console.log("page test passed: the layer's centre, drag, slider, a refused value, timeline, undo, an outside edit and why undo went, a mask drawn, pin, hold and unpin");
 } catch (error) {
   failed = true;
   console.error("page test failed: " + error.message);

@@ -84,6 +84,13 @@ pub enum Change {
     },
     /// Take the layer's pin out ([`LayerEdit::Unpin`]).
     Unpin { highlight: usize, layer: usize },
+    /// Make the layer's pin hold the shape it has at `frame`, or with None let the shape follow
+    /// the view again ([`LayerEdit::Hold`]).
+    Hold {
+        highlight: usize,
+        layer: usize,
+        frame: Option<i64>,
+    },
     /// Give the layer the drawn outline of the corners `points` in t′, keyed at `key` when it
     /// is given ([`LayerEdit::Outline`]).
     Outline {
@@ -250,6 +257,11 @@ impl Change {
             Change::Unpin { highlight, layer } => {
                 edit_layer(text, *highlight, *layer, &LayerEdit::Unpin)
             }
+            Change::Hold {
+                highlight,
+                layer,
+                frame,
+            } => edit_layer(text, *highlight, *layer, &LayerEdit::Hold { frame: *frame }),
             Change::Outline {
                 highlight,
                 layer,

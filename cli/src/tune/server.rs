@@ -412,6 +412,14 @@ fn image_response(
     set("x-glint-height", image.height.to_string());
     set("x-glint-render-ms", format!("{:.2}", image.render_ms));
     set("x-glint-stages", image.stages.join(","));
+    if let Some(centres) = &image.centres {
+        // `x,y,shown` per centre, `;` between them: the pixel and whether the frame shows it.
+        let listed: Vec<String> = centres
+            .iter()
+            .map(|([x, y], shown)| format!("{x:.2},{y:.2},{}", u8::from(*shown)))
+            .collect();
+        set("x-glint-centres", listed.join(";"));
+    }
     if let Some((name, value)) = extra {
         set(name, value);
     }
@@ -654,6 +662,7 @@ mod tests {
             rgba: vec![128; bytes],
             render_ms: 1.0,
             stages: vec!["shade"],
+            centres: None,
         }
     }
 

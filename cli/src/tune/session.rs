@@ -18,7 +18,7 @@ use glint::highlight::{Op, MAX_OUTLINE_SEGMENTS};
 use glint::job::{
     JobError, LayerChoice, Overrides, PlaceError, RenderJob, ShadeChoice, ShapePointError,
 };
-use glint::picture::overlay::{draw_band_edges, draw_matte, draw_pin, draw_seams};
+use glint::picture::overlay::{draw_band_edges, draw_centre, draw_matte, draw_pin, draw_seams};
 use glint::render::{Stage, SurfacePoint};
 use glint::shot::{
     load_shot_text, Aov, HighlightRef, LayerParam, MaterialState, OpParam, ParamPath, Preset,
@@ -48,6 +48,9 @@ pub struct Overlays {
     pub pins: bool,
     /// The cel bands' edges: the terminator and every band's, where `N·L'` crosses them.
     pub terminator: bool,
+    /// Every centre of this layer, `[highlight entry, layer]`: a cross on each where the frame
+    /// shows it. Drawn on frames without unsaved changes only, so that a drag stays quick.
+    pub centres: Option<[usize; 2]>,
 }
 
 /// A frame asked for: at a frame, a quality, with overlays, and with changes made to the text
@@ -72,6 +75,10 @@ pub struct FrameImage {
     pub render_ms: f64,
     /// The stages that ran, by name.
     pub stages: Vec<&'static str>,
+    /// The centres of the layer the centres overlay asked for, where each lands in the image
+    /// (a pixel's centre at integer values) and whether the frame shows it; None where none
+    /// were asked for or the frame had unsaved changes.
+    pub centres: Option<Vec<([f64; 2], bool)>>,
 }
 
 /// What is under a pixel: the patch, its parts, its (u, v), and the highlight drawn on it.
@@ -301,7 +308,13 @@ impl Session {
             Quality::Final => &mut self.final_frames,
         };
         sync(rendering, &self.path, &text)?;
-        draw(&mut rendering.job, request.frame, request.overlays)
+        // Centres are searched for over every patch of the layer's entry: not while a change is
+        // being dragged.
+        let mut overlays = request.overlays;
+        if !request.changes.is_empty() {
+            overlays.centres = None;
+        }
+        draw(&mut rendering.job, request.frame, overlays)
     }
 
     /// What is under pixel `(x, y)` at `frame`.
@@ -787,6 +800,25 @@ fn draw(job: &mut RenderJob, frame: f64, overlays: Overlays) -> Result<FrameImag
             }
         }
     }
+    let centres = match overlays.centres {
+        Some([highlight, layer]) => {
+            let found = job
+                .centres_at(frame, highlight, layer)
+                .map_err(place_error)?;
+            let mut marked = Vec::with_capacity(found.len());
+            for centre in found {
+                let Some(pixel) = centre.pixel.filter(|p| p.in_front) else {
+                    continue;
+                };
+                if pixel.visible {
+                    draw_centre(&mut rgba, width, height, pixel.pixel);
+                }
+                marked.push(([pixel.pixel.0, pixel.pixel.1], pixel.visible));
+            }
+            Some(marked)
+        }
+        None => None,
+    };
     let stages = Stage::ALL
         .into_iter()
         .filter(|&s| image.stats.ran(s))
@@ -798,5 +830,6 @@ fn draw(job: &mut RenderJob, frame: f64, overlays: Overlays) -> Result<FrameImag
         rgba,
         render_ms,
         stages,
+        centres,
     })
 }

@@ -85,6 +85,8 @@ pub struct LayerView {
     pub has_mask: bool,
     /// The patch the layer is pinned to, if pinned.
     pub pinned_to: Option<String>,
+    /// The frame whose shape the layer's pin holds, if it holds one.
+    pub holds: Option<i64>,
     /// What H′ is tested against: `disc`, `outline` or `keyed outline`.
     pub shape: &'static str,
     /// The frames of a keyed outline's keys; empty otherwise.
@@ -349,6 +351,7 @@ pub fn highlight_views(
                     pinned_to: shot
                         .pinned_patch(entry, k)
                         .map(|p| shot.library.patches[p].name.clone()),
+                    holds: layer.pin.as_ref().and_then(|pin| pin.hold),
                 }
             })
             .collect();

@@ -88,6 +88,7 @@ async function pump() {
     const renderMs = Number(response.headers.get("X-Glint-Render-Ms"));
     const changes = response.headers.get("X-Glint-Changes");
     const stages = (response.headers.get("X-Glint-Stages") || "").split(",").join(", ");
+    showCentres(response.headers.get("X-Glint-Centres"));
     if (changes && job.onChanges) job.onChanges(JSON.parse(changes));
     await paint(response, width, height);
     const total = performance.now() - job.asked;
@@ -148,8 +149,30 @@ function draw(image) {
   }
 }
 
+// The layer whose centres the frame marks: the selected one, while the page neither plays nor
+// edits the shade. Playback leaves them out, so that its frames come as fast as it plays.
+function centresOverlay() {
+  const layer = currentLayer();
+  if (!$("overlay-centres").checked || page.playing || page.shadeMode || !layer) return null;
+  return [page.highlight, layer.index];
+}
+
 function frameBody(changes, quality) {
-  return { frame: page.frame, quality: quality || "preview", overlays: overlays(), changes: changes || [] };
+  const marks = Object.assign(overlays(), { centres: centresOverlay() });
+  return { frame: page.frame, quality: quality || "preview", overlays: marks, changes: changes || [] };
+}
+
+// The centres a frame marked (`x,y,shown;…`): a note when the layer shows more than one, for
+// a highlight seen twice on a patch is seldom what was meant.
+function showCentres(header) {
+  const note = $("centres-note");
+  if (header === null) return;
+  const centres = header === "" ? [] : header.split(";").map((c) => c.split(",").map(Number));
+  window.glintTune.centres = centres;
+  const shown = centres.filter((c) => c[2] === 1).length;
+  note.textContent = centres.length > 1
+    ? `layer ${currentLayer() ? currentLayer().index : 0} has ${centres.length} centres (${shown} in view, crossed on the frame): a highlight shows once for each`
+    : "";
 }
 
 function showFrame(changes) {
@@ -369,9 +392,9 @@ function renderPanel() {
   if (!h) return;
   const editable = h.file_index !== null;
   const fileIndex = h.file_index;
-  const pickHighlight = element("select", { id: "highlight-choice", onchange: (e) => { page.highlight = Number(e.target.value); page.layer = 0; page.param = null; renderPanel(); renderKeys(); } },
+  const pickHighlight = element("select", { id: "highlight-choice", onchange: (e) => { page.highlight = Number(e.target.value); page.layer = 0; page.param = null; renderPanel(); renderKeys(); showFrame(); } },
     ...page.state.highlights.map((x) => element("option", { value: x.entry, selected: x.entry === h.entry }, `highlight ${x.entry}: ${x.patches.join(", ")}`)));
-  const choose = element("select", { id: "layer-choice", onchange: (e) => { page.layer = Number(e.target.value); renderPanel(); renderKeys(); } },
+  const choose = element("select", { id: "layer-choice", onchange: (e) => { page.layer = Number(e.target.value); renderPanel(); renderKeys(); showFrame(); } },
     ...h.layers.map((l) => element("option", { value: l.index, selected: l.index === page.layer }, "layer " + l.index)));
   box.append(element("h3", {}, "highlight"), pickHighlight, " ", choose);
   if (!editable) box.append(element("p", {}, `written in ${h.written_in}: edit it there (tune changes only the shot file)`));
@@ -396,7 +419,16 @@ function renderPanel() {
     onclick: () => structural({ kind: "unpin" }),
   }, "unpin");
   const structural = (change) => commit([Object.assign({ highlight: fileIndex, layer: layer.index }, change)]);
-  box.append(element("div", {}, pinHere, " ", unpin));
+  // A pinned layer holds the shape it has at this frame while the view turns, or lets it go.
+  const holds = layer.holds !== null && layer.holds !== undefined;
+  const hold = element("button", {
+    id: "hold", disabled: !editable || !layer.pinned_to,
+    title: holds
+      ? `The pin holds the shape of frame ${layer.holds}: let the shape follow the view again`
+      : "Keep the shape this frame shows — its area, length and width on the surface — while the view and light change",
+    onclick: () => structural({ kind: "hold", frame: holds ? null : Math.round(page.frame) }),
+  }, holds ? `let go of frame ${layer.holds}'s shape` : "hold this shape");
+  box.append(element("div", {}, pinHere, " ", unpin, " ", hold));
   box.append(element("h3", {}, "operations"));
   layer.ops.forEach((op, i) => {
     const head = element("div", { class: "op-head" },
@@ -613,12 +645,15 @@ canvas.addEventListener("pointerdown", async (event) => {
       $("selection").textContent = `${where}: no highlight`;
       return;
     }
+    const before = `${page.highlight} ${page.layer}`;
     if (pick.highlight !== page.highlight) page.layer = 0;
     page.highlight = pick.highlight;
     if (pick.covering.length > 0 && !pick.covering.includes(page.layer)) page.layer = pick.covering[0];
     $("selection").textContent = `${where}: highlight ${pick.highlight}, layer ${page.layer}`;
     renderPanel();
     renderKeys();
+    // Another layer's centres, unless a drag is under way and brings its own frame.
+    if (before !== `${page.highlight} ${page.layer}` && !dragging) showFrame();
   } catch (error) {
     $("selection").textContent = error.message;
   }
@@ -886,7 +921,9 @@ $("frame-number").addEventListener("change", () => goToFrame(Number($("frame-num
 $("prev-key").addEventListener("click", () => jumpKey(-1));
 $("next-key").addEventListener("click", () => jumpKey(1));
 $("play").addEventListener("click", play);
-for (const id of ["overlay-seams", "overlay-matte", "overlay-pins", "overlay-terminator"]) $(id).addEventListener("change", () => showFrame());
+for (const id of ["overlay-seams", "overlay-matte", "overlay-pins", "overlay-terminator", "overlay-centres"]) {
+  $(id).addEventListener("change", () => showFrame());
+}
 
 function setShadeMode(on) {
   if (on && drawing.on) setDrawing(false);
