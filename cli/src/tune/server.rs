@@ -23,7 +23,7 @@
 
 use std::net::{IpAddr, SocketAddr};
 use std::sync::{Arc, Mutex, MutexGuard};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use axum::body::{Body, Bytes};
 use axum::extract::{Query, Request, State};
@@ -395,11 +395,14 @@ fn image_response(
     image: &FrameImage,
     format: Format,
     extra: Option<(&'static str, String)>,
+    started: Instant,
 ) -> Result<Response, TuneError> {
+    let encoding = Instant::now();
     let (content_type, body) = match format {
         Format::Raw => ("application/octet-stream", image.rgba.clone()),
         Format::Png => ("image/png", png_bytes(image)?),
     };
+    let encode_ms = encoding.elapsed().as_secs_f64() * 1e3;
     let mut response = Response::new(Body::from(body));
     let headers: &mut HeaderMap = response.headers_mut();
     let mut set = |name: &'static str, value: String| {
@@ -411,6 +414,13 @@ fn image_response(
     set("x-glint-width", image.width.to_string());
     set("x-glint-height", image.height.to_string());
     set("x-glint-render-ms", format!("{:.2}", image.render_ms));
+    // The encoding alone, and all the server did from the request's body to the response's
+    // (reading and checking the changed shot, rendering, the overlays, encoding).
+    set("x-glint-encode-ms", format!("{encode_ms:.2}"));
+    set(
+        "x-glint-server-ms",
+        format!("{:.2}", started.elapsed().as_secs_f64() * 1e3),
+    );
     set("x-glint-stages", image.stages.join(","));
     if let Some(centres) = &image.centres {
         // `x,y,shown` per centre, `;` between them: the pixel and whether the frame shows it.
@@ -455,11 +465,12 @@ async fn frame(
     query: Result<Query<FormatQuery>, axum::extract::rejection::QueryRejection>,
     body: Bytes,
 ) -> Response {
+    let started = Instant::now();
     let result = async {
         let format = format_of(query)?;
         let request: FrameRequest = json_body(&body)?;
         let image = with_session(&shared, move |s| s.render(&request)).await?;
-        image_response(&image, format, None)
+        image_response(&image, format, None, started)
     }
     .await;
     result.unwrap_or_else(IntoResponse::into_response)
@@ -530,6 +541,7 @@ async fn dragged<R: DeserializeOwned + Send + 'static>(
     body: &Bytes,
     placed: impl FnOnce(&mut Session, R) -> Result<FrameRequest, TuneError> + Send + 'static,
 ) -> Response {
+    let started = Instant::now();
     let result = async {
         let format = format_of(query)?;
         let request: R = json_body(body)?;
@@ -540,7 +552,7 @@ async fn dragged<R: DeserializeOwned + Send + 'static>(
         .await?;
         let changes =
             serde_json::to_string(&changes).map_err(|e| TuneError::Failed(e.to_string()))?;
-        image_response(&image, format, Some(("x-glint-changes", changes)))
+        image_response(&image, format, Some(("x-glint-changes", changes)), started)
     }
     .await;
     result.unwrap_or_else(IntoResponse::into_response)
@@ -669,7 +681,8 @@ mod tests {
     /// The status and the body of the answer to `image` asked for as a PNG.
     fn png_answer(image: &FrameImage) -> (StatusCode, Vec<u8>) {
         let response =
-            image_response(image, Format::Png, None).unwrap_or_else(IntoResponse::into_response);
+            image_response(image, Format::Png, None, Instant::now())
+                .unwrap_or_else(IntoResponse::into_response);
         let status = response.status();
         let runtime = tokio::runtime::Builder::new_current_thread()
             .build()

@@ -24,7 +24,7 @@ const page = {
 };
 
 // What tests and the latency benchmark read: every painted frame, with its times.
-window.glintTune = { paints: 0, latencies: [], last: null, errors: 0, lastError: "" };
+window.glintTune = { paints: 0, latencies: [], records: [], last: null, errors: 0, lastError: "" };
 
 function overlays() {
   return {
@@ -66,9 +66,17 @@ async function api(method, url, body) {
 
 // ---- frames -------------------------------------------------------------------------------
 
-// One image request at a time; while one is under way only the newest waiting one is kept.
-let inFlight = false;
+// An image request goes as soon as the server has answered the last one, so that the server
+// starts on the newest change while the last frame is still on its way to the page and being
+// painted, and never holds a queue: while one is on the server only the newest waiting request
+// is kept, the others dropped. A frame that arrives after a newer one was painted is dropped
+// too. A final-quality frame goes alone.
+const MAX_IN_FLIGHT = 2;
+let inFlight = 0;
+let onServer = 0; // requests the server has not answered yet
 let waiting = null;
+let sent = 0; // requests sent, numbering them
+let painted = 0; // the number of the newest request painted
 
 function requestImage(kind, body, onChanges) {
   waiting = { kind, body, onChanges, asked: performance.now() };
@@ -76,33 +84,66 @@ function requestImage(kind, body, onChanges) {
 }
 
 async function pump() {
-  if (inFlight || !waiting) return;
+  if (!waiting) return;
+  const alone = waiting.body && waiting.body.quality === "final";
+  if (onServer > 0 || inFlight >= (alone ? 1 : MAX_IN_FLIGHT)) return;
   const job = waiting;
   waiting = null;
-  inFlight = true;
+  inFlight += 1;
+  onServer += 1;
+  const number = ++sent;
+  const stale = () => number < painted;
   try {
     const url = "/api/" + job.kind + "?format=" + page.format;
-    const response = await api("POST", url, job.body);
+    const started = performance.now();
+    let response;
+    try {
+      response = await api("POST", url, job.body);
+    } finally {
+      onServer -= 1;
+      pump();
+    }
+    if (stale()) return;
     const width = Number(response.headers.get("X-Glint-Width"));
     const height = Number(response.headers.get("X-Glint-Height"));
     const renderMs = Number(response.headers.get("X-Glint-Render-Ms"));
     const changes = response.headers.get("X-Glint-Changes");
     const stages = (response.headers.get("X-Glint-Stages") || "").split(",").join(", ");
+    const times = await paint(response, width, height, stale);
+    if (!times) return;
+    painted = number;
     showCentres(response.headers.get("X-Glint-Centres"));
     if (changes && job.onChanges) job.onChanges(JSON.parse(changes));
-    await paint(response, width, height);
     const total = performance.now() - job.asked;
     const quality = (job.body && job.body.quality) || "preview";
     window.glintTune.paints += 1;
     const frame = job.body && job.body.frame;
-    window.glintTune.last = { quality, frame, renderMs, totalMs: total, at: performance.now() };
+    // Where the time went: waiting for the request before, the server's parts, the transfer
+    // (the request there and the pixels back, less the server's own time), decoding, painting.
+    const serverMs = Number(response.headers.get("X-Glint-Server-Ms"));
+    const encodeMs = Number(response.headers.get("X-Glint-Encode-Ms"));
+    const parts = {
+      waited: started - job.asked,
+      render: renderMs,
+      encode: encodeMs,
+      server_other: Math.max(0, serverMs - renderMs - encodeMs),
+      transfer: Math.max(0, times.received - started - serverMs),
+      decode: times.decoded - times.received,
+      paint: times.painted - times.decoded,
+    };
+    window.glintTune.last = { quality, frame, renderMs, totalMs: total, parts, at: performance.now() };
+    if (quality === "preview") {
+      // The last thousand, for the latency benchmark and tests to read.
+      window.glintTune.records.push(window.glintTune.last);
+      if (window.glintTune.records.length > 1000) window.glintTune.records.shift();
+    }
     if (quality === "preview") window.glintTune.latencies.push(total);
     $("frame-time").textContent = `${quality} ${width}×${height}: render ${renderMs.toFixed(1)} ms (${stages}), on screen ${total.toFixed(1)} ms`;
     if (quality === "preview") scheduleFinal();
   } catch (error) {
     showError(error.message);
   } finally {
-    inFlight = false;
+    inFlight -= 1;
     pump();
   }
 }
@@ -123,16 +164,36 @@ function fitCanvas() {
 }
 window.addEventListener("resize", fitCanvas);
 
-async function paint(response, width, height) {
-  const image = await decode(response, width, height);
+// Paints the server's answer unless it is `stale` once decoded; when its body had arrived, was
+// decoded and was painted, or null when it was not painted.
+async function paint(response, width, height, stale = () => false) {
+  const times = {};
+  const image = await decode(response, width, height, times);
+  if (stale()) {
+    if (image.bitmap) image.bitmap.close();
+    return null;
+  }
   draw(image);
   if (image.bitmap) image.bitmap.close();
+  times.painted = performance.now();
+  return times;
 }
 
 // A frame's pixels from the server's answer, decoded: a bitmap of a PNG, or raw pixels.
-async function decode(response, width, height) {
-  if (page.format === "png") return { width, height, bitmap: await createImageBitmap(await response.blob()) };
-  return { width, height, pixels: new ImageData(new Uint8ClampedArray(await response.arrayBuffer()), width, height) };
+// `times`, when given, gets when the body had arrived and when it was decoded.
+async function decode(response, width, height, times = {}) {
+  if (page.format === "png") {
+    const blob = await response.blob();
+    times.received = performance.now();
+    const bitmap = await createImageBitmap(blob);
+    times.decoded = performance.now();
+    return { width, height, bitmap };
+  }
+  const bytes = await response.arrayBuffer();
+  times.received = performance.now();
+  const pixels = new ImageData(new Uint8ClampedArray(bytes), width, height);
+  times.decoded = performance.now();
+  return { width, height, pixels };
 }
 
 function draw(image) {
