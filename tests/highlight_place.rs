@@ -897,3 +897,89 @@ fn place_lists_every_centre_a_layer_has_one_on_the_sphere_two_where_normals_repe
         );
     }
 }
+
+/// `place --at PATCH:U,V` names the surface point instead of pointing at it: on a point the
+/// frame shows it solves what `--pixel` solves on that point's pixel; on a point the frame
+/// hides (the sphere's far side) it still solves, and says where the point lands; `--pin`
+/// pins there; a name the model lacks is refused with the nearest one.
+#[test]
+fn place_at_a_named_point_solves_as_at_its_pixel_seen_or_not() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = sphere_ops_copy(dir.path());
+    let shot_arg = shot.to_str().unwrap();
+    let json = |args: &[&str]| -> serde_json::Value {
+        let mut all = vec!["place", shot_arg, "--frame", "30", "--json"];
+        all.extend_from_slice(args);
+        let out = glint_with(&all);
+        assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let by_pixel = json(&["--pixel", "300,200"]);
+    let (patch, u, v) = (
+        by_pixel["patch"].as_str().unwrap().to_string(),
+        by_pixel["u"].as_f64().unwrap(),
+        by_pixel["v"].as_f64().unwrap(),
+    );
+    let by_name = json(&["--at", &format!("{patch}:{u},{v}")]);
+    for key in ["alpha", "beta"] {
+        let (a, b) = (
+            by_pixel[key].as_f64().unwrap(),
+            by_name[key].as_f64().unwrap(),
+        );
+        assert!((a - b).abs() < 1e-5, "{key}: {a} by pixel, {b} by name");
+    }
+    // The point lands on the pixel pointed at.
+    let pixel = &by_name["pixel"];
+    assert!(
+        (pixel[0].as_f64().unwrap() - 300.0).abs() < 0.05
+            && (pixel[1].as_f64().unwrap() - 200.0).abs() < 0.05,
+        "{pixel}"
+    );
+
+    // The far side: solved all the same, a translation within the unit disc, with a warning
+    // that the frame does not show the point.
+    let far = format!("{patch}:{},{v}", (u + 0.5).rem_euclid(1.0));
+    let hidden = json(&["--at", &far]);
+    let (a, b) = (
+        hidden["alpha"].as_f64().unwrap(),
+        hidden["beta"].as_f64().unwrap(),
+    );
+    assert!(a.hypot(b) <= 1.0 + 1e-6, "({a}, {b})");
+    let out = glint_with(&["place", shot_arg, "--frame", "30", "--at", &far]);
+    assert!(out.status.success());
+    assert!(stderr(&out).contains("does not show"), "{}", stderr(&out));
+    let out = glint_with(&[
+        "place",
+        shot_arg,
+        "--frame",
+        "30",
+        "--at",
+        &format!("{patch}:{u},{v}"),
+    ]);
+    assert!(!stderr(&out).contains("does not show"), "{}", stderr(&out));
+
+    // Pinned there.
+    let out = glint_with(&[
+        "place",
+        shot_arg,
+        "--frame",
+        "30",
+        "--at",
+        &format!("{patch}:0.25,0.5"),
+        "--pin",
+        "--write",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&shot).unwrap();
+    assert!(
+        text.contains(&format!("pin: (patch: \"{patch}\", u: 0.25, v: 0.5)")),
+        "{text}"
+    );
+
+    // A misspelt patch.
+    let out = glint_with(&["place", shot_arg, "--at", "ball/spere:0.2,0.5"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("did you mean \"ball/sphere\""), "{err}");
+}

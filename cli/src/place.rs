@@ -34,6 +34,12 @@ use glint::shot::{
 /// twice on one whose normals turn back (an S-bend, a lid) — it warns and lists every centre,
 /// each with the pixel it lands on and whether the frame shows it (docs/tutorial.md).
 ///
+/// With --at PATCH:U,V instead of --pixel the point is named, not pointed at: (u, v) of the
+/// patch as the model is posed at the frame, whether the frame shows it or not (it warns when
+/// not) — so that a translation keyed at one frame can be keyed on the same surface point at
+/// another, with no pixel to find (`glint probe --patch P --uv U,V --frame F` says where it
+/// lands).
+///
 /// With --pin the layer is pinned instead: its pin, added or replaced, names the patch and
 /// (u, v) under the pixel, and its translation is solved there on every frame from then on
 /// (--write writes the pin; a pinned layer is moved this way). A layer without a translation
@@ -62,8 +68,10 @@ use glint::shot::{
   glint place shots/crescent.ron --frame 12 --pixel 330,170 --layer 1
   glint place shots/sphere_ops.ron --frame 30 --pixel 200,150 --size 240x240 --json
   glint place shots/sphere_ops.ron --frame 12 --pixel 300,200 --write
+  glint place shots/sphere_ops.ron --frame 48 --at ball/sphere:0.83,0.62 --write
   glint place shots/teapot_lid_opens.ron --frame 24 --pixel 322,118 --pin --write
   glint place shots/shade_design.ron --frame 48 --pixel 300,200 --shade --band 0 --write")]
+#[command(group(clap::ArgGroup::new("point").required(true).args(["pixel", "at"])))]
 pub struct PlaceArgs {
     /// The shot file (RON)
     shot: PathBuf,
@@ -72,7 +80,11 @@ pub struct PlaceArgs {
     frame: Option<f64>,
     /// The image position: pixel column and row from the top left
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
-    pixel: (f64, f64),
+    pixel: Option<(f64, f64)>,
+    /// The surface point instead of a pixel: a patch name and (u, v), e.g. teapot/5:0.3,0.6 —
+    /// the same point at any frame, seen or not
+    #[arg(long, value_name = "PATCH:U,V", value_parser = parse_point, conflicts_with = "shade")]
+    at: Option<(String, (f64, f64))>,
     /// The highlight entry, from 0, includes first [default: the one drawn on the patch]
     #[arg(long, value_name = "N", conflicts_with = "shade")]
     highlight: Option<usize>,
@@ -107,6 +119,39 @@ pub struct PlaceArgs {
     /// Pin the layer to the surface point under the pixel instead of keying its translation
     #[arg(long)]
     pin: bool,
+}
+
+/// `PATCH:U,V` read as a patch name and its (u, v); the name is what comes before the last
+/// colon.
+fn parse_point(text: &str) -> Result<(String, (f64, f64)), String> {
+    let expected = || format!("expected PATCH:U,V such as teapot/5:0.3,0.6, got '{text}'");
+    let (patch, uv) = text.rsplit_once(':').ok_or_else(expected)?;
+    let (u, v) = uv.split_once(',').ok_or_else(expected)?;
+    let (u, v) = (
+        u.trim().parse::<f64>().map_err(|_| expected())?,
+        v.trim().parse::<f64>().map_err(|_| expected())?,
+    );
+    if patch.is_empty() || !(u.is_finite() && v.is_finite()) {
+        return Err(expected());
+    }
+    Ok((patch.to_string(), (u, v)))
+}
+
+/// The patch of the shot's model named `name`, or why there is none (with the nearest name).
+fn named_patch(job: &RenderJob, name: &str) -> Result<usize, CliError> {
+    let patches = &job.shot().library.patches;
+    if let Some(index) = patches.iter().position(|p| p.name == name) {
+        return Ok(index);
+    }
+    let names: Vec<&str> = patches.iter().map(|p| p.name.as_str()).collect();
+    let mut message = format!(
+        "{}: --at names the patch \"{name}\", which the shot's model has not",
+        job.shot().path.display()
+    );
+    if let Some(close) = glint::formats::ron_location::closest_name(name, &names) {
+        message.push_str(&format!("; did you mean \"{close}\"?"));
+    }
+    Err(CliError::BadInput(anyhow!(message)))
 }
 
 fn parse_pixel(text: &str) -> Result<(f64, f64), String> {
@@ -186,7 +231,29 @@ pub fn run(args: &PlaceArgs) -> Result<(), CliError> {
     if args.shade {
         return shade(args, &mut job, frame);
     }
-    let placement = job.place(frame, args.pixel, choice).map_err(|e| {
+    let placed = match (&args.at, args.pixel) {
+        (Some((name, uv)), _) => {
+            let patch = named_patch(&job, name)?;
+            let placed = job.place_at(frame, (patch, *uv), choice);
+            // Solved all the same, but shading turns the surface toward the eye: seen from
+            // behind, a point's highlight shows where the surface faces the other way.
+            if let Ok(p) = job.pixel_of(frame, patch, *uv) {
+                if !p.visible {
+                    eprintln!(
+                        "warning: frame {} does not show {name} at (u, v) = ({}, {}); a highlight \
+                         centred there shows only where the frame sees that point",
+                        frame_text(frame),
+                        number(uv.0),
+                        number(uv.1)
+                    );
+                }
+            }
+            placed
+        }
+        (None, Some(pixel)) => job.place(frame, pixel, choice),
+        (None, None) => return Err(CliError::BadInput(anyhow!("give --pixel or --at"))),
+    };
+    let placement = placed.map_err(|e| {
         let bad = e.is_bad_input();
         let e = anyhow!("{}: {e}", args.shot.display());
         if bad {
@@ -322,8 +389,8 @@ fn write_point_and_translation(
     writeln!(
         out,
         "pixel ({}, {}) at frame {frame}: {patch}{parts}, u = {}, v = {}",
-        pixel[0],
-        pixel[1],
+        number(pixel[0]),
+        number(pixel[1]),
         number(u),
         number(v)
     )?;
@@ -440,12 +507,25 @@ fn pin(
             CliError::Failed(e)
         }
     };
+    let (under, pixel) = match (&args.at, args.pixel) {
+        (Some((name, uv)), _) => {
+            let patch = named_patch(job, name)?;
+            let under = job.layer_at(frame, (patch, *uv), choice).map_err(failed)?;
+            let pixel = job.pixel_of(frame, patch, under.uv).map_err(failed)?.pixel;
+            (under, pixel)
+        }
+        (None, Some(pixel)) => (
+            job.layer_under(frame, pixel, choice).map_err(failed)?,
+            pixel,
+        ),
+        (None, None) => return Err(CliError::BadInput(anyhow!("give --pixel or --at"))),
+    };
     let LayerUnder {
         patch,
         uv,
         highlight: drawn,
         layer,
-    } = job.layer_under(frame, args.pixel, choice).map_err(failed)?;
+    } = under;
     let shot = job.shot();
     let name = &shot.library.patches[patch].name;
     let (file, index) = shot
@@ -468,7 +548,7 @@ fn pin(
         .map_err(|e| CliError::BadInput(e.in_file(file).into()))?;
     let report = PinReport {
         frame,
-        pixel: [args.pixel.0, args.pixel.1],
+        pixel: [pixel.0, pixel.1],
         patch: name,
         u,
         v,
@@ -493,8 +573,8 @@ fn pin(
             writeln!(
                 out,
                 "pixel ({}, {}) at frame {}: {}, u = {}, v = {}",
-                report.pixel[0],
-                report.pixel[1],
+                number(report.pixel[0]),
+                number(report.pixel[1]),
                 frame_text(frame),
                 report.patch,
                 rounded_number_text(u),
@@ -538,7 +618,12 @@ fn shade(args: &PlaceArgs, job: &mut RenderJob, frame: f64) -> Result<(), CliErr
         entry: args.entry,
         band: args.band,
     };
-    let p = job.place_shade(frame, args.pixel, choice).map_err(|e| {
+    let Some(pixel) = args.pixel else {
+        return Err(CliError::BadInput(anyhow!(
+            "--shade places an edge under --pixel"
+        )));
+    };
+    let p = job.place_shade(frame, pixel, choice).map_err(|e| {
         let bad = e.is_bad_input();
         let e = anyhow!("{shown}: {e}");
         if bad {

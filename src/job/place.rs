@@ -93,7 +93,13 @@ impl RenderJob {
         pixel: (f64, f64),
         choice: LayerChoice,
     ) -> Result<Placement, PlaceError> {
-        let mut placement = self.place_centre(frame, pixel, choice)?;
+        let placement = self.place_centre(frame, pixel, choice)?;
+        self.complete(placement)
+    }
+
+    /// A placement with its residuals and centres found.
+    fn complete(&mut self, mut placement: Placement) -> Result<Placement, PlaceError> {
+        let frame = placement.frame;
         let state = self.shot.at(frame);
         let mut placed = state.highlights[placement.highlight].layers()[placement.layer].clone();
         placed.stack[placement.op] = crate::highlight::Op::Translate {
@@ -164,20 +170,61 @@ impl RenderJob {
         choice: LayerChoice,
     ) -> Result<LayerUnder, PlaceError> {
         let (patch, uv) = self.point_under(frame, pixel)?;
+        let at = format!("under pixel ({}, {})", pixel.0, pixel.1);
+        let (drawn, layer) = self.choose_layer(frame, patch, choice, &at)?;
+        Ok(LayerUnder {
+            patch,
+            uv,
+            highlight: drawn,
+            layer,
+        })
+    }
+
+    /// The highlight layer drawn on `(u, v)` of patch `patch` at `frame`: the entry drawn on
+    /// the patch (which must be `choice.highlight` if given), and its layer `choice.layer`, or
+    /// the first with a translation. Errors as [`RenderJob::layer_under`] does for the entry
+    /// and the layer.
+    pub fn layer_at(
+        &self,
+        frame: f64,
+        (patch, uv): (usize, (f64, f64)),
+        choice: LayerChoice,
+    ) -> Result<LayerUnder, PlaceError> {
+        let at = format!(
+            "at (u, v) = ({}, {})",
+            rounded_number_text(uv.0 as f32),
+            rounded_number_text(uv.1 as f32)
+        );
+        let (highlight, layer) = self.choose_layer(frame, patch, choice, &at)?;
+        Ok(LayerUnder {
+            patch,
+            uv,
+            highlight,
+            layer,
+        })
+    }
+
+    /// The highlight entry drawn on patch `patch` (which must be `choice.highlight` if given)
+    /// and its layer `choice.layer`, or the first with a translation; `at` says where the point
+    /// is, for messages.
+    fn choose_layer(
+        &self,
+        frame: f64,
+        patch: usize,
+        choice: LayerChoice,
+        at: &str,
+    ) -> Result<(usize, usize), PlaceError> {
         let shot = &self.shot;
         let name = &shot.library.patches[patch].name;
         let Some(drawn) = shot.highlight_of(patch) else {
             return Err(PlaceError::NoHighlight(format!(
-                "{name}, under pixel ({}, {}), has no designed highlight; add an entry to \
-                 `highlights` whose patches select it",
-                pixel.0, pixel.1
+                "{name}, {at}, has no designed highlight; add an entry to `highlights` whose \
+                 patches select it"
             )));
         };
         if let Some(asked) = choice.highlight.filter(|&h| h != drawn) {
             return Err(PlaceError::NoHighlight(format!(
-                "highlight {asked} is not the one drawn on {name}, under pixel ({}, {}): \
-                 highlight {drawn} is",
-                pixel.0, pixel.1
+                "highlight {asked} is not the one drawn on {name}, {at}: highlight {drawn} is"
             )));
         }
         let state = shot.at(frame);
@@ -195,12 +242,29 @@ impl RenderJob {
                 .position(|l| l.placing_translation().is_some())
                 .unwrap_or(0),
         };
-        Ok(LayerUnder {
-            patch,
-            uv,
-            highlight: drawn,
-            layer,
-        })
+        Ok((drawn, layer))
+    }
+
+    /// [`place`](Self::place) on a named surface point rather than the one under a pixel:
+    /// `(u, v)` of patch `patch` (clamped to its domain), as the model is posed at `frame`,
+    /// seen or not. The placement's pixel is where the point lands in the frame
+    /// ([`RenderJob::pixel_of`]), meaningful when it is in front of the camera. Errors as
+    /// `place` does for the entry and the layer.
+    pub fn place_at(
+        &mut self,
+        frame: f64,
+        (patch, uv): (usize, (f64, f64)),
+        choice: LayerChoice,
+    ) -> Result<Placement, PlaceError> {
+        let domain = self.shot.library.patches[patch].surface.domain();
+        let uv = (
+            uv.0.clamp(domain.u.0, domain.u.1),
+            uv.1.clamp(domain.v.0, domain.v.1),
+        );
+        let under = self.layer_at(frame, (patch, uv), choice)?;
+        let pixel = self.pixel_of(frame, patch, uv)?.pixel;
+        let placement = self.centre_on(frame, pixel, under)?;
+        self.complete(placement)
     }
 
     /// [`RenderJob::place`] without the residuals and centres (both empty): the translation
@@ -211,12 +275,24 @@ impl RenderJob {
         pixel: (f64, f64),
         choice: LayerChoice,
     ) -> Result<Placement, PlaceError> {
+        let under = self.layer_under(frame, pixel, choice)?;
+        self.centre_on(frame, pixel, under)
+    }
+
+    /// The placing translation that centres the layer `under` names on its point, the point
+    /// being at `pixel` of the frame.
+    fn centre_on(
+        &self,
+        frame: f64,
+        pixel: (f64, f64),
+        under: LayerUnder,
+    ) -> Result<Placement, PlaceError> {
         let LayerUnder {
             patch,
             uv,
             highlight: drawn,
             layer,
-        } = self.layer_under(frame, pixel, choice)?;
+        } = under;
         let shot = &self.shot;
         let name = &shot.library.patches[patch].name;
         let state = shot.at(frame);

@@ -680,9 +680,8 @@ mod tests {
 
     /// The status and the body of the answer to `image` asked for as a PNG.
     fn png_answer(image: &FrameImage) -> (StatusCode, Vec<u8>) {
-        let response =
-            image_response(image, Format::Png, None, Instant::now())
-                .unwrap_or_else(IntoResponse::into_response);
+        let response = image_response(image, Format::Png, None, Instant::now())
+            .unwrap_or_else(IntoResponse::into_response);
         let status = response.status();
         let runtime = tokio::runtime::Builder::new_current_thread()
             .build()
