@@ -6,6 +6,7 @@ mod common;
 mod accuracy_cli;
 mod accuracy_ladder;
 mod anim_tracks;
+mod animator_task;
 mod cli_bench_loop;
 mod cli_farm;
 mod cli_key;

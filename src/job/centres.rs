@@ -3,9 +3,11 @@
 //! twice on a patch (on a lid whose normals repeat along a radius, on an S-bend) is reported
 //! twice.
 
+use glam::Vec2;
+
 use super::pixel_of::PointInImage;
 use crate::geom::Domain;
-use crate::highlight::{HighlightError, Layer, Shape};
+use crate::highlight::{Footprint, HighlightError, Layer, Shape};
 use crate::shot::{FrameState, Shot};
 
 /// A centre of a layer's highlight on one patch.
@@ -59,7 +61,7 @@ const ON_EDGE: f64 = 1e-9;
 /// patch the entry is drawn on, the deepest first. On each patch: every sample of a 33 × 33 grid
 /// over its domain no higher than its eight neighbours, refined by a compass search, where the
 /// highlight shows (`‖N − H'‖²/2 < ε`, measured as the disc's for a drawn shape, whose own
-/// outline must cover it); minima the highlight joins — showing all along the
+/// outline must cover it) and the layer's mask keeps it; minima the highlight joins — showing all along the
 /// straight (u, v) segment between them — are one centre, the deeper. A minimum on the edge of
 /// its patch's domain is a centre only where the patch closes on itself there and a minimum
 /// from its other end lies at the same point (the seam of a sphere): otherwise it is the
@@ -89,13 +91,11 @@ pub(crate) fn centres(
             let point = shot.highlight_point(state, patch, uv);
             layer.epsilon - disc.signed(&point.frame, point.half_vector)
         };
+        // Where the layer paints: inside its shape, and where its mask keeps it.
         let shows = |uv: (f64, f64)| {
             let point = shot.highlight_point(state, patch, uv);
-            if layer.shape.is_disc() {
-                layer.epsilon - disc.signed(&point.frame, point.half_vector) < layer.epsilon
-            } else {
-                prepared.signed(&point.frame, point.half_vector) > 0.0
-            }
+            let at = Vec2::new(uv.0 as f32, uv.1 as f32);
+            prepared.shape(&point.frame, at, point.half_vector, Footprint::HARD) > 0.0
         };
         let last = (GRID - 1) as f64;
         let values: Vec<f32> = (0..GRID * GRID)
