@@ -1,5 +1,6 @@
 //! docs/tutorial.md run as a script: its shot written, every command of its `sh` blocks run in
-//! order (but the one that keeps watching), and the highlights it designs checked in the frames.
+//! order (but the one that keeps watching) — no edit of the shot by hand — and the highlights
+//! it designs checked in the frames.
 
 use std::path::Path;
 
@@ -64,13 +65,37 @@ fn covered_near(matte: &(Vec<f32>, usize), (x, y): (f64, f64), radius: f64) -> f
         .sum()
 }
 
+/// Where (u, v) of `patch` lands in `frame` of `shot`, in pixels.
+fn pixel_of(shot: &Path, patch: &str, uv: (f64, f64), frame: f64) -> (f64, f64) {
+    let job = RenderJob::load(shot, &Overrides::default()).unwrap();
+    let index = job
+        .shot()
+        .library
+        .patches
+        .iter()
+        .position(|p| p.name == patch)
+        .unwrap();
+    let mut job = job;
+    job.pixel_of(frame, index, uv).unwrap().pixel
+}
+
 #[test]
-fn the_tutorial_designs_a_growing_lid_highlight_and_a_crescent_with_commands_alone() {
+fn the_tutorial_designs_the_lid_body_and_spout_on_an_orbit_with_commands_alone() {
     let (shot, commands) = script();
     assert!(commands.len() >= 10, "{commands:?}");
-    for needed in ["glint patches", "glint place", "glint key", "glint sheet"] {
+    for needed in [
+        "glint patches",
+        "glint place",
+        "glint layer",
+        "glint key",
+        "glint sheet",
+    ] {
         assert!(commands.iter().any(|c| c.starts_with(needed)), "{needed}");
     }
+    assert!(
+        shot.contains("orbit: Sphere("),
+        "the tutorial's camera orbits"
+    );
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir_all(dir.path().join("work")).unwrap();
     std::fs::create_dir_all(dir.path().join("patches")).unwrap();
@@ -83,7 +108,7 @@ fn the_tutorial_designs_a_growing_lid_highlight_and_a_crescent_with_commands_alo
     }
     let file = dir.path().join("work/lid.ron");
     std::fs::write(&file, &shot).unwrap();
-    let (before_1, before_48) = (matte(&file, 1.0), matte(&file, 48.0));
+    let before_1 = matte(&file, 1.0);
     let before_light = n_dot_l(&file, 1.0);
     for command in &commands {
         run(dir.path(), command);
@@ -91,42 +116,57 @@ fn the_tutorial_designs_a_growing_lid_highlight_and_a_crescent_with_commands_alo
     for picture in ["map", "sigma", "motion"] {
         assert!(dir.path().join(format!("out/lid/{picture}.png")).is_file());
     }
-
-    // The lid's highlight is on the pixels pointed at, where there was none, and it grows.
     let (after_1, after_48) = (matte(&file, 1.0), matte(&file, 48.0));
-    let (lid_1, lid_48) = ((290.0, 100.0), (300.0, 100.0));
+    let index = |m: &(Vec<f32>, usize), (x, y): (f64, f64)| {
+        m.0[y.round() as usize * m.1 + x.round() as usize]
+    };
+
+    // The lid's glint: pinned to the point pointed at, which it stays on at frame 48, holding
+    // its shape.
+    let written = std::fs::read_to_string(&file).unwrap();
+    let loaded = glint::shot::load_shot(&file).unwrap();
+    let layer = loaded.highlight_layers(0)[0];
+    let pin = layer.pin.as_ref().expect("the lid's layer is pinned");
+    assert_eq!(pin.hold, Some(1), "{written}");
+    let pinned = (f64::from(pin.u.at(1.0)), f64::from(pin.v.at(1.0)));
+    let lid_1 = (369.0, 115.0);
     assert_eq!(covered_near(&before_1, lid_1, 12.0), 0.0);
-    assert_eq!(covered_near(&before_48, lid_48, 12.0), 0.0);
-    let index = |(x, y): (f64, f64)| y as usize * after_1.1 + x as usize;
     assert!(
-        after_1.0[index(lid_1)] > 0.5,
-        "no highlight at the lid pixel on frame 1"
+        index(&after_1, lid_1) > 0.5,
+        "no glint at the lid pixel on frame 1"
     );
+    let lid_48 = pixel_of(&file, &pin.patch, pinned, 48.0);
     assert!(
-        after_48.0[index(lid_48)] > 0.5,
-        "no highlight at the lid pixel on frame 48"
-    );
-    let (small, large) = (
-        covered_near(&after_1, lid_1, 40.0),
-        covered_near(&after_48, lid_48, 40.0),
-    );
-    assert!(
-        large > 2.0 * small,
-        "the lid highlight grows: {small} then {large}"
+        index(&after_48, lid_48) > 0.5,
+        "no glint on the lid's point on frame 48"
     );
 
-    // The crescent: none on the body before; after, the second cap's centre is cut out of the
-    // first cap and what is left lies on the side away from it.
-    let (first, second) = ((250.0, 200.0), (268.0, 186.0));
-    assert_eq!(covered_near(&before_1, first, 40.0), 0.0);
+    // The body's streak on the point pointed at on frame 1, and on the same point on frame 48.
+    let body_1 = (236.0, 208.0);
+    assert_eq!(index(&before_1, body_1), 0.0);
+    assert!(
+        index(&after_1, body_1) > 0.5,
+        "no streak where the body was pointed at"
+    );
+    let body_48 = pixel_of(&file, "teapot/5", (0.50155, 0.50151), 48.0);
+    assert!(
+        index(&after_48, body_48) > 0.5,
+        "no streak on the body's point on frame 48"
+    );
+
+    // The spout's crescent: the second cap's centre cut out of the first, which still shows.
+    let (spout, beside) = ((488.0, 163.0), (494.0, 158.0));
+    assert_eq!(index(&before_1, spout), 0.0);
     assert_eq!(
-        covered_near(&after_1, second, 8.0),
+        index(&after_1, beside),
         0.0,
         "the subtracted cap is not cut out"
     );
-    let away = (2.0 * first.0 - second.0, 2.0 * first.1 - second.1);
-    let crescent = covered_near(&after_1, away, 20.0);
-    assert!(crescent > 50.0, "no crescent beside the cut: {crescent}");
+    let (was, is) = (
+        covered_near(&before_1, spout, 25.0),
+        covered_near(&after_1, spout, 25.0),
+    );
+    assert!(is > was + 10.0, "no crescent on the spout: {was} then {is}");
 
     // The body's lighter band (its edge at N·L′ = 0.55) now passes within a pixel of the point
     // pointed at, where the whole neighbourhood was inside it before.
