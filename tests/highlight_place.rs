@@ -797,7 +797,8 @@ fn place_lists_every_centre_a_layer_has_one_on_the_sphere_two_where_normals_repe
     );
     // (model, selector, orthographic height, ε, the pixel placed on, whether the reference
     // wraps in u and in v, the patch whose centres are counted): the torus, whose normals come
-    // round twice, and the teapot's spout, whose S-bend turns its normals back.
+    // round twice, the teapot's spout, whose S-bend turns its normals back, and its lid, whose
+    // normals repeat along a radius.
     let cases = [
         (
             "patches/sphere.ron",
@@ -825,6 +826,26 @@ fn place_lists_every_centre_a_layer_has_one_on_the_sphere_two_where_normals_repe
             (245.0, 88.0),
             (false, false),
             16,
+        ),
+        (
+            "patches/teapot.bpt",
+            "m/lid",
+            6.0,
+            0.002,
+            (155.0, 22.0),
+            (false, false),
+            25,
+        ),
+        // The lid with a larger ε: the two least points are one streak, joined along a curve
+        // in (u, v) that a straight segment between them leaves.
+        (
+            "patches/teapot.bpt",
+            "m/lid",
+            6.0,
+            0.01,
+            (150.0, 22.0),
+            (false, false),
+            25,
         ),
     ];
     for (model, selector, height, epsilon, pixel, (wrap_u, wrap_v), counted) in cases {
@@ -868,8 +889,11 @@ fn place_lists_every_centre_a_layer_has_one_on_the_sphere_two_where_normals_repe
             placed.centres
         );
         assert_eq!(on_patch.len(), expected, "{model}");
-        match model {
-            "patches/sphere.ron" => assert_eq!(placed.centres.len(), 1, "one on the sphere"),
+        match (model, epsilon) {
+            ("patches/sphere.ron", _) => assert_eq!(placed.centres.len(), 1, "one on the sphere"),
+            ("patches/teapot.bpt", e) if selector == "m/lid" && e > 0.005 => {
+                assert_eq!(on_patch.len(), 1, "one streak on the lid");
+            }
             _ => assert!(on_patch.len() >= 2, "{model}: a second centre"),
         }
         // Each centre with the pixel it lands on, and the pixels apart.

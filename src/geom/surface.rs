@@ -144,6 +144,14 @@ impl Domain {
             self.v.0 + t * (self.v.1 - self.v.0),
         )
     }
+
+    /// The fractions `(s, t)` of the rectangle at parameter `(u, v)`, the inverse of
+    /// [`lerp`](Self::lerp); 0 along a side of no width.
+    #[must_use]
+    pub fn unlerp(&self, (u, v): (f64, f64)) -> (f64, f64) {
+        let fraction = |x: f64, (a, b): (f64, f64)| if b > a { (x - a) / (b - a) } else { 0.0 };
+        (fraction(u, self.u), fraction(v, self.v))
+    }
 }
 
 impl NurbsSurface {

@@ -61,8 +61,9 @@ const ON_EDGE: f64 = 1e-9;
 /// patch the entry is drawn on, the deepest first. On each patch: every sample of a 33 × 33 grid
 /// over its domain no higher than its eight neighbours, refined by a compass search, where the
 /// highlight shows (`‖N − H'‖²/2 < ε`, measured as the disc's for a drawn shape, whose own
-/// outline must cover it) and the layer's mask keeps it; minima the highlight joins — showing all along the
-/// straight (u, v) segment between them — are one centre, the deeper. A minimum on the edge of
+/// outline must cover it) and the layer's mask keeps it; minima the highlight joins — in one
+/// blob of the grid's samples where it shows, or showing all along the straight (u, v) segment
+/// between them — are one centre, the deeper. A minimum on the edge of
 /// its patch's domain is a centre only where the patch closes on itself there and a minimum
 /// from its other end lies at the same point (the seam of a sphere): otherwise it is the
 /// highlight spilling over from a neighbouring patch, whose own frame places its centre, or a
@@ -101,7 +102,16 @@ pub(crate) fn centres(
         let values: Vec<f32> = (0..GRID * GRID)
             .map(|k| distance(domain.lerp((k / GRID) as f64 / last, (k % GRID) as f64 / last)))
             .collect();
-        let mut minima: Vec<((f64, f64), f32)> = Vec::new();
+        // The grid's blobs: samples where the highlight's disc shows, 8-connected.
+        let blob = grid_blobs(&values, layer.epsilon);
+        // The blob of the sample nearest `uv`, or of `(i, j)` when that one is outside.
+        let blob_of = |uv: (f64, f64), (i, j): (usize, usize)| {
+            let (x, y) = domain.unlerp(uv);
+            let nearest = (x * last).round().clamp(0.0, last) as usize * GRID
+                + (y * last).round().clamp(0.0, last) as usize;
+            blob[nearest].or(blob[i * GRID + j])
+        };
+        let mut minima: Vec<((f64, f64), f32, Option<usize>)> = Vec::new();
         for i in 0..GRID {
             for j in 0..GRID {
                 let value = values[i * GRID + j];
@@ -122,31 +132,39 @@ pub(crate) fn centres(
                     let uv = domain.lerp(i as f64 / last, j as f64 / last);
                     let refined = refine(&distance, domain, (uv, value));
                     if refined.1 < layer.epsilon {
-                        minima.push(refined);
+                        minima.push((refined.0, refined.1, blob_of(refined.0, (i, j))));
                     }
                 }
             }
         }
         minima.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let mut kept: Vec<((f64, f64), f32)> = Vec::new();
+        let mut kept: Vec<((f64, f64), f32, Option<usize>)> = Vec::new();
         // The placed point first: the minima its blob holds are joined to it.
         let placed_here = placed.filter(|&(p, _)| p == patch).map(|(_, uv)| uv);
         if let Some(uv) = placed_here {
-            minima.insert(0, (uv, distance(uv)));
+            let (x, y) = domain.unlerp(uv);
+            let sample = (
+                (x * last).round().clamp(0.0, last) as usize,
+                (y * last).round().clamp(0.0, last) as usize,
+            );
+            minima.insert(0, (uv, distance(uv), blob_of(uv, sample)));
         }
-        for (uv, value) in minima {
-            let joined = kept.iter().any(|&(other, _)| {
-                (0..=JOIN_SAMPLES).all(|k| {
-                    let t = k as f64 / JOIN_SAMPLES as f64;
-                    let at = (uv.0 + (other.0 - uv.0) * t, uv.1 + (other.1 - uv.1) * t);
-                    distance(at) < layer.epsilon
-                })
+        for (uv, value, blob) in minima {
+            // Joined: in one blob of the grid, or, for a highlight narrower than the grid's
+            // step, showing all along the straight (u, v) segment between them.
+            let joined = kept.iter().any(|&(other, _, other_blob)| {
+                (blob.is_some() && blob == other_blob)
+                    || (0..=JOIN_SAMPLES).all(|k| {
+                        let t = k as f64 / JOIN_SAMPLES as f64;
+                        let at = (uv.0 + (other.0 - uv.0) * t, uv.1 + (other.1 - uv.1) * t);
+                        distance(at) < layer.epsilon
+                    })
             });
             if !joined && shows(uv) {
-                kept.push((uv, value));
+                kept.push((uv, value, blob));
             }
         }
-        for (uv, value) in kept {
+        for (uv, value, _) in kept {
             let point = named.surface.point(uv.0, uv.1);
             let (du, dv) = (domain.u.1 - domain.u.0, domain.v.1 - domain.v.0);
             let edge = uv.0 - domain.u.0 <= ON_EDGE * du
@@ -198,6 +216,45 @@ pub(crate) fn centres(
         });
     }
     Ok(out)
+}
+
+/// The 8-connected blobs of the grid samples (row `i` along u, column `j` along v) whose
+/// `‖N − H'‖²/2` is below `epsilon`: each sample's blob, None outside.
+fn grid_blobs(values: &[f32], epsilon: f32) -> Vec<Option<usize>> {
+    let mut blob = vec![None; values.len()];
+    let mut count = 0;
+    for start in 0..values.len() {
+        if values[start] >= epsilon || blob[start].is_some() {
+            continue;
+        }
+        blob[start] = Some(count);
+        let mut stack = vec![start];
+        while let Some(k) = stack.pop() {
+            let (i, j) = ((k / GRID) as i64, (k % GRID) as i64);
+            for (di, dj) in [
+                (-1, -1),
+                (-1, 0),
+                (-1, 1),
+                (0, -1),
+                (0, 1),
+                (1, -1),
+                (1, 0),
+                (1, 1),
+            ] {
+                let (a, b) = (i + di, j + dj);
+                if !(0..GRID as i64).contains(&a) || !(0..GRID as i64).contains(&b) {
+                    continue;
+                }
+                let m = a as usize * GRID + b as usize;
+                if values[m] < epsilon && blob[m].is_none() {
+                    blob[m] = Some(count);
+                    stack.push(m);
+                }
+            }
+        }
+        count += 1;
+    }
+    blob
 }
 
 /// A compass search down `distance` from `(uv, value)` over `domain`, from a step of a 32nd of
