@@ -698,3 +698,53 @@ fn the_centres_overlay_crosses_each_blob_of_the_highlight_once() {
     }));
     assert!(dragged.header("x-glint-centres").is_none());
 }
+
+/// With the pins overlay a still frame also shows where each pin's point goes over the shot: a
+/// yellow dot on every frame's landing, each where `glint probe` puts the pinned point on that
+/// frame; a frame with unsaved changes (a drag) leaves the track out.
+#[test]
+fn the_pins_overlay_dots_each_pin_s_track_where_probe_puts_its_point() {
+    let served = Served::new();
+    let frame = 1.0;
+    let dotted = served.raw_frame(&json!({"frame": frame, "overlays": {"pins": true}}));
+    let plain = served.raw_frame(&json!({"frame": frame}));
+    let (current, _) = probed_pixel(&served.shot, "teapot/4", [0.63, 0.39], frame);
+    let w = WIDTH as usize;
+    let mut checked = 0;
+    for other in [20.0, 48.0, 75.0, 96.0] {
+        let (pixel, _) = probed_pixel(&served.shot, "teapot/4", [0.63, 0.39], other);
+        let (x, y) = (pixel.0.round(), pixel.1.round());
+        // Away from the current frame's pin marker, inside the image.
+        if (x - current.0).hypot(y - current.1) < 11.0
+            || x < 0.0
+            || y < 0.0
+            || x >= f64::from(WIDTH)
+            || y >= f64::from(HEIGHT)
+        {
+            continue;
+        }
+        let k = 4 * (y as usize * w + x as usize);
+        assert_eq!(
+            &dotted[k..k + 3],
+            [255, 220, 0],
+            "frame {other}'s dot at ({x}, {y})"
+        );
+        assert_ne!(&plain[k..k + 3], [255, 220, 0]);
+        checked += 1;
+    }
+    assert!(checked >= 2, "{checked} dots checked");
+
+    // With an unsaved change, the pin is marked but no track is drawn.
+    let change =
+        json!([{"kind": "set", "path": "highlights[0].layers[0].epsilon", "value": [0.012]}]);
+    let changed = served.raw_frame(&json!({"frame": frame, "changes": change}));
+    let changed_pins =
+        served.raw_frame(&json!({"frame": frame, "overlays": {"pins": true}, "changes": change}));
+    let (pixel, _) = probed_pixel(&served.shot, "teapot/4", [0.63, 0.39], 96.0);
+    let k = 4 * (pixel.1.round() as usize * w + pixel.0.round() as usize);
+    assert_eq!(
+        &changed_pins[k..k + 4],
+        &changed[k..k + 4],
+        "a track drawn during a drag"
+    );
+}

@@ -1,6 +1,6 @@
 //! Marks drawn over a rendered frame for the person tuning it: patch seams, the highlight
-//! matte, the cel bands' edges, pin points and a layer's centres — each on an sRGB RGBA8
-//! image, rows from the top.
+//! matte, the cel bands' edges, pin points and their tracks, and a layer's centres — each on an
+//! sRGB RGBA8 image, rows from the top.
 
 /// Darkens the pixels where the patch changes to the right or below (a seam between patches,
 /// or the silhouette against the background): `ids` holds a patch index per pixel, `u32::MAX`
@@ -125,6 +125,33 @@ pub fn draw_pin(rgba: &mut [u8], width: u32, height: u32, (x, y): (f64, f64)) {
             };
             let at = (py as usize * width as usize + px as usize) * 4;
             blend(&mut rgba[at..at + 4], colour, 1.0);
+        }
+    }
+}
+
+/// Draws a pin's track: a yellow dot of radius 1.5 px on each image position of `points`, each
+/// with a dark rim, the rims first so that no dot hides another's centre and a shot's worth of
+/// them reads as a path. Parts outside the image are clipped.
+pub fn draw_track(rgba: &mut [u8], width: u32, height: u32, points: &[(f64, f64)]) {
+    for (reach, colour) in [(2.5, [0, 0, 0]), (1.5, [255, 220, 0])] {
+        for &(x, y) in points {
+            if !(x.is_finite() && y.is_finite()) {
+                continue;
+            }
+            let (cx, cy) = (x.round() as i64, y.round() as i64);
+            for dy in -3i64..=3 {
+                for dx in -3i64..=3 {
+                    let (px, py) = (cx + dx, cy + dy);
+                    if px < 0 || py < 0 || px >= i64::from(width) || py >= i64::from(height) {
+                        continue;
+                    }
+                    if ((dx * dx + dy * dy) as f64).sqrt() > reach {
+                        continue;
+                    }
+                    let at = (py as usize * width as usize + px as usize) * 4;
+                    blend(&mut rgba[at..at + 4], colour, 1.0);
+                }
+            }
         }
     }
 }

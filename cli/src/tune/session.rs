@@ -18,7 +18,9 @@ use glint::highlight::{Op, MAX_OUTLINE_SEGMENTS};
 use glint::job::{
     JobError, LayerChoice, Overrides, PlaceError, RenderJob, ShadeChoice, ShapePointError,
 };
-use glint::picture::overlay::{draw_band_edges, draw_centre, draw_matte, draw_pin, draw_seams};
+use glint::picture::overlay::{
+    draw_band_edges, draw_centre, draw_matte, draw_pin, draw_seams, draw_track,
+};
 use glint::render::{Stage, SurfacePoint};
 use glint::shot::{
     load_shot_text, Aov, HighlightRef, LayerParam, MaterialState, OpParam, ParamPath, Preset,
@@ -44,7 +46,8 @@ pub struct Overlays {
     pub seams: bool,
     /// The highlight matte, tinted, with its edge.
     pub matte: bool,
-    /// Every pin of the shot file's layers.
+    /// Every pin of the shot file's layers, and, on frames without unsaved changes, where its
+    /// point goes over the shot: a dot where it lands on every frame.
     pub pins: bool,
     /// The cel bands' edges: the terminator and every band's, where `N·L'` crosses them.
     pub terminator: bool,
@@ -308,13 +311,14 @@ impl Session {
             Quality::Final => &mut self.final_frames,
         };
         sync(rendering, &self.path, &text)?;
-        // Centres are searched for over every patch of the layer's entry: not while a change is
-        // being dragged.
+        // Centres are searched for over every patch of the layer's entry, and a pin's track
+        // poses the model on every frame: not while a change is being dragged.
         let mut overlays = request.overlays;
-        if !request.changes.is_empty() {
+        let still = request.changes.is_empty();
+        if !still {
             overlays.centres = None;
         }
-        draw(&mut rendering.job, request.frame, overlays)
+        draw(&mut rendering.job, request.frame, overlays, still)
     }
 
     /// What is under pixel `(x, y)` at `frame`.
@@ -742,7 +746,13 @@ fn sync(rendering: &mut Rendering, path: &Path, text: &str) -> Result<(), TuneEr
 }
 
 /// Renders `frame` of `job` with `overlays` drawn over it.
-fn draw(job: &mut RenderJob, frame: f64, overlays: Overlays) -> Result<FrameImage, TuneError> {
+/// Renders `frame` of `job` with `overlays` drawn over it; pins' tracks only when `tracks`.
+fn draw(
+    job: &mut RenderJob,
+    frame: f64,
+    overlays: Overlays,
+    tracks: bool,
+) -> Result<FrameImage, TuneError> {
     let started = Instant::now();
     let image = job.render_frame(frame).map_err(job_error)?;
     let render_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -776,27 +786,44 @@ fn draw(job: &mut RenderJob, frame: f64, overlays: Overlays) -> Result<FrameImag
     }
     if overlays.pins {
         let shot = job.shot();
-        let state = shot.at(frame);
         let aspect = width as f32 / height as f32;
-        let to_clip = state.camera.view_projection(aspect);
-        for entry in 0..shot.highlight_count() {
-            for (k, layer) in shot.highlight_layers(entry).into_iter().enumerate() {
-                let (Some(patch), Some(uv)) = (shot.pinned_patch(entry, k), pin_at(layer, frame))
-                else {
-                    continue;
-                };
-                let surface = &state.library.patches[patch].surface;
-                let point = SurfacePoint::new(surface, uv, &state.camera, &state.light);
-                let clip = to_clip * point.position.extend(1.0);
-                if clip.w <= 0.0 {
-                    continue;
-                }
+        // Where (u, v) of `patch` lands in this image at frame `at`, posed and seen then.
+        let landing = |patch: usize, uv: (f64, f64), at: f64| {
+            let library = shot.library_at(at);
+            let camera = shot.camera_at(at);
+            let surface = &library.patches[patch].surface;
+            let domain = surface.domain();
+            let (u, v) = (
+                uv.0.clamp(domain.u.0, domain.u.1),
+                uv.1.clamp(domain.v.0, domain.v.1),
+            );
+            let clip = camera.view_projection(aspect) * surface.point(u, v).as_vec3().extend(1.0);
+            (clip.w > 0.0).then(|| {
                 let (x, y) = (clip.x / clip.w, clip.y / clip.w);
-                let pixel = (
+                (
                     f64::from((x + 1.0) * 0.5 * width as f32) - 0.5,
                     f64::from((1.0 - y) * 0.5 * height as f32) - 0.5,
-                );
-                draw_pin(&mut rgba, width, height, pixel);
+                )
+            })
+        };
+        let (first, last) = shot.frames;
+        for entry in 0..shot.highlight_count() {
+            for (k, layer) in shot.highlight_layers(entry).into_iter().enumerate() {
+                let Some(patch) = shot.pinned_patch(entry, k) else {
+                    continue;
+                };
+                if tracks {
+                    let track: Vec<(f64, f64)> = (first..=last)
+                        .filter_map(|at| landing(patch, pin_at(layer, at as f64)?, at as f64))
+                        .collect();
+                    draw_track(&mut rgba, width, height, &track);
+                }
+                let Some(uv) = pin_at(layer, frame) else {
+                    continue;
+                };
+                if let Some(pixel) = landing(patch, uv, frame) {
+                    draw_pin(&mut rgba, width, height, pixel);
+                }
             }
         }
     }
