@@ -379,7 +379,7 @@ fn inspect_prints_values_in_the_shot_syntax_that_key_takes_back() {
             for rust_only in ["Some(", "None", " { ", "ShapeDetail"] {
                 assert!(!line.contains(rust_only), "{file}: {line}");
             }
-            // The values: what follows `NAME: ` or `layer 1: `.
+            // The values: what follows `NAME: ` or `layers[0]: `.
             let Some((_, values)) = line.split_once(": ") else {
                 continue;
             };

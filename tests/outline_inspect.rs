@@ -40,7 +40,7 @@ fn layer_line(dir: &std::path::Path, shape: &str, frame: &str) -> String {
     let report = String::from_utf8(out.stdout).unwrap();
     report
         .lines()
-        .find(|l| l.trim_start().starts_with("layer 1: "))
+        .find(|l| l.trim_start().starts_with("layers[0]: "))
         .unwrap_or_else(|| panic!("no layer line in\n{report}"))
         .to_string()
 }

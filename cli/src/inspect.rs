@@ -137,10 +137,10 @@ fn inspect(shot: &Shot, frame: f64, patch: Option<&str>) -> anyhow::Result<Strin
         if on.is_empty() {
             continue;
         }
+        // Numbered as parameter paths number them.
         let _ = writeln!(
             out,
-            "highlight {} ({}) on {}:",
-            index + 1,
+            "highlights[{index}] ({}) on {}:",
             selector.join(", "),
             on.join(", ")
         );
@@ -173,10 +173,10 @@ fn describe(expr: &Expr, depth: usize, layers: &mut usize, out: &mut String) {
     let pad = "  ".repeat(depth);
     let (name, a, b) = match expr {
         Expr::Layer(layer) => {
+            let _ = writeln!(out, "{pad}layers[{layers}]: {}", layer_fields(layer));
             *layers += 1;
-            let _ = writeln!(out, "{pad}layer {layers}: {}", layer_fields(layer));
             for (i, op) in layer.stack.iter().enumerate() {
-                let _ = writeln!(out, "{pad}  op {}: {}", i + 1, op_text(op, number));
+                let _ = writeln!(out, "{pad}  stack[{i}]: {}", op_text(op, number));
             }
             return;
         }

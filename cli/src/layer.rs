@@ -55,7 +55,7 @@ use glint::shot::{edit_layer, load_shot, op_text, rounded_number_text, LayerEdit
 pub struct LayerArgs {
     /// The shot file (RON)
     shot: PathBuf,
-    /// The highlight entry, from 0, includes first (as `glint inspect` lists them from 1)
+    /// The highlight entry, from 0, includes first (as `glint inspect` lists them)
     #[arg(long, value_name = "N")]
     highlight: usize,
     /// The layer of the entry's expression, left to right from 0
