@@ -86,6 +86,28 @@ fn pixel_arg((x, y): (f64, f64)) -> String {
     format!("{x:.1},{y:.1}")
 }
 
+/// `glint place --json` of the spout's first cap on `pixel` at frame 1, written when `write`.
+fn place_spout_cap(dir: &Path, pixel: (f64, f64), write: bool) -> Value {
+    let pixel = pixel_arg(pixel);
+    let mut args = vec![
+        "place",
+        "work/task.ron",
+        "--frame",
+        "1",
+        "--pixel",
+        &pixel,
+        "--highlight",
+        "2",
+        "--layer",
+        "0",
+        "--json",
+    ];
+    if write {
+        args.push("--write");
+    }
+    serde_json::from_str(&run(dir, &args)).unwrap()
+}
+
 /// The matte of `frame`, and its width.
 fn matte(shot: &Path, frame: f64) -> (Vec<f32>, usize) {
     let overrides = Overrides {
@@ -215,24 +237,7 @@ fn the_lid_body_spout_task_runs_on_glint_s_commands_alone() {
     // shows more than once; `place` lists every centre, and a mask over the u the placed one
     // lies in keeps it alone.
     let (spout, _) = probe(dir, "teapot/16", (0.5, 0.5), 1);
-    let first: Value = serde_json::from_str(&run(
-        dir,
-        &[
-            "place",
-            file,
-            "--frame",
-            "1",
-            "--pixel",
-            &pixel_arg(spout),
-            "--highlight",
-            "2",
-            "--layer",
-            "0",
-            "--json",
-            "--write",
-        ],
-    ))
-    .unwrap();
+    let first = place_spout_cap(dir, spout, true);
     let beside = (spout.0 + 6.0, spout.1 - 5.0);
     run(
         dir,
@@ -334,23 +339,7 @@ fn the_lid_body_spout_task_runs_on_glint_s_commands_alone() {
     assert!(shown >= 10, "{shown} pixels of the spout's highlight");
     // The mask keeps only the placed centre.
     {
-        let again: Value = serde_json::from_str(&run(
-            dir,
-            &[
-                "place",
-                file,
-                "--frame",
-                "1",
-                "--pixel",
-                &pixel_arg(spout),
-                "--highlight",
-                "2",
-                "--layer",
-                "0",
-                "--json",
-            ],
-        ))
-        .unwrap();
+        let again = place_spout_cap(dir, spout, false);
         assert_eq!(again["centres"].as_array().unwrap().len(), 1, "{again}");
     }
     run(
