@@ -14,7 +14,7 @@ use nalgebra::Matrix2;
 /// smooth maps of the surface that both send the pin to 0. With `M p_F(x) = p_K(x)` at every x
 /// near the pin, every operation after the translation sees at F what it saw at K, so the
 /// highlight covers the same surface about the pin: the same size, aspect and direction. A
-/// 2 × 2 map can do this only to first order; [`fit`](Self::fit) finds the one that does it
+/// 2 × 2 map can do this only to first order; [`try_fit`](Self::try_fit) finds the one that does it
 /// best in the least-squares sense over points spread across the held highlight, which is
 /// closer over the highlight's whole extent than the derivatives at the pin.
 ///
