@@ -101,32 +101,53 @@ pub fn draw_band_edges(
     }
 }
 
-/// Draws a pin marker centred on image position `(x, y)` (a pixel's centre at integer values):
-/// a ring of radius 6 px in yellow with a dark outline, and a dot at its centre. Parts outside
-/// the image are clipped.
-pub fn draw_pin(rgba: &mut [u8], width: u32, height: u32, (x, y): (f64, f64)) {
+/// Paints opaque `colour_at(dx, dy)` on every pixel within `reach` pixels (a square) of image
+/// position `(x, y)` where it gives one; parts outside the image are clipped, and a position
+/// that is not finite paints nothing.
+fn stamp(
+    rgba: &mut [u8],
+    (width, height): (u32, u32),
+    (x, y): (f64, f64),
+    reach: i64,
+    colour_at: impl Fn(i64, i64) -> Option<[u8; 3]>,
+) {
     if !(x.is_finite() && y.is_finite()) {
         return;
     }
     let (cx, cy) = (x.round() as i64, y.round() as i64);
-    for dy in -9i64..=9 {
-        for dx in -9i64..=9 {
+    for dy in -reach..=reach {
+        for dx in -reach..=reach {
             let (px, py) = (cx + dx, cy + dy);
             if px < 0 || py < 0 || px >= i64::from(width) || py >= i64::from(height) {
                 continue;
             }
-            let r = ((dx * dx + dy * dy) as f64).sqrt();
-            let colour = if (5.0..=7.0).contains(&r) || r <= 1.5 {
-                [255, 220, 0]
-            } else if (4.0..5.0).contains(&r) || (7.0..8.0).contains(&r) {
-                [0, 0, 0]
-            } else {
-                continue;
-            };
-            let at = (py as usize * width as usize + px as usize) * 4;
-            blend(&mut rgba[at..at + 4], colour, 1.0);
+            if let Some(colour) = colour_at(dx, dy) {
+                let at = (py as usize * width as usize + px as usize) * 4;
+                blend(&mut rgba[at..at + 4], colour, 1.0);
+            }
         }
     }
+}
+
+/// The distance of `(dx, dy)` from the origin.
+fn radius(dx: i64, dy: i64) -> f64 {
+    ((dx * dx + dy * dy) as f64).sqrt()
+}
+
+/// Draws a pin marker centred on image position `(x, y)` (a pixel's centre at integer values):
+/// a ring of radius 6 px in yellow with a dark outline, and a dot at its centre. Parts outside
+/// the image are clipped.
+pub fn draw_pin(rgba: &mut [u8], width: u32, height: u32, at: (f64, f64)) {
+    stamp(rgba, (width, height), at, 9, |dx, dy| {
+        let r = radius(dx, dy);
+        if (5.0..=7.0).contains(&r) || r <= 1.5 {
+            Some([255, 220, 0])
+        } else if (4.0..5.0).contains(&r) || (7.0..8.0).contains(&r) {
+            Some([0, 0, 0])
+        } else {
+            None
+        }
+    });
 }
 
 /// Draws a pin's track: a yellow dot of radius 1.5 px on each image position of `points`, each
@@ -134,24 +155,10 @@ pub fn draw_pin(rgba: &mut [u8], width: u32, height: u32, (x, y): (f64, f64)) {
 /// them reads as a path. Parts outside the image are clipped.
 pub fn draw_track(rgba: &mut [u8], width: u32, height: u32, points: &[(f64, f64)]) {
     for (reach, colour) in [(2.5, [0, 0, 0]), (1.5, [255, 220, 0])] {
-        for &(x, y) in points {
-            if !(x.is_finite() && y.is_finite()) {
-                continue;
-            }
-            let (cx, cy) = (x.round() as i64, y.round() as i64);
-            for dy in -3i64..=3 {
-                for dx in -3i64..=3 {
-                    let (px, py) = (cx + dx, cy + dy);
-                    if px < 0 || py < 0 || px >= i64::from(width) || py >= i64::from(height) {
-                        continue;
-                    }
-                    if ((dx * dx + dy * dy) as f64).sqrt() > reach {
-                        continue;
-                    }
-                    let at = (py as usize * width as usize + px as usize) * 4;
-                    blend(&mut rgba[at..at + 4], colour, 1.0);
-                }
-            }
+        for &at in points {
+            stamp(rgba, (width, height), at, 3, |dx, dy| {
+                (radius(dx, dy) <= reach).then_some(colour)
+            });
         }
     }
 }
@@ -160,33 +167,21 @@ pub fn draw_track(rgba: &mut [u8], width: u32, height: u32, points: &[(f64, f64)
 /// values): a magenta cross whose four arms, 3 px wide, run from 3 to 8 px off the point, each
 /// with a dark outline, so that the point itself stays in view. Parts outside the image are
 /// clipped.
-pub fn draw_centre(rgba: &mut [u8], width: u32, height: u32, (x, y): (f64, f64)) {
-    if !(x.is_finite() && y.is_finite()) {
-        return;
-    }
-    let (cx, cy) = (x.round() as i64, y.round() as i64);
+pub fn draw_centre(rgba: &mut [u8], width: u32, height: u32, at: (f64, f64)) {
     // Whether (dx, dy) lies on an arm of half width `w` running from `from` to `to` px out.
     let on_arm = |dx: i64, dy: i64, w: i64, from: i64, to: i64| {
         let along = |a: i64, b: i64| b.abs() <= w && (from..=to).contains(&a.abs());
         along(dx, dy) || along(dy, dx)
     };
-    for dy in -9i64..=9 {
-        for dx in -9i64..=9 {
-            let (px, py) = (cx + dx, cy + dy);
-            if px < 0 || py < 0 || px >= i64::from(width) || py >= i64::from(height) {
-                continue;
-            }
-            let colour = if on_arm(dx, dy, 1, 3, 8) {
-                [255, 60, 200]
-            } else if on_arm(dx, dy, 2, 2, 9) {
-                [0, 0, 0]
-            } else {
-                continue;
-            };
-            let at = (py as usize * width as usize + px as usize) * 4;
-            blend(&mut rgba[at..at + 4], colour, 1.0);
+    stamp(rgba, (width, height), at, 9, |dx, dy| {
+        if on_arm(dx, dy, 1, 3, 8) {
+            Some([255, 60, 200])
+        } else if on_arm(dx, dy, 2, 2, 9) {
+            Some([0, 0, 0])
+        } else {
+            None
         }
-    }
+    });
 }
 
 /// `pixel` mixed toward opaque `colour` by `amount` ∈ [0, 1].
