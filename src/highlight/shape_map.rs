@@ -60,7 +60,16 @@ impl ShapeMap {
         if scale <= 0.0 || aa.determinant() <= 1e-10 * scale * scale {
             return None;
         }
-        let m = ba * aa.try_inverse()?;
+        Self::try_new(ba * aa.try_inverse()?)
+    }
+
+    /// The map `m` with its singular values brought into [`SHAPE_MAP_RANGE`], its singular
+    /// directions kept. `None` when `m` is not finite.
+    #[must_use]
+    pub fn try_new(m: Matrix2<f64>) -> Option<ShapeMap> {
+        if !m.iter().all(|x| x.is_finite()) {
+            return None;
+        }
         let svd = m.svd(true, true);
         let (u, v_t) = (svd.u?, svd.v_t?);
         let clamped = svd

@@ -104,12 +104,12 @@ pub(crate) fn centres(
             .collect();
         // The grid's blobs: samples where the highlight's disc shows, 8-connected.
         let blob = grid_blobs(&values, layer.epsilon);
-        // The blob of the sample nearest `uv`, or of `(i, j)` when that one is outside.
-        let blob_of = |uv: (f64, f64), (i, j): (usize, usize)| {
+        // The blob of the sample nearest `uv`, or of sample `fallback` when that one is outside.
+        let blob_of = |uv: (f64, f64), fallback: Option<usize>| {
             let (x, y) = domain.unlerp(uv);
             let nearest = (x * last).round().clamp(0.0, last) as usize * GRID
                 + (y * last).round().clamp(0.0, last) as usize;
-            blob[nearest].or(blob[i * GRID + j])
+            blob[nearest].or(fallback.and_then(|k| blob[k]))
         };
         let mut minima: Vec<((f64, f64), f32, Option<usize>)> = Vec::new();
         for i in 0..GRID {
@@ -132,7 +132,7 @@ pub(crate) fn centres(
                     let uv = domain.lerp(i as f64 / last, j as f64 / last);
                     let refined = refine(&distance, domain, (uv, value));
                     if refined.1 < layer.epsilon {
-                        minima.push((refined.0, refined.1, blob_of(refined.0, (i, j))));
+                        minima.push((refined.0, refined.1, blob_of(refined.0, Some(i * GRID + j))));
                     }
                 }
             }
@@ -142,12 +142,7 @@ pub(crate) fn centres(
         // The placed point first: the minima its blob holds are joined to it.
         let placed_here = placed.filter(|&(p, _)| p == patch).map(|(_, uv)| uv);
         if let Some(uv) = placed_here {
-            let (x, y) = domain.unlerp(uv);
-            let sample = (
-                (x * last).round().clamp(0.0, last) as usize,
-                (y * last).round().clamp(0.0, last) as usize,
-            );
-            minima.insert(0, (uv, distance(uv), blob_of(uv, sample)));
+            minima.insert(0, (uv, distance(uv), blob_of(uv, None)));
         }
         for (uv, value, blob) in minima {
             // Joined: in one blob of the grid, or, for a highlight narrower than the grid's

@@ -404,13 +404,7 @@ fn fit(samples: &Samples, designed: &Designed) -> Option<ShapeMap> {
             break;
         }
     }
-    // Back through the least-squares fit, which brings the singular values into their range.
-    let map = Mat2::from_cols(
-        Vec2::new(m[0] as f32, m[1] as f32),
-        Vec2::new(m[2] as f32, m[3] as f32),
-    );
-    let unit = [Vec2::X, Vec2::Y, -Vec2::X, -Vec2::Y];
-    ShapeMap::try_fit(&unit.map(|a| (a, map * a)))
+    ShapeMap::try_new(nalgebra::Matrix2::new(m[0], m[2], m[1], m[3]))
 }
 
 /// The principal values of the covariance `(xx, xy, yy)`, the larger first.
