@@ -6,6 +6,14 @@
 //! before it left them, as in a frame loop. A ratio is the median over rounds of
 //! `numerator frame / denominator frame` from the same round, given with its quartiles. A frame
 //! is timed from the call to the drop of what it returned, as a frame loop pays for it.
+//!
+//! For a profiler, `GLINT_BENCH_PROFILE=NAME` renders only variant `NAME`, 4 frames (or
+//! `GLINT_BENCH_PROFILE_FRAMES`), and exits without measuring:
+//!
+//! ```sh
+//! GLINT_BENCH_PROFILE=moving valgrind --tool=callgrind \
+//!     --toggle-collect='glint::render::gbuffer::GBuffer::fill_keeping' target/release/deps/render-*
+//! ```
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -55,6 +63,9 @@ pub struct Measured {
 
 /// Renders `rounds` rounds of `variants` after a warm-up.
 pub fn measure(variants: &mut [Variant], rounds: usize) -> Measured {
+    if let Ok(name) = std::env::var("GLINT_BENCH_PROFILE") {
+        profile(variants, &name);
+    }
     let n = variants.len();
     let mut measured = Measured {
         names: variants.iter().map(|v| v.name).collect(),
@@ -75,6 +86,24 @@ pub fn measure(variants: &mut [Variant], rounds: usize) -> Measured {
         }
     }
     measured
+}
+
+/// Renders only variant `name`, `GLINT_BENCH_PROFILE_FRAMES` frames (4 if unset), and exits:
+/// what a profiler counts is then that variant's frames (and the setup before them).
+fn profile(variants: &mut [Variant], name: &str) -> ! {
+    let frames = std::env::var("GLINT_BENCH_PROFILE_FRAMES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(4);
+    let Some(variant) = variants.iter_mut().find(|v| v.name == name) else {
+        let names: Vec<&str> = variants.iter().map(|v| v.name).collect();
+        eprintln!("no variant {name}: this benchmark has {}", names.join(", "));
+        std::process::exit(2);
+    };
+    for _ in 0..frames {
+        (variant.frame)();
+    }
+    std::process::exit(0);
 }
 
 /// The median and quartiles of `values`.

@@ -54,12 +54,6 @@ impl Guard {
         Self { token, hosts }
     }
 
-    /// The session's token.
-    #[must_use]
-    pub fn token(&self) -> &str {
-        &self.token
-    }
-
     /// Checks a request: `host` and `origin` are its headers of those names (`None` when
     /// absent), `token` the token it carries (its `X-Glint-Token` header or its `token` query
     /// parameter). A request without `Host` is refused (HTTP/1.1 requires it); one without
@@ -153,9 +147,32 @@ mod tests {
             Some(""),
             Some("0123456789abcdeF"),
             Some("0123456789abcde"),
+            // Two bytes swapped: their differences are alike, and must not cancel.
+            Some("1023456789abcdef"),
+            Some("0123456789abcdfe"),
         ] {
             assert_eq!(g.check(host, None, wrong), Err(Refusal::Token), "{wrong:?}");
         }
+    }
+
+    #[test]
+    fn a_refusal_says_what_was_refused_in_one_line() {
+        let g = guard();
+        let token = Some("0123456789abcdef");
+        let refusals = [
+            g.check(Some("evil.example:8123"), None, token),
+            g.check(Some("127.0.0.1:8123"), Some("http://evil.example"), token),
+            g.check(Some("127.0.0.1:8123"), None, Some("nope")),
+        ]
+        .map(Result::unwrap_err);
+        let messages = refusals.clone().map(|r| r.message());
+        assert!(messages[0].contains("\"evil.example:8123\" is not this server"));
+        assert!(messages[1].contains("\"http://evil.example\" are not accepted"));
+        assert!(messages[2].contains("token printed when it started"));
+        for m in &messages {
+            assert!(!m.contains('\n'), "{m}");
+        }
+        assert_eq!(refusals.map(|r| r.status()), [403, 403, 401]);
     }
 
     #[test]
