@@ -124,6 +124,70 @@ fn a_task_of_the_script_renders_its_chunk() {
     assert_eq!(written, expected);
 }
 
+/// Runs task 1 of job 7 of the script `file` with `scontrol` answered by the stub in `stubs`,
+/// after `restarts` earlier tries.
+fn run_task(file: &Path, stubs: &Path, restarts: u32) -> std::process::Output {
+    let path = format!(
+        "{}:{}",
+        stubs.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    Command::new("bash")
+        .arg(file)
+        .env("PATH", path)
+        .env("SLURM_ARRAY_TASK_ID", "1")
+        .env("SLURM_ARRAY_JOB_ID", "7")
+        .env("SLURM_CPUS_PER_TASK", "1")
+        .env("SLURM_RESTART_COUNT", restarts.to_string())
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn a_failed_task_asks_slurm_to_requeue_it_and_ends_with_its_failure_when_refused() {
+    use std::os::unix::fs::PermissionsExt;
+    let (dir, shot) = project();
+    let text = script(
+        &shot,
+        &["--preset", "preview", "--size", "32x32", "--retries", "2"],
+    );
+    let file = dir.path().join("array.sh");
+    std::fs::write(&file, &text).unwrap();
+    // The frames' folder cannot be made: a file stands where it goes.
+    std::fs::write(shot.parent().unwrap().parent().unwrap().join("out"), "").unwrap();
+    // An scontrol that writes down what it is asked and refuses it.
+    let stubs = dir.path().join("bin");
+    std::fs::create_dir(&stubs).unwrap();
+    let asked = dir.path().join("asked.txt");
+    let stub = stubs.join("scontrol");
+    std::fs::write(
+        &stub,
+        format!(
+            "#!/bin/bash\necho \"$@\" >> '{}'\nexit 1\n",
+            asked.display()
+        ),
+    )
+    .unwrap();
+    std::fs::set_permissions(&stub, std::fs::Permissions::from_mode(0o755)).unwrap();
+
+    let out = run_task(&file, &stubs, 1);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(2), "{said}{}", stderr(&out));
+    assert!(said.contains("task 1 failed (2): requeued"), "{said}");
+    assert!(
+        stderr(&out).contains("task 1 failed (2): Slurm did not requeue it"),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(std::fs::read_to_string(&asked).unwrap(), "requeue 7_1\n");
+
+    // Its last try: no requeue is asked for, and the task ends with the render's failure.
+    let out = run_task(&file, &stubs, 2);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("requeued"));
+    assert_eq!(std::fs::read_to_string(&asked).unwrap(), "requeue 7_1\n");
+}
+
 #[test]
 fn bad_options_are_refused_in_one_line() {
     let (_dir, shot) = project();

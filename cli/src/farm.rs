@@ -274,11 +274,18 @@ fn array_script(s: &ArrayScript) -> String {
         "if [ \"$status\" -ne 0 ] && [ \"${{SLURM_RESTART_COUNT:-0}}\" -lt {} ]; then\n",
         s.retries
     ));
-    out.push_str("    echo \"task $SLURM_ARRAY_TASK_ID failed ($status): requeued\"\n");
-    out.push_str("    scontrol requeue \"${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}\"\n");
     // The requeue ends this try by stopping it: waiting for that, rather than exiting first,
-    // keeps Slurm from taking the failed exit for the task's end and dropping the requeue.
-    out.push_str("    sleep 300\n");
+    // keeps Slurm from taking the failed exit for the task's end and dropping the requeue. A
+    // requeue refused ends the task at once with the render's failure.
+    out.push_str("    echo \"task $SLURM_ARRAY_TASK_ID failed ($status): requeued\"\n");
+    out.push_str(
+        "    if scontrol requeue \"${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}\"; then\n",
+    );
+    out.push_str("        sleep 300\n");
+    out.push_str("    fi\n");
+    out.push_str(
+        "    echo \"task $SLURM_ARRAY_TASK_ID failed ($status): Slurm did not requeue it\" >&2\n",
+    );
     out.push_str("fi\n");
     out.push_str("exit \"$status\"\n");
     out
