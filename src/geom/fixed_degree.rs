@@ -193,6 +193,16 @@ impl NurbsSurface {
         let domain = self.domain();
         let rational = self.is_rational();
         let mut net = LocalNet::<NU, NV>::new();
+        let frame = |d: &SurfaceDerivs, u: f64, v: f64| {
+            Frame::from_derivs(d, u, v, &domain)
+                .filter(|f| !f.degenerate)
+                .unwrap_or_else(|| self.frame_general(u, v))
+        };
+        if let ([(u, v)], [out]) = (params, &mut *out) {
+            // One frame (a point of a line, a probe): no batch to clear and fill.
+            *out = frame(&net.derivs_at(self, *u, *v), *u, *v);
+            return;
+        }
         let mut derivs = [SurfaceDerivs::default(); BATCH];
         for (params, out) in params.chunks(BATCH).zip(out.chunks_mut(BATCH)) {
             for (&(u, v), d) in params.iter().zip(&mut derivs) {
@@ -210,10 +220,8 @@ impl NurbsSurface {
                     net.polynomial_derivs(&bu, &bv)
                 };
             }
-            for ((&(u, v), d), frame) in params.iter().zip(&derivs).zip(out) {
-                *frame = Frame::from_derivs(d, u, v, &domain)
-                    .filter(|f| !f.degenerate)
-                    .unwrap_or_else(|| self.frame_general(u, v));
+            for ((&(u, v), d), out) in params.iter().zip(&derivs).zip(out) {
+                *out = frame(d, u, v);
             }
         }
     }
@@ -293,6 +301,8 @@ mod tests {
                     for (&(u, v), got) in params.iter().zip(&frames) {
                         let want = surface.frame_general(u, v);
                         let what = format!("degrees ({p}, {q}), rational {rational}, ({u}, {v})");
+                        // One frame alone is the frame of a batch.
+                        assert_eq!(surface.frame(u, v), *got, "{what}");
                         if rational {
                             // The same operations in the same order.
                             assert_eq!(*got, want, "{what}");
