@@ -189,6 +189,24 @@ fn a_failed_task_asks_slurm_to_requeue_it_and_ends_with_its_failure_when_refused
 }
 
 #[test]
+fn a_frame_larger_than_this_machine_takes_is_farmed_with_the_memory_it_asks_for() {
+    let (_dir, shot) = project();
+    // About 24 GB a frame: above the ceiling of a machine with less than 32 GB, which `render`
+    // refuses here; a farm task's ceiling is what it requests of its node.
+    let text = script(&shot, &["--size", "16384x16384", "--preset", "preview"]);
+    let mem = text
+        .lines()
+        .find_map(|l| l.strip_prefix("#SBATCH --mem="))
+        .unwrap();
+    let mib: u64 = mem.trim_end_matches('M').parse().unwrap();
+    let pixels = 16384u64 * 16384;
+    // docs/limits.md: 64 MiB and 90 B a sample, and a quarter more.
+    let least = (64u64 << 20) + pixels * 90;
+    assert!(mib >= (least + least / 4) >> 20, "{mem}");
+    assert!(text.contains(&format!("--max-memory '{mem}'")), "{text}");
+}
+
+#[test]
 fn bad_options_are_refused_in_one_line() {
     let (_dir, shot) = project();
     for (flag, value) in [

@@ -118,7 +118,6 @@ fn run_slurm(args: &SlurmArgs) -> Result<(), CliError> {
         frames: args.frames.as_ref().map(|f| f.0.clone()),
         size: args.size,
         preset: args.preset.map(Preset::from),
-        svg: args.svg,
         // The ceiling is the task's own, set below from what it requests.
         max_memory: Some(u64::MAX),
         ..Overrides::default()
