@@ -592,8 +592,10 @@ mod tests {
         assert_eq!(unpinned, text);
         let e = edit_layer(&text, 0, 1, &LayerEdit::Unpin).unwrap_err();
         assert!(e.to_string().contains("no pin to remove"), "{e}");
-        let e = edit_layer(&text, 0, 1, &pin(f32::NAN, 0.5)).unwrap_err();
-        assert!(e.to_string().contains("finite"), "{e}");
+        for (u, v) in [(f32::NAN, 0.5), (0.5, f32::INFINITY)] {
+            let e = edit_layer(&text, 0, 1, &pin(u, v)).unwrap_err();
+            assert!(e.to_string().contains("finite"), "({u}, {v}): {e}");
+        }
     }
 
     #[test]
