@@ -748,3 +748,45 @@ fn the_pins_overlay_dots_each_pin_s_track_where_probe_puts_its_point() {
         "a track drawn during a drag"
     );
 }
+
+#[test]
+fn a_drag_moves_a_pin_across_its_highlight_s_patches_and_refuses_a_patch_of_another() {
+    let served = Served::new();
+    let frame = 1.0;
+    let drag = |highlight: u32, (x, y): (f64, f64)| {
+        let body = json!({"frame": frame, "x": x, "y": y, "highlight": highlight, "layer": 0});
+        served.post("/api/drag", &body)
+    };
+    let error = |reply: &Reply| {
+        assert_eq!(reply.status, 400, "{}", reply.text());
+        reply.json()["error"].as_str().unwrap().to_string()
+    };
+    // The body's highlight (entries[1]) is pinned to teapot/4; teapot/5 is of the body too.
+    let (on_body, seen) = probed_pixel(&served.shot, "teapot/5", [0.5, 0.5], frame);
+    assert!(seen, "teapot/5's middle is seen at frame 1");
+    let reply = drag(1, on_body);
+    assert_eq!(reply.status, 200, "{}", reply.text());
+    let changes: Vec<Value> =
+        serde_json::from_str(reply.header("x-glint-changes").unwrap()).unwrap();
+    assert_eq!(changes[0]["kind"], "pin_to", "{changes:?}");
+    assert_eq!(changes[0]["patch"], "teapot/5", "{changes:?}");
+    // The lid has the other highlight: the pin cannot go there.
+    let (on_lid, seen) = probed_pixel(&served.shot, "teapot/24", [0.5, 0.5], frame);
+    assert!(seen, "teapot/24's middle is seen at frame 1");
+    let e = error(&drag(1, on_lid));
+    assert!(
+        e.contains("pinned to teapot/4") && e.contains("another highlight"),
+        "{e}"
+    );
+    // Nor does the every-patch glint (unpinned, no translation) go onto the body's patches.
+    let e = error(&drag(0, on_body));
+    assert!(
+        e.contains("teapot/5, under the pointer, does not have highlight 0"),
+        "{e}"
+    );
+    // Keys of the pin at another frame belong to its patch: it stays there.
+    let key = json!({"changes": [{"kind": "key", "path": "highlights[1].layers[0].pin.u", "frame": 30, "value": [0.6]}]});
+    assert_eq!(served.post("/api/commit", &key).status, 200);
+    let e = error(&drag(1, on_body));
+    assert!(e.contains("keys at other frames"), "{e}");
+}

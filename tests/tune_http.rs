@@ -799,8 +799,13 @@ fn hostile_bodies_are_refused_in_one_line_and_change_nothing() {
         error_of(&reply);
     }
     assert_eq!(served.text(), before);
-    // The server still answers.
+    // The server still answers, and takes as many changes as it says it takes.
     assert_status(&served.get("/api/state?frame=1"), 200);
+    let most: Vec<Value> = (0..64).map(|_| key(json!(1), json!([0.1]))).collect();
+    assert_status(
+        &served.post("/api/commit", &json!({ "changes": most })),
+        200,
+    );
 }
 
 #[test]
@@ -858,14 +863,22 @@ fn a_waiting_page_hears_of_a_change() {
     assert_eq!(heard, committed);
     assert!(heard > version);
     // An edit made elsewhere reaches the page the same way.
+    let token = served.server.token().to_string();
+    let waiter = std::thread::spawn(move || {
+        let target = format!("/api/wait?version={committed}");
+        request(address, "GET", &target, &[("X-Glint-Token", &token)], b"")
+    });
+    std::thread::sleep(std::time::Duration::from_millis(200));
     std::fs::write(
         &served.shot,
         served.text().replace("epsilon: 0.05", "epsilon: 0.04"),
     )
     .unwrap();
     served.server.inputs_changed();
+    let heard = waiter.join().unwrap().json()["version"].as_u64().unwrap();
     let state = served.get("/api/state?frame=1").json();
     assert!(state["version"].as_u64().unwrap() > committed);
+    assert_eq!(heard, state["version"].as_u64().unwrap());
     let epsilon = (state["highlights"][0]["layers"][0]["params"]
         .as_array()
         .unwrap()

@@ -262,12 +262,6 @@ impl Session {
         &self.path
     }
 
-    /// The file's text as last read or written.
-    #[must_use]
-    pub fn text(&self) -> &str {
-        &self.text
-    }
-
     /// Grows with every change of the file.
     #[must_use]
     pub fn version(&self) -> u64 {
