@@ -551,6 +551,28 @@ fn a_drawn_triangle_is_written_as_an_outline_whose_matte_has_its_corners() {
     let disc = json!({"changes": [{"kind": "disc", "highlight": 0, "layer": 0}]});
     assert_status(&served.post("/api/commit", &disc), 200);
     assert_eq!(served.text(), before);
+
+    // As many points as an outline holds, and one more.
+    let circle = |n: usize| -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                [90.0 + 6.0 * a.cos(), 66.0 + 6.0 * a.sin()]
+            })
+            .collect()
+    };
+    let most = glint::highlight::MAX_OUTLINE_SEGMENTS;
+    let draw = |points: Vec<[f64; 2]>| {
+        served.post(
+            "/api/draw",
+            &json!({"frame": 1, "highlight": 0, "layer": 0, "points": points}),
+        )
+    };
+    let reply = draw(circle(most + 1));
+    assert_status(&reply, 400);
+    assert!(error_of(&reply).contains("at most 1024"));
+    assert_eq!(served.text(), before);
+    assert_status(&draw(circle(most)), 200);
 }
 
 #[test]
