@@ -821,6 +821,12 @@ fn hostile_bodies_are_refused_in_one_line_and_change_nothing() {
         error_of(&reply);
     }
     assert_eq!(served.text(), before);
+    // A frame that is not a number.
+    for frame in ["NaN", "inf", "-inf"] {
+        let reply = served.get(&format!("/api/state?frame={frame}"));
+        assert_status(&reply, 400);
+        assert!(error_of(&reply).contains("not a finite number"));
+    }
     // The server still answers, and takes as many changes as it says it takes.
     assert_status(&served.get("/api/state?frame=1"), 200);
     let most: Vec<Value> = (0..64).map(|_| key(json!(1), json!([0.1]))).collect();
@@ -859,9 +865,29 @@ fn undo_and_redo_write_the_file_back_and_an_outside_edit_wins() {
     let state = served.get("/api/state?frame=1").json();
     assert!(state["version"].as_u64().unwrap() > version);
     assert_eq!(state["undo"], 0, "the history no longer applies");
+    assert!(
+        state["history_note"]
+            .as_str()
+            .is_some_and(|n| n.contains("changed outside tune")),
+        "{state}"
+    );
     assert_status(&served.post("/api/undo", &Value::Null), 409);
     assert_status(&served.post("/api/commit", &set(0.09)), 200);
     assert!(served.text().contains("colour: (1.0, 0.5, 0.5)"));
+
+    // With nothing to undo, an outside edit leaves the history nothing to note.
+    let fresh = Served::new();
+    let version = |served: &Served| served.get("/api/state?frame=1").json()["version"].as_u64();
+    let was = version(&fresh);
+    let outside = fresh
+        .text()
+        .replace("colour: (1.0, 1.0, 0.92)", "colour: (1.0, 0.5, 0.5)");
+    assert_ne!(outside, fresh.text());
+    std::fs::write(&fresh.shot, outside).unwrap();
+    fresh.server.inputs_changed();
+    let state = fresh.get("/api/state?frame=1").json();
+    assert!(state["history_note"].is_null(), "{state}");
+    assert!(state["version"].as_u64() > was, "{state}");
 }
 
 #[test]
