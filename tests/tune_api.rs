@@ -790,3 +790,27 @@ fn a_drag_moves_a_pin_across_its_highlight_s_patches_and_refuses_a_patch_of_anot
     let e = error(&drag(1, on_body));
     assert!(e.contains("keys at other frames"), "{e}");
 }
+
+#[test]
+fn a_look_library_changed_on_disk_is_drawn_on_the_next_frame() {
+    let served = Served::new();
+    let frame = json!({"frame": 1});
+    let before = served.raw_frame(&frame);
+    // The shot's file is unchanged: only the look library it includes is.
+    let looks = served.shot.parent().unwrap().join("looks/studio.ron");
+    let text = std::fs::read_to_string(&looks).unwrap();
+    let warmer = text.replace("(0.30, 0.45, 0.80)", "(0.80, 0.45, 0.30)");
+    assert_ne!(warmer, text);
+    std::fs::write(&looks, warmer).unwrap();
+    served.server.inputs_changed();
+    let after = served.raw_frame(&frame);
+    let changed = before
+        .chunks(4)
+        .zip(after.chunks(4))
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        changed > 200,
+        "{changed} pixels changed with the porcelain's colour"
+    );
+}
