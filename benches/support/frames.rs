@@ -11,8 +11,7 @@
 //! `GLINT_BENCH_PROFILE_FRAMES`), and exits without measuring:
 //!
 //! ```sh
-//! GLINT_BENCH_PROFILE=moving valgrind --tool=callgrind \
-//!     --toggle-collect='glint::render::gbuffer::GBuffer::fill_keeping' target/release/deps/render-*
+//! GLINT_BENCH_PROFILE=moving valgrind --tool=callgrind target/release/deps/render-*
 //! ```
 
 use std::sync::Arc;

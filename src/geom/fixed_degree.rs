@@ -191,7 +191,6 @@ impl NurbsSurface {
         out: &mut [Frame],
     ) {
         let domain = self.domain();
-        let rational = self.is_rational();
         let mut net = LocalNet::<NU, NV>::new();
         let frame = |d: &SurfaceDerivs, u: f64, v: f64| {
             Frame::from_derivs(d, u, v, &domain)
@@ -206,19 +205,7 @@ impl NurbsSurface {
         let mut derivs = [SurfaceDerivs::default(); BATCH];
         for (params, out) in params.chunks(BATCH).zip(out.chunks_mut(BATCH)) {
             for (&(u, v), d) in params.iter().zip(&mut derivs) {
-                let bu = self.knots_u().first_basis::<NU>(u);
-                let bv = self.knots_v().first_basis::<NV>(v);
-                let first = (bu.span + 1 - NU, bv.span + 1 - NV);
-                let key = (
-                    first,
-                    (first.0 + nearest_end(&bu), first.1 + nearest_end(&bv)),
-                );
-                net.load(self, key);
-                *d = if rational {
-                    net.rational_derivs(&bu, &bv)
-                } else {
-                    net.polynomial_derivs(&bu, &bv)
-                };
+                *d = net.derivs_at(self, u, v);
             }
             for ((&(u, v), d), out) in params.iter().zip(&derivs).zip(out) {
                 *out = frame(d, u, v);
