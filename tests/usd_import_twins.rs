@@ -10,9 +10,9 @@ use glint::formats::{load_model, load_patches};
 use crate::common::{glint_with as glint, repo_file, stderr};
 use crate::usd_motion::{in_net_order, tuples};
 
-/// The twins that read: every supported xformOp nested, both knot conventions, trim ranges
-/// narrower than their knots, and time samples.
-const READ: [&str; 4] = ["xform_ops", "knots", "trim_ranges", "animated"];
+/// The twins that read: every supported xformOp nested, ops in half precision, both knot
+/// conventions, trim ranges narrower than their knots, and time samples.
+const READ: [&str; 5] = ["xform_ops", "half_ops", "knots", "trim_ranges", "animated"];
 
 fn fixture(name: &str) -> std::path::PathBuf {
     repo_file(&format!("tests/data/usd/{name}"))
@@ -105,6 +105,25 @@ fn nested_transforms_of_every_op_place_the_patches_as_the_ops_say() {
         let got: Vec<DVec3> = patch.surface.control_points().collect();
         assert_close(&got, &expected, name);
     }
+}
+
+#[test]
+fn ops_written_in_half_precision_place_the_patch_as_the_ops_say() {
+    let library = load_patches(&fixture("half_ops.usda")).unwrap();
+    let text = text("half_ops");
+    // translate · rotateXYZ · orient (120° about (1, 1, 1)) · rotateZ · scale, each value one a
+    // half holds exactly.
+    let rig = DMat4::from_translation(DVec3::new(0.5, -1.25, 2.0))
+        * euler("XYZ", (10.0, -24.0, 40.0))
+        * DMat4::from_quat(DQuat::from_xyzw(0.5, 0.5, 0.5, 0.5))
+        * DMat4::from_rotation_z(degrees(30.0))
+        * DMat4::from_scale(DVec3::new(1.5, 0.75, 1.25));
+    let expected: Vec<DVec3> = points_of(&text, "sheet", 4, 4)
+        .iter()
+        .map(|&p| rig.transform_point3(p))
+        .collect();
+    let got: Vec<DVec3> = library.patches[0].surface.control_points().collect();
+    assert_close(&got, &expected, "/rig/sheet");
 }
 
 #[test]

@@ -410,6 +410,23 @@ fn refusals() -> Vec<Refusal> {
             says: &["`xformOp:rotateZ` is animated by a spline"],
         },
         Refusal {
+            // Points within 0.02 of the origin, moved 2·10⁶ along x at time code 5: the bound
+            // `a·|P| + b` (here `b = √3 · 2·10⁶`, the node's linear bound times its move) is
+            // past 10⁶ by the move alone.
+            name: "a sampled move that may carry a point beyond the coordinates glint evaluates",
+            text: sheet(
+                "            1: [(0, 0, 0), (0.01, 0, 0), (0, 0.01, 0), (0.01, 0.01, 0)],\n            10: [(0, 0, 0.01), (0.01, 0, 0.01), (0, 0.01, 0.01), (0.01, 0.01, 0.01)],",
+                &xform("double3 xformOp:translate.timeSamples = {\n        1: (0, 0, 0),\n        5: (2000000, 0, 0),\n    }\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]"),
+                "",
+            ),
+            at: "def NurbsPatch",
+            says: &[
+                "/rig/sheet",
+                "may carry a control point as far as 3.4641",
+                "e6, beyond ±1e6",
+            ],
+        },
+        Refusal {
             name: "time codes per second of 0",
             text: sheet(TWO_SAMPLES, "", "")
                 .replacen("timeCodesPerSecond = 30", "timeCodesPerSecond = 0", 1),

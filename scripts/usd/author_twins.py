@@ -18,6 +18,9 @@ It writes, into tests/data/usd/:
 - animated: a patch whose points are sampled at time codes 1, 10 and 24, under an Xform whose
   translate and orient are sampled at 1 and 24; 30 time codes a second, 24 frames a second,
   start time code 1.
+- half_ops: a patch under an Xform whose ops are written in half precision (translate,
+  rotateXYZ, orient, rotateZ, scale), each value one a half holds exactly, so that text and
+  binary name the same numbers.
 - over and sublayer: compositions glint refuses (an `over` prim, a layer with a sublayer).
 """
 
@@ -90,6 +93,20 @@ def xform_ops():
     hand.AddTransformOp().Set(m)
     bicubic(stage, "/rig/arm/hand/palm", lift=-0.15)
     save(stage, "xform_ops")
+
+
+def half_ops():
+    stage = Usd.Stage.CreateInMemory()
+    rig = UsdGeom.Xform.Define(stage, "/rig")
+    half = UsdGeom.XformOp.PrecisionHalf
+    rig.AddTranslateOp(precision=half).Set(Gf.Vec3h(0.5, -1.25, 2.0))
+    rig.AddRotateXYZOp(precision=half).Set(Gf.Vec3h(10.0, -24.0, 40.0))
+    # 120 degrees about (1, 1, 1).
+    rig.AddOrientOp(precision=half).Set(Gf.Quath(0.5, Gf.Vec3h(0.5, 0.5, 0.5)))
+    rig.AddRotateZOp(precision=half).Set(30.0)
+    rig.AddScaleOp(precision=half).Set(Gf.Vec3h(1.5, 0.75, 1.25))
+    bicubic(stage, "/rig/sheet", lift=0.25)
+    save(stage, "half_ops")
 
 
 def knots():
@@ -204,6 +221,7 @@ def refused():
 if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)
     xform_ops()
+    half_ops()
     knots()
     trim_ranges()
     animated()

@@ -201,6 +201,7 @@ fn value(v: &sdf::Value) -> Value {
         V::Vec2f(p) => tuple(&[f64::from(p.x), f64::from(p.y)]),
         V::Vec3d(p) => tuple(&[p.x, p.y, p.z]),
         V::Vec3f(p) => tuple(&[f64::from(p.x), f64::from(p.y), f64::from(p.z)]),
+        V::Vec3h(p) => tuple(&[p.x, p.y, p.z].map(|x| f64::from(x.to_f32()))),
         V::Vec2dVec(ps) => list(ps.iter().map(|p| tuple(&[p.x, p.y])).collect()),
         V::Vec3dVec(ps) => list(ps.iter().map(|p| tuple(&[p.x, p.y, p.z])).collect()),
         V::Vec3fVec(ps) => list(
@@ -209,6 +210,7 @@ fn value(v: &sdf::Value) -> Value {
                 .collect(),
         ),
         V::Quatd(q) => tuple(&[q.w, q.x, q.y, q.z]),
+        V::Quath(q) => tuple(&[q.w, q.x, q.y, q.z].map(|x| f64::from(x.to_f32()))),
         V::Quatf(q) => tuple(&[
             f64::from(q.w),
             f64::from(q.x),
