@@ -4,7 +4,7 @@
 use super::error::EditError;
 use super::number_text::{frame_text, number_text, value_text};
 use super::param_path::ParamPath;
-use super::param_sites::TrackMut;
+use super::param_sites::{ParsedFile, TrackMut};
 use super::read::read_file;
 use super::resolve::{resolve, unknown_path_without_list};
 use super::track_edit::{edited, TrackEdit, ValueEdit};
@@ -61,21 +61,21 @@ pub fn edit_text(text: &str, path: &ParamPath, edit: &TrackEdit) -> Result<Strin
             },
         }
     })?;
-    let edited = apply(text, &splices);
-    let unchecked = |reason: String| EditError::Unchecked {
-        path: path.clone(),
+    read_back(apply(text, &splices), &expected).map_err(|reason| EditError::Unchecked {
+        path,
         line,
         col,
         reason,
-    };
+    })
+}
+
+/// `edited` when it reads back as `expected` (the file as first read, with the one track
+/// changed); otherwise why not.
+fn read_back(edited: String, expected: &ParsedFile) -> Result<String, String> {
     match read_file(&edited) {
-        Ok(reread) if reread == expected => Ok(edited),
-        Ok(_) => Err(unchecked(
-            "the edited file reads back with more changed than this track".to_string(),
-        )),
-        Err(e) => Err(unchecked(format!(
-            "the edited file does not read back (at {e})"
-        ))),
+        Ok(reread) if reread == *expected => Ok(edited),
+        Ok(_) => Err("the edited file reads back with more changed than this track".to_string()),
+        Err(e) => Err(format!("the edited file does not read back (at {e})")),
     }
 }
 
@@ -239,6 +239,22 @@ mod tests {
 
     fn edited(written: &str, edit: &TrackEdit) -> String {
         edit_text(STYLED_SHOT, &param_path(written), edit).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn an_edit_is_kept_only_when_it_reads_back_as_the_file_with_its_one_track_changed() {
+        let expected = read_file(STYLED_SHOT).unwrap();
+        assert_eq!(
+            read_back(STYLED_SHOT.to_string(), &expected).as_deref(),
+            Ok(STYLED_SHOT)
+        );
+        // A splice gone wrong: a number the edit did not ask for changed as well.
+        let changed = shot_with("fps: 24", "fps: 25");
+        let reason = read_back(changed, &expected).unwrap_err();
+        assert!(reason.contains("more changed than this track"), "{reason}");
+        // Or a file that no longer parses.
+        let reason = read_back(format!("{STYLED_SHOT})"), &expected).unwrap_err();
+        assert!(reason.contains("does not read back"), "{reason}");
     }
 
     #[test]
