@@ -525,6 +525,8 @@ mod tests {
         assert_eq!(removed, text);
         let again = edit_layer(&added, 0, 1, &LayerEdit::AddMask).unwrap_err();
         assert!(again.to_string().contains("has a mask already"), "{again}");
+        let none = edit_layer(&removed, 0, 1, &LayerEdit::RemoveMask).unwrap_err();
+        assert!(none.to_string().contains("no mask to remove"), "{none}");
     }
 
     #[test]
