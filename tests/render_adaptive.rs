@@ -129,6 +129,26 @@ fn only_supersampled_pixels_leave_the_one_sample_frame_and_they_smooth_its_edges
 }
 
 #[test]
+fn a_pixel_wholly_under_ink_is_not_supersampled_and_the_rest_still_are() {
+    let library = teapot();
+    let lined = teapot_scene(&library, true);
+    // With a matte to write, every marked pixel is supersampled, inked or not (the matte
+    // under the ink is still the surface's); without one, a pixel the lines cover wholly
+    // shows only ink, and is left at one sample.
+    let with_matte = render(&library, &lined, Antialias::Adaptive(4));
+    let no_aovs = Scene {
+        aovs: Aovs::default(),
+        ..lined.clone()
+    };
+    let without = render(&library, &no_aovs, Antialias::Adaptive(4));
+    let (all, left) = (
+        with_matte.stats[Stage::Supersample].pixels,
+        without.stats[Stage::Supersample].pixels,
+    );
+    assert!(0 < left && left < all, "{left} of {all} supersampled");
+}
+
+#[test]
 fn the_supersampled_silhouette_follows_the_surface_not_the_mesh() {
     // Refined frames grow the coverage past the mesh's chords onto the surface, so a coarse
     // and a fine tessellation give nearly the same alpha; exact frames keep the mesh's.
