@@ -66,9 +66,25 @@ fn designed_frame(
     (style, threshold): (LineStyle, f32),
     settings: &Settings,
 ) -> RenderedFrame {
-    let look = PatchLook {
-        designed_light: designed,
-        lines: Some(style),
+    let styles = vec![style; library.patches.len()];
+    styled_frame(
+        library,
+        (camera, light, designed),
+        (&styles, threshold),
+        settings,
+    )
+}
+
+/// [`designed_frame`] with patch k's lines in `styles[k]`.
+fn styled_frame(
+    library: &Arc<PatchLibrary>,
+    (camera, light, designed): (Camera, Light, Option<DesignedLight>),
+    (styles, threshold): (&[LineStyle], f32),
+    settings: &Settings,
+) -> RenderedFrame {
+    let look = |style: &LineStyle| PatchLook {
+        designed_light: designed.clone(),
+        lines: Some(*style),
         tone: Tone::Cel(CelRamp::two_tone(
             Vec3::new(0.2, 0.3, 0.5),
             Vec3::new(0.5, 0.6, 0.9),
@@ -78,12 +94,12 @@ fn designed_frame(
     };
     let scene = Scene {
         library,
-        looks: vec![look; library.patches.len()],
+        looks: styles.iter().map(look).collect(),
         camera,
         light,
         outlines: Some(Outlines {
-            width: style.width,
-            colour: style.colour,
+            width: styles[0].width,
+            colour: styles[0].colour,
             crease_degrees: 60.0,
             patch_borders: false,
         }),
@@ -535,14 +551,11 @@ fn a_sphere_behind_a_sphere_has_hidden_lines_exactly_where_the_front_one_covers_
 
         // Dashed, in pixels: along the hidden outline, ink where the pattern draws (6 px and
         // the round caps' 0.75 px at each end) and none where it leaves out: about 7.5 of
-        // every 10 px.
+        // every 10 px. The front sphere's hidden lines are solid: each patch's are dashed in
+        // its own style's pattern.
         if k == 0 {
-            let dashed = frame(
-                &library,
-                (view, light),
-                (hidden_style(2, &[6.0, 4.0]), 0.2),
-                &settings,
-            );
+            let styles = [hidden_style(2, &[6.0, 4.0]), hidden_style(2, &[])];
+            let dashed = styled_frame(&library, (view, light, None), (&styles, 0.2), &settings);
             let aov: &Vec<Vec4> = dashed.aovs.outline.as_ref().unwrap();
             let red_at = |q: Vec2| {
                 let c = aov[q.y as usize * SIZE as usize + q.x as usize];
