@@ -105,8 +105,8 @@ pub(crate) fn borders_and_creases(
 
 /// The boundary piece `edge` cut where the trims of the patches on its two sides start or stop
 /// keeping it: per part, its interval of the piece's parameter (0 at `a`, 1 at `b`) and whether
-/// the patch on each side keeps it there (the side across counts as keeping a piece nothing
-/// continues). An untrimmed piece is one part, kept on both sides.
+/// the patch on each side keeps it there (where nothing continues the piece, the side across
+/// keeps what this side keeps). An untrimmed piece is one part, kept on both sides.
 fn sides_kept(
     mesh: &Mesh,
     library: &PatchLibrary,
@@ -144,7 +144,13 @@ fn sides_kept(
         .filter(|w| w[1] > w[0])
         .map(|w| {
             let middle = 0.5 * (w[0] + w[1]);
-            ((w[0], w[1]), inside(&here, middle), inside(&across, middle))
+            let kept_here = inside(&here, middle);
+            // Nothing continues the piece: no side across keeps what this side cuts away.
+            let kept_across = match edge.across {
+                Some(_) => inside(&across, middle),
+                None => kept_here,
+            };
+            ((w[0], w[1]), kept_here, kept_across)
         })
         .collect()
 }
@@ -242,10 +248,10 @@ fn pieces(
 mod tests {
     use std::sync::Arc;
 
-    use glam::{DVec3, Vec3};
+    use glam::{DVec2, DVec3, Vec3};
 
     use super::*;
-    use crate::geom::{shapes, NamedPatch};
+    use crate::geom::{shapes, NamedPatch, Trim};
     use crate::render::camera::Projection;
     use crate::render::tessellate::{Density, Tessellator};
 
@@ -278,6 +284,68 @@ mod tests {
             ],
             groups: Vec::new(),
         }
+    }
+
+    #[test]
+    fn a_trimmed_patch_s_borders_are_drawn_where_its_trim_keeps_them_and_nowhere_else() {
+        // The flat square (x from −1 at u = 0 to 0 at u = 1, y = v) trimmed to the strip
+        // 0.25 ≤ u ≤ 0.75 across all of v: of its sides y = 0 and y = 1, x from −0.75 to
+        // −0.25 is kept; of its side x = −1, nothing.
+        let mut library = hinge(40.0);
+        let domain = library.patches[0].surface.domain();
+        let strip = [(0.25, -0.5), (0.75, -0.5), (0.75, 1.5), (0.25, 1.5)]
+            .map(|(u, v)| DVec2::new(u, v))
+            .to_vec();
+        library.patches[0].trim = Some(Arc::new(Trim::new(vec![strip], domain).unwrap()));
+        let library = Arc::new(library);
+        let camera = Camera {
+            eye: Vec3::new(-0.5, -3.0, 4.0),
+            target: Vec3::new(-0.5, 0.5, 0.0),
+            up: Vec3::Z,
+            projection: Projection::Perspective {
+                fov_y_degrees: 40.0,
+            },
+            near: 0.1,
+            far: 100.0,
+        };
+        let view_projection = camera.view_projection(1.0);
+        let mut tessellator = Tessellator::new(Arc::clone(&library));
+        let (mesh, _) = tessellator.mesh(Density::PerSpan { u: 8, v: 8 }, view_projection, 64, 64);
+        let outlines = Outlines {
+            width: 2.0,
+            colour: Vec3::ZERO,
+            crease_degrees: 60.0,
+            patch_borders: false,
+        };
+        let pieces = borders_and_creases(
+            mesh,
+            &library,
+            &camera,
+            view_projection,
+            (64, 64),
+            (&outlines, &[outlines.style(); 2], &[]),
+        );
+        let on_flat: Vec<&Piece> = pieces.iter().filter(|p| p.patches == [0, 0]).collect();
+        for side in [0.0, 1.0] {
+            let along: Vec<(f64, f64)> = on_flat
+                .iter()
+                .filter(|p| p.ends.iter().all(|e| (e.y - side).abs() < 1e-9))
+                .map(|p| (p.ends[0].x.min(p.ends[1].x), p.ends[0].x.max(p.ends[1].x)))
+                .collect();
+            let length: f64 = along.iter().map(|(a, b)| b - a).sum();
+            assert!((length - 0.5).abs() < 1e-9, "y = {side}: {along:?}");
+            assert!(
+                along
+                    .iter()
+                    .all(|&(a, b)| a >= -0.75 - 1e-9 && b <= -0.25 + 1e-9),
+                "y = {side}: {along:?}"
+            );
+            assert!(on_flat.iter().all(|p| p.kind == LineKind::Border && p.open));
+        }
+        assert!(
+            !on_flat.iter().any(|p| p.ends.iter().all(|e| e.x == -1.0)),
+            "the side the trim cuts away is drawn"
+        );
     }
 
     #[test]
