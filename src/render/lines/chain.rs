@@ -466,17 +466,64 @@ mod tests {
     /// The capsules of `pieces` joined into one chain, every sample shown, drawn in `style`
     /// through a view that maps (x, y) in [−1, 1]² onto a 200 px square.
     fn drawn(pieces: &[Piece], style: crate::render::LineStyle) -> Vec<Capsule> {
+        drawn_without(pieces, style, None).capsules
+    }
+
+    /// [`drawn`], the piece `off` (if any) taken as off the image, with the stretches.
+    fn drawn_without(
+        pieces: &[Piece],
+        style: crate::render::LineStyle,
+        off: Option<usize>,
+    ) -> Drawn {
         let screen: Vec<Option<OnScreen>> = pieces
             .iter()
-            .map(|p| p.on_screen(glam::Mat4::IDENTITY, (200, 200), &[style], 0))
+            .enumerate()
+            .map(|(k, p)| {
+                p.on_screen(glam::Mat4::IDENTITY, (200, 200), &[style], 0)
+                    .filter(|_| Some(k) != off)
+            })
             .collect();
         let levels: Vec<Vec<u8>> = screen
             .iter()
-            .map(|on| vec![0; samples_along(on.as_ref().unwrap()) as usize + 1])
+            .map(|on| vec![0; on.as_ref().map_or(0, samples_along) as usize + 1])
             .collect();
         let lines = chains(pieces);
         assert_eq!(lines.len(), 1);
-        visible_capsules(&lines[0], &screen, &levels, |_, level| level == 0).capsules
+        visible_capsules(&lines[0], &screen, &levels, |_, level| level == 0)
+    }
+
+    #[test]
+    fn a_piece_off_the_image_breaks_the_line_into_two_that_each_end_there() {
+        let style = crate::render::LineStyle {
+            taper: 10.0,
+            ..crate::render::LineStyle::new(4.0, glam::Vec3::ZERO)
+        };
+        // From x = 20 px to 180 px along y = 100 px in eight pieces of 20 px, the fifth
+        // (100 px to 120 px) off the image: however short the gap, it is not bridged.
+        let x = |k: usize| -0.8 + 0.2 * k as f64;
+        let open: Vec<Piece> = (0..8)
+            .map(|k| piece([x(k), 0.0, 0.5], [x(k + 1), 0.0, 0.5]))
+            .collect();
+        let drawn = drawn_without(&open, style, Some(4));
+        assert_eq!(drawn.stretches.len(), 2);
+        let expected = |px: f32| {
+            let to_end = if px <= 100.0 {
+                (px - 20.0).min(100.0 - px)
+            } else {
+                (px - 120.0).min(180.0 - px)
+            };
+            2.0 * (to_end / 10.0).min(1.0)
+        };
+        for c in &drawn.capsules {
+            for (end, radius) in [(c.a, c.radii[0]), (c.b, c.radii[1])] {
+                assert!(!(100.0 + 1e-3..120.0 - 1e-3).contains(&end.x), "{end}");
+                assert!(
+                    (radius - expected(end.x)).abs() < 1e-3,
+                    "at {end}: {radius}, not {}",
+                    expected(end.x)
+                );
+            }
+        }
     }
 
     #[test]
