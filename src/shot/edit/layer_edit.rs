@@ -251,8 +251,7 @@ pub fn edit_layer(
             let item = op_text(op, number_text);
             match items {
                 Some(items) if !items.is_empty() => {
-                    let before = (*index < items.len()).then_some(*index);
-                    vec![insert_item(text, &items, before, &item)
+                    vec![insert_item(text, &items, Some(*index), &item)
                         .ok_or_else(|| unchecked("the stack is not written as it reads"))?]
                 }
                 _ => {
@@ -596,7 +595,10 @@ mod tests {
         assert!(e.to_string().contains("no pin to remove"), "{e}");
         for (u, v) in [(f32::NAN, 0.5), (0.5, f32::INFINITY)] {
             let e = edit_layer(&text, 0, 1, &pin(u, v)).unwrap_err();
-            assert!(e.to_string().contains("finite"), "({u}, {v}): {e}");
+            assert!(
+                e.to_string().contains("a pin's (u, v) must be finite"),
+                "({u}, {v}): {e}"
+            );
         }
     }
 

@@ -147,5 +147,5 @@ pub(super) fn key_splice(
             text: item,
         });
     }
-    insert_item(text, &items, (at < items.len()).then_some(at), &item)
+    insert_item(text, &items, Some(at), &item)
 }

@@ -180,9 +180,10 @@ fn rest_of_line_is_blank(text: &str, at: usize) -> bool {
 }
 
 /// The splice that adds `item` to a bracketed group whose items are written at `items` (at
-/// least one): before item `before`, or after the last one for `None`. A group written one item
-/// to a line gets the new item on a line of its own, indented as its neighbour and followed by
-/// a comma; a group on one line gets it with `, ` between. `None` when `items` is empty.
+/// least one): before item `before`, or after the last one for `None` or an index past it. A
+/// group written one item to a line gets the new item on a line of its own, indented as its
+/// neighbour and followed by a comma; a group on one line gets it with `, ` between. `None`
+/// when `items` is empty.
 #[must_use]
 pub(super) fn insert_item(
     text: &str,
@@ -323,6 +324,9 @@ mod tests {
             added,
             "[\r\n    (1, 0.5), // first\r\n    (17, 0.25),\r\n    (20, 0.1),\r\n]"
         );
+        // Before an item past the last: after the last.
+        let past = insert_item(text, &items, Some(2), "(20, 0.1)").unwrap();
+        assert_eq!(apply(text, &[past]), added);
         let added = apply(
             text,
             &[insert_item(text, &items, Some(1), "(9, 0.1)").unwrap()],
