@@ -236,6 +236,15 @@ const REFUSALS: &[Refusal] = &[
         says: &["/car/panels/hood", "trim loop 0 is not closed", "(0.000000, 0.500000)"],
     },
     Refusal {
+        // The loop's gap is 10⁻⁵: past 10⁻⁶ of the domain's larger side (1), though not of
+        // the v knots' values (about 100).
+        name: "a trim loop not closed on a domain away from 0",
+        from: "            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0.5), (1, 1, 0.25)]",
+        to: "            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [100, 100, 101, 101]\n            point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0.5), (1, 1, 0.25)]\n            int[] trimCurve:counts = [1]\n            int[] trimCurve:orders = [2]\n            int[] trimCurve:vertexCounts = [5]\n            double[] trimCurve:knots = [0, 0, 1, 2, 3, 4, 4]\n            double3[] trimCurve:points = [(0, 100, 1), (1, 100, 1), (1, 101, 1), (0, 101, 1), (0, 100.00001, 1)]",
+        at: "trimCurve:points",
+        says: &["/car/panels/hood", "trim loop 0 is not closed"],
+    },
+    Refusal {
         name: "a trim loop running the wrong way",
         from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
         to: "            int[] trimCurve:counts = [1]\n            int[] trimCurve:orders = [2]\n            int[] trimCurve:vertexCounts = [5]\n            double[] trimCurve:knots = [0, 0, 1, 2, 3, 4, 4]\n            double3[] trimCurve:points = [(0.2, 0.2, 1), (0.2, 0.6, 1), (0.6, 0.6, 1), (0.6, 0.2, 1), (0.2, 0.2, 1)]\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
@@ -285,6 +294,13 @@ const REFUSALS: &[Refusal] = &[
         says: &["/car", "`xformOp:shear` is not an op glint reads"],
     },
     Refusal {
+        name: "a range that starts inside the knots' domain and ends at its end",
+        from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        to: "            double2 vRange = (0.5, 1)\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
+        at: "vRange = (0.5, 1)",
+        says: &["`vRange`", "not the knots' domain"],
+    },
+    Refusal {
         name: "a sub-range",
         from: "            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
         to: "            double2 uRange = (0, 0.5)\n            int uVertexCount = 2\n            int vVertexCount = 2\n            int uOrder = 2",
@@ -292,6 +308,25 @@ const REFUSALS: &[Refusal] = &[
         says: &["`uRange`", "not the knots' domain"],
     },
 ];
+
+#[test]
+fn a_connection_is_refused_on_what_glint_reads_and_left_alone_elsewhere() {
+    // A colour primvar connected to a shader output: glint reads no primvar, so the
+    // connection changes nothing.
+    let colour =
+        "            color3f[] primvars:displayColor.connect = </car/paint/surface.outputs:rgb>";
+    let library = parse_usda(&hood("", colour), "car.usda").unwrap();
+    assert_eq!(library.patches.len(), 2);
+    // Knots connected to another prim's: glint would have to follow the connection.
+    let knots = "            double[] uKnots.connect = </car/panels/roof.uKnots>";
+    let e = parse_usda(&hood("", knots), "car.usda")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("`uKnots` is connected to another attribute; glint reads written values only"),
+        "{e}"
+    );
+}
 
 /// The 1-based line and column of the first `needle` in `text`.
 fn location(text: &str, needle: &str) -> (usize, usize) {
