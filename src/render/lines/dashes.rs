@@ -113,4 +113,27 @@ mod tests {
         // A solid pattern leaves the capsules as they are.
         assert_eq!(dashed(&drawn, |_| Dash::SOLID), drawn.capsules);
     }
+
+    #[test]
+    fn a_dash_of_a_tapering_capsule_takes_the_radius_where_it_lies() {
+        // From radius 0 at x = 0 to 2 at x = 10 (a line's end narrowing), dashed 2 on, 2 off.
+        let drawn = Drawn {
+            capsules: vec![Capsule {
+                a: Vec2::ZERO,
+                b: Vec2::new(10.0, 0.0),
+                radii: [0.0, 2.0],
+                opacity: 1.0,
+                colour: 0,
+            }],
+            pieces: vec![0],
+            stretches: vec![(0..1, false)],
+        };
+        let capsules = dashed(&drawn, |_| Dash::try_new(&[2.0, 2.0]).unwrap());
+        assert_eq!(capsules.len(), 3);
+        for c in &capsules {
+            for (end, radius) in [(c.a, c.radii[0]), (c.b, c.radii[1])] {
+                assert!((radius - 0.2 * end.x).abs() < 1e-6, "at {end}: {radius}");
+            }
+        }
+    }
 }
