@@ -255,6 +255,45 @@ mod tests {
     use crate::render::camera::Projection;
     use crate::render::tessellate::{Density, Tessellator};
 
+    /// A camera at `eye` looking at `target`, `up` up, through a 40° perspective.
+    fn looking(eye: Vec3, target: Vec3, up: Vec3) -> Camera {
+        Camera {
+            eye,
+            target,
+            up,
+            projection: Projection::Perspective {
+                fov_y_degrees: 40.0,
+            },
+            near: 0.1,
+            far: 100.0,
+        }
+    }
+
+    /// Black outlines 2 px wide with crease angle `crease`, without patch borders.
+    fn outlines(crease: f32) -> Outlines {
+        Outlines {
+            width: 2.0,
+            colour: Vec3::ZERO,
+            crease_degrees: crease,
+            patch_borders: false,
+        }
+    }
+
+    /// The borders and creases of `mesh` seen by `camera` on a 64 × 64 image, every patch in
+    /// the outlines' style ([`outlines`] with crease angle `crease`).
+    fn outlined(mesh: &Mesh, library: &PatchLibrary, camera: &Camera, crease: f32) -> Vec<Piece> {
+        let outlines = outlines(crease);
+        let styles = vec![outlines.style(); library.patches.len()];
+        borders_and_creases(
+            mesh,
+            library,
+            camera,
+            camera.view_projection(1.0),
+            (64, 64),
+            (&outlines, &styles, &[]),
+        )
+    }
+
     /// Two unit squares hinged along the y axis, the second turned up by `degrees`.
     fn hinge(degrees: f64) -> PatchLibrary {
         let (s, c) = degrees.to_radians().sin_cos();
@@ -298,33 +337,15 @@ mod tests {
             .to_vec();
         library.patches[0].trim = Some(Arc::new(Trim::new(vec![strip], domain).unwrap()));
         let library = Arc::new(library);
-        let camera = Camera {
-            eye: Vec3::new(-0.5, -3.0, 4.0),
-            target: Vec3::new(-0.5, 0.5, 0.0),
-            up: Vec3::Z,
-            projection: Projection::Perspective {
-                fov_y_degrees: 40.0,
-            },
-            near: 0.1,
-            far: 100.0,
-        };
+        let camera = looking(
+            Vec3::new(-0.5, -3.0, 4.0),
+            Vec3::new(-0.5, 0.5, 0.0),
+            Vec3::Z,
+        );
         let view_projection = camera.view_projection(1.0);
         let mut tessellator = Tessellator::new(Arc::clone(&library));
         let (mesh, _) = tessellator.mesh(Density::PerSpan { u: 8, v: 8 }, view_projection, 64, 64);
-        let outlines = Outlines {
-            width: 2.0,
-            colour: Vec3::ZERO,
-            crease_degrees: 60.0,
-            patch_borders: false,
-        };
-        let pieces = borders_and_creases(
-            mesh,
-            &library,
-            &camera,
-            view_projection,
-            (64, 64),
-            (&outlines, &[outlines.style(); 2], &[]),
-        );
+        let pieces = outlined(mesh, &library, &camera, 60.0);
         let on_flat: Vec<&Piece> = pieces.iter().filter(|p| p.patches == [0, 0]).collect();
         for side in [0.0, 1.0] {
             let along: Vec<(f64, f64)> = on_flat
@@ -353,36 +374,14 @@ mod tests {
         // The normals of the two squares turn by the hinge's angle.
         let angle = 40.0f32;
         let library = Arc::new(hinge(f64::from(angle)));
-        let camera = Camera {
-            eye: Vec3::new(0.0, -4.0, 5.0),
-            target: Vec3::new(0.0, 0.5, 0.0),
-            up: Vec3::Z,
-            projection: Projection::Perspective {
-                fov_y_degrees: 40.0,
-            },
-            near: 0.1,
-            far: 100.0,
-        };
+        let camera = looking(Vec3::new(0.0, -4.0, 5.0), Vec3::new(0.0, 0.5, 0.0), Vec3::Z);
         let view_projection = camera.view_projection(1.0);
         let mut tessellator = Tessellator::new(Arc::clone(&library));
         let (mesh, _) = tessellator.mesh(Density::PerSpan { u: 3, v: 3 }, view_projection, 64, 64);
         let mut last = None;
         for step in 0..=40 {
             let crease = 25.0 + step as f32 * 0.75;
-            let outlines = Outlines {
-                width: 2.0,
-                colour: Vec3::ZERO,
-                crease_degrees: crease,
-                patch_borders: false,
-            };
-            let pieces = borders_and_creases(
-                mesh,
-                &library,
-                &camera,
-                view_projection,
-                (64, 64),
-                (&outlines, &[outlines.style(); 2], &[]),
-            );
+            let pieces = outlined(mesh, &library, &camera, crease);
             let creases: Vec<f32> = pieces
                 .iter()
                 .filter(|p| p.kind == LineKind::Crease)
@@ -420,25 +419,11 @@ mod tests {
     fn a_seam_between_two_materials_is_a_material_border_where_a_side_draws_them() {
         // Two squares side by side in one plane: a smooth seam, no crease.
         let library = Arc::new(hinge(0.0));
-        let camera = Camera {
-            eye: Vec3::new(0.0, 0.5, 5.0),
-            target: Vec3::new(0.0, 0.5, 0.0),
-            up: Vec3::Y,
-            projection: Projection::Perspective {
-                fov_y_degrees: 40.0,
-            },
-            near: 0.1,
-            far: 100.0,
-        };
+        let camera = looking(Vec3::new(0.0, 0.5, 5.0), Vec3::new(0.0, 0.5, 0.0), Vec3::Y);
         let view_projection = camera.view_projection(1.0);
         let mut tessellator = Tessellator::new(Arc::clone(&library));
         let (mesh, _) = tessellator.mesh(Density::PerSpan { u: 3, v: 3 }, view_projection, 64, 64);
-        let outlines = Outlines {
-            width: 2.0,
-            colour: Vec3::ZERO,
-            crease_degrees: 60.0,
-            patch_borders: false,
-        };
+        let outlines = outlines(60.0);
         let plain = outlines.style();
         let drawing = LineStyle {
             kinds: crate::render::LineKinds::of(&[LineKind::MaterialBorder]),

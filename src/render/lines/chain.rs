@@ -492,18 +492,25 @@ mod tests {
         visible_capsules(&lines[0], &screen, &levels, |_, level| level == 0)
     }
 
-    #[test]
-    fn a_piece_off_the_image_breaks_the_line_into_two_that_each_end_there() {
+    /// A line from x = 20 px to 180 px along y = 100 px in eight pieces of 20 px, and a style
+    /// 4 px wide that narrows over 10 px at its ends.
+    fn tapering_line() -> (Vec<Piece>, crate::render::LineStyle) {
+        let x = |k: usize| -0.8 + 0.2 * k as f64;
+        let pieces = (0..8)
+            .map(|k| piece([x(k), 0.0, 0.5], [x(k + 1), 0.0, 0.5]))
+            .collect();
         let style = crate::render::LineStyle {
             taper: 10.0,
             ..crate::render::LineStyle::new(4.0, glam::Vec3::ZERO)
         };
-        // From x = 20 px to 180 px along y = 100 px in eight pieces of 20 px, the fifth
-        // (100 px to 120 px) off the image: however short the gap, it is not bridged.
-        let x = |k: usize| -0.8 + 0.2 * k as f64;
-        let open: Vec<Piece> = (0..8)
-            .map(|k| piece([x(k), 0.0, 0.5], [x(k + 1), 0.0, 0.5]))
-            .collect();
+        (pieces, style)
+    }
+
+    #[test]
+    fn a_piece_off_the_image_breaks_the_line_into_two_that_each_end_there() {
+        // The fifth piece (100 px to 120 px) off the image: however short the gap, it is not
+        // bridged.
+        let (open, style) = tapering_line();
         let drawn = drawn_without(&open, style, Some(4));
         assert_eq!(drawn.stretches.len(), 2);
         let expected = |px: f32| {
@@ -528,15 +535,7 @@ mod tests {
 
     #[test]
     fn a_line_narrows_over_its_taper_at_its_ends_and_a_loop_nowhere() {
-        let style = crate::render::LineStyle {
-            taper: 10.0,
-            ..crate::render::LineStyle::new(4.0, glam::Vec3::ZERO)
-        };
-        // From x = 20 px to 180 px along y = 100 px, in eight pieces.
-        let x = |k: usize| -0.8 + 0.2 * k as f64;
-        let open: Vec<Piece> = (0..8)
-            .map(|k| piece([x(k), 0.0, 0.5], [x(k + 1), 0.0, 0.5]))
-            .collect();
+        let (open, style) = tapering_line();
         let capsules = drawn(&open, style);
         let expected = |px: f32| 2.0 * ((px - 20.0).min(180.0 - px) / 10.0).min(1.0);
         let mut narrowest = f32::INFINITY;
