@@ -64,3 +64,58 @@ fn grid_range(grid: &PatchGrid) -> std::ops::Range<usize> {
     let first = grid.first as usize;
     first..first + grid.nu as usize * grid.nv as usize
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::super::super::tessellate::Tessellator;
+    use super::*;
+    use crate::geom::{shapes, NamedPatch, PatchLibrary};
+
+    /// Two balls side by side, each on a grid of 6 × 6 segments a span.
+    fn mesh() -> Mesh {
+        let patch = |name: &str, surface| NamedPatch {
+            name: name.into(),
+            trim: None,
+            surface,
+        };
+        let library = PatchLibrary::new(vec![
+            patch("ball", shapes::sphere(DVec3::ZERO, 1.0).unwrap()),
+            patch("other", shapes::sphere(DVec3::X * 3.0, 1.0).unwrap()),
+        ]);
+        let mut tessellator = Tessellator::new(library);
+        tessellator.mesh_of(vec![(6, 6); 2]).0.clone()
+    }
+
+    #[test]
+    fn a_grid_is_in_a_mesh_only_where_its_counts_positions_normals_and_uvs_all_match() {
+        let mesh = mesh();
+        let ball = GridShape::of(&mesh, 0);
+        assert!(ball.is_in(&mesh, 0));
+        // The other ball's grid has the same counts and other vertices.
+        assert_eq!((ball.nu, ball.nv), (mesh.grids[1].nu, mesh.grids[1].nv));
+        assert!(!ball.is_in(&mesh, 1));
+        // One vertex of the ball mirrored in x (or u) in one field alone.
+        fn mirrored(v: Vec3) -> Vec3 {
+            Vec3::new(-v.x, v.y, v.z)
+        }
+        let middle = (mesh.grids[0].first + mesh.grids[0].nu * mesh.grids[0].nv / 2 + 3) as usize;
+        type Edit = fn(&mut Mesh, usize);
+        let edits: [(&str, Edit); 3] = [
+            ("position", |m, k| m.positions[k] = mirrored(m.positions[k])),
+            ("normal", |m, k| m.normals[k] = mirrored(m.normals[k])),
+            ("uv", |m, k| m.uvs[k].x = -m.uvs[k].x),
+        ];
+        for (field, edit) in edits {
+            let mut moved = mesh.clone();
+            edit(&mut moved, middle);
+            assert!(!ball.is_in(&moved, 0), "{field}");
+            assert!(GridShape::of(&mesh, 1).is_in(&moved, 1), "{field}");
+        }
+        // The same vertices under other counts of as many.
+        let mut regridded = mesh.clone();
+        (regridded.grids[0].nu, regridded.grids[0].nv) = (1, ball.nu * ball.nv);
+        assert!(!ball.is_in(&regridded, 0));
+    }
+}

@@ -444,5 +444,159 @@ mod tests {
         // Moved aside, they miss.
         let aside = upright.map(|p| p + Vec3::new(2.0, 0.0, 0.0));
         assert_eq!(triangle_crossing(&flat, &aside), None);
+        // Narrowed to z = 0 for y in [0.3, 0.5], the upright one bounds the segment at both
+        // ends, inside the flat one's.
+        let narrow = [
+            Vec3::new(0.25, 0.2, -1.0),
+            Vec3::new(0.25, 0.6, -1.0),
+            Vec3::new(0.25, 0.4, 1.0),
+        ];
+        let [a, b] = triangle_crossing(&flat, &narrow).unwrap();
+        let (lo, hi) = (a.y.min(b.y), a.y.max(b.y));
+        assert!(
+            (lo - 0.3).abs() < 1e-6 && (hi - 0.5).abs() < 1e-6,
+            "{lo} {hi}"
+        );
+    }
+
+    /// The total length of `meetings`.
+    fn length(meetings: &[&Meeting]) -> f64 {
+        meetings
+            .iter()
+            .map(|m| f64::from(m.ends[0].distance(m.ends[1])))
+            .sum()
+    }
+
+    /// The meetings of patches `pair` in `found`.
+    fn of_pair(found: &Found, pair: [u32; 2]) -> Vec<&Meeting> {
+        found
+            .pairs
+            .iter()
+            .filter(|p| p.pair == pair)
+            .flat_map(|p| &p.meetings)
+            .collect()
+    }
+
+    #[test]
+    fn on_a_trimmed_patch_meetings_are_kept_where_its_trim_keeps_it_and_cut_where_the_trim_crosses_them(
+    ) {
+        let (mesh, library) = mesh_of(torus_and_balls(0.0));
+        let whole = intersections_keeping(&mesh, &library, &[], &[]);
+        // Ball a keeps u ≤ 0.45: east from +x about its centre, past +y to short of −x. The
+        // torus meets it in two loops, one each side of y = 0; ball b in a ring about its west
+        // pole, which the trim's edge cuts.
+        let mut trimmed = library.clone();
+        let domain = trimmed.patches[1].surface.domain();
+        let corner = |s, t| {
+            let (u, v) = domain.lerp(s, t);
+            DVec2::new(u, v)
+        };
+        let kept = vec![
+            corner(-0.1, -0.1),
+            corner(0.45, -0.1),
+            corner(0.45, 1.1),
+            corner(-0.1, 1.1),
+        ];
+        trimmed.patches[1].trim = Some(std::sync::Arc::new(
+            crate::geom::Trim::new(vec![kept], domain).unwrap(),
+        ));
+        let (mesh, trimmed) = mesh_of(trimmed);
+        let cut = intersections_keeping(&mesh, &trimmed, &[], &[]);
+        // The torus's loop at y > 0 whole, the other gone.
+        let torus_a = of_pair(&whole, [0, 1]);
+        let north: Vec<&Meeting> = torus_a
+            .iter()
+            .copied()
+            .filter(|m| m.ends[0].y + m.ends[1].y > 0.0)
+            .collect();
+        assert!(length(&north) > 1.0 && length(&north) < length(&torus_a) - 1.0);
+        let kept_torus_a = of_pair(&cut, [0, 1]);
+        assert!(kept_torus_a
+            .iter()
+            .all(|m| m.ends.iter().all(|e| e.y > 0.0)));
+        assert!(
+            (length(&kept_torus_a) - length(&north)).abs() < 1e-5,
+            "{} of {}",
+            length(&kept_torus_a),
+            length(&north)
+        );
+        // Of the ring with ball b, the part east of the trim's edge, cut short at it.
+        let centre = glam::DVec2::new(2.0, 0.0);
+        let east_of = |p: Vec3| (p.as_dvec3().truncate() - centre).to_angle().to_degrees();
+        let (u_edge, v_mid) = domain.lerp(0.45, 0.5);
+        let edge = east_of(trimmed.patches[1].surface.point(u_edge, v_mid).as_vec3());
+        let ring = of_pair(&whole, [1, 2]);
+        let kept_ring = of_pair(&cut, [1, 2]);
+        assert!(kept_ring.iter().all(|m| m
+            .ends
+            .iter()
+            .all(|&e| (0.0..edge + 2.0).contains(&east_of(e)))));
+        let ahead: Vec<&Meeting> = ring
+            .iter()
+            .copied()
+            .filter(|m| {
+                m.ends
+                    .iter()
+                    .all(|&e| (0.0..edge - 2.0).contains(&east_of(e)))
+            })
+            .collect();
+        assert!(length(&ahead) > 0.1, "{}", length(&ahead));
+        assert!(
+            length(&kept_ring) > length(&ahead) && length(&kept_ring) < length(&ring) - 0.1,
+            "{} of {}, {} wholly kept",
+            length(&kept_ring),
+            length(&ring),
+            length(&ahead)
+        );
+    }
+
+    #[test]
+    fn patches_that_share_a_vertex_position_are_not_intersected() {
+        // Two squares hinged along x = 0, the second folded back over the first to 30° from
+        // it, on grids of different density: their bounds overlap, their seam is shared.
+        let (s, c) = 150f64.to_radians().sin_cos();
+        let square = |p: [DVec3; 4]| {
+            crate::geom::shapes::bezier(1, 1, &[vec![p[0], p[1]], vec![p[2], p[3]]]).unwrap()
+        };
+        let flat = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+        let folded = |r: f64, y: f64| DVec3::new(r * c, y, r * s);
+        let library = PatchLibrary::new(vec![
+            NamedPatch::new(
+                "flat",
+                square([
+                    flat(-1.0, 0.0),
+                    flat(-1.0, 1.0),
+                    flat(0.0, 0.0),
+                    flat(0.0, 1.0),
+                ]),
+            ),
+            NamedPatch::new(
+                "folded",
+                square([
+                    folded(0.0, 0.0),
+                    folded(0.0, 1.0),
+                    folded(1.0, 0.0),
+                    folded(1.0, 1.0),
+                ]),
+            ),
+        ]);
+        let mut tessellator = Tessellator::new(library.clone());
+        let mesh = tessellator.mesh_of(vec![(6, 6), (5, 9)]).0.clone();
+        let found = intersections_keeping(&mesh, &library, &[], &[]);
+        assert_eq!((found.tested, found.pairs.len()), (0, 0));
+        // Slid along the seam, so that no vertex of one lies on one of the other, the same
+        // pair is intersected.
+        let mut slid = library.clone();
+        let folded = |r: f64, y: f64| folded(r, y + 0.05);
+        slid.patches[1].surface = square([
+            folded(0.0, 0.0),
+            folded(0.0, 1.0),
+            folded(1.0, 0.0),
+            folded(1.0, 1.0),
+        ]);
+        let mut tessellator = Tessellator::new(slid.clone());
+        let mesh = tessellator.mesh_of(vec![(6, 6), (5, 9)]).0.clone();
+        let found = intersections_keeping(&mesh, &slid, &[], &[]);
+        assert_eq!(found.tested, 1);
     }
 }

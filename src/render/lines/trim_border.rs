@@ -166,3 +166,78 @@ impl OnPatch<'_> {
         from
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::TAU;
+    use std::sync::Arc;
+
+    use super::super::super::camera::{Camera, Projection};
+    use super::super::super::tessellate::{Density, Tessellator};
+    use super::*;
+    use crate::geom::{shapes, NamedPatch, Trim};
+
+    #[test]
+    fn a_hole_s_loop_is_drawn_once_around_on_the_surface_and_the_domain_s_sides_are_not() {
+        // The square of side 2 in z = 0 (x = 2u − 1, y = 2v − 1), with a 64-sided hole of
+        // radius ¼ in (u, v) about its middle: radius ½ about the origin.
+        let sides = 64;
+        let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+        let outer: Vec<DVec2> = corners.iter().map(|&(u, v)| DVec2::new(u, v)).collect();
+        let hole: Vec<DVec2> = (0..sides)
+            .map(|k| {
+                let angle = -TAU * f64::from(k) / f64::from(sides);
+                DVec2::new(0.5, 0.5) + 0.25 * DVec2::from_angle(angle)
+            })
+            .collect();
+        let mut square = NamedPatch::new("square", shapes::plane(2.0, 2.0).unwrap());
+        let domain = square.surface.domain();
+        square.trim = Some(Arc::new(Trim::new(vec![outer, hole], domain).unwrap()));
+        let library = Arc::new(PatchLibrary::new(vec![square]));
+        let camera = Camera {
+            eye: Vec3::new(0.0, -1.0, 4.0),
+            target: Vec3::ZERO,
+            up: Vec3::Z,
+            projection: Projection::Perspective {
+                fov_y_degrees: 40.0,
+            },
+            near: 0.1,
+            far: 100.0,
+        };
+        let view_projection = camera.view_projection(1.0);
+        let mut tessellator = Tessellator::new(Arc::clone(&library));
+        let (mesh, _) = tessellator.mesh(Density::PerSpan { u: 8, v: 8 }, view_projection, 64, 64);
+        let style = LineStyle::new(1.0, Vec3::ZERO);
+        let pieces = trim_borders(mesh, &library, view_projection, (64, 64), &[style]);
+        assert!(!pieces.is_empty());
+        // On the hole's sides: between the radius of their middles and of their corners.
+        let inner = 0.5 * (std::f64::consts::PI / f64::from(sides)).cos();
+        for piece in &pieces {
+            assert_eq!(
+                (piece.kind, piece.open, piece.patches),
+                (LineKind::Border, true, [0, 0])
+            );
+            for end in piece.ends {
+                let r = end.truncate().length();
+                assert!(end.z == 0.0 && r > inner - 1e-9 && r < 0.5 + 1e-9, "{end}");
+            }
+        }
+        // One closed line, end to start, as long as the hole's sides.
+        for (piece, next) in pieces.iter().zip(pieces.iter().cycle().skip(1)) {
+            assert_eq!(piece.ends[1], next.ends[0]);
+        }
+        let length: f64 = pieces.iter().map(|p| p.ends[0].distance(p.ends[1])).sum();
+        let sides_length = f64::from(sides) * (TAU / f64::from(sides) / 2.0).sin();
+        assert!(
+            (length / sides_length - 1.0).abs() < 1e-4,
+            "{length} {sides_length}"
+        );
+        // A style that draws no borders draws none of it.
+        let mut no_borders = style;
+        no_borders.kinds = crate::render::line_style::LineKinds {
+            border: false,
+            ..crate::render::line_style::LineKinds::DEFAULT
+        };
+        assert!(trim_borders(mesh, &library, view_projection, (64, 64), &[no_borders]).is_empty());
+    }
+}

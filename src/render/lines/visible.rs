@@ -173,11 +173,12 @@ mod tests {
     use super::*;
     use crate::render::camera::Projection;
 
-    /// Whether the point of an open border on patch 0 at the centre of sample (4, 4) of a 9 × 9
-    /// one-sample frame, 10 units away, shows within half a pixel, when every sample holds what
-    /// `seen(x, y)` says: `Some((patch, pixel widths nearer than the point))`, or nothing.
-    fn open_border_shows(seen: impl Fn(usize, usize) -> Option<(u32, f32)>) -> (bool, bool) {
-        let camera = Camera {
+    /// Triangle k of the frames lies on patch k.
+    const TRIANGLE_PATCH: [u32; 2] = [0, 1];
+
+    /// The camera of the tests: at the origin looking down −z through a 10° perspective.
+    fn camera() -> Camera {
+        Camera {
             eye: Vec3::ZERO,
             target: Vec3::NEG_Z,
             up: Vec3::Y,
@@ -186,7 +187,12 @@ mod tests {
             },
             near: 0.1,
             far: 100.0,
-        };
+        }
+    }
+
+    /// A 9 × 9 one-sample frame through [`camera`] whose every sample holds what `seen(x, y)`
+    /// says: `Some((triangle, pixel widths nearer than 10 units))`, or nothing.
+    fn frame(seen: impl Fn(usize, usize) -> Option<(u32, f32)>) -> VisibilityBuffer {
         let mut visibility = VisibilityBuffer {
             width: 9,
             height: 9,
@@ -194,25 +200,84 @@ mod tests {
             triangle: vec![u32::MAX; 81],
             barycentric: vec![[0.0; 2]; 81],
         };
-        // Triangle k lies on patch k.
-        let triangle_patch = [0, 1];
-        let test = DepthTest::new(&visibility, &triangle_patch, 1, &camera);
+        let camera = camera();
+        let test = DepthTest::new(&visibility, &TRIANGLE_PATCH, 1, &camera);
         let width = test.pixel_width(10.0);
         let depths: Vec<Option<(u32, f32)>> = (0..81)
             .map(|s| {
                 seen(s % 9, s / 9)
-                    .map(|(patch, nearer)| (patch, test.ndc_of(10.0 - nearer * width)))
+                    .map(|(triangle, nearer)| (triangle, test.ndc_of(10.0 - nearer * width)))
             })
             .collect();
         for (s, seen) in depths.iter().enumerate() {
-            if let Some((patch, depth)) = *seen {
+            if let Some((triangle, depth)) = *seen {
                 visibility.depth[s] = depth;
-                visibility.triangle[s] = patch;
+                visibility.triangle[s] = triangle;
             }
         }
-        let test = DepthTest::new(&visibility, &triangle_patch, 1, &camera);
+        visibility
+    }
+
+    /// Whether the point of an open border on patch 0 at the centre of sample (4, 4) of the
+    /// [`frame`] `seen`, 10 units away, shows within half a pixel: to [`DepthTest::shows`], and
+    /// to [`DepthTest::shows_open`].
+    fn open_border_shows(seen: impl Fn(usize, usize) -> Option<(u32, f32)>) -> (bool, bool) {
+        let (visibility, camera) = (frame(seen), camera());
+        let test = DepthTest::new(&visibility, &TRIANGLE_PATCH, 1, &camera);
         let (point, z) = (Vec2::splat(4.5), test.ndc_of(10.0));
         (test.shows(point, z, 0.5), test.shows_open(point, z, 0.5, 0))
+    }
+
+    /// Whether the point of a line inside an outline at the centre of sample (4, 4) of the
+    /// [`frame`] `seen`, 10 units away, shows within half a pixel.
+    fn shows_on_surface(seen: impl Fn(usize, usize) -> Option<(u32, f32)>) -> bool {
+        let (visibility, camera) = (frame(seen), camera());
+        let test = DepthTest::new(&visibility, &TRIANGLE_PATCH, 1, &camera);
+        test.shows_on_surface(Vec2::splat(4.5), test.ndc_of(10.0), 0.5)
+    }
+
+    #[test]
+    fn a_line_inside_an_outline_shows_on_a_surface_at_its_depth_and_not_on_background() {
+        // The surface it lies on, all about it or at its own sample alone.
+        assert!(shows_on_surface(|_, _| Some((0, 0.0))));
+        assert!(shows_on_surface(
+            |x, y| (x == 4 && y == 4).then_some((0, 0.0))
+        ));
+        // Farther surfaces do not hide it.
+        assert!(shows_on_surface(|_, _| Some((1, -3.0))));
+        // Background alone, where a silhouette would show.
+        assert!(!shows_on_surface(|_, _| None));
+        assert!(open_border_shows(|_, _| None).0);
+        // A nearer surface over it, by a pixel width (5 % of the distance).
+        assert!(!shows_on_surface(|_, _| Some((1, 1.0))));
+    }
+
+    #[test]
+    fn points_in_the_first_and_last_rows_and_columns_are_tested_on_their_samples() {
+        // A nearer surface over the whole frame hides a point in any pixel whose samples within
+        // reach are on the image; a window reaching past the image shows the point.
+        let visibility = frame(|_, _| Some((1, 1.0)));
+        let camera = camera();
+        let test = DepthTest::new(&visibility, &TRIANGLE_PATCH, 1, &camera);
+        let z = test.ndc_of(10.0);
+        for (x, y) in [
+            (4.5, 4.5),
+            (0.5, 4.5),
+            (4.5, 0.5),
+            (8.5, 4.5),
+            (4.5, 8.5),
+            (0.5, 0.5),
+        ] {
+            let pixel = Vec2::new(x, y);
+            assert!(!test.shows(pixel, z, 0.5), "{pixel}");
+            assert_eq!(test.shows(pixel, z, 1.0), (x, y) != (4.5, 4.5), "{pixel}");
+        }
+        // A point at its depth on the surface shows in the corner pixels.
+        let visibility = frame(|_, _| Some((0, 0.0)));
+        let test = DepthTest::new(&visibility, &TRIANGLE_PATCH, 1, &camera);
+        for corner in [Vec2::splat(0.5), Vec2::splat(8.5)] {
+            assert!(test.shows_on_surface(corner, z, 0.5), "{corner}");
+        }
     }
 
     #[test]

@@ -61,7 +61,7 @@ pub fn edit_text(text: &str, path: &ParamPath, edit: &TrackEdit) -> Result<Strin
             },
         }
     })?;
-    read_back(apply(text, &splices), &expected).map_err(|reason| EditError::Unchecked {
+    read_back(apply(text, &splices), &expected, "track").map_err(|reason| EditError::Unchecked {
         path,
         line,
         col,
@@ -69,12 +69,18 @@ pub fn edit_text(text: &str, path: &ParamPath, edit: &TrackEdit) -> Result<Strin
     })
 }
 
-/// `edited` when it reads back as `expected` (the file as first read, with the one track
-/// changed); otherwise why not.
-fn read_back(edited: String, expected: &ParsedFile) -> Result<String, String> {
+/// `edited` when it reads back as `expected` (the file as first read, with the one `what` it
+/// edits changed); otherwise why not.
+pub(super) fn read_back(
+    edited: String,
+    expected: &ParsedFile,
+    what: &str,
+) -> Result<String, String> {
     match read_file(&edited) {
         Ok(reread) if reread == *expected => Ok(edited),
-        Ok(_) => Err("the edited file reads back with more changed than this track".to_string()),
+        Ok(_) => Err(format!(
+            "the edited file reads back with more changed than this {what}"
+        )),
         Err(e) => Err(format!("the edited file does not read back (at {e})")),
     }
 }
@@ -245,15 +251,15 @@ mod tests {
     fn an_edit_is_kept_only_when_it_reads_back_as_the_file_with_its_one_track_changed() {
         let expected = read_file(STYLED_SHOT).unwrap();
         assert_eq!(
-            read_back(STYLED_SHOT.to_string(), &expected).as_deref(),
+            read_back(STYLED_SHOT.to_string(), &expected, "track").as_deref(),
             Ok(STYLED_SHOT)
         );
         // A splice gone wrong: a number the edit did not ask for changed as well.
         let changed = shot_with("fps: 24", "fps: 25");
-        let reason = read_back(changed, &expected).unwrap_err();
+        let reason = read_back(changed, &expected, "track").unwrap_err();
         assert!(reason.contains("more changed than this track"), "{reason}");
         // Or a file that no longer parses.
-        let reason = read_back(format!("{STYLED_SHOT})"), &expected).unwrap_err();
+        let reason = read_back(format!("{STYLED_SHOT})"), &expected, "track").unwrap_err();
         assert!(reason.contains("does not read back"), "{reason}");
     }
 

@@ -3,6 +3,7 @@
 //! drawn or made the disc again — each as splices of the text, every other byte kept, and the
 //! result read back and checked to differ in that alone.
 
+use super::edit_text::read_back;
 use super::error::EditError;
 use super::layer_text::{mask_text, op_text};
 use super::number_text::number_text;
@@ -407,16 +408,7 @@ pub fn edit_layer(
             splices
         }
     };
-    let edited = apply(text, &splices);
-    match read_file(&edited) {
-        Ok(reread) if reread == expected => Ok(edited),
-        Ok(_) => Err(unchecked(
-            "the edited file reads back with more changed than this layer",
-        )),
-        Err(e) => Err(unchecked(&format!(
-            "the edited file does not read back (at {e})"
-        ))),
-    }
+    read_back(apply(text, &splices), &expected, "layer").map_err(|reason| unchecked(&reason))
 }
 
 #[cfg(test)]
