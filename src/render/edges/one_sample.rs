@@ -42,6 +42,9 @@ pub(in crate::render) struct OneSampleEdges<'s> {
     /// anti-aliasing on a frame with trimmed patches
     /// ([`find_trim_edges`](super::trim_edge::find_trim_edges)).
     pub trims: Option<TrimEdges>,
+    /// The patch of each texel, side by side: the neighbours are looked up by patch, and the
+    /// texels themselves are large.
+    pub patches: Vec<u32>,
 }
 
 impl OneSampleEdges<'_> {
@@ -87,8 +90,6 @@ impl<'s> OneSampleEdges<'s> {
         settle: Option<(Mat4, FrameMode)>,
     ) -> (Self, u64) {
         let mut frames = 0;
-        // The texels' patches side by side: the neighbours are looked up by patch, and the
-        // texels themselves are large.
         let patches = patches_of(gbuffer);
         let signed = scene
             .has_highlights()
@@ -136,6 +137,7 @@ impl<'s> OneSampleEdges<'s> {
             drawn,
             settled,
             trims: None,
+            patches,
         };
         (edges, frames)
     }
@@ -163,11 +165,10 @@ impl<'s> OneSampleEdges<'s> {
             .drawn
             .as_ref()
             .map(|drawn| beside_undrawn(gbuffer, drawn));
-        let patches = patches_of(gbuffer);
         self.widths = self
             .signed
             .as_ref()
-            .map(|s| edge_widths_of(gbuffer, s, &patches, wanted.as_deref()));
+            .map(|s| edge_widths_of(gbuffer, s, &self.patches, wanted.as_deref()));
     }
 }
 
