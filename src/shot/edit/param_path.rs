@@ -688,7 +688,13 @@ mod tests {
     fn written_paths_read_back_as_written() {
         for written in [
             "camera.eye",
+            "camera.target",
             "camera.up",
+            "camera.orbit.azimuth",
+            "camera.orbit.elevation",
+            "camera.orbit.distance",
+            "camera.orbit.radius",
+            "camera.orbit.height",
             "camera.projection.fov_y_degrees",
             "camera.projection.height",
             "light.towards",

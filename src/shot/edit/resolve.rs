@@ -186,3 +186,78 @@ fn bad_path(file: &mut ParsedFile, written: &str, reason: String) -> EditError {
         nearest,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shot::fixtures::STYLED_SHOT;
+
+    /// Why `written` names no track of the file `text`.
+    fn refusal(text: &str, written: &str) -> String {
+        match parse_param_path(text, written) {
+            Err(EditError::BadPath { reason, .. }) => reason,
+            other => panic!("{written}: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_material_path_that_names_no_track_says_whether_the_file_or_its_includes_define_it() {
+        assert!(parse_param_path(STYLED_SHOT, "materials{\"m\"}.bands[0].threshold").is_ok());
+        // The file's own material, without the track.
+        assert_eq!(
+            refusal(STYLED_SHOT, "materials{\"m\"}.bands[3].threshold"),
+            "this file has no such track"
+        );
+        assert_eq!(
+            refusal(STYLED_SHOT, "materials{\"clay\"}.base"),
+            "this file defines no material \"clay\""
+        );
+        let including = STYLED_SHOT.replace(
+            "    materials: {",
+            "    includes: [\"looks/a.ron\", \"looks/b.ron\"],\n    materials: {",
+        );
+        assert_eq!(
+            refusal(&including, "materials{\"clay\"}.base"),
+            "this file defines no material \"clay\"; the materials of its includes \
+             (looks/a.ron, looks/b.ron) are edited in those files"
+        );
+        assert_eq!(
+            refusal(&including, "materials{\"m\"}.detail.r"),
+            "this file has no such track"
+        );
+    }
+
+    #[test]
+    fn a_shade_path_that_names_no_track_says_which_part_is_missing() {
+        assert_eq!(
+            refusal(STYLED_SHOT, "shade[0].stack[0].alpha"),
+            "this file has no shade entry, so no shade[0]"
+        );
+        let shaded = STYLED_SHOT.replace(
+            "    highlights: [",
+            "    shade: [(patches: \"ball/*\", stack: [Scale(delta: 0.5, axis: U)])],\n    highlights: [",
+        );
+        assert!(parse_param_path(&shaded, "shade[0].stack[0].delta").is_ok());
+        for (written, reason) in [
+            (
+                "shade[1].stack[0].delta",
+                "this file has one shade entry, shade[0], so no shade[1]",
+            ),
+            (
+                "shade[0].stack[1].delta",
+                "shade[0]'s stack has 1 operation(s), numbered from 0, so no stack[1]",
+            ),
+            (
+                "shade[0].stack[0].axis",
+                "shade[0].stack[0]'s axis is `U` or `V`, which has no number; `Angle(φ)` has one",
+            ),
+            (
+                "shade[0].stack[0].alpha",
+                "shade[0].stack[0] is a Scale, which has no `alpha`",
+            ),
+            ("shade[0].mask.feather", "shade[0] has no mask"),
+        ] {
+            assert_eq!(refusal(&shaded, written), reason, "{written}");
+        }
+    }
+}
