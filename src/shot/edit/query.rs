@@ -163,4 +163,25 @@ mod tests {
             assert_eq!(track_text(STYLED_SHOT, &path), Ok(text));
         }
     }
+
+    #[test]
+    fn a_track_s_span_is_where_it_is_written_and_none_where_it_is_left_to_its_default() {
+        let span = |written: &str| track_span(STYLED_SHOT, &param_path(written)).unwrap();
+        let text = |written: &str| span(written).map(|s| &STYLED_SHOT[s]);
+        assert_eq!(text("camera.target"), Some("(0.0, 0.0, 0.0)"));
+        assert_eq!(
+            text("highlights[0].layers[1].stack[0].alpha"),
+            Some("[(1, 0.6), (24, 0.15)]")
+        );
+        assert_eq!(text("highlights[0].layers[1].feather"), Some("0.01"));
+        // Left to their defaults: no bytes.
+        assert_eq!(span("camera.up"), None);
+        assert_eq!(span("highlights[1].layers[0].feather"), None);
+        // Selected by pattern, as by index.
+        assert_eq!(
+            span("highlights[\"ball/*\"].layers[0].epsilon"),
+            span("highlights[0].layers[0].epsilon")
+        );
+        assert!(track_span(STYLED_SHOT, &param_path("shade[0].mask.feather")).is_err());
+    }
 }
