@@ -310,6 +310,42 @@ mod tests {
         let without = |index| apply(lines, &[remove_item(lines, &items, index)]);
         assert_eq!(without(1), "[\n    (1, 0.5),\n    (17, 0.25)\n]");
         assert_eq!(without(2), "[\n    (1, 0.5),\n    (9, 0.1), // mid\n]");
+        // An item that shares its line goes with its separator, though the line ends after it.
+        let shared = "[\n    (1, 0.5), (9, 0.1)\n]";
+        let items = spans(shared, &["(1, 0.5)", "(9, 0.1)"]);
+        let without = |index| apply(shared, &[remove_item(shared, &items, index)]);
+        assert_eq!(without(1), "[\n    (1, 0.5)\n]");
+        assert_eq!(without(0), "[\n    (9, 0.1)\n]");
+        // A comma written after spaces goes with its item.
+        let spaced = "[\n    (1, 0.5) ,\n    (9, 0.1) , // mid\n    (17, 0.25)\n]";
+        let items = spans(spaced, &["(1, 0.5)", "(9, 0.1)", "(17, 0.25)"]);
+        assert_eq!(
+            apply(spaced, &[remove_item(spaced, &items, 1)]),
+            "[\n    (1, 0.5) ,\n    (17, 0.25)\n]"
+        );
+    }
+
+    #[test]
+    fn an_item_added_before_a_closing_bracket_on_its_line_goes_before_it() {
+        let text = "[\n    (1, 0.5),\n    (17, 0.25), ]";
+        let items = spans(text, &["(1, 0.5)", "(17, 0.25)"]);
+        assert_eq!(
+            apply(
+                text,
+                &[insert_item(text, &items, None, "(20, 0.1)").unwrap()]
+            ),
+            "[\n    (1, 0.5),\n    (17, 0.25),\n    (20, 0.1), ]"
+        );
+        // After a comma written after spaces.
+        let spaced = "[\n    (1, 0.5) , // one\n]";
+        let items = spans(spaced, &["(1, 0.5)"]);
+        assert_eq!(
+            apply(
+                spaced,
+                &[insert_item(spaced, &items, None, "(20, 0.1)").unwrap()]
+            ),
+            "[\n    (1, 0.5) , // one\n    (20, 0.1),\n]"
+        );
     }
 
     #[test]
@@ -339,6 +375,14 @@ mod tests {
             apply(text, &[remove_item(text, &items, 0)]),
             "[\r\n    (17, 0.25),\r\n]"
         );
+        // From anywhere on a line, its end is there or after, before its line break.
+        for at in 0..=text.len() {
+            let end = line_end(text, at);
+            assert!(
+                end >= at && !text[at..end].contains(['\r', '\n']),
+                "{at}: {end}"
+            );
+        }
     }
 
     #[test]
