@@ -171,6 +171,22 @@ impl Camera {
     }
 }
 
+/// A camera at `eye` looking at `target`, `up` up, through a 40° perspective: the unit tests'.
+#[cfg(test)]
+#[must_use]
+pub(crate) fn looking(eye: Vec3, target: Vec3, up: Vec3) -> Camera {
+    Camera {
+        eye,
+        target,
+        up,
+        projection: Projection::Perspective {
+            fov_y_degrees: 40.0,
+        },
+        near: 0.1,
+        far: 100.0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -252,22 +252,8 @@ mod tests {
 
     use super::*;
     use crate::geom::{shapes, NamedPatch, Trim};
-    use crate::render::camera::Projection;
+    use crate::render::camera::looking;
     use crate::render::tessellate::{Density, Tessellator};
-
-    /// A camera at `eye` looking at `target`, `up` up, through a 40° perspective.
-    fn looking(eye: Vec3, target: Vec3, up: Vec3) -> Camera {
-        Camera {
-            eye,
-            target,
-            up,
-            projection: Projection::Perspective {
-                fov_y_degrees: 40.0,
-            },
-            near: 0.1,
-            far: 100.0,
-        }
-    }
 
     /// Black outlines 2 px wide with crease angle `crease`, without patch borders.
     fn outlines(crease: f32) -> Outlines {

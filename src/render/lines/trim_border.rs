@@ -172,7 +172,7 @@ mod tests {
     use std::f64::consts::TAU;
     use std::sync::Arc;
 
-    use super::super::super::camera::{Camera, Projection};
+    use super::super::super::camera::looking;
     use super::super::super::tessellate::{Density, Tessellator};
     use super::*;
     use crate::geom::{shapes, NamedPatch, Trim};
@@ -194,16 +194,7 @@ mod tests {
         let domain = square.surface.domain();
         square.trim = Some(Arc::new(Trim::new(vec![outer, hole], domain).unwrap()));
         let library = Arc::new(PatchLibrary::new(vec![square]));
-        let camera = Camera {
-            eye: Vec3::new(0.0, -1.0, 4.0),
-            target: Vec3::ZERO,
-            up: Vec3::Z,
-            projection: Projection::Perspective {
-                fov_y_degrees: 40.0,
-            },
-            near: 0.1,
-            far: 100.0,
-        };
+        let camera = looking(Vec3::new(0.0, -1.0, 4.0), Vec3::ZERO, Vec3::Z);
         let view_projection = camera.view_projection(1.0);
         let mut tessellator = Tessellator::new(Arc::clone(&library));
         let (mesh, _) = tessellator.mesh(Density::PerSpan { u: 8, v: 8 }, view_projection, 64, 64);
