@@ -166,6 +166,13 @@ struct Refusal {
 
 const REFUSALS: &[Refusal] = &[
     Refusal {
+        name: "an up axis that is neither Y nor Z",
+        from: "upAxis = \"Z\"",
+        to: "upAxis = \"X\"",
+        at: "\"X\"",
+        says: &["upAxis \"X\" is neither \"Y\" nor \"Z\""],
+    },
+    Refusal {
         name: "missing attribute",
         from: "            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
         to: "            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
