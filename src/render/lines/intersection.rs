@@ -555,48 +555,28 @@ mod tests {
         // Two squares hinged along x = 0, the second folded back over the first to 30° from
         // it, on grids of different density: their bounds overlap, their seam is shared.
         let (s, c) = 150f64.to_radians().sin_cos();
-        let square = |p: [DVec3; 4]| {
-            crate::geom::shapes::bezier(1, 1, &[vec![p[0], p[1]], vec![p[2], p[3]]]).unwrap()
+        // The bilinear square through `corner(r, y)` for r from `r0` to `r1` and y from 0 to 1.
+        let square = |corner: &dyn Fn(f64, f64) -> DVec3, (r0, r1): (f64, f64)| {
+            let net = [r0, r1].map(|r| vec![corner(r, 0.0), corner(r, 1.0)]);
+            crate::geom::shapes::bezier(1, 1, &net).unwrap()
         };
-        let flat = |x: f64, y: f64| DVec3::new(x, y, 0.0);
-        let folded = |r: f64, y: f64| DVec3::new(r * c, y, r * s);
-        let library = PatchLibrary::new(vec![
-            NamedPatch::new(
-                "flat",
-                square([
-                    flat(-1.0, 0.0),
-                    flat(-1.0, 1.0),
-                    flat(0.0, 0.0),
-                    flat(0.0, 1.0),
-                ]),
-            ),
-            NamedPatch::new(
-                "folded",
-                square([
-                    folded(0.0, 0.0),
-                    folded(0.0, 1.0),
-                    folded(1.0, 0.0),
-                    folded(1.0, 1.0),
-                ]),
-            ),
-        ]);
-        let mut tessellator = Tessellator::new(library.clone());
-        let mesh = tessellator.mesh_of(vec![(6, 6), (5, 9)]).0.clone();
-        let found = intersections_keeping(&mesh, &library, &[], &[]);
-        assert_eq!((found.tested, found.pairs.len()), (0, 0));
+        // What is found with the folded square slid by `slide` along the seam.
+        let found = |slide: f64| {
+            let library = PatchLibrary::new(vec![
+                NamedPatch::new("flat", square(&|x, y| DVec3::new(x, y, 0.0), (-1.0, 0.0))),
+                NamedPatch::new(
+                    "folded",
+                    square(&|r, y| DVec3::new(r * c, y + slide, r * s), (0.0, 1.0)),
+                ),
+            ]);
+            let mut tessellator = Tessellator::new(library.clone());
+            let mesh = tessellator.mesh_of(vec![(6, 6), (5, 9)]).0.clone();
+            intersections_keeping(&mesh, &library, &[], &[])
+        };
+        let shared = found(0.0);
+        assert_eq!((shared.tested, shared.pairs.len()), (0, 0));
         // Slid along the seam, so that no vertex of one lies on one of the other, the same
         // pair is intersected.
-        let mut slid = library.clone();
-        let folded = |r: f64, y: f64| folded(r, y + 0.05);
-        slid.patches[1].surface = square([
-            folded(0.0, 0.0),
-            folded(0.0, 1.0),
-            folded(1.0, 0.0),
-            folded(1.0, 1.0),
-        ]);
-        let mut tessellator = Tessellator::new(slid.clone());
-        let mesh = tessellator.mesh_of(vec![(6, 6), (5, 9)]).0.clone();
-        let found = intersections_keeping(&mesh, &slid, &[], &[]);
-        assert_eq!(found.tested, 1);
+        assert_eq!(found(0.05).tested, 1);
     }
 }

@@ -4,8 +4,8 @@
 use super::error::EditError;
 use super::number_text::{frame_text, number_text, value_text};
 use super::param_path::ParamPath;
-use super::param_sites::{ParsedFile, TrackMut};
-use super::read::read_file;
+use super::param_sites::TrackMut;
+use super::read::{read_back, read_file};
 use super::resolve::{resolve, unknown_path_without_list};
 use super::track_edit::{edited, TrackEdit, ValueEdit};
 use super::track_splice::{apply, track_splice, Splice, TextEdit};
@@ -67,22 +67,6 @@ pub fn edit_text(text: &str, path: &ParamPath, edit: &TrackEdit) -> Result<Strin
         col,
         reason,
     })
-}
-
-/// `edited` when it reads back as `expected` (the file as first read, with the one `what` it
-/// edits changed); otherwise why not.
-pub(super) fn read_back(
-    edited: String,
-    expected: &ParsedFile,
-    what: &str,
-) -> Result<String, String> {
-    match read_file(&edited) {
-        Ok(reread) if reread == *expected => Ok(edited),
-        Ok(_) => Err(format!(
-            "the edited file reads back with more changed than this {what}"
-        )),
-        Err(e) => Err(format!("the edited file does not read back (at {e})")),
-    }
 }
 
 /// `text` with each of `edits` made in turn ([`edit_text`]); the first that fails stops them.
@@ -245,22 +229,6 @@ mod tests {
 
     fn edited(written: &str, edit: &TrackEdit) -> String {
         edit_text(STYLED_SHOT, &param_path(written), edit).unwrap_or_else(|e| panic!("{e}"))
-    }
-
-    #[test]
-    fn an_edit_is_kept_only_when_it_reads_back_as_the_file_with_its_one_track_changed() {
-        let expected = read_file(STYLED_SHOT).unwrap();
-        assert_eq!(
-            read_back(STYLED_SHOT.to_string(), &expected, "track").as_deref(),
-            Ok(STYLED_SHOT)
-        );
-        // A splice gone wrong: a number the edit did not ask for changed as well.
-        let changed = shot_with("fps: 24", "fps: 25");
-        let reason = read_back(changed, &expected, "track").unwrap_err();
-        assert!(reason.contains("more changed than this track"), "{reason}");
-        // Or a file that no longer parses.
-        let reason = read_back(format!("{STYLED_SHOT})"), &expected, "track").unwrap_err();
-        assert!(reason.contains("does not read back"), "{reason}");
     }
 
     #[test]

@@ -3,12 +3,11 @@
 //! drawn or made the disc again — each as splices of the text, every other byte kept, and the
 //! result read back and checked to differ in that alone.
 
-use super::edit_text::read_back;
 use super::error::EditError;
 use super::layer_text::{mask_text, op_text};
 use super::number_text::number_text;
 use super::outline_edit::{check_key, key_frames, key_splice, reshaped, rounded, shape_field_text};
-use super::read::read_file;
+use super::read::{read_back, read_file};
 use super::track_splice::{apply, insert_item, remove_item, Splice};
 use crate::anim::Track;
 use crate::formats::ron_paths::Step::Field;
