@@ -142,6 +142,88 @@ fn prims_become_patches_and_parts_placed_by_their_transforms() {
     );
 }
 
+/// A bilinear patch named `name`, with the prim's metadata `meta` (`""` for none) and its
+/// children `inside`, as USDA.
+fn flat_patch(name: &str, meta: &str, inside: &str) -> String {
+    format!(
+        r#"def NurbsPatch "{name}" {meta}
+{{
+    int uVertexCount = 2
+    int vVertexCount = 2
+    int uOrder = 2
+    int vOrder = 2
+    double[] uKnots = [0, 0, 1, 1]
+    double[] vKnots = [0, 0, 1, 1]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
+{inside}
+}}
+"#
+    )
+}
+
+#[test]
+fn groups_hold_the_patches_under_them_and_left_out_prims_hold_none() {
+    let text = format!(
+        r#"#usda 1.0
+(
+    upAxis = "Z"
+)
+
+def Xform "car"
+{{
+{kept}
+    def Xform "empty"
+    {{
+    }}
+    def Scope "looks"
+    {{
+        def Material "paint"
+        {{
+        }}
+    }}
+{inactive}
+    def Xform "hidden"
+    {{
+        token visibility = "invisible"
+{hidden}
+    }}
+    def Scope "doors"
+    {{
+{door}
+    }}
+{outer}
+}}
+"#,
+        kept = flat_patch("hood", "", ""),
+        inactive = flat_patch("spare", "(\n    active = false\n)", ""),
+        hidden = flat_patch("ghost", "", ""),
+        door = flat_patch("door", "", ""),
+        outer = flat_patch("bonnet", "", &flat_patch("badge", "", "")),
+    );
+    let library = parse_usda(&text, "groups.usda").unwrap();
+    let names: Vec<&str> = library.patches.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "car/hood",
+            "car/doors/door",
+            "car/bonnet",
+            "car/bonnet/badge"
+        ]
+    );
+    let groups: Vec<(&str, &[usize])> = library
+        .groups
+        .iter()
+        .map(|g| (g.name.as_str(), g.patches.as_slice()))
+        .collect();
+    // A prim holding no patch is not a group, nor is a patch with patches under it; the
+    // inactive and the invisible prims' patches are in none.
+    assert_eq!(
+        groups,
+        [("car/doors", &[1][..]), ("car", &[0, 1, 2, 3][..])]
+    );
+}
+
 #[test]
 fn a_y_up_layer_is_turned_to_z_up() {
     let text = hood("", "").replace("upAxis = \"Z\"", "upAxis = \"Y\"");
