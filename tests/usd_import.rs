@@ -225,6 +225,16 @@ def Xform "car"
 }
 
 #[test]
+fn a_transform_may_place_a_control_point_on_the_edge_of_the_coordinates_glint_evaluates() {
+    // The hood's points have x of 0 and 1: moved by 10⁶ − 1, the farthest lands on 10⁶ itself.
+    let ops = r#"    double3 xformOp:translate = (999999, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]"#;
+    let library = parse_usda(&hood(ops, ""), "car.usda").unwrap();
+    let corner = library.patches[0].surface.point(1.0, 0.0);
+    assert_eq!(corner.x, glint::geom::MAX_COORDINATE);
+}
+
+#[test]
 fn a_y_up_layer_is_turned_to_z_up() {
     let text = hood("", "").replace("upAxis = \"Z\"", "upAxis = \"Y\"");
     let library = parse_usda(&text, "car.usda").unwrap();
@@ -281,6 +291,16 @@ const REFUSALS: &[Refusal] = &[
         to: "            int uOrder = 11\n            int vOrder = 2\n            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
         at: "uOrder = 11",
         says: &["`uOrder` 11 is outside the orders glint evaluates, 2 to 10"],
+    },
+    Refusal {
+        name: "a transform placing a control point beyond the coordinates glint evaluates",
+        from: "def Xform \"car\"\n{",
+        to: "def Xform \"car\"\n{\n    double3 xformOp:translate = (2000000, 0, 0)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]",
+        at: "def NurbsPatch \"hood\"",
+        says: &[
+            "/car/panels/hood",
+            "its transform places a control point at 2.000001e6, beyond ±1e6",
+        ],
     },
     Refusal {
         name: "a reference",

@@ -267,6 +267,37 @@ fn samples_written_out_of_order_are_sorted_and_a_repeated_time_keeps_the_last() 
 }
 
 #[test]
+fn a_patch_under_still_transforms_in_a_moving_layer_does_not_move() {
+    let still = r#"
+def Xform "post"
+{
+    double3 xformOp:translate = (3, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    def NurbsPatch "plank"
+    {
+        int uVertexCount = 2
+        int vVertexCount = 2
+        int uOrder = 2
+        int vOrder = 2
+        double[] uKnots = [0, 0, 1, 1]
+        double[] vKnots = [0, 0, 1, 1]
+        point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
+    }
+}
+"#;
+    let text = sheet(TWO_SAMPLES, "", "") + still;
+    let (library, motion) = parse_usda_motion(&text, "sheet.usda").unwrap();
+    let motion = motion.expect("the sheet moves");
+    assert_eq!(library.patches[1].name, "post/plank");
+    assert_eq!(motion.moving(), &[0]);
+    let placed: Vec<DVec3> = library.patches[1].surface.control_points().collect();
+    assert_eq!(placed[3], DVec3::new(4.0, 1.0, 0.0));
+    for t in [1.0, 5.5, 10.0] {
+        assert_eq!(motion.points_at(1, t), placed, "at time code {t}");
+    }
+}
+
+#[test]
 fn knots_whose_samples_agree_are_read_and_a_default_loses_to_samples() {
     let extra = "        double[] uRange.timeSamples = {\n            1: (0, 1),\n            5: (0, 1),\n        }\n        point3f[] points = [(5, 5, 5), (6, 5, 5), (5, 6, 5), (6, 6, 5)]";
     let text = sheet(TWO_SAMPLES, "", extra);
@@ -425,6 +456,19 @@ fn refusals() -> Vec<Refusal> {
                 "may carry a control point as far as 3.4641",
                 "e6, beyond ±1e6",
             ],
+        },
+        Refusal {
+            // Points 1000 from the origin, scaled up to 2000 times by time code 5: the bound
+            // `a·|P| + b` passes 10⁶ by the product of the scale's bound and the points'
+            // reach, where neither alone comes near it.
+            name: "a sampled scale that may carry a point beyond the coordinates glint evaluates",
+            text: sheet(
+                "            1: [(0, 0, 0), (1000, 0, 0), (0, 1000, 0), (1000, 1000, 0)],\n            10: [(0, 0, 1), (1000, 0, 1), (0, 1000, 1), (1000, 1000, 1)],",
+                &xform("double3 xformOp:scale.timeSamples = {\n        1: (1, 1, 1),\n        5: (2000, 2000, 2000),\n    }\n    uniform token[] xformOpOrder = [\"xformOp:scale\"]"),
+                "",
+            ),
+            at: "def NurbsPatch",
+            says: &["/rig/sheet", "may carry a control point as far as", "beyond ±1e6"],
         },
         Refusal {
             name: "time codes per second of 0",

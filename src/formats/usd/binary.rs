@@ -221,3 +221,157 @@ fn value(v: &sdf::Value) -> Value {
         _ => Value::Other,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use openusd::sdf::{Data, Value as V};
+    use openusd::tf::Token;
+
+    /// A `def` prim of `type_name` at `path` in `data`, listed among its parent's children.
+    fn def(data: &mut Data, path: &str, type_name: &str) {
+        let (parent, name) = path.rsplit_once('/').unwrap();
+        let parent = if parent.is_empty() { "/" } else { parent };
+        if !data.has_spec(&sdf::Path::from(parent)) {
+            data.create_spec(sdf::Path::from(parent), SpecType::PseudoRoot);
+        }
+        list_under(data, parent, "primChildren", name);
+        let at = sdf::Path::from(path);
+        data.create_spec(at.clone(), SpecType::Prim);
+        data.set_field(&at, "specifier", V::Specifier(Specifier::Def));
+        data.set_field(&at, "typeName", V::Token(Token::from(type_name)));
+    }
+
+    /// Adds `name` to the token list `field` of the spec at `path`.
+    fn list_under(data: &mut Data, path: &str, field_name: &str, name: &str) {
+        let at = sdf::Path::from(path);
+        let mut names = match field(data, &at, field_name) {
+            Some(V::TokenVec(names)) => names,
+            _ => Vec::new(),
+        };
+        names.push(Token::from(name));
+        data.set_field(&at, field_name, V::TokenVec(names));
+    }
+
+    /// A property `name` of the prim at `prim`: a relationship, or an attribute of
+    /// `type_name` holding `default`.
+    fn property(data: &mut Data, prim: &str, name: &str, spec: SpecType, type_name: &str) {
+        list_under(data, prim, "propertyChildren", name);
+        let at = sdf::Path::from(format!("{prim}.{name}").as_str());
+        data.create_spec(at.clone(), spec);
+        if spec == SpecType::Attribute {
+            data.set_field(&at, "typeName", V::Token(Token::from(type_name)));
+            data.set_field(&at, "default", V::Double(0.5));
+        }
+    }
+
+    fn read_prim(data: &Data, name: &str) -> Result<Prim, String> {
+        prim(data, "", name, 0)
+    }
+
+    #[test]
+    fn a_composition_field_is_refused_when_it_lists_something_and_read_past_when_empty() {
+        for (field_name, listed, empty) in [
+            (
+                "variantSetNames",
+                V::TokenVec(vec![Token::from("look")]),
+                V::TokenVec(Vec::new()),
+            ),
+            (
+                "inheritPaths",
+                V::PathVec(vec![sdf::Path::from("/base")]),
+                V::PathVec(Vec::new()),
+            ),
+        ] {
+            let mut data = Data::new();
+            def(&mut data, "/car", "Xform");
+            let at = sdf::Path::from("/car");
+            data.set_field(&at, field_name, empty);
+            assert!(read_prim(&data, "car").is_ok(), "{field_name} empty");
+            data.set_field(&at, field_name, listed);
+            let refused = read_prim(&data, "car").unwrap_err();
+            assert!(
+                refused.starts_with("/car has ") && refused.contains("flatten"),
+                "{field_name}: {refused}"
+            );
+        }
+    }
+
+    #[test]
+    fn properties_keep_their_written_types_and_a_relationship_reads_as_rel() {
+        let mut data = Data::new();
+        def(&mut data, "/car", "Xform");
+        property(&mut data, "/car", "width", SpecType::Attribute, "double");
+        property(
+            &mut data,
+            "/car",
+            "material:binding",
+            SpecType::Relationship,
+            "",
+        );
+        property(&mut data, "/car", "tint", SpecType::Attribute, "color3f");
+        let tint = sdf::Path::from("/car.tint");
+        data.set_field(
+            &tint,
+            "connectionPaths",
+            V::PathVec(vec![sdf::Path::from("/x.y")]),
+        );
+        let car = read_prim(&data, "car").unwrap();
+        assert_eq!(car.type_name.as_deref(), Some("Xform"));
+        let types: Vec<(&str, &str)> = car
+            .properties
+            .iter()
+            .map(|p| (p.name.as_str(), p.type_name.as_str()))
+            .collect();
+        assert_eq!(
+            types,
+            [
+                ("width", "double"),
+                ("material:binding", "rel"),
+                ("tint", "color3f.connect")
+            ]
+        );
+        assert_eq!(car.properties[0].default, Some(Value::Number(0.5)));
+    }
+
+    #[test]
+    fn every_integer_and_float_kind_reads_as_its_number() {
+        for (written, expected) in [
+            (V::Int(-7), -7.0),
+            (V::Uint(7), 7.0),
+            (V::Int64(-1 << 40), -(2f64.powi(40))),
+            (V::Uint64(1 << 40), 2f64.powi(40)),
+            (V::Float(0.25), 0.25),
+            (V::Double(-0.125), -0.125),
+        ] {
+            assert_eq!(number(&written), Some(expected), "{written:?}");
+        }
+    }
+
+    #[test]
+    fn prims_nest_as_deep_as_the_limit_and_no_deeper() {
+        // Each level of the reader's recursion takes a frame of its own: a thread with room.
+        let nest = |levels: usize| {
+            std::thread::Builder::new()
+                .stack_size(256 << 20)
+                .spawn(move || {
+                    let mut data = Data::new();
+                    let mut path = String::new();
+                    for level in 0..levels {
+                        path.push_str(&format!("/p{level}"));
+                        def(&mut data, &path, "Xform");
+                    }
+                    read_prim(&data, "p0").map(|_| ())
+                })
+                .unwrap()
+                .join()
+                .unwrap()
+        };
+        assert_eq!(nest(MAX_DEPTH + 1), Ok(()));
+        let refused = nest(MAX_DEPTH + 2).unwrap_err();
+        assert!(
+            refused.ends_with(&format!("prims nest more than {MAX_DEPTH} deep")),
+            "{refused}"
+        );
+    }
+}
