@@ -349,6 +349,95 @@ mod tests {
     }
 
     #[test]
+    fn every_kind_glint_reads_is_read_as_the_text_reader_reads_it() {
+        use openusd::gf::{self, f16};
+        let h = f16::from_f32;
+        let (num, s) = (Value::Number, |x: &str| Value::Str(x.to_string()));
+        let tuple = |xs: &[f64]| Value::Tuple(xs.iter().map(|&x| num(x)).collect());
+        let cases: Vec<(V, Value)> = vec![
+            (V::Half(h(-0.5)), num(-0.5)),
+            (V::String("paint".into()), s("paint")),
+            (V::Token(Token::from("Z")), s("Z")),
+            (
+                V::TokenVec(vec![Token::from("a"), Token::from("b")]),
+                Value::List(vec![s("a"), s("b")]),
+            ),
+            (
+                V::StringVec(vec!["c".into(), "d".into()]),
+                Value::List(vec![s("c"), s("d")]),
+            ),
+            (
+                V::IntVec(vec![3, -4]),
+                Value::List(vec![num(3.0), num(-4.0)]),
+            ),
+            (V::FloatVec(vec![0.25]), Value::List(vec![num(0.25)])),
+            (
+                V::DoubleVec(vec![-1.5, 2.0]),
+                Value::List(vec![num(-1.5), num(2.0)]),
+            ),
+            (V::Vec2d([1.0, 2.0].into()), tuple(&[1.0, 2.0])),
+            (V::Vec2f([3.0, 4.0].into()), tuple(&[3.0, 4.0])),
+            (V::Vec3d([1.0, 2.0, 3.0].into()), tuple(&[1.0, 2.0, 3.0])),
+            (V::Vec3f([4.0, 5.0, 6.0].into()), tuple(&[4.0, 5.0, 6.0])),
+            (
+                V::Vec3h([h(0.5), h(1.0), h(2.0)].into()),
+                tuple(&[0.5, 1.0, 2.0]),
+            ),
+            (
+                V::Vec2dVec(vec![[0.0, 1.0].into(), [2.0, 3.0].into()]),
+                Value::List(vec![tuple(&[0.0, 1.0]), tuple(&[2.0, 3.0])]),
+            ),
+            (
+                V::Vec3dVec(vec![[0.0, 1.0, 2.0].into()]),
+                Value::List(vec![tuple(&[0.0, 1.0, 2.0])]),
+            ),
+            (
+                V::Vec3fVec(vec![[3.0, 4.0, 5.0].into()]),
+                Value::List(vec![tuple(&[3.0, 4.0, 5.0])]),
+            ),
+            (
+                V::Quatd(gf::Quatd {
+                    w: 1.0,
+                    x: 2.0,
+                    y: 3.0,
+                    z: 4.0,
+                }),
+                tuple(&[1.0, 2.0, 3.0, 4.0]),
+            ),
+            (
+                V::Quatf(gf::Quatf {
+                    w: 0.5,
+                    x: 1.0,
+                    y: 1.5,
+                    z: 2.0,
+                }),
+                tuple(&[0.5, 1.0, 1.5, 2.0]),
+            ),
+            (
+                V::Quath(gf::Quath {
+                    w: h(2.0),
+                    x: h(0.5),
+                    y: h(0.25),
+                    z: h(1.0),
+                }),
+                tuple(&[2.0, 0.5, 0.25, 1.0]),
+            ),
+            (
+                V::Matrix4d(gf::Matrix4d(std::array::from_fn(|k| k as f64))),
+                Value::Tuple(
+                    (0..4)
+                        .map(|r| tuple(&[0.0, 1.0, 2.0, 3.0].map(|c| c + 4.0 * f64::from(r))))
+                        .collect(),
+                ),
+            ),
+            (V::Bool(true), Value::Other),
+        ];
+        for (written, expected) in cases {
+            assert_eq!(value(&written), expected, "{written:?}");
+        }
+    }
+
+    #[test]
     fn prims_nest_as_deep_as_the_limit_and_no_deeper() {
         // Each level of the reader's recursion takes a frame of its own: a thread with room.
         let nest = |levels: usize| {
