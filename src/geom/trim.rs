@@ -608,6 +608,63 @@ mod tests {
     }
 
     #[test]
+    fn the_signed_distance_is_the_least_over_every_cutting_segment_to_the_bit() {
+        // Holes of many sizes and sides, one in each cell of a 6 × 6 grid (a 3 × 3 of small
+        // ones crowded into the first), some near the domain's side; points inside, on and
+        // beyond the domain, and reaches from a hair to the most cells searched.
+        let mut rng = StdRng::seed_from_u64(2024);
+        let mut loops = vec![square(0.0, 1.0, true)];
+        let mut hole = |rng: &mut StdRng, lo: DVec2, side: f64| {
+            let r = rng.random_range(0.05..0.45) * side;
+            let room = 0.5 * side - r - 0.01 * side;
+            let jitter = DVec2::new(rng.random_range(-room..room), rng.random_range(-room..room));
+            let sides = rng.random_range(3..90);
+            loops.push(circle(
+                lo + DVec2::splat(0.5 * side) + jitter,
+                r,
+                sides,
+                false,
+            ));
+        };
+        for (i, j) in (0..6).flat_map(|i| (0..6).map(move |j| (i, j))) {
+            let lo = DVec2::new(i as f64, j as f64) / 6.0;
+            if (i, j) == (0, 0) {
+                for (a, b) in (0..3).flat_map(|a| (0..3).map(move |b| (a, b))) {
+                    hole(
+                        &mut rng,
+                        lo + DVec2::new(a as f64, b as f64) / 18.0,
+                        1.0 / 18.0,
+                    );
+                }
+            } else {
+                hole(&mut rng, lo, 1.0 / 6.0);
+            }
+        }
+        let trim = Trim::new(loops, unit()).unwrap();
+        let mut tried = 0;
+        for _ in 0..20_000 {
+            let (u, v) = (rng.random_range(-0.1..1.1), rng.random_range(-0.1..1.1));
+            let reach = 10f64.powf(rng.random_range(-5.0..-0.5));
+            let Some(d) = trim.try_signed_distance(u, v, reach) else {
+                continue;
+            };
+            tried += 1;
+            let p = trim.inset(DVec2::new(u, v));
+            let nearest = trim
+                .edges()
+                .map(|[a, b]| distance_to_segment(p, a, b))
+                .fold(reach, f64::min);
+            let expected = if trim.contains(u, v) {
+                nearest
+            } else {
+                -nearest
+            };
+            assert_eq!(d.to_bits(), expected.to_bits(), "({u}, {v}) within {reach}");
+        }
+        assert!(tried > 5_000, "{tried} points searched");
+    }
+
+    #[test]
     fn the_signed_distance_is_that_to_the_hole_rim_and_saturates_at_its_reach() {
         // A hole of radius 0.25 as a 1024-gon, whose chords stray 3 · 10⁻⁶ from the circle.
         let hole = circle(DVec2::splat(0.5), 0.25, 1024, false);
