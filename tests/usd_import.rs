@@ -8,7 +8,7 @@ use glint::geom::{NurbsSurface, PatchLibrary};
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 
-use crate::common::{glint_with as glint, repo_file, stderr};
+use crate::common::{flat_patch, glint_with as glint, repo_file, stderr};
 
 /// The largest difference of point and first derivatives between `a` and `b` at `n` random
 /// parameters of their (shared) domain.
@@ -140,25 +140,6 @@ fn prims_become_patches_and_parts_placed_by_their_transforms() {
         (corner - expected).length() < 1e-9,
         "{corner} against {expected}"
     );
-}
-
-/// A bilinear patch named `name`, with the prim's metadata `meta` (`""` for none) and its
-/// children `inside`, as USDA.
-fn flat_patch(name: &str, meta: &str, inside: &str) -> String {
-    format!(
-        r#"def NurbsPatch "{name}" {meta}
-{{
-    int uVertexCount = 2
-    int vVertexCount = 2
-    int uOrder = 2
-    int vOrder = 2
-    double[] uKnots = [0, 0, 1, 1]
-    double[] vKnots = [0, 0, 1, 1]
-    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
-{inside}
-}}
-"#
-    )
 }
 
 #[test]

@@ -6,7 +6,7 @@
 use glam::DVec3;
 use glint::formats::{load_model, load_patches, parse_usda_motion};
 
-use crate::common::{glint_with as glint, repo_file, stderr};
+use crate::common::{flat_patch, glint_with as glint, repo_file, stderr};
 
 /// The text of `patches/flag.usda`, written by `scripts/usd/author_animated.py`.
 pub(crate) fn flag_text() -> String {
@@ -268,24 +268,11 @@ fn samples_written_out_of_order_are_sorted_and_a_repeated_time_keeps_the_last() 
 
 #[test]
 fn a_patch_under_still_transforms_in_a_moving_layer_does_not_move() {
-    let still = r#"
-def Xform "post"
-{
-    double3 xformOp:translate = (3, 0, 0)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-    def NurbsPatch "plank"
-    {
-        int uVertexCount = 2
-        int vVertexCount = 2
-        int uOrder = 2
-        int vOrder = 2
-        double[] uKnots = [0, 0, 1, 1]
-        double[] vKnots = [0, 0, 1, 1]
-        point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
-    }
-}
-"#;
-    let text = sheet(TWO_SAMPLES, "", "") + still;
+    let plank = flat_patch("plank", "", "");
+    let still = format!(
+        "def Xform \"post\"\n{{\n    double3 xformOp:translate = (3, 0, 0)\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n{plank}}}\n"
+    );
+    let text = sheet(TWO_SAMPLES, "", "") + &still;
     let (library, motion) = parse_usda_motion(&text, "sheet.usda").unwrap();
     let motion = motion.expect("the sheet moves");
     assert_eq!(library.patches[1].name, "post/plank");

@@ -119,3 +119,22 @@ pub fn matte_centroid_of(matte: &[f32], width: u32) -> ((f64, f64), f64) {
     }
     ((sx / sum, sy / sum), sum)
 }
+
+/// A bilinear patch named `name`, with the prim's metadata `meta` (`""` for none) and its
+/// children `inside`, as USDA: the unit square at z = 0, its corners row by row.
+pub fn flat_patch(name: &str, meta: &str, inside: &str) -> String {
+    format!(
+        r#"def NurbsPatch "{name}" {meta}
+{{
+    int uVertexCount = 2
+    int vVertexCount = 2
+    int uOrder = 2
+    int vOrder = 2
+    double[] uKnots = [0, 0, 1, 1]
+    double[] vKnots = [0, 0, 1, 1]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
+{inside}
+}}
+"#
+    )
+}
