@@ -177,7 +177,8 @@ fn string(text: &str, start: usize) -> Result<(String, usize), LexError> {
 
 /// The text from `start` to the next `close` after the opening one, and the offset after it.
 fn delimited(text: &str, start: usize, close: &str) -> Result<(String, usize), LexError> {
-    let open = if close == ">" { 1 } else { close.len() };
+    // `<` opens what `>` closes, and `@` or `@@@` what they close: the opener is as long.
+    let open = close.len();
     match text[start + open..].find(close) {
         Some(n) if !text[start + open..start + open + n].contains('\n') => Ok((
             text[start + open..start + open + n].to_string(),
@@ -215,6 +216,87 @@ mod tests {
             .find(|t| t.token == Token::Word("xformOp:translate".into()))
             .unwrap();
         assert_eq!(&text[translate.at..translate.at + 17], "xformOp:translate");
+    }
+
+    /// Every token of `text` after its header, with the text from where it starts.
+    fn read(text: &str) -> Vec<(Token, &str)> {
+        tokens(text)
+            .unwrap()
+            .into_iter()
+            .map(|t| (t.token, &text[t.at..]))
+            .collect()
+    }
+
+    #[test]
+    fn quoted_strings_of_every_kind_read_to_their_close_and_no_further() {
+        let text = concat!(
+            "#usda 1.0\n",
+            r#""""two"#,
+            "\n",
+            r#"lines""" x '''it's''' y "a\"b\n\tc" 'q' z"#,
+            "\n"
+        );
+        let s = |v: &str| Token::Str(v.into());
+        let w = |v: &str| Token::Word(v.into());
+        let want = [
+            (s("two\nlines"), r#""""two"#),
+            (w("x"), "x '''"),
+            (s("it's"), "'''it's"),
+            (w("y"), r#"y ""#),
+            (s("a\"b\n\tc"), r#""a\"#),
+            (s("q"), "'q'"),
+            (w("z"), "z\n"),
+        ];
+        let got = read(text);
+        assert_eq!(got.len(), want.len(), "{got:?}");
+        for ((token, at), (want, starts)) in got.iter().zip(&want) {
+            assert_eq!(token, want);
+            assert!(at.starts_with(starts), "{token:?} read at {at:?}");
+        }
+    }
+
+    #[test]
+    fn a_namespaced_word_goes_on_only_where_a_letter_or_underscore_follows_its_colon_or_dot() {
+        let text = "#usda 1.0\nprimvars:_st a._b c:1 e_2:f.g h:\n";
+        let w = |v: &str| Token::Word(v.into());
+        let got: Vec<Token> = read(text).into_iter().map(|(t, _)| t).collect();
+        let want = [
+            w("primvars:_st"),
+            w("a._b"),
+            w("c"),
+            Token::Punct(':'),
+            Token::Number(1.0),
+            w("e_2:f.g"),
+            w("h"),
+            Token::Punct(':'),
+        ];
+        assert_eq!(got, want);
+    }
+
+    #[test]
+    fn assets_and_paths_read_to_their_close_on_their_line() {
+        let text = "#usda 1.0\n</a/b> @@@./c d.usd@@@\n@e.usd@ x\n";
+        let got = read(text);
+        assert_eq!(
+            got.iter().map(|(t, _)| t.clone()).collect::<Vec<_>>(),
+            [
+                Token::Path("/a/b".into()),
+                Token::Asset("./c d.usd".into()),
+                Token::Asset("e.usd".into()),
+                Token::Word("x".into()),
+            ]
+        );
+        assert!(got[2].1.starts_with("@e.usd@ x"));
+        for broken in ["<a\nb>", "<ab\n>", "@a\n@", "@@@a\n@@@", "@@@a@@"] {
+            let text = format!("#usda 1.0\nrel r = {broken}\n");
+            let e = tokens(&text).unwrap_err();
+            assert_eq!(e.at, text.find(&broken[..1]).unwrap(), "{broken:?}");
+            assert!(
+                e.message.contains("on its line"),
+                "{broken:?}: {}",
+                e.message
+            );
+        }
     }
 
     #[test]
