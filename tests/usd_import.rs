@@ -267,6 +267,27 @@ const REFUSALS: &[Refusal] = &[
         says: &["`uKnots` decreases at knot 2"],
     },
     Refusal {
+        name: "a vertex count that is not whole",
+        from: "int uVertexCount = 2",
+        to: "double uVertexCount = 2.5",
+        at: "uVertexCount = 2.5",
+        says: &["`uVertexCount` must be a whole number from 1 to 10⁶"],
+    },
+    Refusal {
+        name: "a vertex count of none",
+        from: "int vVertexCount = 2",
+        to: "int vVertexCount = 0",
+        at: "vVertexCount = 0",
+        says: &["`vVertexCount` must be a whole number from 1 to 10⁶"],
+    },
+    Refusal {
+        name: "a vertex count past 10⁶",
+        from: "int uVertexCount = 2",
+        to: "int uVertexCount = 1000001",
+        at: "uVertexCount = 1000001",
+        says: &["`uVertexCount` must be a whole number from 1 to 10⁶"],
+    },
+    Refusal {
         name: "order above the supported degree",
         from: "            int uOrder = 2\n            int vOrder = 2\n            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",
         to: "            int uOrder = 11\n            int vOrder = 2\n            double[] uKnots = [0, 0, 1, 1]\n            double[] vKnots = [0, 0, 1, 1]\n            point3f[] points = [(0, 0, 0)",

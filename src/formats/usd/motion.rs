@@ -167,7 +167,8 @@ impl UsdMotion {
         let world = self.node_world(motion.node, time_code) * motion.since;
         let (i, j, s) = bracket(&motion.times, time_code);
         let (a, b) = (&motion.points[i], &motion.points[j]);
-        if i == j || s == 0.0 {
+        // At a sample, or held before the first or after the last (where `i == j`).
+        if s == 0.0 {
             return a.iter().map(|&p| world.transform_point3(p)).collect();
         }
         a.iter()
