@@ -851,3 +851,38 @@ fn glint_patches_counts_the_trim_loops_of_the_shipped_trimmed_models() {
     assert_eq!(loops("speaker/body/left"), 2);
     assert_eq!(loops("speaker/body/top"), 0);
 }
+
+#[test]
+fn a_usd_trim_curve_s_range_may_pass_its_knots_domain_by_a_rounding_slack_and_no_more() {
+    // The knots' domain is (0, 4): the slack is 1e-9 · (1 + 4).
+    let ranges = "double2[] trimCurve:ranges = [(0, 4), (0, 4)]";
+    let with = |range: &str| {
+        holed("").replace(
+            ranges,
+            &format!("double2[] trimCurve:ranges = [{range}, (0, 4)]"),
+        )
+    };
+    let exact = glint::formats::parse_usda(&holed(""), "sheet.usda").unwrap();
+    for within in ["(0, 4.0000000045)", "(-4.5e-9, 4)"] {
+        let read = glint::formats::parse_usda(&with(within), "sheet.usda")
+            .unwrap_or_else(|e| panic!("{within}: {e}"));
+        let (a, b) = (&read.patches[0], &exact.patches[0]);
+        for (u, v) in [(0.5, 0.5), (0.1, 0.1), (0.9, 0.95), (0.45, 0.45)] {
+            assert_eq!(a.keeps(u, v), b.keeps(u, v), "{within} at ({u}, {v})");
+        }
+    }
+    for beyond in ["(0, 4.000000006)", "(-6e-9, 4)", "(2, 2)", "(3, 1)"] {
+        let text = with(beyond);
+        let e = glint::formats::parse_usda(&text, "sheet.usda")
+            .err()
+            .unwrap_or_else(|| panic!("{beyond} was read"))
+            .to_string();
+        let (line, _) = location(&text, "trimCurve:ranges");
+        assert!(e.contains(&format!("sheet.usda:{line}:")), "{beyond}: {e}");
+        assert!(
+            e.contains("trim curve 0 has the range")
+                && e.contains("not within its knots' domain (0, 4)"),
+            "{beyond}: {e}"
+        );
+    }
+}
