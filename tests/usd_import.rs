@@ -886,3 +886,45 @@ fn a_usd_trim_curve_s_range_may_pass_its_knots_domain_by_a_rounding_slack_and_no
         );
     }
 }
+
+#[test]
+fn a_usd_trim_loop_whose_next_curve_does_not_begin_where_the_last_ended_is_refused() {
+    // The outer loop as two curves, the second beginning at `join`; the hole as in `holed`.
+    let two = |join: &str| {
+        holed("")
+            .replace("counts = [1, 1]", "counts = [2, 1]")
+            .replace("orders = [2, 2]", "orders = [2, 2, 2]")
+            .replace("vertexCounts = [5, 5]", "vertexCounts = [3, 3, 5]")
+            .replace(
+                "knots = [0, 0, 1, 2, 3, 4, 4, 0,",
+                "knots = [0, 0, 1, 2, 2, 0, 0, 1, 2, 2, 0,",
+            )
+            .replace(
+                "ranges = [(0, 4), (0, 4)]",
+                "ranges = [(0, 2), (0, 2), (0, 4)]",
+            )
+            .replace(
+                "points = [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (0, 0, 1),",
+                &format!(
+                    "points = [(0, 0, 1), (1, 0, 1), (1, 1, 1), {join}, (0, 1, 1), (0, 0, 1),"
+                ),
+            )
+    };
+    let exact = glint::formats::parse_usda(&holed(""), "sheet.usda").unwrap();
+    let joined = glint::formats::parse_usda(&two("(1, 1, 1)"), "sheet.usda").unwrap();
+    for (u, v) in [(0.5, 0.5), (0.1, 0.1), (0.9, 0.95), (0.45, 0.45)] {
+        assert_eq!(joined.patches[0].keeps(u, v), exact.patches[0].keeps(u, v));
+    }
+    let text = two("(0.9, 1, 1)");
+    let e = glint::formats::parse_usda(&text, "sheet.usda")
+        .expect_err("a loop with a gap was read")
+        .to_string();
+    let (line, _) = location(&text, "trimCurve:points");
+    assert!(e.contains(&format!("sheet.usda:{line}:")), "{e}");
+    assert!(
+        e.contains(
+            "trim loop 0 is not closed: its curve 0 ends at (1.000000, 1.000000) but the next begins at (0.900000, 1.000000)"
+        ),
+        "{e}"
+    );
+}
