@@ -852,6 +852,16 @@ fn glint_patches_counts_the_trim_loops_of_the_shipped_trimmed_models() {
     assert_eq!(loops("speaker/body/top"), 0);
 }
 
+/// Asserts that the sheet read from a variant of [`holed`] (named `what`) keeps what
+/// `holed("")` keeps, inside the hole, about it and near the outer loop.
+fn assert_keeps_as_holed(read: &glint::geom::PatchLibrary, what: &str) {
+    let exact = glint::formats::parse_usda(&holed(""), "sheet.usda").unwrap();
+    for (u, v) in [(0.5, 0.5), (0.1, 0.1), (0.9, 0.95), (0.45, 0.45)] {
+        let (a, b) = (&read.patches[0], &exact.patches[0]);
+        assert_eq!(a.keeps(u, v), b.keeps(u, v), "{what} at ({u}, {v})");
+    }
+}
+
 #[test]
 fn a_usd_trim_curve_s_range_may_pass_its_knots_domain_by_a_rounding_slack_and_no_more() {
     // The knots' domain is (0, 4): the slack is 1e-9 · (1 + 4).
@@ -862,14 +872,10 @@ fn a_usd_trim_curve_s_range_may_pass_its_knots_domain_by_a_rounding_slack_and_no
             &format!("double2[] trimCurve:ranges = [{range}, (0, 4)]"),
         )
     };
-    let exact = glint::formats::parse_usda(&holed(""), "sheet.usda").unwrap();
     for within in ["(0, 4.0000000045)", "(-4.5e-9, 4)"] {
         let read = glint::formats::parse_usda(&with(within), "sheet.usda")
             .unwrap_or_else(|e| panic!("{within}: {e}"));
-        let (a, b) = (&read.patches[0], &exact.patches[0]);
-        for (u, v) in [(0.5, 0.5), (0.1, 0.1), (0.9, 0.95), (0.45, 0.45)] {
-            assert_eq!(a.keeps(u, v), b.keeps(u, v), "{within} at ({u}, {v})");
-        }
+        assert_keeps_as_holed(&read, within);
     }
     for beyond in ["(0, 4.000000006)", "(-6e-9, 4)", "(2, 2)", "(3, 1)"] {
         let text = with(beyond);
@@ -910,11 +916,8 @@ fn a_usd_trim_loop_whose_next_curve_does_not_begin_where_the_last_ended_is_refus
                 ),
             )
     };
-    let exact = glint::formats::parse_usda(&holed(""), "sheet.usda").unwrap();
     let joined = glint::formats::parse_usda(&two("(1, 1, 1)"), "sheet.usda").unwrap();
-    for (u, v) in [(0.5, 0.5), (0.1, 0.1), (0.9, 0.95), (0.45, 0.45)] {
-        assert_eq!(joined.patches[0].keeps(u, v), exact.patches[0].keeps(u, v));
-    }
+    assert_keeps_as_holed(&joined, "joined");
     let text = two("(0.9, 1, 1)");
     let e = glint::formats::parse_usda(&text, "sheet.usda")
         .expect_err("a loop with a gap was read")
